@@ -1,0 +1,328 @@
+//! Flanks bounded by the blank, with the pinion's ease-off, evaluated at
+//! axial-section coordinates: position, outward normal, principal curvatures.
+//!
+//! Flank coordinates: L is the cone distance and d the height above the
+//! pitch cone, both in the axial section of the member (the plane through the
+//! axis), taken at the unmodified (conjugate) flank point. The normalised
+//! coordinates are face ξ = (L − R_i)/b (0 toe, 1 heel) and profile
+//! η = (d − d_low(L)) / (d_face(L) − d_low(L)) (0 at the fillet limit, 1 at the tip).
+
+use crate::design::{Member, PairData};
+use crate::ease_off::EaseOff;
+use crate::error::GeometryError;
+use crate::generation::{GeneratedFlank, Side};
+use nalgebra::{Const, Matrix2, SVector, Vector3};
+use crate::Scalar;
+use num_dual::{hessian, Dual2Vec};
+use serde::Serialize;
+
+/// A straight line d = d0 + slope (L − R_m) in the axial section.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Line {
+    pub d0: f64,
+    pub slope: f64,
+}
+
+impl Line {
+    pub fn at<D: Scalar>(&self, l: D, rm: f64) -> D {
+        (l - rm) * self.slope + self.d0
+    }
+}
+
+/// Blank bounds of one flank in the axial section.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Bounds {
+    pub rm: f64,
+    pub inner: f64,
+    pub outer: f64,
+    /// Face cone line.
+    pub face: Line,
+    /// Root cone line.
+    pub root: Line,
+    /// Lower limit of the straight-blade flank: where the edge-radius fillet
+    /// meets it, ρ_e (1 − sin α) above the root line.
+    pub low: Line,
+}
+
+impl Bounds {
+    pub fn new(pair: &PairData, m: Member, side: Side) -> Self {
+        let d = pair.member(m);
+        let g = d.pitch_angle;
+        let rm = pair.mean_cone_distance;
+        let root = Line {
+            d0: -d.mean_dedendum,
+            slope: (d.root_angle - g).tan(),
+        };
+        let fillet = pair.edge_radius * (1.0 - pair.pressure_angle[side.index()].sin());
+        Bounds {
+            rm,
+            inner: pair.inner_cone_distance(),
+            outer: pair.outer_cone_distance(),
+            face: Line {
+                d0: d.mean_addendum,
+                slope: (d.face_angle - g).tan(),
+            },
+            root,
+            low: Line {
+                d0: root.d0 + fillet,
+                slope: root.slope,
+            },
+        }
+    }
+    /// (L, d) from normalised (ξ face, η profile).
+    pub fn from_unit(&self, xi: f64, eta: f64) -> (f64, f64) {
+        let l = self.inner + xi * (self.outer - self.inner);
+        let lo = self.low.at(l, self.rm);
+        (l, lo + eta * (self.face.at(l, self.rm) - lo))
+    }
+    /// Normalised (ξ, η) from (L, d).
+    pub fn to_unit<D: Scalar>(&self, l: D, d: D) -> (D, D) {
+        let lo = self.low.at(l, self.rm);
+        let hi = self.face.at(l, self.rm);
+        ((l - self.inner) / (self.outer - self.inner), (d - lo) / (hi - lo))
+    }
+    /// True when (L, d) lies on the flank (toe..heel, fillet limit..tip), with tolerance.
+    pub fn contains(&self, l: f64, d: f64, tol: f64) -> bool {
+        l >= self.inner - tol
+            && l <= self.outer + tol
+            && d >= self.low.at(l, self.rm) - tol
+            && d <= self.face.at(l, self.rm) + tol
+    }
+}
+
+/// A flank point with everything the analyses need.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct FlankPoint {
+    /// Generating parameters (ζ, s).
+    pub uv: [f64; 2],
+    /// Position in the member frame (tooth 0), modified flank, m.
+    pub pos: [f64; 3],
+    /// Outward unit normal in the member frame.
+    pub normal: [f64; 3],
+    /// Axial-section coordinates of the conjugate point (L, d), m.
+    pub l: f64,
+    pub d: f64,
+    /// Pinion rotation at which the conjugate point is on the contact line, rad.
+    pub pinion_roll: f64,
+    /// Normal deviation from the conjugate flank (positive = material removed), m.
+    pub ease_off: f64,
+    /// Wheel normal lever |n · (a₂ × r)| at the contact position, m/rad.
+    pub wheel_lever: f64,
+}
+
+/// Principal curvatures (positive = convex, i.e. bending away from the
+/// outward normal) and unit principal directions in the member frame.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Curvature {
+    pub k: [f64; 2],
+    pub dir: [[f64; 3]; 2],
+}
+
+/// A flank of one member: generated surface, blank bounds, modification.
+#[derive(Debug, Clone)]
+pub struct Flank {
+    pub gen: GeneratedFlank,
+    pub bounds: Bounds,
+    pub ease: Option<EaseOff>,
+    /// Roll ratio of the pinion, φ₁ / φ_c.
+    pinion_ratio: f64,
+    /// Wheel axis in the fixed frame.
+    wheel_axis: Vector3<f64>,
+}
+
+/// The generic modified point: position (member frame), outward normal of the
+/// unmodified surface, (L, d), pinion roll, ease-off, wheel lever.
+struct Generic<D> {
+    pos: [D; 3],
+    normal: [D; 3],
+    l: D,
+    d: D,
+    roll: D,
+    ease: D,
+    lever: D,
+}
+
+impl Flank {
+    pub fn new(
+        gen: GeneratedFlank,
+        bounds: Bounds,
+        ease: Option<EaseOff>,
+        pinion_ratio: f64,
+        wheel_axis: Vector3<f64>,
+    ) -> Self {
+        Flank {
+            gen,
+            bounds,
+            ease,
+            pinion_ratio,
+            wheel_axis,
+        }
+    }
+
+    fn generic<D: Scalar>(&self, u: D, v: D) -> Generic<D> {
+        let raw = self.gen.eval(u, v);
+        let (l, d) = self.gen.frame.axial(&raw.pos);
+        let roll = raw.crown_roll * self.pinion_ratio;
+        let a = self.wheel_axis;
+        let r = raw.pos_fixed;
+        let n = raw.normal_fixed;
+        let axr = [
+            r[2] * a[1] - r[1] * a[2],
+            r[0] * a[2] - r[2] * a[0],
+            r[1] * a[0] - r[0] * a[1],
+        ];
+        let lever = (n[0] * axr[0] + n[1] * axr[1] + n[2] * axr[2]).abs();
+        let ease = match &self.ease {
+            Some(e) => {
+                let (xi, eta) = self.bounds.to_unit(l, d);
+                e.value(xi, eta, roll, lever)
+            }
+            None => D::zero(),
+        };
+        let pos = std::array::from_fn(|i| raw.pos[i] - raw.normal[i] * ease);
+        Generic {
+            pos,
+            normal: raw.normal,
+            l,
+            d,
+            roll,
+            ease,
+            lever,
+        }
+    }
+
+    /// Evaluates at generating parameters (ζ, s).
+    pub fn eval_uv(&self, u: f64, v: f64) -> FlankPoint {
+        let g = self.generic(u, v);
+        FlankPoint {
+            uv: [u, v],
+            pos: g.pos,
+            normal: g.normal,
+            l: g.l,
+            d: g.d,
+            pinion_roll: g.roll,
+            ease_off: g.ease,
+            wheel_lever: g.lever,
+        }
+    }
+
+    /// Axial-section coordinates of the conjugate point at (ζ, s).
+    pub fn ld(&self, u: f64, v: f64) -> (f64, f64) {
+        let raw = self.gen.eval(u, v);
+        self.gen.frame.axial(&raw.pos)
+    }
+
+    /// Generating parameters of the flank point at (L, d), by Newton.
+    pub fn solve_ld(&self, l: f64, d: f64) -> Result<[f64; 2], GeometryError> {
+        let (u, v) = self.gen.guess(l, d);
+        self.solve_ld_from(l, d, [u, v])
+    }
+
+    /// As [`Flank::solve_ld`], starting Newton from `start`.
+    pub fn solve_ld_from(&self, l: f64, d: f64, start: [f64; 2]) -> Result<[f64; 2], GeometryError> {
+        let [mut u, mut v] = start;
+        let h = 1e-7;
+        for _ in 0..60 {
+            let (l0, d0) = self.ld(u, v);
+            let r = [l0 - l, d0 - d];
+            if r[0].abs() < 1e-13 && r[1].abs() < 1e-13 {
+                return Ok([u, v]);
+            }
+            let (lu, du) = self.ld(u + h, v);
+            let (lv, dv) = self.ld(u, v + h);
+            let j = Matrix2::new((lu - l0) / h, (lv - l0) / h, (du - d0) / h, (dv - d0) / h);
+            let Some(ji) = j.try_inverse() else { break };
+            let step = ji * nalgebra::Vector2::new(r[0], r[1]);
+            let scale = (0.02 / step.norm()).min(1.0);
+            u -= scale * step[0];
+            v -= scale * step[1];
+        }
+        Err(GeometryError::NoFlankPoint {
+            member: self.gen.member.name(),
+            flank: self.gen.side.flank_name(self.gen.member),
+            cone_distance_mm: l * 1e3,
+            height_mm: d * 1e3,
+        })
+    }
+
+    /// Flank point at (L, d).
+    pub fn at(&self, l: f64, d: f64) -> Result<FlankPoint, GeometryError> {
+        let [u, v] = self.solve_ld(l, d)?;
+        Ok(self.eval_uv(u, v))
+    }
+
+    /// Flank point at normalised (ξ face, η profile).
+    pub fn at_unit(&self, xi: f64, eta: f64) -> Result<FlankPoint, GeometryError> {
+        let (l, d) = self.bounds.from_unit(xi, eta);
+        self.at(l, d)
+    }
+
+    /// First and second derivatives of the modified position with respect to
+    /// (ζ, s), exact (hyper-dual numbers): (r, [r_u, r_v], [r_uu, r_uv, r_vv]).
+    pub fn derivatives(&self, u: f64, v: f64) -> ([f64; 3], [[f64; 3]; 2], [[f64; 3]; 3]) {
+        type D2 = Dual2Vec<f64, Const<2>>;
+        let res = hessian(
+            |x: SVector<D2, 2>| self.generic(x[0], x[1]).pos,
+            &SVector::from([u, v]),
+        );
+        let r = std::array::from_fn(|i| res[i].0);
+        let d1 = [
+            std::array::from_fn(|i| res[i].1[0]),
+            std::array::from_fn(|i| res[i].1[1]),
+        ];
+        let d2 = [
+            std::array::from_fn(|i| res[i].2[(0, 0)]),
+            std::array::from_fn(|i| res[i].2[(0, 1)]),
+            std::array::from_fn(|i| res[i].2[(1, 1)]),
+        ];
+        (r, d1, d2)
+    }
+
+    /// Principal curvatures and directions at (ζ, s) of the modified flank.
+    pub fn curvature_uv(&self, u: f64, v: f64) -> Curvature {
+        let (_, d1, d2) = self.derivatives(u, v);
+        let n_out = Vector3::from(self.eval_uv(u, v).normal);
+        curvature_from_derivatives(d1, d2, &n_out)
+    }
+}
+
+/// Principal curvatures from the first and second derivatives of a
+/// parametrisation: shape operator S = I⁻¹ II with the outward normal; the
+/// curvature is reported positive for a convex surface (κ = −eig S).
+pub fn curvature_from_derivatives(
+    d1: [[f64; 3]; 2],
+    d2: [[f64; 3]; 3],
+    n_out: &Vector3<f64>,
+) -> Curvature {
+    let ru = Vector3::from(d1[0]);
+    let rv = Vector3::from(d1[1]);
+    let mut n = ru.cross(&rv).normalize();
+    if n.dot(n_out) < 0.0 {
+        n = -n;
+    }
+    let first = Matrix2::new(ru.dot(&ru), ru.dot(&rv), ru.dot(&rv), rv.dot(&rv));
+    let second = Matrix2::new(
+        Vector3::from(d2[0]).dot(&n),
+        Vector3::from(d2[1]).dot(&n),
+        Vector3::from(d2[1]).dot(&n),
+        Vector3::from(d2[2]).dot(&n),
+    );
+    // Symmetric form: I^{-1/2} II I^{-1/2} via Cholesky I = C Cᵀ.
+    let c = first.cholesky().expect("regular parametrisation").l();
+    let ci = c.try_inverse().expect("regular parametrisation");
+    let m = ci * second * ci.transpose();
+    let eig = m.symmetric_eigen();
+    let mut out = Curvature {
+        k: [0.0; 2],
+        dir: [[0.0; 3]; 2],
+    };
+    let mut idx = [0usize, 1];
+    idx.sort_by(|&a, &b| (-eig.eigenvalues[a]).total_cmp(&(-eig.eigenvalues[b])));
+    for (o, &i) in idx.iter().enumerate() {
+        out.k[o] = -eig.eigenvalues[i];
+        let w = ci.transpose() * eig.eigenvectors.column(i);
+        let t = (ru * w[0] + rv * w[1]).normalize();
+        out.dir[o] = [t[0], t[1], t[2]];
+    }
+    out
+}

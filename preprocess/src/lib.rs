@@ -1,0 +1,19 @@
+//! Preprocess: design and scene files, face-milled spiral bevel flanks and
+//! unloaded tooth contact analysis (UTCA).
+//!
+//! Data flow: design file → [`design::PairData`] → [`pair::PairGeometry`]
+//! (generated flanks, ease-off) → [`utca::Utca`] → outputs.
+
+pub mod design;
+pub mod direct;
+pub mod ease_off;
+pub mod error;
+pub mod flank;
+pub mod generation;
+pub mod pair;
+pub mod scene;
+pub mod utca;
+
+/// Scalar type of the geometry kernels: `f64`, or a dual number for exact derivatives.
+pub trait Scalar: num_dual::DualNum<Primitive = f64> + Copy {}
+impl<T: num_dual::DualNum<Primitive = f64> + Copy> Scalar for T {}

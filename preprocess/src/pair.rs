@@ -1,0 +1,202 @@
+//! A gear pair's flanks, ready for contact analysis: the four generated flanks
+//! bounded by their blanks, the active region of each flank pair, and the
+//! pinion's ease-off centred on its tooth's contact interval.
+
+use crate::design::{Member, PairData};
+use crate::ease_off::EaseOff;
+use crate::error::GeometryError;
+use crate::flank::{Bounds, Flank, FlankPoint};
+use crate::generation::{Generator, MemberFrame, Side};
+use serde::Serialize;
+
+/// A pinion flank and its mating wheel flank on one side.
+#[derive(Debug, Clone)]
+pub struct FlankPair {
+    pub side: Side,
+    pub pinion: Flank,
+    pub wheel: Flank,
+    /// Wheel rotation (rad) added to −(z₁/z₂) φ₁ for conjugate contact of tooth j with wheel tooth −j.
+    pub wheel_offset: f64,
+    /// Pinion roll range of the active region of tooth 0, rad.
+    pub roll_range: [f64; 2],
+}
+
+/// Both sides of a pair.
+#[derive(Debug, Clone)]
+pub struct PairGeometry {
+    pub data: PairData,
+    pub generator: Generator,
+    pub frames: [MemberFrame; 2],
+    pub sides: [FlankPair; 2],
+}
+
+/// Sign of the pinion's rotation when it drives with `side` (the wheel turns the other way).
+pub fn pinion_direction(data: &PairData, side: Side) -> f64 {
+    let h = crate::generation::trace_sign(data.members[0].hand);
+    match side {
+        Side::Drive => -h,
+        Side::Coast => h,
+    }
+}
+
+/// Grid used to find the active region of a flank pair.
+const REGION_GRID: usize = 41;
+
+impl PairGeometry {
+    pub fn new(data: &PairData) -> Result<Self, GeometryError> {
+        let generator = Generator::new(data);
+        let frames = [
+            MemberFrame::new(data, Member::Pinion),
+            MemberFrame::new(data, Member::Wheel),
+        ];
+        let k1 = frames[0].roll_ratio;
+        let a2 = frames[1].axis();
+        let mk = |side: Side| -> Result<FlankPair, GeometryError> {
+            let mut pinion = Flank::new(
+                *generator.flank(Member::Pinion, side),
+                Bounds::new(data, Member::Pinion, side),
+                None,
+                k1,
+                a2,
+            );
+            let wheel = Flank::new(
+                *generator.flank(Member::Wheel, side),
+                Bounds::new(data, Member::Wheel, side),
+                None,
+                k1,
+                a2,
+            );
+            let dphase = wheel.gen.phase - pinion.gen.phase;
+            let mut fp = FlankPair {
+                side,
+                pinion: pinion.clone(),
+                wheel,
+                wheel_offset: -frames[1].roll_ratio * dphase,
+                roll_range: [0.0, 0.0],
+            };
+            fp.roll_range = fp.active_roll_range()?;
+            let vertex = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);
+            pinion.ease = Some(EaseOff::new(&data.ease_off, vertex, data.mesh_cycle()));
+            fp.pinion = pinion;
+            Ok(fp)
+        };
+        let sides = [mk(Side::Drive)?, mk(Side::Coast)?];
+        Ok(PairGeometry {
+            data: data.clone(),
+            generator,
+            frames,
+            sides,
+        })
+    }
+
+    pub fn side(&self, side: Side) -> &FlankPair {
+        &self.sides[side.index()]
+    }
+
+    pub fn flank(&self, m: Member, side: Side) -> &Flank {
+        let s = self.side(side);
+        match m {
+            Member::Pinion => &s.pinion,
+            Member::Wheel => &s.wheel,
+        }
+    }
+}
+
+/// Whether a pinion point's conjugate mate lies on the wheel flank.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Activity {
+    pub on_pinion: bool,
+    pub on_wheel: bool,
+}
+
+impl FlankPair {
+    /// Pinion point at generating parameters and whether it is in the active region.
+    pub fn point(&self, u: f64, v: f64, tol: f64) -> (FlankPoint, bool) {
+        let p = self.pinion.eval_uv(u, v);
+        let (lw, dw) = self.wheel.ld(u, v);
+        let ok = self.pinion.bounds.contains(p.l, p.d, tol) && self.wheel.bounds.contains(lw, dw, tol);
+        (p, ok)
+    }
+
+    /// Is (u, v) in the active region (on both flanks)?
+    pub fn is_active(&self, u: f64, v: f64, tol: f64) -> bool {
+        let (l, d) = self.pinion.ld(u, v);
+        let (lw, dw) = self.wheel.ld(u, v);
+        self.pinion.bounds.contains(l, d, tol) && self.wheel.bounds.contains(lw, dw, tol)
+    }
+
+    /// Pinion roll range over the active region: along every grid row of the
+    /// pinion flank the active interval's ends are found by bisection.
+    fn active_roll_range(&self) -> Result<[f64; 2], GeometryError> {
+        let n = REGION_GRID;
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        let grid = self.pinion_grid(n, n)?;
+        let mut consider = |u: f64, v: f64| {
+            let r = self.pinion.eval_uv(u, v).pinion_roll;
+            lo = lo.min(r);
+            hi = hi.max(r);
+        };
+        // Rows along the face (fixed η) and columns along the profile (fixed ξ).
+        for dir in 0..2 {
+            for a in 0..n {
+                let node = |b: usize| if dir == 0 { grid[b * n + a] } else { grid[a * n + b] };
+                let act: Vec<bool> = (0..n)
+                    .map(|b| {
+                        let [u, v] = node(b);
+                        self.is_active(u, v, 0.0)
+                    })
+                    .collect();
+                for b in 0..n {
+                    if !act[b] {
+                        continue;
+                    }
+                    let [u, v] = node(b);
+                    consider(u, v);
+                    for nb in [b.wrapping_sub(1), b + 1] {
+                        if nb < n && !act[nb] {
+                            let [u, v] = bisect_boundary(self, node(b), node(nb));
+                            consider(u, v);
+                        }
+                    }
+                }
+            }
+        }
+        Ok([lo, hi])
+    }
+
+    /// (u, v) of the pinion flank grid: index i·n_eta + k at (ξ_i, η_k), uniform in [0, 1]².
+    pub fn pinion_grid(&self, n_xi: usize, n_eta: usize) -> Result<Vec<[f64; 2]>, GeometryError> {
+        let mut out = Vec::with_capacity(n_xi * n_eta);
+        let mut last: Option<[f64; 2]> = None;
+        for i in 0..n_xi {
+            let xi = i as f64 / (n_xi - 1) as f64;
+            for k in 0..n_eta {
+                let eta = k as f64 / (n_eta - 1) as f64;
+                let (l, d) = self.pinion.bounds.from_unit(xi, eta);
+                let uv = match last {
+                    Some(s) => self.pinion.solve_ld_from(l, d, s).or_else(|_| self.pinion.solve_ld(l, d))?,
+                    None => self.pinion.solve_ld(l, d)?,
+                };
+                last = Some(uv);
+                out.push(uv);
+            }
+            last = Some(out[i * n_eta]);
+        }
+        Ok(out)
+    }
+}
+
+/// Boundary of the active region between an active and an inactive (u, v).
+fn bisect_boundary(fp: &FlankPair, inside: [f64; 2], outside: [f64; 2]) -> [f64; 2] {
+    let (mut a, mut b) = (inside, outside);
+    for _ in 0..40 {
+        let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        if fp.is_active(m[0], m[1], 0.0) {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    a
+}
