@@ -248,6 +248,13 @@ impl DesignFile {
             density: d.material.density_kg_m3,
         };
         let p = &self.pair;
+        // Exact pitch angles from the tooth numbers (the file's rounded values
+        // were checked to 0.01°): the roll ratios must match z₁/z₂ exactly.
+        let sigma = deg(p.shaft_angle_deg);
+        let g1 = pinion_pitch_angle(self.pinion.teeth as f64, self.wheel.teeth as f64, sigma);
+        let mut members = [member(&self.pinion), member(&self.wheel)];
+        members[0].pitch_angle = g1;
+        members[1].pitch_angle = sigma - g1;
         let pair = PairData {
             name: self.name.clone(),
             shaft_angle: deg(p.shaft_angle_deg),
@@ -259,7 +266,7 @@ impl DesignFile {
                 deg(p.drive_pressure_angle_deg),
                 deg(p.coast_pressure_angle_deg),
             ],
-            members: [member(&self.pinion), member(&self.wheel)],
+            members,
             cutter_radius: mm(self.cutter.radius_mm),
             edge_radius: mm(self.cutter.edge_radius_mm),
             ease_off: self.ease_off.clone(),

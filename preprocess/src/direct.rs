@@ -69,6 +69,14 @@ pub fn gap(fp: &FlankPair, at: Placement, j: i32, uv: [f64; 2], start: [f64; 2])
     project(&fp.wheel, &q, start).map(|(w, g)| (g, w))
 }
 
+/// As [`gap`], but `None` unless the closest wheel point lies on the wheel
+/// flank (within its blank bounds): other points cannot touch.
+pub fn gap_on_flank(fp: &FlankPair, at: Placement, j: i32, uv: [f64; 2], start: [f64; 2]) -> Option<(f64, [f64; 2])> {
+    let (g, w) = gap(fp, at, j, uv, start)?;
+    let (l, d) = fp.wheel.ld(w[0], w[1]);
+    fp.wheel.bounds.contains(l, d, 1e-9).then_some((g, w))
+}
+
 /// Result of a direct contact search at one pinion angle.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct DirectContact {
@@ -93,7 +101,7 @@ pub fn direct_te(fp: &FlankPair, rs: &RollSurface, phi1: f64, direction: f64) ->
         if !fp.is_active(uv[0], uv[1], 1e-12) {
             return None;
         }
-        let (g, _) = gap(fp, conj, j, uv, uv)?;
+        let (g, _) = gap_on_flank(fp, conj, j, uv, uv)?;
         Some(g / fp.pinion.eval_uv(uv[0], uv[1]).wheel_lever)
     };
     let mut best: Option<(f64, i32, [f64; 2])> = None;
@@ -158,7 +166,7 @@ pub fn direct_te(fp: &FlankPair, rs: &RollSurface, phi1: f64, direction: f64) ->
     for jj in jmin..=jmax {
         for &n in &rs.uv {
             if fp.is_active(n[0], n[1], 1e-12) {
-                if let Some((g, _)) = gap(fp, at, jj, n, n) {
+                if let Some((g, _)) = gap_on_flank(fp, at, jj, n, n) {
                     min_node_gap = min_node_gap.min(g);
                 }
             }

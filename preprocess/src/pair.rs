@@ -200,3 +200,102 @@ fn bisect_boundary(fp: &FlankPair, inside: [f64; 2], outside: [f64; 2]) -> [f64;
     }
     a
 }
+
+/// Top land of a member at cone distance `l`: arc between the tips of the
+/// concave and convex flanks of tooth 0, positive while the tooth has a top land, m.
+pub fn top_land(g: &PairGeometry, m: Member, l: f64) -> Result<f64, GeometryError> {
+    let angle = |side: Side, d: f64| -> Result<(f64, f64), GeometryError> {
+        let p = g.flank(m, side).at(l, d)?;
+        Ok((p.pos[1].atan2(p.pos[0]), p.pos[0].hypot(p.pos[1])))
+    };
+    let b = g.flank(m, Side::Drive).bounds;
+    let d_tip = b.face.at(l, b.rm);
+    let (a0, _) = angle(Side::Drive, 0.0)?;
+    let (c0, _) = angle(Side::Coast, 0.0)?;
+    let (a1, rho) = angle(Side::Drive, d_tip)?;
+    let (c1, _) = angle(Side::Coast, d_tip)?;
+    let wrap = |x: f64| (x + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
+    let s0 = wrap(c0 - a0).signum();
+    Ok(rho * wrap(c1 - a1) * s0 * g.data.spiral_angle.cos())
+}
+
+/// Undercut test along the profile at cone distance `l`: the map from
+/// generating parameters to (L, d) must keep its orientation from the pitch
+/// cone down to the fillet limit; a fold means the generating tool cut away
+/// flank it had generated (undercut). Returns the lowest regular height.
+pub fn undercut_limit(f: &Flank, l: f64) -> Result<Option<f64>, GeometryError> {
+    let d_low = f.bounds.low.at(l, f.bounds.rm);
+    let n = 40;
+    let mut start = f.solve_ld(l, 0.0)?;
+    let det = |uv: [f64; 2]| {
+        let h = 1e-7;
+        let (l0, d0) = f.ld(uv[0], uv[1]);
+        let (lu, du) = f.ld(uv[0] + h, uv[1]);
+        let (lv, dv) = f.ld(uv[0], uv[1] + h);
+        (lu - l0) * (dv - d0) - (lv - l0) * (du - d0)
+    };
+    let s0 = det(start).signum();
+    for k in 1..=n {
+        let d = d_low * k as f64 / n as f64;
+        match f.solve_ld_from(l, d, start) {
+            Ok(uv) if det(uv).signum() == s0 => start = uv,
+            _ => return Ok(Some(d_low * (k - 1) as f64 / n as f64)),
+        }
+    }
+    Ok(None)
+}
+
+impl PairGeometry {
+    /// Loads a design file, builds the pair and runs the tooth checks
+    /// (top land at toe, mean and heel; undercut), naming the file on failure.
+    pub fn from_design_file(path: &std::path::Path) -> Result<Self, GeometryError> {
+        let data = crate::design::load_pair(path)?;
+        let g = PairGeometry::new(&data)?;
+        g.check_teeth(path)?;
+        Ok(g)
+    }
+
+    /// Rejects pointed teeth and undercut flanks.
+    pub fn check_teeth(&self, path: &std::path::Path) -> Result<(), GeometryError> {
+        use crate::error::InputError;
+        let d = &self.data;
+        for m in [Member::Pinion, Member::Wheel] {
+            for (where_, l) in [
+                ("toe", d.inner_cone_distance()),
+                ("mean", d.mean_cone_distance),
+                ("heel", d.outer_cone_distance()),
+            ] {
+                let tl = top_land(self, m, l)?;
+                if tl <= 0.0 {
+                    return Err(InputError::Invalid {
+                        path: path.to_path_buf(),
+                        field: format!("{}.mean_addendum_mm", m.name()),
+                        value: format!("{}", d.member(m).mean_addendum * 1e3),
+                        limit: format!(
+                            "pointed teeth: the top land at the {where_} is {:.3} mm, it must be > 0 (reduce the addendum or widen the tooth)",
+                            tl * 1e3
+                        ),
+                    }
+                    .into());
+                }
+                for side in [Side::Drive, Side::Coast] {
+                    if let Some(lim) = undercut_limit(self.flank(m, side), l)? {
+                        return Err(InputError::Invalid {
+                            path: path.to_path_buf(),
+                            field: format!("{}.mean_dedendum_mm", m.name()),
+                            value: format!("{}", d.member(m).mean_dedendum * 1e3),
+                            limit: format!(
+                                "undercut: the {} flank at the {where_} is generated regularly only down to {:.3} mm below the pitch cone, above the fillet limit {:.3} mm (more teeth, a larger pressure angle or profile shift, or a smaller dedendum)",
+                                side.flank_name(m),
+                                -lim * 1e3,
+                                -self.flank(m, side).bounds.low.at(l, d.mean_cone_distance) * 1e3
+                            ),
+                        }
+                        .into());
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,16 +1,20 @@
 //! Unloaded tooth contact analysis through the surface of roll angles.
 //!
 //! Each pinion flank point p carries the pinion roll angle φ(p) at which it is
-//! on the conjugate contact line, its ease-off E(p) and the wheel's normal
-//! lever λ₂(p) = |n · (a₂ × r)|. Pinion tooth j is in conjugate contact along
-//! the level line φ(p) = φ₁ + j·2π/z₁; with the ease-off the wheel must lag by
-//! E/λ₂ to touch at p, so the unloaded transmission error is
+//! on the conjugate contact line, its ease-off E(p), the wheel's normal lever
+//! λ₂(p) = |n · (a₂ × r)| and the growth K(p) of the conjugate separation when
+//! the pair turns away from that roll angle, s = ½ K (φ − φ(p))² (tabulated
+//! once by the direct projection). Pinion tooth j is at roll φ₁ + j·2π/z₁, and
+//! the wheel must lag by (E + s)/λ₂ to touch at p, so the unloaded
+//! transmission error is
 //!
-//! TE(φ₁) = min_j min_{p on line j, p active} E(p) / λ₂(p)
+//! TE(φ₁) = min_j min_p [E(p) + ½ K(p) (φ₁ + jτ − φ(p))²] / λ₂(p)
 //!
-//! (wheel side, rad; positive = the wheel lags behind the conjugate position).
-//! This is first-order exact in the ease-off; [`crate::direct`] checks it
-//! against a direct geometric contact search.
+//! (wheel side, rad; positive = the wheel lags behind the conjugate position),
+//! minimised over the active flank: grid nodes first, then Newton. With
+//! K = 0 this would be the minimum along the conjugate contact line, which
+//! misses off-line contact where the ease-off slopes across the line.
+//! [`crate::direct`] checks the result against a direct geometric contact search.
 
 use crate::error::GeometryError;
 use crate::pair::FlankPair;
@@ -44,6 +48,14 @@ pub struct RollSurface {
     pub uv: Vec<[f64; 2]>,
     /// Pinion roll angle at the nodes, rad.
     pub roll: Vec<f64>,
+    /// Ease-off at the nodes, m.
+    pub ease_off: Vec<f64>,
+    /// Wheel lever at the nodes, m/rad.
+    pub lever: Vec<f64>,
+    /// Conjugate separation growth K at the nodes, m/rad².
+    pub k_sep: Vec<f64>,
+    /// Node lies on both flanks.
+    pub active: Vec<bool>,
 }
 
 /// The contact point of one tooth pair at one position.
@@ -91,16 +103,53 @@ impl Utca {
 impl RollSurface {
     pub fn new(fp: &FlankPair, grid: LineGrid) -> Result<Self, GeometryError> {
         let uv = fp.pinion_grid(grid.n_face, grid.n_profile)?;
-        let roll = uv
+        let pts: Vec<_> = uv.iter().map(|&[u, v]| fp.pinion.eval_uv(u, v)).collect();
+        let k_sep = uv
             .iter()
-            .map(|&[u, v]| fp.pinion.eval_uv(u, v).pinion_roll)
+            .zip(&pts)
+            .map(|(&uv, p)| separation_growth(fp, uv, p.pinion_roll))
             .collect();
         Ok(RollSurface {
             n_face: grid.n_face,
             n_profile: grid.n_profile,
+            roll: pts.iter().map(|p| p.pinion_roll).collect(),
+            ease_off: pts.iter().map(|p| p.ease_off).collect(),
+            lever: pts.iter().map(|p| p.wheel_lever).collect(),
+            active: uv.iter().map(|&[u, v]| fp.is_active(u, v, 0.0)).collect(),
             uv,
-            roll,
+            k_sep,
         })
+    }
+
+    /// Bilinear interpolation of a node field at normalised (ξ, η).
+    pub fn interpolate(&self, field: &[f64], xi: f64, eta: f64) -> f64 {
+        let (nf, np) = (self.n_face, self.n_profile);
+        let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
+        let y = (eta * (np - 1) as f64).clamp(0.0, (np - 1) as f64);
+        let (i, k) = ((x as usize).min(nf - 2), (y as usize).min(np - 2));
+        let (a, b) = (x - i as f64, y - k as f64);
+        let f = |i: usize, k: usize| field[i * np + k];
+        (1.0 - a) * ((1.0 - b) * f(i, k) + b * f(i, k + 1)) + a * ((1.0 - b) * f(i + 1, k) + b * f(i + 1, k + 1))
+    }
+}
+
+/// K = (g(+δ) + g(−δ) − 2 g(0)) / δ²: conjugate separation growth of the
+/// pinion point at `uv` when the pair turns by ±δ from its contact roll angle.
+fn separation_growth(fp: &FlankPair, uv: [f64; 2], roll: f64) -> f64 {
+    let delta = 0.05f64.to_radians();
+    let g = |d: f64| {
+        let phi = roll + d;
+        let at = crate::direct::Placement {
+            pinion: phi,
+            wheel: fp.conjugate_wheel_angle(phi),
+        };
+        crate::direct::gap(fp, at, 0, uv, uv).map_or(f64::NAN, |x| x.0)
+    };
+    let k = (g(delta) + g(-delta) - 2.0 * g(0.0)) / (delta * delta);
+    if k.is_finite() {
+        k.max(0.0)
+    } else {
+        0.0
     }
 }
 
@@ -165,58 +214,94 @@ impl<'a> LineSearch<'a> {
         at(s)
     }
 
-    /// Wheel lag E/λ₂ needed at the line point, if the point is active.
-    fn value(&self, uv: [f64; 2], tol: f64) -> Option<f64> {
-        let (p, ok) = self.fp.point(uv[0], uv[1], tol);
-        ok.then(|| p.ease_off / p.wheel_lever)
+    /// Wheel lag needed for contact at pinion point `uv` of the tooth at roll `target`.
+    fn lag(&self, uv: [f64; 2], target: f64) -> Option<f64> {
+        let (p, ok) = self.fp.point(uv[0], uv[1], 1e-12);
+        if !ok {
+            return None;
+        }
+        let (xi, eta) = self.fp.pinion.bounds.to_unit(p.l, p.d);
+        let k = self.rs.interpolate(&self.rs.k_sep, xi, eta);
+        let dphi = target - p.pinion_roll;
+        Some((p.ease_off + 0.5 * k * dphi * dphi) / p.wheel_lever)
     }
 
-    fn value_at(&self, t: f64, target: f64) -> f64 {
-        self.line_point(t, target)
-            .and_then(|uv| self.value(uv, 1e-12))
-            .unwrap_or(f64::INFINITY)
+    /// Smallest wheel lag for contact of the tooth at roll `target`, and where:
+    /// the best grid node, refined by damped Newton on the active flank.
+    pub fn min_contact(&self, target: f64) -> Option<(f64, [f64; 2])> {
+        let rs = self.rs;
+        let mut best: Option<(f64, usize)> = None;
+        for n in 0..rs.uv.len() {
+            if !rs.active[n] {
+                continue;
+            }
+            let d = target - rs.roll[n];
+            let v = (rs.ease_off[n] + 0.5 * rs.k_sep[n] * d * d) / rs.lever[n];
+            if best.is_none_or(|b| v < b.0) {
+                best = Some((v, n));
+            }
+        }
+        let (_, n) = best?;
+        let mut uv = rs.uv[n];
+        let mut val = self.lag(uv, target)?;
+        let h = 1e-5;
+        for _ in 0..25 {
+            let f = |du: f64, dv: f64| self.lag([uv[0] + du, uv[1] + dv], target);
+            let (Some(fu1), Some(fu0), Some(fv1), Some(fv0)) = (f(h, 0.0), f(-h, 0.0), f(0.0, h), f(0.0, -h)) else {
+                break;
+            };
+            let fuv = match (f(h, h), f(h, -h), f(-h, h), f(-h, -h)) {
+                (Some(a), Some(b), Some(c), Some(d)) => a - b - c + d,
+                _ => 0.0,
+            };
+            let g = [(fu1 - fu0) / (2.0 * h), (fv1 - fv0) / (2.0 * h)];
+            let hs = [
+                (fu1 - 2.0 * val + fu0) / (h * h),
+                fuv / (4.0 * h * h),
+                (fv1 - 2.0 * val + fv0) / (h * h),
+            ];
+            match damped_step(|c| self.lag(c, target), uv, val, g, hs) {
+                Some((c, fc)) => {
+                    let moved = (c[0] - uv[0]).hypot(c[1] - uv[1]);
+                    uv = c;
+                    val = fc;
+                    if moved < 1e-10 {
+                        break;
+                    }
+                }
+                None => break,
+            }
+        }
+        Some((val, uv))
     }
+}
 
-    /// Minimum of E/λ₂ along the contact line of roll `target`: samples at
-    /// every column, then a golden-section refinement around the best one.
-    pub fn min_on_line(&self, target: f64) -> Option<(f64, [f64; 2])> {
-        let n = self.rs.n_face;
-        let mut best: Option<(usize, f64)> = None;
-        for i in 0..n {
-            let v = self.value_at(i as f64, target);
-            if v.is_finite() && best.is_none_or(|(_, b)| v < b) {
-                best = Some((i, v));
+/// One Levenberg-damped Newton step on f at x (value f0, gradient g, Hessian
+/// [h_uu, h_uv, h_vv]) that decreases f and stays where f is defined.
+pub fn damped_step(
+    f: impl Fn([f64; 2]) -> Option<f64>,
+    x: [f64; 2],
+    f0: f64,
+    g: [f64; 2],
+    hs: [f64; 3],
+) -> Option<([f64; 2], f64)> {
+    let scale = hs[0].abs() + hs[2].abs() + 1e-300;
+    let mut lambda = 1e-9 * scale;
+    for _ in 0..25 {
+        let (a, b, c) = (hs[0] + lambda, hs[1], hs[2] + lambda);
+        let det = a * c - b * b;
+        if det > 0.0 {
+            let s = [-(c * g[0] - b * g[1]) / det, -(a * g[1] - b * g[0]) / det];
+            let cand = [x[0] + s[0], x[1] + s[1]];
+            if let Some(fc) = f(cand) {
+                if fc <= f0 {
+                    return Some((cand, fc));
+                }
             }
         }
-        let (i, _) = best?;
-        let (mut a, mut b) = ((i as f64 - 1.0).max(0.0), (i as f64 + 1.0).min((n - 1) as f64));
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        let mut c = b - g * (b - a);
-        let mut d = a + g * (b - a);
-        let (mut fc, mut fd) = (self.value_at(c, target), self.value_at(d, target));
-        while b - a > 1e-5 {
-            if fc <= fd {
-                b = d;
-                d = c;
-                fd = fc;
-                c = b - g * (b - a);
-                fc = self.value_at(c, target);
-            } else {
-                a = c;
-                c = d;
-                fc = fd;
-                d = a + g * (b - a);
-                fd = self.value_at(d, target);
-            }
-        }
-        let mut cands = vec![i as f64, c, d];
-        cands.retain(|t| self.value_at(*t, target).is_finite());
-        let t = cands
-            .into_iter()
-            .min_by(|x, y| self.value_at(*x, target).total_cmp(&self.value_at(*y, target)))?;
-        let uv = self.line_point(t, target)?;
-        Some((self.value(uv, 1e-12)?, uv))
+        lambda = lambda * 10.0 + 1e-3 * scale;
     }
+    None
 }
 
 /// Runs the UTCA for pinion angles `start + σ k step`, k = 0..n, σ the
@@ -247,7 +332,7 @@ pub fn run(
         let mut teeth = Vec::new();
         for j in jmin..=jmax {
             let target = phi + j as f64 * tau;
-            if let Some((te, uv)) = ls.min_on_line(target) {
+            if let Some((te, uv)) = ls.min_contact(target) {
                 let p = fp.pinion.eval_uv(uv[0], uv[1]);
                 teeth.push(ToothContact {
                     tooth: j,

@@ -1,0 +1,149 @@
+//! Flank geometry against the design data and against finite differences.
+
+mod common;
+
+use nalgebra::Vector3;
+use preprocess::design::Member;
+use preprocess::flank::{curvature_from_derivatives, Flank};
+use preprocess::generation::Side;
+
+/// Spiral and normal pressure angle of a flank at a point, from its position
+/// and normal only: the pitch-cone normal ν and generatrix g at the point give
+/// pressure angle = asin |n·ν| and spiral angle = angle(n × ν, g).
+fn angles_at(f: &Flank, l: f64, d: f64) -> (f64, f64) {
+    let p = f.at(l, d).unwrap();
+    let (s, c) = f.gen.frame.pitch_angle.sin_cos();
+    let pos = Vector3::from(p.pos);
+    let e_rho = Vector3::new(pos[0], pos[1], 0.0).normalize();
+    let e_ax = Vector3::z();
+    let nu = e_rho * c - e_ax * s;
+    let gen = e_ax * c + e_rho * s;
+    let n = Vector3::from(p.normal);
+    let trace = n.cross(&nu).normalize();
+    let pressure = n.dot(&nu).abs().asin();
+    let spiral = trace.dot(&gen).abs().acos();
+    (spiral.to_degrees(), pressure.to_degrees())
+}
+
+#[test]
+fn spiral_and_pressure_angles_at_the_mean_point_equal_the_design_values() {
+    let p = common::white_paper();
+    let g = common::geometry(&p);
+    for m in [Member::Pinion, Member::Wheel] {
+        for side in [Side::Drive, Side::Coast] {
+            let (beta, alpha) = angles_at(g.flank(m, side), p.mean_cone_distance, 0.0);
+            let name = format!("{} {}", m.name(), side.flank_name(m));
+            assert!((beta - 32.0).abs() < 0.01, "{name}: spiral angle {beta}");
+            assert!((alpha - 20.0).abs() < 0.01, "{name}: pressure angle {alpha}");
+        }
+    }
+}
+
+#[test]
+fn spiral_angle_grows_from_toe_to_heel_as_the_cutter_circle_predicts() {
+    let p = common::white_paper_conjugate();
+    let g = common::geometry(&p);
+    let f = g.flank(Member::Pinion, Side::Drive);
+    let r = f.gen.cone.radius;
+    for l in [p.inner_cone_distance(), p.outer_cone_distance()] {
+        let (beta, _) = angles_at(f, l, 0.0);
+        let expect = preprocess::design::spiral_angle_at(p.mean_cone_distance, p.spiral_angle, r, l)
+            .unwrap()
+            .to_degrees();
+        assert!((beta - expect).abs() < 1e-6, "at L = {l}: {beta} vs circle {expect}");
+    }
+}
+
+#[test]
+fn flank_spans_from_the_fillet_limit_to_the_face_cone_with_the_design_depth() {
+    let p = common::white_paper();
+    let g = common::geometry(&p);
+    for m in [Member::Pinion, Member::Wheel] {
+        let md = p.member(m);
+        for side in [Side::Drive, Side::Coast] {
+            let f = g.flank(m, side);
+            for xi in [0.0, 0.5, 1.0] {
+                let tip = f.at_unit(xi, 1.0).unwrap();
+                let low = f.at_unit(xi, 0.0).unwrap();
+                // Height above the pitch cone from the 3-D points: ρ cos γ − z sin γ.
+                let (s, c) = md.pitch_angle.sin_cos();
+                let h = |q: [f64; 3]| q[0].hypot(q[1]) * c - q[2] * s;
+                let l = p.inner_cone_distance() + xi * p.face_width;
+                // Face cone: through the mean addendum point at the face angle.
+                let face = md.mean_addendum + (l - p.mean_cone_distance) * (md.face_angle - md.pitch_angle).tan();
+                let root = -md.mean_dedendum + (l - p.mean_cone_distance) * (md.root_angle - md.pitch_angle).tan();
+                let fillet = p.edge_radius * (1.0 - p.pressure_angle[side.index()].sin());
+                // Without ease-off the pinion points are exact; the ease-off moves them by < 0.1 mm along the normal.
+                let tol = if m == Member::Pinion { 1e-4 } else { 1e-9 };
+                assert!((h(tip.pos) - face).abs() < tol, "{m:?} {side:?} xi {xi}: tip {} vs face cone {}", h(tip.pos), face);
+                assert!((h(low.pos) - (root + fillet)).abs() < tol, "{m:?} {side:?}: low {} vs root+fillet {}", h(low.pos), root + fillet);
+                if xi == 0.5 {
+                    let depth = h(tip.pos) - h(low.pos) + fillet;
+                    let design = md.mean_addendum + md.mean_dedendum;
+                    assert!((depth - design).abs() < tol, "{m:?}: tooth depth {depth} vs design {design}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn principal_curvatures_match_finite_differences_of_positions() {
+    let p = common::white_paper();
+    let g = common::geometry(&p);
+    for m in [Member::Pinion, Member::Wheel] {
+        for side in [Side::Drive, Side::Coast] {
+            let f = g.flank(m, side);
+            for (xi, eta) in [(0.5, 0.5), (0.1, 0.8), (0.9, 0.2)] {
+                let pt = f.at_unit(xi, eta).unwrap();
+                let [u, v] = pt.uv;
+                let exact = f.curvature_uv(u, v);
+                let h = 5e-5;
+                let r = |a: f64, b: f64| Vector3::from(f.eval_uv(u + a, v + b).pos);
+                let ru = (r(h, 0.0) - r(-h, 0.0)) / (2.0 * h);
+                let rv = (r(0.0, h) - r(0.0, -h)) / (2.0 * h);
+                let ruu = (r(h, 0.0) - r(0.0, 0.0) * 2.0 + r(-h, 0.0)) / (h * h);
+                let rvv = (r(0.0, h) - r(0.0, 0.0) * 2.0 + r(0.0, -h)) / (h * h);
+                let ruv = (r(h, h) - r(h, -h) - r(-h, h) + r(-h, -h)) / (4.0 * h * h);
+                let fd = curvature_from_derivatives(
+                    [ru.into(), rv.into()],
+                    [ruu.into(), ruv.into(), rvv.into()],
+                    &Vector3::from(pt.normal),
+                );
+                let scale = exact.k[0].abs().max(exact.k[1].abs());
+                for i in 0..2 {
+                    let rel = (exact.k[i] - fd.k[i]).abs() / scale;
+                    assert!(rel < 1e-4, "{m:?} {side:?} ({xi},{eta}) k{i}: {} vs fd {} (rel {rel:e})", exact.k[i], fd.k[i]);
+                    let dot = Vector3::from(exact.dir[i]).dot(&Vector3::from(fd.dir[i])).abs();
+                    assert!(dot > 1.0 - 1e-6, "{m:?} {side:?}: direction {i} off, |cos| = {dot}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn blade_cone_curvatures_are_zero_and_cos_alpha_over_radius() {
+    // The curvature routine on a surface with a closed form: a straight-blade
+    // cone has κ = 0 along the blade and κ = cos α / r around the cutter axis.
+    let p = common::white_paper();
+    let g = common::geometry(&p);
+    let cone = g.generator.cones[0];
+    let c = |u: f64, v: f64| {
+        let (x, _) = cone.point(u, v);
+        Vector3::from(x)
+    };
+    let (u, v, h) = (0.0, 0.0, 1e-4);
+    let ru = (c(h, v) - c(-h, v)) / (2.0 * h);
+    let rv = (c(u, h) - c(u, -h)) / (2.0 * h);
+    let ruu = (c(h, v) - c(u, v) * 2.0 + c(-h, v)) / (h * h);
+    let rvv = (c(u, h) - c(u, v) * 2.0 + c(u, -h)) / (h * h);
+    let ruv = (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h);
+    let (_, n) = cone.point(u, v);
+    let k = curvature_from_derivatives([ru.into(), rv.into()], [ruu.into(), ruv.into(), rvv.into()], &Vector3::from(n));
+    let expect = cone.cos_alpha / cone.radius;
+    let kmax = k.k[0].abs().max(k.k[1].abs());
+    let kmin = k.k[0].abs().min(k.k[1].abs());
+    assert!((kmax - expect).abs() / expect < 1e-6, "cone curvature {kmax} vs cos α / r = {expect}");
+    assert!(kmin < 1e-9, "straight blade: {kmin}");
+}
