@@ -44,6 +44,12 @@ const REGION_GRID: usize = 41;
 
 impl PairGeometry {
     pub fn new(data: &PairData) -> Result<Self, GeometryError> {
+        Self::build(data, None)
+    }
+
+    /// Builds the pair; with a design-file path, first runs the tooth checks
+    /// ([`PairGeometry::check_teeth`]) on the bare flanks.
+    pub fn build(data: &PairData, checked: Option<&std::path::Path>) -> Result<Self, GeometryError> {
         let generator = Generator::new(data);
         let frames = [
             MemberFrame::new(data, Member::Pinion),
@@ -51,44 +57,38 @@ impl PairGeometry {
         ];
         let k1 = frames[0].roll_ratio;
         let a2 = frames[1].axis();
-        let mk = |side: Side| -> Result<FlankPair, GeometryError> {
-            let mut pinion = Flank::new(
-                *generator.flank(Member::Pinion, side),
-                Bounds::new(data, Member::Pinion, side),
-                None,
-                k1,
-                a2,
-            );
-            let wheel = Flank::new(
-                *generator.flank(Member::Wheel, side),
-                Bounds::new(data, Member::Wheel, side),
-                None,
-                k1,
-                a2,
-            );
-            let dphase = wheel.gen.phase - pinion.gen.phase;
-            let mut fp = FlankPair {
-                side,
-                pinion: pinion.clone(),
-                wheel,
-                wheel_offset: -frames[1].roll_ratio * dphase,
-                roll_range: [0.0, 0.0],
+        let bare = |side: Side| -> FlankPair {
+            let flank = |m: Member| {
+                Flank::new(*generator.flank(m, side), Bounds::new(data, m, side), None, k1, a2)
             };
+            let (pinion, wheel) = (flank(Member::Pinion), flank(Member::Wheel));
+            FlankPair {
+                side,
+                wheel_offset: -frames[1].roll_ratio * (wheel.gen.phase - pinion.gen.phase),
+                pinion,
+                wheel,
+                roll_range: [0.0, 0.0],
+            }
+        };
+        let mut geom = PairGeometry {
+            data: data.clone(),
+            generator: generator.clone(),
+            frames,
+            sides: [bare(Side::Drive), bare(Side::Coast)],
+        };
+        if let Some(path) = checked {
+            geom.check_teeth(path)?;
+        }
+        for fp in geom.sides.iter_mut() {
             fp.roll_range = fp.active_roll_range()?;
             let vertex = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);
-            pinion.ease = Some(EaseOff::new(&data.ease_off, vertex, data.mesh_cycle()));
-            fp.pinion = pinion;
-            Ok(fp)
-        };
-        let sides = [mk(Side::Drive)?, mk(Side::Coast)?];
-        Ok(PairGeometry {
-            data: data.clone(),
-            generator,
-            frames,
-            sides,
-        })
+            fp.pinion.ease = Some(EaseOff::new(&data.ease_off, vertex, data.mesh_cycle()));
+        }
+        Ok(geom)
     }
+}
 
+impl PairGeometry {
     pub fn side(&self, side: Side) -> &FlankPair {
         &self.sides[side.index()]
     }
@@ -250,9 +250,7 @@ impl PairGeometry {
     /// (top land at toe, mean and heel; undercut), naming the file on failure.
     pub fn from_design_file(path: &std::path::Path) -> Result<Self, GeometryError> {
         let data = crate::design::load_pair(path)?;
-        let g = PairGeometry::new(&data)?;
-        g.check_teeth(path)?;
-        Ok(g)
+        PairGeometry::build(&data, Some(path))
     }
 
     /// Rejects pointed teeth and undercut flanks.
