@@ -26,7 +26,7 @@ preprocess: build
 	$(BIN)/preprocess flanks $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/flanks
 
 solve: build
-	$(BIN)/solver check $(SCENE)
+	$(BIN)/solver plan $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/plan.json
 
 validate: preprocess
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports

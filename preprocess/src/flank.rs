@@ -257,6 +257,23 @@ impl Flank {
         self.at(l, d)
     }
 
+    /// Spiral angle and normal pressure angle (rad) at (L, d), from the
+    /// position and normal alone: with the pitch-cone normal ν and generatrix g
+    /// at the point, pressure angle = asin |n·ν| and spiral angle =
+    /// angle(n × ν, g), the tooth trace on the cone.
+    pub fn spiral_and_pressure_angle(&self, l: f64, d: f64) -> Result<(f64, f64), GeometryError> {
+        let p = self.at(l, d)?;
+        let (s, c) = self.gen.frame.pitch_angle.sin_cos();
+        let pos = Vector3::from(p.pos);
+        let e_rho = Vector3::new(pos[0], pos[1], 0.0).normalize();
+        let e_ax = Vector3::z();
+        let nu = e_rho * c - e_ax * s;
+        let gen = e_ax * c + e_rho * s;
+        let n = Vector3::from(p.normal);
+        let trace = n.cross(&nu).normalize();
+        Ok((trace.dot(&gen).abs().acos(), n.dot(&nu).abs().asin()))
+    }
+
     /// First and second derivatives of the modified position with respect to
     /// (ζ, s), exact (hyper-dual numbers): (r, [r_u, r_v], [r_uu, r_uv, r_vv]).
     pub fn derivatives(&self, u: f64, v: f64) -> ([f64; 3], [[f64; 3]; 2], [[f64; 3]; 3]) {

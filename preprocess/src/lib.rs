@@ -9,8 +9,11 @@ pub mod direct;
 pub mod ease_off;
 pub mod error;
 pub mod flank;
+pub mod flank_stage;
 pub mod generation;
+pub mod output;
 pub mod pair;
+pub mod plots;
 pub mod scene;
 pub mod utca;
 

@@ -7,22 +7,10 @@ use preprocess::design::Member;
 use preprocess::flank::{curvature_from_derivatives, Flank};
 use preprocess::generation::Side;
 
-/// Spiral and normal pressure angle of a flank at a point, from its position
-/// and normal only: the pitch-cone normal ν and generatrix g at the point give
-/// pressure angle = asin |n·ν| and spiral angle = angle(n × ν, g).
+/// Spiral and pressure angle in degrees.
 fn angles_at(f: &Flank, l: f64, d: f64) -> (f64, f64) {
-    let p = f.at(l, d).unwrap();
-    let (s, c) = f.gen.frame.pitch_angle.sin_cos();
-    let pos = Vector3::from(p.pos);
-    let e_rho = Vector3::new(pos[0], pos[1], 0.0).normalize();
-    let e_ax = Vector3::z();
-    let nu = e_rho * c - e_ax * s;
-    let gen = e_ax * c + e_rho * s;
-    let n = Vector3::from(p.normal);
-    let trace = n.cross(&nu).normalize();
-    let pressure = n.dot(&nu).abs().asin();
-    let spiral = trace.dot(&gen).abs().acos();
-    (spiral.to_degrees(), pressure.to_degrees())
+    let (b, a) = f.spiral_and_pressure_angle(l, d).unwrap();
+    (b.to_degrees(), a.to_degrees())
 }
 
 #[test]

@@ -1,1 +1,44 @@
-fn main() {}
+//! `solver` command line.
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(name = "solver", version, about = "Gear contact element, loaded TCA and multibody runs")]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Contact-detection plan: tooth pairs that can touch at each position, and the teeth that need stiffness data.
+    Plan {
+        scene: PathBuf,
+        /// Write the full plan as JSON here.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+fn main() -> anyhow::Result<()> {
+    match Cli::parse().cmd {
+        Cmd::Plan { scene, out } => {
+            let s = preprocess::scene::Scene::load(&scene)?;
+            let plans = solver::plan::plan(&s)?;
+            for p in &plans {
+                let (lo, hi) = p.positions.iter().fold((usize::MAX, 0), |(a, b), q| {
+                    (a.min(q.tooth_pairs.len()), b.max(q.tooth_pairs.len()))
+                });
+                println!(
+                    "{:?} wheel blank, {} flank: {} positions over {} mesh cycles, {}..{} tooth pairs per position; pinion teeth {:?}, wheel teeth {:?}",
+                    p.blank, p.loaded_flank.name(), p.positions.len(), p.mesh_cycles, lo, hi, p.pinion_teeth, p.wheel_teeth
+                );
+            }
+            if let Some(o) = out {
+                preprocess::output::write_json(&o, &plans)?;
+            }
+        }
+    }
+    Ok(())
+}

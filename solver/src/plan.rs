@@ -1,0 +1,100 @@
+//! Which tooth pairs can be in contact at each position of a scene's sweep.
+
+use preprocess::error::GeometryError;
+use preprocess::generation::Side;
+use preprocess::pair::{pinion_direction, PairGeometry};
+use preprocess::scene::{Blank, LoadedScene};
+use serde::Serialize;
+
+/// Tooth pairs (pinion tooth j with wheel tooth −j) that can touch at one position.
+#[derive(Debug, Clone, Serialize)]
+pub struct Position {
+    pub pinion_rotation_deg: f64,
+    pub tooth_pairs: Vec<i32>,
+}
+
+/// The plan of one wheel blank.
+#[derive(Debug, Clone, Serialize)]
+pub struct Plan {
+    pub blank: Blank,
+    pub loaded_flank: Side,
+    pub mesh_cycles: f64,
+    pub positions: Vec<Position>,
+    /// Distinct pinion teeth that ever touch (the flanks that need stiffness data).
+    pub pinion_teeth: Vec<i32>,
+    /// Distinct wheel teeth that ever touch.
+    pub wheel_teeth: Vec<i32>,
+}
+
+/// Tooth pairs j with roll φ + jτ inside the active roll range [r₀, r₁].
+pub fn pairs_in_contact(phi: f64, roll_range: [f64; 2], tau: f64) -> Vec<i32> {
+    let jmin = ((roll_range[0] - phi) / tau).ceil() as i32;
+    let jmax = ((roll_range[1] - phi) / tau).floor() as i32;
+    (jmin..=jmax).collect()
+}
+
+/// Plans every wheel blank of the scene.
+pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let side = scene.scene.loaded_flank;
+    let fp = g.side(side);
+    let tau = g.data.mesh_cycle();
+    let dir = pinion_direction(&g.data, side);
+    let step = scene.scene.rotation.step_deg.to_radians();
+    let z2 = g.data.members[1].teeth as i32;
+    Ok(scene
+        .scene
+        .blanks
+        .wheel
+        .iter()
+        .map(|&blank| {
+            let cycles = match blank {
+                Blank::Standard => scene.scene.rotation.mesh_cycles_standard,
+                Blank::Lightweight => scene.scene.rotation.mesh_cycles_lightweight,
+            };
+            let n = (cycles * tau / step).round() as usize + 1;
+            let positions: Vec<Position> = (0..n)
+                .map(|k| {
+                    let phi = fp.roll_range[0] + dir * step * k as f64;
+                    Position {
+                        pinion_rotation_deg: (step * k as f64).to_degrees(),
+                        tooth_pairs: pairs_in_contact(phi, fp.roll_range, tau),
+                    }
+                })
+                .collect();
+            let mut pinion_teeth: Vec<i32> = positions.iter().flat_map(|p| p.tooth_pairs.clone()).collect();
+            pinion_teeth.sort();
+            pinion_teeth.dedup();
+            let mut wheel_teeth: Vec<i32> = pinion_teeth.iter().map(|j| (-j).rem_euclid(z2)).collect();
+            wheel_teeth.sort();
+            wheel_teeth.dedup();
+            Plan {
+                blank,
+                loaded_flank: side,
+                mesh_cycles: cycles,
+                positions,
+                pinion_teeth: pinion_teeth.iter().map(|j| j.rem_euclid(g.data.members[0].teeth as i32)).collect(),
+                wheel_teeth,
+            }
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contact_ratio_of_2_point_87_gives_two_or_three_pairs() {
+        // Active range 2.87 mesh cycles wide: 2 or 3 tooth pairs at every position.
+        let tau = 18f64.to_radians();
+        let range = [-0.4, -0.4 + 2.87 * tau];
+        for k in 0..100 {
+            let phi = -0.4 + k as f64 * tau / 50.0;
+            let n = pairs_in_contact(phi, range, tau).len();
+            assert!((2..=3).contains(&n), "{n} pairs at step {k}");
+        }
+        // Exactly at the entry the entering pair counts.
+        assert_eq!(pairs_in_contact(-0.4, range, tau), vec![0, 1, 2]);
+    }
+}
