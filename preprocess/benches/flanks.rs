@@ -40,7 +40,13 @@ fn main() {
     let mut out = Vec::new();
 
     let t_geom = time(5, || PairGeometry::new(&pair).unwrap());
-    out.push(Entry { name: "pair geometry (4 flanks, active regions)", value: t_geom * 1e3, unit: "ms", target: None, note: String::new() });
+    out.push(Entry {
+        name: "pair geometry (4 flanks, active regions)",
+        value: t_geom * 1e3,
+        unit: "ms",
+        target: None,
+        note: String::new(),
+    });
 
     let g = PairGeometry::new(&pair).unwrap();
     let f = g.flank(Member::Pinion, Side::Drive);
@@ -57,7 +63,10 @@ fn main() {
         let mut acc = 0.0;
         for i in 0..nf {
             for k in 0..np {
-                acc += f.at_unit(i as f64 / (nf - 1) as f64, k as f64 / (np - 1) as f64).unwrap().pos[0];
+                acc += f
+                    .at_unit(i as f64 / (nf - 1) as f64, k as f64 / (np - 1) as f64)
+                    .unwrap()
+                    .pos[0];
             }
         }
         acc
@@ -96,7 +105,10 @@ fn main() {
         std::env::consts::ARCH
     );
     println!("\nflanks benchmark ({machine}, white-paper pair, median of 5)\n");
-    println!("{:<55} {:>14} {:>10} {:>8}  note", "what", "value", "unit", "target");
+    println!(
+        "{:<55} {:>14} {:>10} {:>8}  note",
+        "what", "value", "unit", "target"
+    );
     for e in &out {
         println!(
             "{:<55} {:>14.1} {:>10} {:>8}  {}",

@@ -320,12 +320,27 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
     let c = Checker { path };
     let p = &d.pair;
     c.range("pair.shaft_angle_deg", p.shaft_angle_deg, 30.0, 150.0)?;
-    c.range("pair.mean_spiral_angle_deg", p.mean_spiral_angle_deg, 0.0, 50.0)?;
+    c.range(
+        "pair.mean_spiral_angle_deg",
+        p.mean_spiral_angle_deg,
+        0.0,
+        50.0,
+    )?;
     c.positive("pair.mean_normal_module_mm", p.mean_normal_module_mm)?;
     c.positive("pair.mean_cone_distance_mm", p.mean_cone_distance_mm)?;
     c.positive("pair.face_width_mm", p.face_width_mm)?;
-    c.range("pair.drive_pressure_angle_deg", p.drive_pressure_angle_deg, 10.0, 35.0)?;
-    c.range("pair.coast_pressure_angle_deg", p.coast_pressure_angle_deg, 10.0, 35.0)?;
+    c.range(
+        "pair.drive_pressure_angle_deg",
+        p.drive_pressure_angle_deg,
+        10.0,
+        35.0,
+    )?;
+    c.range(
+        "pair.coast_pressure_angle_deg",
+        p.coast_pressure_angle_deg,
+        10.0,
+        35.0,
+    )?;
     // Usual limit: face width at most a third of the outer cone distance.
     let re = p.mean_cone_distance_mm + 0.5 * p.face_width_mm;
     if p.face_width_mm > re / 3.0 {
@@ -344,13 +359,33 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
             return Err(c.fail(&f("teeth"), m.teeth as f64, "must be >= 5".into()));
         }
         c.range(&f("pitch_angle_deg"), m.pitch_angle_deg, 1.0, 89.0)?;
-        c.range(&f("root_angle_deg"), m.root_angle_deg, 0.5, m.pitch_angle_deg)?;
-        c.range(&f("face_angle_deg"), m.face_angle_deg, m.pitch_angle_deg, 89.9)?;
+        c.range(
+            &f("root_angle_deg"),
+            m.root_angle_deg,
+            0.5,
+            m.pitch_angle_deg,
+        )?;
+        c.range(
+            &f("face_angle_deg"),
+            m.face_angle_deg,
+            m.pitch_angle_deg,
+            89.9,
+        )?;
         c.positive(&f("mean_addendum_mm"), m.mean_addendum_mm)?;
         c.positive(&f("mean_dedendum_mm"), m.mean_dedendum_mm)?;
         c.positive(&f("point_width_mm"), m.point_width_mm)?;
-        c.range(&f("material.youngs_modulus_gpa"), m.material.youngs_modulus_gpa, 1.0, 1000.0)?;
-        c.range(&f("material.poisson_ratio"), m.material.poisson_ratio, 0.0, 0.49)?;
+        c.range(
+            &f("material.youngs_modulus_gpa"),
+            m.material.youngs_modulus_gpa,
+            1.0,
+            1000.0,
+        )?;
+        c.range(
+            &f("material.poisson_ratio"),
+            m.material.poisson_ratio,
+            0.0,
+            0.49,
+        )?;
         c.positive(&f("material.density_kg_m3"), m.material.density_kg_m3)?;
     }
     if d.pinion.teeth > d.wheel.teeth {
@@ -388,7 +423,9 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
         ));
     }
     // Mean normal module from the cone distance: m_n = 2 R_m sin γ₁ cos β / z₁.
-    let mn = 2.0 * p.mean_cone_distance_mm * g1.to_radians().sin()
+    let mn = 2.0
+        * p.mean_cone_distance_mm
+        * g1.to_radians().sin()
         * p.mean_spiral_angle_deg.to_radians().cos()
         / d.pinion.teeth as f64;
     if (mn - p.mean_normal_module_mm).abs() > 2e-3 * mn {
@@ -409,7 +446,10 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
             return Err(c.fail(
                 &format!("{a}.mean_addendum_mm"),
                 ma.mean_addendum_mm,
-                format!("must be < {b}.mean_dedendum_mm = {} (tip clearance)", mb.mean_dedendum_mm),
+                format!(
+                    "must be < {b}.mean_dedendum_mm = {} (tip clearance)",
+                    mb.mean_dedendum_mm
+                ),
             ));
         }
     }
@@ -445,7 +485,11 @@ fn check_topography(c: &Checker, t: &TopographyDesign) -> Result<(), InputError>
         }
         for w in v.windows(2) {
             if w[1] <= w[0] {
-                return Err(c.fail(f, w[1], format!("must be strictly increasing (after {})", w[0])));
+                return Err(c.fail(
+                    f,
+                    w[1],
+                    format!("must be strictly increasing (after {})", w[0]),
+                ));
             }
         }
         if v[0] < 0.0 || v[v.len() - 1] > 1.0 {
@@ -458,7 +502,11 @@ fn check_topography(c: &Checker, t: &TopographyDesign) -> Result<(), InputError>
         return Err(c.fail(
             "ease_off.topography.deviation_um",
             t.deviation_um.len() as f64,
-            format!("must have {} rows of {} values", t.profile.len(), t.face.len()),
+            format!(
+                "must have {} rows of {} values",
+                t.profile.len(),
+                t.face.len()
+            ),
         ));
     }
     Ok(())
@@ -474,7 +522,8 @@ fn check_derived(p: &PairData, path: &Path) -> Result<(), InputError> {
             return Err(c.fail(
                 &f,
                 p.member(m).point_width * 1e3,
-                "leaves no tooth: point width + dedendum·(tan α_d + tan α_c) must be < π m_n".into(),
+                "leaves no tooth: point width + dedendum·(tan α_d + tan α_c) must be < π m_n"
+                    .into(),
             ));
         }
     }

@@ -60,7 +60,13 @@ pub fn project(flank: &Flank, q: &Vector3<f64>, start: [f64; 2]) -> Option<([f64
 
 /// Signed gap between pinion tooth `j` at pinion parameters `uv` and wheel
 /// tooth −j (positive = open), and the wheel parameters of the closest point.
-pub fn gap(fp: &FlankPair, at: Placement, j: i32, uv: [f64; 2], start: [f64; 2]) -> Option<(f64, [f64; 2])> {
+pub fn gap(
+    fp: &FlankPair,
+    at: Placement,
+    j: i32,
+    uv: [f64; 2],
+    start: [f64; 2],
+) -> Option<(f64, [f64; 2])> {
     let f1 = &fp.pinion.gen.frame;
     let f2 = &fp.wheel.gen.frame;
     let p = Vector3::from(fp.pinion.eval_uv(uv[0], uv[1]).pos);
@@ -71,7 +77,13 @@ pub fn gap(fp: &FlankPair, at: Placement, j: i32, uv: [f64; 2], start: [f64; 2])
 
 /// As [`gap`], but `None` unless the closest wheel point lies on the wheel
 /// flank (within its blank bounds): other points cannot touch.
-pub fn gap_on_flank(fp: &FlankPair, at: Placement, j: i32, uv: [f64; 2], start: [f64; 2]) -> Option<(f64, [f64; 2])> {
+pub fn gap_on_flank(
+    fp: &FlankPair,
+    at: Placement,
+    j: i32,
+    uv: [f64; 2],
+    start: [f64; 2],
+) -> Option<(f64, [f64; 2])> {
     let (g, w) = gap(fp, at, j, uv, start)?;
     let (l, d) = fp.wheel.ld(w[0], w[1]);
     fp.wheel.bounds.contains(l, d, 1e-9).then_some((g, w))
@@ -91,7 +103,12 @@ pub struct DirectContact {
 /// Direct TCA at pinion angle `phi1`: the smallest wheel lag that closes
 /// the gap somewhere on the active flanks, found by sampling the roll-surface
 /// nodes and refining the best one with Newton on gap/λ₂.
-pub fn direct_te(fp: &FlankPair, rs: &RollSurface, phi1: f64, direction: f64) -> Option<DirectContact> {
+pub fn direct_te(
+    fp: &FlankPair,
+    rs: &RollSurface,
+    phi1: f64,
+    direction: f64,
+) -> Option<DirectContact> {
     let tau = fp.pinion.gen.frame.pitch();
     let [r0, r1] = fp.roll_range;
     let jmin = ((r0 - phi1) / tau).floor() as i32 - 1;
@@ -222,7 +239,11 @@ pub fn contact_ellipse(
     let ci = c.try_inverse()?;
     let hx = ci * huv * ci.transpose();
     let eig = hx.symmetric_eigen();
-    let (imaj, imin) = if eig.eigenvalues[0] <= eig.eigenvalues[1] { (0, 1) } else { (1, 0) };
+    let (imaj, imin) = if eig.eigenvalues[0] <= eig.eigenvalues[1] {
+        (0, 1)
+    } else {
+        (1, 0)
+    };
     let axis = |i: usize| {
         let lam = eig.eigenvalues[i];
         if lam > 0.0 {

@@ -11,8 +11,8 @@ use crate::design::{Member, PairData};
 use crate::ease_off::EaseOff;
 use crate::error::GeometryError;
 use crate::generation::{GeneratedFlank, Side};
-use nalgebra::{Const, Matrix2, SVector, Vector3};
 use crate::Scalar;
+use nalgebra::{Const, Matrix2, SVector, Vector3};
 use num_dual::{hessian, Dual2Vec};
 use serde::Serialize;
 
@@ -79,7 +79,10 @@ impl Bounds {
     pub fn to_unit<D: Scalar>(&self, l: D, d: D) -> (D, D) {
         let lo = self.low.at(l, self.rm);
         let hi = self.face.at(l, self.rm);
-        ((l - self.inner) / (self.outer - self.inner), (d - lo) / (hi - lo))
+        (
+            (l - self.inner) / (self.outer - self.inner),
+            (d - lo) / (hi - lo),
+        )
     }
     /// True when (L, d) lies on the flank (toe..heel, fillet limit..tip), with tolerance.
     pub fn contains(&self, l: f64, d: f64, tol: f64) -> bool {
@@ -219,7 +222,12 @@ impl Flank {
     }
 
     /// As [`Flank::solve_ld`], starting Newton from `start`.
-    pub fn solve_ld_from(&self, l: f64, d: f64, start: [f64; 2]) -> Result<[f64; 2], GeometryError> {
+    pub fn solve_ld_from(
+        &self,
+        l: f64,
+        d: f64,
+        start: [f64; 2],
+    ) -> Result<[f64; 2], GeometryError> {
         let [mut u, mut v] = start;
         let h = 1e-7;
         for _ in 0..60 {

@@ -12,6 +12,7 @@ use crate::plots;
 use crate::scene::{Scene, UtcaSettings};
 use crate::utca::{run, LineGrid, RollSurface, Utca};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -45,7 +46,9 @@ pub fn load_input(path: &Path) -> Result<FlankInput, InputError> {
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
-    let table: toml::Table = text.parse().map_err(|e| InputError::parse(path, &text, &e))?;
+    let table: toml::Table = text
+        .parse()
+        .map_err(|e| InputError::parse(path, &text, &e))?;
     if table.contains_key("design") {
         let s = Scene::load(path)?;
         Ok(FlankInput {
@@ -70,12 +73,13 @@ pub fn load_input(path: &Path) -> Result<FlankInput, InputError> {
 /// Spiral and pressure angle of one flank at its mean point, degrees.
 #[derive(Debug, Clone, Serialize)]
 pub struct MeanPointAngles {
-    pub member: &'static str,
-    pub flank: &'static str,
     pub side: &'static str,
     pub spiral_angle_deg: f64,
     pub normal_pressure_angle_deg: f64,
 }
+
+/// Mean-point angles by member ("pinion", "wheel") and flank ("concave", "convex").
+pub type MeanPoint = BTreeMap<&'static str, BTreeMap<&'static str, MeanPointAngles>>;
 
 /// A flank grid for meshing and contact: node (i face, k profile) at index i·n_profile + k.
 #[derive(Debug, Clone, Serialize)]
@@ -122,7 +126,10 @@ pub fn flank_grid(f: &Flank, n_face: usize, n_profile: usize) -> Result<FlankGri
     let mut start = None;
     for i in 0..n_face {
         for k in 0..n_profile {
-            let (l, d) = f.bounds.from_unit(i as f64 / (n_face - 1) as f64, k as f64 / (n_profile - 1) as f64);
+            let (l, d) = f.bounds.from_unit(
+                i as f64 / (n_face - 1) as f64,
+                k as f64 / (n_profile - 1) as f64,
+            );
             let uv = match start {
                 Some(s) => f.solve_ld_from(l, d, s).or_else(|_| f.solve_ld(l, d))?,
                 None => f.solve_ld(l, d)?,
@@ -186,7 +193,7 @@ pub struct FlankSummary {
     pub crown_gear_teeth: f64,
     pub normal_backlash_mm: f64,
     pub mean_normal_thickness_mm: [f64; 2],
-    pub mean_point: Vec<MeanPointAngles>,
+    pub mean_point: MeanPoint,
     pub utca: UtcaSummary,
     pub timing_s: Timing,
 }
@@ -225,7 +232,14 @@ pub fn roll_surface(fp: &FlankPair, s: &UtcaSettings) -> Result<RollSurface, Geo
 pub fn sweep(fp: &FlankPair, pair: &PairData, rs: &RollSurface, s: &UtcaSettings) -> Utca {
     let step = s.step_deg.to_radians();
     let n = (s.mesh_cycles * pair.mesh_cycle() / step).round() as usize + 1;
-    run(fp, rs, fp.roll_range[0], step, n, pinion_direction(pair, fp.side))
+    run(
+        fp,
+        rs,
+        fp.roll_range[0],
+        step,
+        n,
+        pinion_direction(pair, fp.side),
+    )
 }
 
 fn plot_err(e: plots::PlotError) -> GeometryError {
@@ -243,17 +257,20 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, Geometr
     timing.geometry = t.elapsed().as_secs_f64();
     let pair = &g.data;
 
-    let mut mean_point = Vec::new();
+    let mut mean_point = MeanPoint::new();
     for m in [Member::Pinion, Member::Wheel] {
         for side in [Side::Drive, Side::Coast] {
-            let (b, a) = g.flank(m, side).spiral_and_pressure_angle(pair.mean_cone_distance, 0.0)?;
-            mean_point.push(MeanPointAngles {
-                member: m.name(),
-                flank: side.flank_name(m),
-                side: side.name(),
-                spiral_angle_deg: b.to_degrees(),
-                normal_pressure_angle_deg: a.to_degrees(),
-            });
+            let (b, a) = g
+                .flank(m, side)
+                .spiral_and_pressure_angle(pair.mean_cone_distance, 0.0)?;
+            mean_point.entry(m.name()).or_default().insert(
+                side.flank_name(m),
+                MeanPointAngles {
+                    side: side.name(),
+                    spiral_angle_deg: b.to_degrees(),
+                    normal_pressure_angle_deg: a.to_degrees(),
+                },
+            );
         }
     }
 
@@ -262,7 +279,11 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, Geometr
     let mut grids = Vec::new();
     for m in [Member::Pinion, Member::Wheel] {
         for side in [Side::Drive, Side::Coast] {
-            grids.push(flank_grid(g.flank(m, side), s.flank_grid_face, s.flank_grid_profile)?);
+            grids.push(flank_grid(
+                g.flank(m, side),
+                s.flank_grid_face,
+                s.flank_grid_profile,
+            )?);
         }
     }
     timing.flank_grids = t.elapsed().as_secs_f64();
@@ -315,17 +336,27 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, Geometr
     Ok(summary)
 }
 
-fn utca_report(fp: &FlankPair, pair: &PairData, u: &Utca, s: &UtcaSettings) -> Result<UtcaReport, GeometryError> {
+fn utca_report(
+    fp: &FlankPair,
+    pair: &PairData,
+    u: &Utca,
+    s: &UtcaSettings,
+) -> Result<UtcaReport, GeometryError> {
     let start = u.pinion_angle[0];
     let rot = |phi: f64| (phi - start).abs().to_degrees();
     let dir = pinion_direction(pair, fp.side);
-    let mut curves: std::collections::BTreeMap<i32, Vec<(f64, f64)>> = Default::default();
+    let mut curves: BTreeMap<i32, Vec<(f64, f64)>> = Default::default();
     let mut path = Vec::new();
     for k in 0..u.te.len() {
         for t in &u.teeth[k] {
-            curves.entry(t.tooth).or_default().push((rot(u.pinion_angle[k]), t.te * 1e6));
+            curves
+                .entry(t.tooth)
+                .or_default()
+                .push((rot(u.pinion_angle[k]), t.te * 1e6));
         }
-        let Some(c) = u.teeth[k].get(u.contact[k]) else { continue };
+        let Some(c) = u.teeth[k].get(u.contact[k]) else {
+            continue;
+        };
         let at = fp.placement(u.pinion_angle[k], u.te[k], dir);
         let e = contact_ellipse(fp, at, c.tooth, c.uv, s.marking_compound_um * 1e-6);
         path.push(PathPoint {
@@ -334,7 +365,9 @@ fn utca_report(fp: &FlankPair, pair: &PairData, u: &Utca, s: &UtcaSettings) -> R
             cone_distance_mm: c.l * 1e3,
             height_mm: c.d * 1e3,
             position_m: c.pos,
-            ellipse_semi_axes_mm: e.map_or([f64::NAN; 2], |e| [e.semi_axes[0] * 1e3, e.semi_axes[1] * 1e3]),
+            ellipse_semi_axes_mm: e.map_or([f64::NAN; 2], |e| {
+                [e.semi_axes[0] * 1e3, e.semi_axes[1] * 1e3]
+            }),
             ellipse_major_dir: e.map_or([f64::NAN; 2], |e| e.major_dir_ld),
         });
     }
@@ -403,7 +436,11 @@ fn write_plots(
         dashed: false,
     }];
     for (_, c) in &r.tooth_curves {
-        let (x, y): (Vec<f64>, Vec<f64>) = c.iter().filter(|p| p.1 < 3.0 * r.te_ptp_urad.max(1.0)).cloned().unzip();
+        let (x, y): (Vec<f64>, Vec<f64>) = c
+            .iter()
+            .filter(|p| p.1 < 3.0 * r.te_ptp_urad.max(1.0))
+            .cloned()
+            .unzip();
         if x.len() > 1 {
             series.push(plots::Series {
                 name: "single tooth pair".into(),
@@ -415,13 +452,21 @@ fn write_plots(
     }
     plots::te_curve(
         &out.join("te.svg"),
-        &format!("Unloaded transmission error ({} side), ptp {:.1} urad", side.name(), r.te_ptp_urad),
+        &format!(
+            "Unloaded transmission error ({} side), ptp {:.1} urad",
+            side.name(),
+            r.te_ptp_urad
+        ),
         "pinion rotation [deg]",
         "TE, wheel [urad]",
         &series,
     )?;
     let fp = g.side(side);
-    let path_pts: Vec<(f64, f64)> = r.path.iter().map(|p| (p.cone_distance_mm, p.height_mm)).collect();
+    let path_pts: Vec<(f64, f64)> = r
+        .path
+        .iter()
+        .map(|p| (p.cone_distance_mm, p.height_mm))
+        .collect();
     let every = (r.path.len() / 12).max(1);
     let ellipses: Vec<plots::Ellipse> = r
         .path

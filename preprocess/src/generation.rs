@@ -20,8 +20,8 @@
 //! tan φ_c = −(n_z p_y − n_y p_z) / (n_z p_x − n_x p_z).
 
 use crate::design::{Hand, Member, PairData};
-use nalgebra::{Matrix3, Vector3};
 use crate::Scalar;
+use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 
 /// Flank side. Drive = pinion concave / wheel convex, coast = pinion convex / wheel concave.
@@ -77,11 +77,7 @@ impl GeneratingCone {
         let th = s / self.radius + self.theta0;
         let (st, ct) = th.sin_cos();
         let rho = zeta * (self.slope * self.tan_alpha) + self.radius;
-        let p = [
-            ct * rho + self.center[0],
-            st * rho + self.center[1],
-            zeta,
-        ];
+        let p = [ct * rho + self.center[0], st * rho + self.center[1], zeta];
         let n = [
             ct * self.cos_alpha,
             st * self.cos_alpha,
@@ -194,7 +190,11 @@ impl GeneratedFlank {
         let rz = |v: [D; 3]| [v[0] * cp - v[1] * sp, v[0] * sp + v[1] * cp, v[2]];
         let p = rz(p0);
         let n0 = rz(n0);
-        let n = [n0[0] * self.outward, n0[1] * self.outward, n0[2] * self.outward];
+        let n = [
+            n0[0] * self.outward,
+            n0[1] * self.outward,
+            n0[2] * self.outward,
+        ];
         // Equation of meshing, closed form.
         let a = n[2] * p[1] - n[1] * p[2];
         let b = n[2] * p[0] - n[0] * p[2];
@@ -208,9 +208,8 @@ impl GeneratedFlank {
         let (sm, cm) = phim.sin_cos();
         let ax = &self.frame.axes;
         let to_m = |v: [D; 3]| {
-            let q: [D; 3] = std::array::from_fn(|j| {
-                v[0] * ax[(0, j)] + v[1] * ax[(1, j)] + v[2] * ax[(2, j)]
-            });
+            let q: [D; 3] =
+                std::array::from_fn(|j| v[0] * ax[(0, j)] + v[1] * ax[(1, j)] + v[2] * ax[(2, j)]);
             [q[0] * cm + q[1] * sm, -q[0] * sm + q[1] * cm, q[2]]
         };
         RawPoint {
@@ -255,7 +254,8 @@ impl Generator {
         let beta = pair.spiral_angle;
         let h = trace_sign(pair.members[0].hand);
         let w = [beta.sin(), -h * beta.cos()];
-        let slot1 = std::f64::consts::PI * pair.normal_module - pair.normal_thickness(Member::Pinion);
+        let slot1 =
+            std::f64::consts::PI * pair.normal_module - pair.normal_thickness(Member::Pinion);
         let cone = |side: Side| {
             let alpha = pair.pressure_angle[side.index()];
             let (radius, slope) = match side {
@@ -293,8 +293,14 @@ impl Generator {
             }
         };
         let flanks = [
-            [flank(Member::Pinion, Side::Drive), flank(Member::Pinion, Side::Coast)],
-            [flank(Member::Wheel, Side::Drive), flank(Member::Wheel, Side::Coast)],
+            [
+                flank(Member::Pinion, Side::Drive),
+                flank(Member::Pinion, Side::Coast),
+            ],
+            [
+                flank(Member::Wheel, Side::Drive),
+                flank(Member::Wheel, Side::Coast),
+            ],
         ];
         Generator { cones, flanks }
     }

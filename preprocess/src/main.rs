@@ -5,7 +5,11 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser)]
-#[command(name = "preprocess", version, about = "Spiral bevel gear preprocessing: flanks and unloaded tooth contact")]
+#[command(
+    name = "preprocess",
+    version,
+    about = "Spiral bevel gear preprocessing: flanks and unloaded tooth contact"
+)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
@@ -41,11 +45,13 @@ fn main() -> anyhow::Result<()> {
                 s.utca.positions,
                 s.utca.ms_per_position
             );
-            for m in &s.mean_point {
-                println!(
-                    "  {} {:7} ({}) mean point: spiral angle {:.4} deg, normal pressure angle {:.4} deg",
-                    m.member, m.flank, m.side, m.spiral_angle_deg, m.normal_pressure_angle_deg
-                );
+            for (member, flanks) in &s.mean_point {
+                for (flank, m) in flanks {
+                    println!(
+                        "  {member} {flank:7} ({}) mean point: spiral angle {:.4} deg, normal pressure angle {:.4} deg",
+                        m.side, m.spiral_angle_deg, m.normal_pressure_angle_deg
+                    );
+                }
             }
             println!("  written to {}", out.display());
         }

@@ -49,7 +49,10 @@ impl PairGeometry {
 
     /// Builds the pair; with a design-file path, first runs the tooth checks
     /// ([`PairGeometry::check_teeth`]) on the bare flanks.
-    pub fn build(data: &PairData, checked: Option<&std::path::Path>) -> Result<Self, GeometryError> {
+    pub fn build(
+        data: &PairData,
+        checked: Option<&std::path::Path>,
+    ) -> Result<Self, GeometryError> {
         let generator = Generator::new(data);
         let frames = [
             MemberFrame::new(data, Member::Pinion),
@@ -59,7 +62,13 @@ impl PairGeometry {
         let a2 = frames[1].axis();
         let bare = |side: Side| -> FlankPair {
             let flank = |m: Member| {
-                Flank::new(*generator.flank(m, side), Bounds::new(data, m, side), None, k1, a2)
+                Flank::new(
+                    *generator.flank(m, side),
+                    Bounds::new(data, m, side),
+                    None,
+                    k1,
+                    a2,
+                )
             };
             let (pinion, wheel) = (flank(Member::Pinion), flank(Member::Wheel));
             FlankPair {
@@ -114,7 +123,8 @@ impl FlankPair {
     pub fn point(&self, u: f64, v: f64, tol: f64) -> (FlankPoint, bool) {
         let p = self.pinion.eval_uv(u, v);
         let (lw, dw) = self.wheel.ld(u, v);
-        let ok = self.pinion.bounds.contains(p.l, p.d, tol) && self.wheel.bounds.contains(lw, dw, tol);
+        let ok =
+            self.pinion.bounds.contains(p.l, p.d, tol) && self.wheel.bounds.contains(lw, dw, tol);
         (p, ok)
     }
 
@@ -140,7 +150,13 @@ impl FlankPair {
         // Rows along the face (fixed η) and columns along the profile (fixed ξ).
         for dir in 0..2 {
             for a in 0..n {
-                let node = |b: usize| if dir == 0 { grid[b * n + a] } else { grid[a * n + b] };
+                let node = |b: usize| {
+                    if dir == 0 {
+                        grid[b * n + a]
+                    } else {
+                        grid[a * n + b]
+                    }
+                };
                 let act: Vec<bool> = (0..n)
                     .map(|b| {
                         let [u, v] = node(b);
@@ -175,7 +191,10 @@ impl FlankPair {
                 let eta = k as f64 / (n_eta - 1) as f64;
                 let (l, d) = self.pinion.bounds.from_unit(xi, eta);
                 let uv = match last {
-                    Some(s) => self.pinion.solve_ld_from(l, d, s).or_else(|_| self.pinion.solve_ld(l, d))?,
+                    Some(s) => self
+                        .pinion
+                        .solve_ld_from(l, d, s)
+                        .or_else(|_| self.pinion.solve_ld(l, d))?,
                     None => self.pinion.solve_ld(l, d)?,
                 };
                 last = Some(uv);
@@ -214,7 +233,9 @@ pub fn top_land(g: &PairGeometry, m: Member, l: f64) -> Result<f64, GeometryErro
     let (c0, _) = angle(Side::Coast, 0.0)?;
     let (a1, rho) = angle(Side::Drive, d_tip)?;
     let (c1, _) = angle(Side::Coast, d_tip)?;
-    let wrap = |x: f64| (x + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
+    let wrap = |x: f64| {
+        (x + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI
+    };
     let s0 = wrap(c0 - a0).signum();
     Ok(rho * wrap(c1 - a1) * s0 * g.data.spiral_angle.cos())
 }

@@ -138,14 +138,20 @@ impl Scene {
         let r = &self.rotation;
         for (f, v) in [
             ("rotation.mesh_cycles_standard", r.mesh_cycles_standard),
-            ("rotation.mesh_cycles_lightweight", r.mesh_cycles_lightweight),
+            (
+                "rotation.mesh_cycles_lightweight",
+                r.mesh_cycles_lightweight,
+            ),
             ("utca.mesh_cycles", self.utca.mesh_cycles),
         ] {
             if !(v > 0.0 && v <= 100.0) {
                 return Err(fail(f, v.to_string(), "must lie in (0, 100]"));
             }
         }
-        for (f, v) in [("rotation.step_deg", r.step_deg), ("utca.step_deg", self.utca.step_deg)] {
+        for (f, v) in [
+            ("rotation.step_deg", r.step_deg),
+            ("utca.step_deg", self.utca.step_deg),
+        ] {
             if !(v > 0.0 && v <= 5.0) {
                 return Err(fail(f, v.to_string(), "must lie in (0, 5]"));
             }
@@ -169,11 +175,19 @@ impl Scene {
         }
         for (i, t) in self.pinion_torque_nm.iter().enumerate() {
             if !(t.is_finite() && *t >= 0.0) {
-                return Err(fail(&format!("pinion_torque_nm[{i}]"), t.to_string(), "must be >= 0"));
+                return Err(fail(
+                    &format!("pinion_torque_nm[{i}]"),
+                    t.to_string(),
+                    "must be >= 0",
+                ));
             }
         }
         if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {
-            return Err(fail("blanks", "[]".into(), "each member needs at least one blank"));
+            return Err(fail(
+                "blanks",
+                "[]".into(),
+                "each member needs at least one blank",
+            ));
         }
         Ok(())
     }

@@ -95,7 +95,9 @@ impl Utca {
         let (lo, hi) = self
             .te
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| (a.min(t), b.max(t)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
+                (a.min(t), b.max(t))
+            });
         hi - lo
     }
 }
@@ -129,7 +131,8 @@ impl RollSurface {
         let (i, k) = ((x as usize).min(nf - 2), (y as usize).min(np - 2));
         let (a, b) = (x - i as f64, y - k as f64);
         let f = |i: usize, k: usize| field[i * np + k];
-        (1.0 - a) * ((1.0 - b) * f(i, k) + b * f(i, k + 1)) + a * ((1.0 - b) * f(i + 1, k) + b * f(i + 1, k + 1))
+        (1.0 - a) * ((1.0 - b) * f(i, k) + b * f(i, k + 1))
+            + a * ((1.0 - b) * f(i + 1, k) + b * f(i + 1, k + 1))
     }
 }
 
@@ -184,7 +187,10 @@ impl<'a> LineSearch<'a> {
             let b = rs.uv[(i0 + 1) * np + k];
             let ra = rs.roll[i0 * np + k];
             let rb = rs.roll[(i0 + 1) * np + k];
-            ([a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])], ra + w * (rb - ra))
+            (
+                [a[0] + w * (b[0] - a[0]), a[1] + w * (b[1] - a[1])],
+                ra + w * (rb - ra),
+            )
         };
         let mut prev = node(0);
         for k in 1..np {
@@ -247,7 +253,9 @@ impl<'a> LineSearch<'a> {
         let h = 1e-5;
         for _ in 0..25 {
             let f = |du: f64, dv: f64| self.lag([uv[0] + du, uv[1] + dv], target);
-            let (Some(fu1), Some(fu0), Some(fv1), Some(fv0)) = (f(h, 0.0), f(-h, 0.0), f(0.0, h), f(0.0, -h)) else {
+            let (Some(fu1), Some(fu0), Some(fv1), Some(fv0)) =
+                (f(h, 0.0), f(-h, 0.0), f(0.0, h), f(0.0, -h))
+            else {
                 break;
             };
             let fuv = match (f(h, h), f(h, -h), f(-h, h), f(-h, -h)) {

@@ -19,7 +19,14 @@ fn conjugate_flanks_give_zero_transmission_error_over_a_mesh_cycle() {
     let g = common::geometry(&p);
     for side in [Side::Drive, Side::Coast] {
         let fp = g.side(side);
-        let rs = RollSurface::new(fp, LineGrid { n_face: 21, n_profile: 21 }).unwrap();
+        let rs = RollSurface::new(
+            fp,
+            LineGrid {
+                n_face: 21,
+                n_profile: 21,
+            },
+        )
+        .unwrap();
         let dir = pinion_direction(&p, side);
         let tau = p.mesh_cycle();
         for k in 0..6 {
@@ -32,7 +39,11 @@ fn conjugate_flanks_give_zero_transmission_error_over_a_mesh_cycle() {
                 c.te * 1e6
             );
             // No interference anywhere on the active flanks.
-            assert!(c.min_node_gap > -1e-9, "{side:?}: interference {:.3e} m", c.min_node_gap);
+            assert!(
+                c.min_node_gap > -1e-9,
+                "{side:?}: interference {:.3e} m",
+                c.min_node_gap
+            );
         }
     }
 }
@@ -43,20 +54,32 @@ fn separation_is_zero_along_the_conjugate_contact_line() {
     let g = common::geometry(&p);
     for side in [Side::Drive, Side::Coast] {
         let fp = g.side(side);
-        let rs = RollSurface::new(fp, LineGrid { n_face: 21, n_profile: 21 }).unwrap();
+        let rs = RollSurface::new(
+            fp,
+            LineGrid {
+                n_face: 21,
+                n_profile: 21,
+            },
+        )
+        .unwrap();
         let ls = LineSearch::new(fp, &rs);
         let dir = pinion_direction(&p, side);
         let phi = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);
         let at = fp.placement(phi, 0.0, dir);
         let mut n = 0;
         for i in 0..=40 {
-            let Some(uv) = ls.line_point(i as f64 * 0.5, phi) else { continue };
+            let Some(uv) = ls.line_point(i as f64 * 0.5, phi) else {
+                continue;
+            };
             if !fp.is_active(uv[0], uv[1], 0.0) {
                 continue;
             }
             let (s, _) = gap(fp, at, 0, uv, uv).unwrap();
             let lever = fp.pinion.eval_uv(uv[0], uv[1]).wheel_lever;
-            assert!((s / lever).abs() < TE_TOL_RAD, "{side:?}: separation {s:.3e} m on the line");
+            assert!(
+                (s / lever).abs() < TE_TOL_RAD,
+                "{side:?}: separation {s:.3e} m on the line"
+            );
             n += 1;
         }
         assert!(n > 20, "{side:?}: only {n} line points on the active flank");

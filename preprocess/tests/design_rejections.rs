@@ -12,7 +12,9 @@ fn check(d: &DesignFile) -> Result<(), String> {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("design.toml");
     std::fs::write(&path, toml::to_string(d).unwrap()).unwrap();
-    PairGeometry::from_design_file(&path).map(|_| ()).map_err(|e| e.to_string())
+    PairGeometry::from_design_file(&path)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
 }
 
 fn check_text(text: &str) -> Result<(), String> {
@@ -25,7 +27,10 @@ fn check_text(text: &str) -> Result<(), String> {
 /// Asserts the error names the field and carries the given words.
 fn rejected(r: Result<(), String>, field: &str, words: &[&str]) {
     let msg = r.expect_err("must be rejected");
-    assert!(msg.contains("design.toml") || msg.contains("bad.toml"), "no file in: {msg}");
+    assert!(
+        msg.contains("design.toml") || msg.contains("bad.toml"),
+        "no file in: {msg}"
+    );
     assert!(msg.contains(field), "field {field} not in: {msg}");
     for w in words {
         assert!(msg.contains(w), "'{w}' not in: {msg}");
@@ -65,7 +70,11 @@ fn zero_or_negative_sizes_are_rejected() {
 fn face_width_beyond_a_third_of_the_outer_cone_distance_is_rejected() {
     let mut d = common::white_paper_file();
     d.pair.face_width_mm = 50.0;
-    rejected(check(&d), "pair.face_width_mm", &["50", "outer cone distance / 3"]);
+    rejected(
+        check(&d),
+        "pair.face_width_mm",
+        &["50", "outer cone distance / 3"],
+    );
 }
 
 #[test]
@@ -95,7 +104,11 @@ fn pointed_teeth_are_rejected() {
     let mut d = common::white_paper_file();
     d.pinion.point_width_mm = 7.5;
     d.wheel.point_width_mm = 1.6;
-    rejected(check(&d), "pinion.mean_addendum_mm", &["pointed teeth", "top land"]);
+    rejected(
+        check(&d),
+        "pinion.mean_addendum_mm",
+        &["pointed teeth", "top land"],
+    );
 }
 
 /// A design with z₁ teeth on a wheel of 43, same cone distance and spiral
@@ -153,7 +166,11 @@ fn unknown_fields_are_rejected() {
     let text = std::fs::read_to_string(common::white_paper_path())
         .unwrap()
         .replace("[cutter]\n", "[cutter]\nblade_angle_deg = 20.0\n");
-    rejected(check_text(&text), "blade_angle_deg", &["unknown field", "line"]);
+    rejected(
+        check_text(&text),
+        "blade_angle_deg",
+        &["unknown field", "line"],
+    );
 }
 
 #[test]
@@ -169,6 +186,12 @@ fn malformed_toml_is_rejected_with_line_and_column() {
 #[test]
 fn missing_design_file_names_the_path() {
     let p = PathBuf::from("/nonexistent/design.toml");
-    let msg = PairGeometry::from_design_file(&p).err().unwrap().to_string();
-    assert!(msg.contains("/nonexistent/design.toml") && msg.contains("cannot read"), "{msg}");
+    let msg = PairGeometry::from_design_file(&p)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        msg.contains("/nonexistent/design.toml") && msg.contains("cannot read"),
+        "{msg}"
+    );
 }

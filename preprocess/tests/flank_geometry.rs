@@ -22,7 +22,10 @@ fn spiral_and_pressure_angles_at_the_mean_point_equal_the_design_values() {
             let (beta, alpha) = angles_at(g.flank(m, side), p.mean_cone_distance, 0.0);
             let name = format!("{} {}", m.name(), side.flank_name(m));
             assert!((beta - 32.0).abs() < 0.01, "{name}: spiral angle {beta}");
-            assert!((alpha - 20.0).abs() < 0.01, "{name}: pressure angle {alpha}");
+            assert!(
+                (alpha - 20.0).abs() < 0.01,
+                "{name}: pressure angle {alpha}"
+            );
         }
     }
 }
@@ -35,10 +38,14 @@ fn spiral_angle_grows_from_toe_to_heel_as_the_cutter_circle_predicts() {
     let r = f.gen.cone.radius;
     for l in [p.inner_cone_distance(), p.outer_cone_distance()] {
         let (beta, _) = angles_at(f, l, 0.0);
-        let expect = preprocess::design::spiral_angle_at(p.mean_cone_distance, p.spiral_angle, r, l)
-            .unwrap()
-            .to_degrees();
-        assert!((beta - expect).abs() < 1e-6, "at L = {l}: {beta} vs circle {expect}");
+        let expect =
+            preprocess::design::spiral_angle_at(p.mean_cone_distance, p.spiral_angle, r, l)
+                .unwrap()
+                .to_degrees();
+        assert!(
+            (beta - expect).abs() < 1e-6,
+            "at L = {l}: {beta} vs circle {expect}"
+        );
     }
 }
 
@@ -58,17 +65,32 @@ fn flank_spans_from_the_fillet_limit_to_the_face_cone_with_the_design_depth() {
                 let h = |q: [f64; 3]| q[0].hypot(q[1]) * c - q[2] * s;
                 let l = p.inner_cone_distance() + xi * p.face_width;
                 // Face cone: through the mean addendum point at the face angle.
-                let face = md.mean_addendum + (l - p.mean_cone_distance) * (md.face_angle - md.pitch_angle).tan();
-                let root = -md.mean_dedendum + (l - p.mean_cone_distance) * (md.root_angle - md.pitch_angle).tan();
+                let face = md.mean_addendum
+                    + (l - p.mean_cone_distance) * (md.face_angle - md.pitch_angle).tan();
+                let root = -md.mean_dedendum
+                    + (l - p.mean_cone_distance) * (md.root_angle - md.pitch_angle).tan();
                 let fillet = p.edge_radius * (1.0 - p.pressure_angle[side.index()].sin());
                 // Without ease-off the pinion points are exact; the ease-off moves them by < 0.1 mm along the normal.
                 let tol = if m == Member::Pinion { 1e-4 } else { 1e-9 };
-                assert!((h(tip.pos) - face).abs() < tol, "{m:?} {side:?} xi {xi}: tip {} vs face cone {}", h(tip.pos), face);
-                assert!((h(low.pos) - (root + fillet)).abs() < tol, "{m:?} {side:?}: low {} vs root+fillet {}", h(low.pos), root + fillet);
+                assert!(
+                    (h(tip.pos) - face).abs() < tol,
+                    "{m:?} {side:?} xi {xi}: tip {} vs face cone {}",
+                    h(tip.pos),
+                    face
+                );
+                assert!(
+                    (h(low.pos) - (root + fillet)).abs() < tol,
+                    "{m:?} {side:?}: low {} vs root+fillet {}",
+                    h(low.pos),
+                    root + fillet
+                );
                 if xi == 0.5 {
                     let depth = h(tip.pos) - h(low.pos) + fillet;
                     let design = md.mean_addendum + md.mean_dedendum;
-                    assert!((depth - design).abs() < tol, "{m:?}: tooth depth {depth} vs design {design}");
+                    assert!(
+                        (depth - design).abs() < tol,
+                        "{m:?}: tooth depth {depth} vs design {design}"
+                    );
                 }
             }
         }
@@ -101,9 +123,19 @@ fn principal_curvatures_match_finite_differences_of_positions() {
                 let scale = exact.k[0].abs().max(exact.k[1].abs());
                 for i in 0..2 {
                     let rel = (exact.k[i] - fd.k[i]).abs() / scale;
-                    assert!(rel < 1e-4, "{m:?} {side:?} ({xi},{eta}) k{i}: {} vs fd {} (rel {rel:e})", exact.k[i], fd.k[i]);
-                    let dot = Vector3::from(exact.dir[i]).dot(&Vector3::from(fd.dir[i])).abs();
-                    assert!(dot > 1.0 - 1e-6, "{m:?} {side:?}: direction {i} off, |cos| = {dot}");
+                    assert!(
+                        rel < 1e-4,
+                        "{m:?} {side:?} ({xi},{eta}) k{i}: {} vs fd {} (rel {rel:e})",
+                        exact.k[i],
+                        fd.k[i]
+                    );
+                    let dot = Vector3::from(exact.dir[i])
+                        .dot(&Vector3::from(fd.dir[i]))
+                        .abs();
+                    assert!(
+                        dot > 1.0 - 1e-6,
+                        "{m:?} {side:?}: direction {i} off, |cos| = {dot}"
+                    );
                 }
             }
         }
@@ -128,10 +160,17 @@ fn blade_cone_curvatures_are_zero_and_cos_alpha_over_radius() {
     let rvv = (c(u, h) - c(u, v) * 2.0 + c(u, -h)) / (h * h);
     let ruv = (c(h, h) - c(h, -h) - c(-h, h) + c(-h, -h)) / (4.0 * h * h);
     let (_, n) = cone.point(u, v);
-    let k = curvature_from_derivatives([ru.into(), rv.into()], [ruu.into(), ruv.into(), rvv.into()], &Vector3::from(n));
+    let k = curvature_from_derivatives(
+        [ru.into(), rv.into()],
+        [ruu.into(), ruv.into(), rvv.into()],
+        &Vector3::from(n),
+    );
     let expect = cone.cos_alpha / cone.radius;
     let kmax = k.k[0].abs().max(k.k[1].abs());
     let kmin = k.k[0].abs().min(k.k[1].abs());
-    assert!((kmax - expect).abs() / expect < 1e-6, "cone curvature {kmax} vs cos α / r = {expect}");
+    assert!(
+        (kmax - expect).abs() / expect < 1e-6,
+        "cone curvature {kmax} vs cos α / r = {expect}"
+    );
     assert!(kmin < 1e-9, "straight blade: {kmin}");
 }

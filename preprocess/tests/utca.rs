@@ -15,7 +15,14 @@ fn separation_map_equals_the_designed_ease_off() {
     for side in [Side::Drive, Side::Coast] {
         let fp = g.side(side);
         let dir = pinion_direction(&p, side);
-        let rs = RollSurface::new(fp, LineGrid { n_face: 11, n_profile: 11 }).unwrap();
+        let rs = RollSurface::new(
+            fp,
+            LineGrid {
+                n_face: 11,
+                n_profile: 11,
+            },
+        )
+        .unwrap();
         let mut checked = 0;
         let mut worst: f64 = 0.0;
         for &uv in &rs.uv {
@@ -36,7 +43,10 @@ fn separation_map_equals_the_designed_ease_off() {
             checked += 1;
         }
         assert!(checked > 50, "{side:?}: only {checked} active nodes");
-        println!("{side:?}: {checked} nodes, worst |separation - ease-off| = {:.2e} um", worst * 1e6);
+        println!(
+            "{side:?}: {checked} nodes, worst |separation - ease-off| = {:.2e} um",
+            worst * 1e6
+        );
     }
 }
 
@@ -50,11 +60,17 @@ fn white_paper_pair_mesh_cycle_is_18_degrees_and_unloaded_te_is_37_urad_peak_to_
     let dir = pinion_direction(&p, Side::Drive);
     let u = run(fp, &rs, fp.roll_range[0], 0.1f64.to_radians(), 361, dir);
     let ptp = u.te_ptp() * 1e6;
-    println!("unloaded TE peak-to-peak {ptp:.2} urad, contact ratio {:.3}", u.contact_ratio);
+    println!(
+        "unloaded TE peak-to-peak {ptp:.2} urad, contact ratio {:.3}",
+        u.contact_ratio
+    );
     assert!((ptp - 37.0).abs() < 3.7, "TE ptp {ptp} urad");
     // Periodic with the mesh cycle: 180 steps of 0.1°.
     for k in 0..181 {
-        assert!((u.te[k] - u.te[k + 180]).abs() < 1e-9, "not periodic at step {k}");
+        assert!(
+            (u.te[k] - u.te[k + 180]).abs() < 1e-9,
+            "not periodic at step {k}"
+        );
     }
     assert!(u.te.iter().all(|&t| t >= 0.0), "TE must be a lag (>= 0)");
 }
@@ -67,14 +83,30 @@ fn fast_utca_agrees_with_the_direct_contact_search() {
         let fp = g.side(side);
         let dir = pinion_direction(&p, side);
         let rs = RollSurface::new(fp, LineGrid::default()).unwrap();
-        let coarse = RollSurface::new(fp, LineGrid { n_face: 21, n_profile: 21 }).unwrap();
+        let coarse = RollSurface::new(
+            fp,
+            LineGrid {
+                n_face: 21,
+                n_profile: 21,
+            },
+        )
+        .unwrap();
         let step = p.mesh_cycle() / 5.0;
         let u = run(fp, &rs, fp.roll_range[0], step, 5, dir);
         for k in 0..5 {
             let d = direct_te(fp, &coarse, u.pinion_angle[k], dir).unwrap();
             let diff = (d.te - u.te[k]).abs() * 1e6;
-            assert!(diff < 0.02, "{side:?} step {k}: fast {:.4} vs direct {:.4} urad", u.te[k] * 1e6, d.te * 1e6);
-            assert!(d.min_node_gap > -1e-9, "{side:?}: penetration {:.2e} m at the direct TE", d.min_node_gap);
+            assert!(
+                diff < 0.02,
+                "{side:?} step {k}: fast {:.4} vs direct {:.4} urad",
+                u.te[k] * 1e6,
+                d.te * 1e6
+            );
+            assert!(
+                d.min_node_gap > -1e-9,
+                "{side:?}: penetration {:.2e} m at the direct TE",
+                d.min_node_gap
+            );
         }
     }
 }
@@ -98,9 +130,50 @@ fn contact_ellipse_semi_axes_follow_the_separation_they_mark() {
     }
     assert!(e1.semi_axes[0] > e1.semi_axes[1]);
     // A localized bearing: the major axis is a few mm, the minor axis below a mm.
-    assert!(e1.semi_axes[0] > 2e-3 && e1.semi_axes[0] < 30e-3, "major {}", e1.semi_axes[0]);
+    assert!(
+        e1.semi_axes[0] > 2e-3 && e1.semi_axes[0] < 30e-3,
+        "major {}",
+        e1.semi_axes[0]
+    );
     assert!(e1.semi_axes[1] < 1e-3, "minor {}", e1.semi_axes[1]);
     // The contact point at the UTCA lag has (almost) zero gap.
     let (s, _) = gap(fp, at, c.tooth, c.uv, c.uv).unwrap();
     assert!(s.abs() < 1e-9, "gap at the contact point {s}");
+}
+
+#[test]
+fn imported_topography_is_added_on_top_and_a_linear_field_is_reproduced_exactly() {
+    use preprocess::design::{Member, TopographyDesign};
+    let mut p = common::white_paper_conjugate();
+    let profile = vec![0.0, 0.3, 0.55, 1.0];
+    let face = vec![0.0, 0.2, 0.7, 0.85, 1.0];
+    let field = |eta: f64, xi: f64| 2.0 + 3.0 * eta - xi;
+    p.ease_off.topography = Some(TopographyDesign {
+        deviation_um: profile
+            .iter()
+            .map(|&e| face.iter().map(|&x| field(e, x)).collect())
+            .collect(),
+        profile,
+        face,
+    });
+    let g = common::geometry(&p);
+    let fp = g.side(Side::Drive);
+    let f = g.flank(Member::Pinion, Side::Drive);
+    for (xi, eta) in [(0.1, 0.1), (0.45, 0.62), (0.93, 0.4), (0.5, 0.5)] {
+        let pt = f.at_unit(xi, eta).unwrap();
+        assert!(
+            (pt.ease_off - field(eta, xi) * 1e-6).abs() < 1e-13,
+            "({xi},{eta}): {}",
+            pt.ease_off
+        );
+        if fp.is_active(pt.uv[0], pt.uv[1], 0.0) {
+            let at = fp.placement(pt.pinion_roll, 0.0, pinion_direction(&p, Side::Drive));
+            let (s, _) = gap(fp, at, 0, pt.uv, pt.uv).unwrap();
+            assert!(
+                (s - pt.ease_off).abs() < 0.05e-6,
+                "separation {s} vs {}",
+                pt.ease_off
+            );
+        }
+    }
 }

@@ -4,7 +4,11 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser)]
-#[command(name = "solver", version, about = "Gear contact element, loaded TCA and multibody runs")]
+#[command(
+    name = "solver",
+    version,
+    about = "Gear contact element, loaded TCA and multibody runs"
+)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,

@@ -62,10 +62,14 @@ pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
                     }
                 })
                 .collect();
-            let mut pinion_teeth: Vec<i32> = positions.iter().flat_map(|p| p.tooth_pairs.clone()).collect();
+            let mut pinion_teeth: Vec<i32> = positions
+                .iter()
+                .flat_map(|p| p.tooth_pairs.clone())
+                .collect();
             pinion_teeth.sort();
             pinion_teeth.dedup();
-            let mut wheel_teeth: Vec<i32> = pinion_teeth.iter().map(|j| (-j).rem_euclid(z2)).collect();
+            let mut wheel_teeth: Vec<i32> =
+                pinion_teeth.iter().map(|j| (-j).rem_euclid(z2)).collect();
             wheel_teeth.sort();
             wheel_teeth.dedup();
             Plan {
@@ -73,7 +77,10 @@ pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
                 loaded_flank: side,
                 mesh_cycles: cycles,
                 positions,
-                pinion_teeth: pinion_teeth.iter().map(|j| j.rem_euclid(g.data.members[0].teeth as i32)).collect(),
+                pinion_teeth: pinion_teeth
+                    .iter()
+                    .map(|j| j.rem_euclid(g.data.members[0].teeth as i32))
+                    .collect(),
                 wheel_teeth,
             }
         })

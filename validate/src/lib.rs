@@ -1,1 +1,10 @@
+//! Validation: independent checks of each stage against reference methods,
+//! and the reports that put them side by side.
+//!
+//! Now: the unloaded TCA (surface of roll angles, [`preprocess::utca`])
+//! against the direct geometric contact search ([`preprocess::direct`]),
+//! and the unloaded TE against the white paper's 1 N·m value.
 
+pub mod published;
+pub mod report;
+pub mod utca_check;
