@@ -16,16 +16,39 @@ use nalgebra::{Const, Matrix2, SVector, Vector3};
 use num_dual::{hessian, Dual2Vec};
 use serde::Serialize;
 
-/// A straight line d = d0 + slope (L − R_m) in the axial section.
+/// A line d = d0 + slope (L − R_m) + curve (L − R_m)² in the axial section.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Line {
     pub d0: f64,
     pub slope: f64,
+    pub curve: f64,
 }
 
 impl Line {
+    pub fn straight(d0: f64, slope: f64) -> Self {
+        Line {
+            d0,
+            slope,
+            curve: 0.0,
+        }
+    }
     pub fn at<D: Scalar>(&self, l: D, rm: f64) -> D {
-        (l - rm) * self.slope + self.d0
+        let x = l - rm;
+        x * x * self.curve + x * self.slope + self.d0
+    }
+    /// The parabola through three points (L, d).
+    pub fn through(p: [(f64, f64); 3], rm: f64) -> Self {
+        let x: Vec<f64> = p.iter().map(|q| q.0 - rm).collect();
+        let m = nalgebra::Matrix3::from_fn(|i, j| x[i].powi(j as i32));
+        let c = m
+            .lu()
+            .solve(&Vector3::new(p[0].1, p[1].1, p[2].1))
+            .unwrap_or_default();
+        Line {
+            d0: c[0],
+            slope: c[1],
+            curve: c[2],
+        }
     }
 }
 
@@ -40,7 +63,8 @@ pub struct Bounds {
     /// Root cone line.
     pub root: Line,
     /// Lower limit of the straight-blade flank: where the edge-radius fillet
-    /// meets it, ρ_e (1 − sin α) above the root line.
+    /// meets it. [`Bounds::new`] starts from ρ_e (1 − sin α) above the root
+    /// line; [`Flank::fit_fillet_limit`] replaces it by the generated junction.
     pub low: Line,
 }
 
@@ -49,24 +73,15 @@ impl Bounds {
         let d = pair.member(m);
         let g = d.pitch_angle;
         let rm = pair.mean_cone_distance;
-        let root = Line {
-            d0: -d.mean_dedendum,
-            slope: (d.root_angle - g).tan(),
-        };
+        let root = Line::straight(-d.mean_dedendum, (d.root_angle - g).tan());
         let fillet = pair.edge_radius * (1.0 - pair.pressure_angle[side.index()].sin());
         Bounds {
             rm,
             inner: pair.inner_cone_distance(),
             outer: pair.outer_cone_distance(),
-            face: Line {
-                d0: d.mean_addendum,
-                slope: (d.face_angle - g).tan(),
-            },
+            face: Line::straight(d.mean_addendum, (d.face_angle - g).tan()),
             root,
-            low: Line {
-                d0: root.d0 + fillet,
-                slope: root.slope,
-            },
+            low: Line::straight(root.d0 + fillet, root.slope),
         }
     }
     /// (L, d) from normalised (ξ face, η profile).
@@ -280,6 +295,44 @@ impl Flank {
         let n = Vector3::from(p.normal);
         let trace = n.cross(&nu).normalize();
         Ok((trace.dot(&gen).abs().acos(), n.dot(&nu).abs().asin()))
+    }
+
+    /// Replaces the approximate lower limit by a parabola through the
+    /// generated flank–fillet junction at toe, mean and heel.
+    pub fn fit_fillet_limit(&mut self) -> Result<(), GeometryError> {
+        let b = self.bounds;
+        let mut pts = [(0.0, 0.0); 3];
+        for (k, l) in [b.inner, b.rm, b.outer].into_iter().enumerate() {
+            let s = self.fillet_arc_at(l)?;
+            let q = self.gen.eval_fillet(0.0, s);
+            pts[k] = self.gen.frame.axial(&q.pos);
+        }
+        self.bounds.low = Line::through(pts, b.rm);
+        Ok(())
+    }
+
+    /// Cutter arc length s of the fillet section whose junction with the flank
+    /// lies at cone distance `l` (secant iteration on the junction's L).
+    pub fn fillet_arc_at(&self, l: f64) -> Result<f64, GeometryError> {
+        let lj = |s: f64| {
+            let p = self.gen.eval_fillet(0.0, s);
+            self.gen.frame.axial(&p.pos).0
+        };
+        let mut s = self.solve_ld(l, self.bounds.low.at(l, self.bounds.rm))?[1];
+        for _ in 0..30 {
+            let f = lj(s) - l;
+            if f.abs() < 1e-12 {
+                return Ok(s);
+            }
+            let h = 1e-6;
+            s -= f * h / (lj(s + h) - lj(s));
+        }
+        Err(GeometryError::NoFlankPoint {
+            member: self.gen.member.name(),
+            flank: self.gen.side.flank_name(self.gen.member),
+            cone_distance_mm: l * 1e3,
+            height_mm: self.bounds.root.at(l, self.bounds.rm) * 1e3,
+        })
     }
 
     /// First and second derivatives of the modified position with respect to

@@ -164,6 +164,110 @@ pub struct GeneratedFlank {
     pub frame: MemberFrame,
     /// +1 when the member's outward normal equals the cone normal, else −1.
     pub outward: f64,
+    /// The blade tip that cuts this member's root and fillet.
+    pub tip: BladeTip,
+}
+
+/// The edge-radius tip of the blades that cut one member's root. The tip
+/// follows the crown cone z = σ (h_f + (L_c − R_m) tan δ_f) (L_c distance from
+/// the crown axis, δ_f = pitch − root angle, σ = −1 pinion, +1 wheel), which
+/// generates the member's root cone; the edge circle of radius ρ is tangent to
+/// the blade and to the tip.
+#[derive(Debug, Clone, Copy)]
+pub struct BladeTip {
+    pub sign: f64,
+    pub dedendum: f64,
+    pub tan_dedendum_angle: f64,
+    pub mean_cone_distance: f64,
+    pub edge_radius: f64,
+}
+
+impl GeneratedFlank {
+    /// Blade profile data at cutter arc length `s`: tip height ζ_t, edge-circle
+    /// centre (R, ζ) in the cutter's radial plane, and the unit normals into
+    /// the tool across the blade (n_s) and across the tip (n_t).
+    fn edge_circle(&self, s: f64) -> ([f64; 2], [f64; 2], [f64; 2]) {
+        let c = &self.cone;
+        let t = &self.tip;
+        let th = s / c.radius + c.theta0;
+        let ns = [
+            self.outward * c.cos_alpha,
+            -self.outward * c.slope * c.sin_alpha,
+        ];
+        let nt = [0.0, -t.sign];
+        let k = t.edge_radius / (1.0 + ns[0] * nt[0] + ns[1] * nt[1]);
+        // Tip height where the edge circle touches the tip (below its centre):
+        // fixed point of ζ_t = tip cone height at L_c(centre(ζ_t)).
+        let mut zt = t.sign * t.dedendum;
+        let mut centre = [c.radius, zt];
+        for _ in 0..6 {
+            let corner = [c.radius + c.slope * zt * c.tan_alpha, zt];
+            centre = [
+                corner[0] + k * (ns[0] + nt[0]),
+                corner[1] + k * (ns[1] + nt[1]),
+            ];
+            let lc = (c.center[0] + centre[0] * th.cos()).hypot(c.center[1] + centre[0] * th.sin());
+            zt = t.sign * (t.dedendum + (lc - t.mean_cone_distance) * t.tan_dedendum_angle);
+        }
+        (centre, ns, nt)
+    }
+
+    /// Height ζ where the straight blade meets the edge circle, at arc length `s`.
+    pub fn tangency_height(&self, s: f64) -> f64 {
+        let (centre, ns, _) = self.edge_circle(s);
+        centre[1] - self.tip.edge_radius * ns[1]
+    }
+
+    /// Point of the edge-radius surface (crown frame, phase 0): ψ = 0 on the
+    /// blade tangency, ψ = 1 on the tip; the circle arc turns from −n_s to −n_t.
+    pub fn fillet_surface(&self, psi: f64, s: f64) -> [f64; 3] {
+        let (centre, ns, nt) = self.edge_circle(s);
+        let omega = (ns[0] * nt[0] + ns[1] * nt[1]).clamp(-1.0, 1.0).acos();
+        let (a, b) = (
+            ((1.0 - psi) * omega).sin() / omega.sin(),
+            (psi * omega).sin() / omega.sin(),
+        );
+        let w = [a * ns[0] + b * nt[0], a * ns[1] + b * nt[1]];
+        let rr = centre[0] - self.tip.edge_radius * w[0];
+        let z = centre[1] - self.tip.edge_radius * w[1];
+        let th = s / self.cone.radius + self.cone.theta0;
+        [
+            self.cone.center[0] + rr * th.cos(),
+            self.cone.center[1] + rr * th.sin(),
+            z,
+        ]
+    }
+
+    /// Generated fillet point at (ψ, s); the generating normal comes from the
+    /// cross product of the surface's difference tangents.
+    pub fn eval_fillet(&self, psi: f64, s: f64) -> RawPoint<f64> {
+        let h = 1e-7;
+        let p = self.fillet_surface(psi, s);
+        let dp = |a: [f64; 3], b: [f64; 3]| Vector3::new(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+        let (pa, pb) = if psi + h <= 1.0 {
+            (self.fillet_surface(psi + h, s), p)
+        } else {
+            (p, self.fillet_surface(psi - h, s))
+        };
+        let tp = dp(pa, pb);
+        let ts = dp(
+            self.fillet_surface(psi, s + h),
+            self.fillet_surface(psi, s - h),
+        );
+        let mut n = tp.cross(&ts).normalize();
+        // Orient like the cone normal: the member's outward normal (outward · n) points into the tool.
+        let (centre, _, _) = self.edge_circle(s);
+        let th = s / self.cone.radius + self.cone.theta0;
+        let to_tool = Vector3::new(
+            (centre[0] * th.cos() + self.cone.center[0]) - p[0],
+            (centre[0] * th.sin() + self.cone.center[1]) - p[1],
+            centre[1] - p[2],
+        );
+        if (n * self.outward).dot(&to_tool) < 0.0 {
+            n = -n;
+        }
+        self.envelope(p, [n[0], n[1], n[2]])
+    }
 }
 
 /// Everything a generated flank point carries, generic in the scalar type so
@@ -186,6 +290,12 @@ impl GeneratedFlank {
     /// (ζ height on the blade, s arc length along the cutter circle).
     pub fn eval<D: Scalar>(&self, zeta: D, s: D) -> RawPoint<D> {
         let (p0, n0) = self.cone.point(zeta, s);
+        self.envelope(p0, n0)
+    }
+
+    /// The generated point of a generating-surface point `p0` with normal `n0`
+    /// (crown frame at phase 0, normal oriented like the cone's).
+    pub fn envelope<D: Scalar>(&self, p0: [D; 3], n0: [D; 3]) -> RawPoint<D> {
         let (sp, cp) = self.phase.sin_cos();
         let rz = |v: [D; 3]| [v[0] * cp - v[1] * sp, v[0] * sp + v[1] * cp, v[2]];
         let p = rz(p0);
@@ -283,6 +393,7 @@ impl Generator {
                 (Member::Wheel, Side::Drive) => (0.0, 1.0),
                 (Member::Wheel, Side::Coast) => (h * st2 / rm, -1.0),
             };
+            let d = pair.member(m);
             GeneratedFlank {
                 member: m,
                 side,
@@ -290,6 +401,13 @@ impl Generator {
                 phase,
                 frame: MemberFrame::new(pair, m),
                 outward,
+                tip: BladeTip {
+                    sign: if m == Member::Pinion { -1.0 } else { 1.0 },
+                    dedendum: d.mean_dedendum,
+                    tan_dedendum_angle: (d.pitch_angle - d.root_angle).tan(),
+                    mean_cone_distance: rm,
+                    edge_radius: pair.edge_radius,
+                },
             }
         };
         let flanks = [

@@ -60,35 +60,37 @@ impl PairGeometry {
         ];
         let k1 = frames[0].roll_ratio;
         let a2 = frames[1].axis();
-        let bare = |side: Side| -> FlankPair {
-            let flank = |m: Member| {
-                Flank::new(
+        let bare = |side: Side| -> Result<FlankPair, GeometryError> {
+            let flank = |m: Member| -> Result<Flank, GeometryError> {
+                Ok(Flank::new(
                     *generator.flank(m, side),
                     Bounds::new(data, m, side),
                     None,
                     k1,
                     a2,
-                )
+                ))
             };
-            let (pinion, wheel) = (flank(Member::Pinion), flank(Member::Wheel));
-            FlankPair {
+            let (pinion, wheel) = (flank(Member::Pinion)?, flank(Member::Wheel)?);
+            Ok(FlankPair {
                 side,
                 wheel_offset: -frames[1].roll_ratio * (wheel.gen.phase - pinion.gen.phase),
                 pinion,
                 wheel,
                 roll_range: [0.0, 0.0],
-            }
+            })
         };
         let mut geom = PairGeometry {
             data: data.clone(),
             generator: generator.clone(),
             frames,
-            sides: [bare(Side::Drive), bare(Side::Coast)],
+            sides: [bare(Side::Drive)?, bare(Side::Coast)?],
         };
         if let Some(path) = checked {
             geom.check_teeth(path)?;
         }
         for fp in geom.sides.iter_mut() {
+            fp.pinion.fit_fillet_limit()?;
+            fp.wheel.fit_fillet_limit()?;
             fp.roll_range = fp.active_roll_range()?;
             let vertex = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);
             fp.pinion.ease = Some(EaseOff::new(&data.ease_off, vertex, data.mesh_cycle()));

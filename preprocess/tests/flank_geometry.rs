@@ -50,45 +50,45 @@ fn spiral_angle_grows_from_toe_to_heel_as_the_cutter_circle_predicts() {
 }
 
 #[test]
-fn flank_spans_from_the_fillet_limit_to_the_face_cone_with_the_design_depth() {
-    let p = common::white_paper();
+fn flank_spans_from_the_root_cone_to_the_face_cone_with_the_design_depth() {
+    let p = common::white_paper_conjugate();
     let g = common::geometry(&p);
     for m in [Member::Pinion, Member::Wheel] {
         let md = p.member(m);
+        // Height above the pitch cone from a 3-D point: ρ cos γ − z sin γ.
+        let (s, c) = md.pitch_angle.sin_cos();
+        let h = |q: [f64; 3]| q[0].hypot(q[1]) * c - q[2] * s;
         for side in [Side::Drive, Side::Coast] {
             let f = g.flank(m, side);
             for xi in [0.0, 0.5, 1.0] {
-                let tip = f.at_unit(xi, 1.0).unwrap();
-                let low = f.at_unit(xi, 0.0).unwrap();
-                // Height above the pitch cone from the 3-D points: ρ cos γ − z sin γ.
-                let (s, c) = md.pitch_angle.sin_cos();
-                let h = |q: [f64; 3]| q[0].hypot(q[1]) * c - q[2] * s;
                 let l = p.inner_cone_distance() + xi * p.face_width;
-                // Face cone: through the mean addendum point at the face angle.
+                let tip = f.at_unit(xi, 1.0).unwrap();
                 let face = md.mean_addendum
                     + (l - p.mean_cone_distance) * (md.face_angle - md.pitch_angle).tan();
-                let root = -md.mean_dedendum
-                    + (l - p.mean_cone_distance) * (md.root_angle - md.pitch_angle).tan();
-                let fillet = p.edge_radius * (1.0 - p.pressure_angle[side.index()].sin());
-                // Without ease-off the pinion points are exact; the ease-off moves them by < 0.1 mm along the normal.
-                let tol = if m == Member::Pinion { 1e-4 } else { 1e-9 };
                 assert!(
-                    (h(tip.pos) - face).abs() < tol,
-                    "{m:?} {side:?} xi {xi}: tip {} vs face cone {}",
-                    h(tip.pos),
-                    face
+                    (h(tip.pos) - face).abs() < 1e-9,
+                    "{m:?} {side:?} xi {xi}: tip {} vs face cone {face}",
+                    h(tip.pos)
                 );
+                // The deepest point of the generated fillet section.
+                let arc = f.fillet_arc_at(l).unwrap();
+                let root = f.gen.eval_fillet(1.0, arc);
+                let (lr, _) = f.gen.frame.axial(&root.pos);
+                let root_cone = -md.mean_dedendum
+                    + (lr - p.mean_cone_distance) * (md.root_angle - md.pitch_angle).tan();
                 assert!(
-                    (h(low.pos) - (root + fillet)).abs() < tol,
-                    "{m:?} {side:?}: low {} vs root+fillet {}",
-                    h(low.pos),
-                    root + fillet
+                    (h(root.pos) - root_cone).abs() < 2e-6,
+                    "{m:?} {side:?} xi {xi}: root {} vs root cone {root_cone}",
+                    h(root.pos)
                 );
                 if xi == 0.5 {
-                    let depth = h(tip.pos) - h(low.pos) + fillet;
+                    // Root point carried along the root cone to the mean section.
+                    let root_at_mean = h(root.pos)
+                        + (p.mean_cone_distance - lr) * (md.root_angle - md.pitch_angle).tan();
+                    let depth = h(tip.pos) - root_at_mean;
                     let design = md.mean_addendum + md.mean_dedendum;
                     assert!(
-                        (depth - design).abs() < tol,
+                        (depth - design).abs() < 5e-6,
                         "{m:?}: tooth depth {depth} vs design {design}"
                     );
                 }
