@@ -131,49 +131,9 @@ pub fn direct_te(
             }
         }
     }
-    let (mut val, j, mut uv) = best?;
+    let (val, j, uv) = best?;
     // Newton on f(u, v) = gap/λ₂ with central differences.
-    let h = [2e-5, 2e-5];
-    for _ in 0..20 {
-        let f = |du: f64, dv: f64| ratio([uv[0] + du, uv[1] + dv], j).unwrap_or(f64::INFINITY);
-        let f0 = f(0.0, 0.0);
-        let (fp_u, fm_u) = (f(h[0], 0.0), f(-h[0], 0.0));
-        let (fp_v, fm_v) = (f(0.0, h[1]), f(0.0, -h[1]));
-        let fuv = f(h[0], h[1]) - f(h[0], -h[1]) - f(-h[0], h[1]) + f(-h[0], -h[1]);
-        let vals = [fp_u, fm_u, fp_v, fm_v, fuv];
-        if vals.iter().any(|x| !x.is_finite()) {
-            break;
-        }
-        let g = Vector2::new((fp_u - fm_u) / (2.0 * h[0]), (fp_v - fm_v) / (2.0 * h[1]));
-        let hs = Matrix2::new(
-            (fp_u - 2.0 * f0 + fm_u) / (h[0] * h[0]),
-            fuv / (4.0 * h[0] * h[1]),
-            fuv / (4.0 * h[0] * h[1]),
-            (fp_v - 2.0 * f0 + fm_v) / (h[1] * h[1]),
-        );
-        // Levenberg-damped Newton step, accepted only if it decreases f.
-        let mut lambda = 1e-12 * hs.norm().max(1e-30);
-        let mut moved = false;
-        for _ in 0..30 {
-            let m = hs + Matrix2::identity() * lambda;
-            if let Some(mi) = m.try_inverse() {
-                let s = -(mi * g);
-                let cand = [uv[0] + s[0], uv[1] + s[1]];
-                if let Some(fc) = ratio(cand, j) {
-                    if fc <= f0 {
-                        moved = s.norm() > 1e-12;
-                        uv = cand;
-                        val = fc;
-                        break;
-                    }
-                }
-            }
-            lambda = lambda * 10.0 + 1e-3 * hs.norm();
-        }
-        if !moved {
-            break;
-        }
-    }
+    let (uv, val) = crate::minimize::newton_2d(|c| ratio(c, j), uv, val, 2e-5, 20);
     // One correction for the nonlinearity of the rotation.
     let at = fp.placement(phi1, val, direction);
     let (g, _) = gap(fp, at, j, uv, uv)?;

@@ -11,6 +11,7 @@ pub mod error;
 pub mod flank;
 pub mod flank_stage;
 pub mod generation;
+pub mod minimize;
 pub mod output;
 pub mod pair;
 pub mod plots;

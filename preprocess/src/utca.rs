@@ -248,68 +248,11 @@ impl<'a> LineSearch<'a> {
             }
         }
         let (_, n) = best?;
-        let mut uv = rs.uv[n];
-        let mut val = self.lag(uv, target)?;
-        let h = 1e-5;
-        for _ in 0..25 {
-            let f = |du: f64, dv: f64| self.lag([uv[0] + du, uv[1] + dv], target);
-            let (Some(fu1), Some(fu0), Some(fv1), Some(fv0)) =
-                (f(h, 0.0), f(-h, 0.0), f(0.0, h), f(0.0, -h))
-            else {
-                break;
-            };
-            let fuv = match (f(h, h), f(h, -h), f(-h, h), f(-h, -h)) {
-                (Some(a), Some(b), Some(c), Some(d)) => a - b - c + d,
-                _ => 0.0,
-            };
-            let g = [(fu1 - fu0) / (2.0 * h), (fv1 - fv0) / (2.0 * h)];
-            let hs = [
-                (fu1 - 2.0 * val + fu0) / (h * h),
-                fuv / (4.0 * h * h),
-                (fv1 - 2.0 * val + fv0) / (h * h),
-            ];
-            match damped_step(|c| self.lag(c, target), uv, val, g, hs) {
-                Some((c, fc)) => {
-                    let moved = (c[0] - uv[0]).hypot(c[1] - uv[1]);
-                    uv = c;
-                    val = fc;
-                    if moved < 1e-10 {
-                        break;
-                    }
-                }
-                None => break,
-            }
-        }
+        let uv = rs.uv[n];
+        let val = self.lag(uv, target)?;
+        let (uv, val) = crate::minimize::newton_2d(|c| self.lag(c, target), uv, val, 1e-5, 25);
         Some((val, uv))
     }
-}
-
-/// One Levenberg-damped Newton step on f at x (value f0, gradient g, Hessian
-/// [h_uu, h_uv, h_vv]) that decreases f and stays where f is defined.
-pub fn damped_step(
-    f: impl Fn([f64; 2]) -> Option<f64>,
-    x: [f64; 2],
-    f0: f64,
-    g: [f64; 2],
-    hs: [f64; 3],
-) -> Option<([f64; 2], f64)> {
-    let scale = hs[0].abs() + hs[2].abs() + 1e-300;
-    let mut lambda = 1e-9 * scale;
-    for _ in 0..25 {
-        let (a, b, c) = (hs[0] + lambda, hs[1], hs[2] + lambda);
-        let det = a * c - b * b;
-        if det > 0.0 {
-            let s = [-(c * g[0] - b * g[1]) / det, -(a * g[1] - b * g[0]) / det];
-            let cand = [x[0] + s[0], x[1] + s[1]];
-            if let Some(fc) = f(cand) {
-                if fc <= f0 {
-                    return Some((cand, fc));
-                }
-            }
-        }
-        lambda = lambda * 10.0 + 1e-3 * scale;
-    }
-    None
 }
 
 /// Runs the UTCA for pinion angles `start + σ k step`, k = 0..n, σ the
