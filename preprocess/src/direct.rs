@@ -121,19 +121,22 @@ pub fn direct_te(
         let (g, _) = gap_on_flank(fp, conj, j, uv, uv)?;
         Some(g / fp.pinion.eval_uv(uv[0], uv[1]).wheel_lever)
     };
+    // Per tooth pair: best node, refined by Newton on f(u, v) = gap/λ₂; then the smallest.
     let mut best: Option<(f64, i32, [f64; 2])> = None;
     for j in jmin..=jmax {
-        for &uv in &rs.uv {
-            if let Some(r) = ratio(uv, j) {
-                if best.is_none_or(|b| r < b.0) {
-                    best = Some((r, j, uv));
-                }
+        let node = rs
+            .uv
+            .iter()
+            .filter_map(|&uv| ratio(uv, j).map(|r| (r, uv)))
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((r, uv)) = node {
+            let (uv, r) = crate::minimize::newton_2d(|c| ratio(c, j), uv, r, 2e-5, 20);
+            if best.is_none_or(|b| r < b.0) {
+                best = Some((r, j, uv));
             }
         }
     }
     let (val, j, uv) = best?;
-    // Newton on f(u, v) = gap/λ₂ with central differences.
-    let (uv, val) = crate::minimize::newton_2d(|c| ratio(c, j), uv, val, 2e-5, 20);
     // One correction for the nonlinearity of the rotation.
     let at = fp.placement(phi1, val, direction);
     let (g, _) = gap(fp, at, j, uv, uv)?;

@@ -2,20 +2,26 @@
 //! gradient and Hessian, Levenberg-damped, each step accepted only where the
 //! function is defined and decreases.
 
-/// Minimises `f` from `x` (with `f(x) = f0`), step `h` for the differences,
+/// Minimises `f` from `x` (with `f(x) = f0`), step `h0` for the differences,
 /// at most `iters` Newton steps. Returns the last accepted point and value.
 pub fn newton_2d(
     f: impl Fn([f64; 2]) -> Option<f64>,
     mut x: [f64; 2],
     mut f0: f64,
-    h: f64,
+    h0: f64,
     iters: usize,
 ) -> ([f64; 2], f64) {
+    let mut h = h0;
     for _ in 0..iters {
         let at = |du: f64, dv: f64| f([x[0] + du, x[1] + dv]);
         let (Some(fu1), Some(fu0), Some(fv1), Some(fv0)) =
             (at(h, 0.0), at(-h, 0.0), at(0.0, h), at(0.0, -h))
         else {
+            // Next to the edge of the domain: shrink the stencil, up to 1000×.
+            if h > 2e-3 * h0 {
+                h *= 0.1;
+                continue;
+            }
             break;
         };
         let fuv = match (at(h, h), at(h, -h), at(-h, h), at(-h, -h)) {
