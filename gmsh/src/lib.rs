@@ -31,9 +31,11 @@
 //! links gmsh needs an rpath. Cargo passes `cargo:rustc-link-arg` only to the
 //! targets of the package whose build script prints it, so this crate's
 //! build script covers its own tests, and **every crate with binaries, tests,
-//! examples or benches that use `gmsh` needs this `build.rs`** (and `gmsh` as a
-//! direct dependency, which provides `DEP_GMSH_SAFE_LIBDIR` via
-//! `links = "gmsh-safe"`):
+//! examples or benches that use `gmsh` needs this `build.rs`**, and `gmsh` as
+//! a direct dependency under `[dependencies]`, which provides
+//! `DEP_GMSH_SAFE_LIBDIR` via `links = "gmsh-safe"` (build scripts see the
+//! `links` metadata of direct normal dependencies only: not of
+//! `[dev-dependencies]`, and not of `gmsh-sys` through `gmsh`):
 //!
 //! ```text
 //! fn main() {
