@@ -25,6 +25,17 @@ enum Cmd {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Mesh every member x blank of a scene (tet10) into <out>/<scene>/: .msh 4.1, .vtu, report.
+    Mesh {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Mesh level(s).
+        #[arg(long, value_enum, default_value = "reduced")]
+        level: preprocess::mesh_stage::Level,
+        /// Root directory of the meshes.
+        #[arg(long, default_value = "meshes")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -54,6 +65,33 @@ fn main() -> anyhow::Result<()> {
                 }
             }
             println!("  written to {}", out.display());
+        }
+        Cmd::Mesh { scene, level, out } => {
+            let s = preprocess::scene::Scene::load(&scene)?;
+            let reports = preprocess::mesh_stage::run(&s, &out, level)?;
+            for r in &reports {
+                let flank = r
+                    .refined_flanks
+                    .first()
+                    .map(|f| format!("{} x {}", f.elements_profile, f.elements_face))
+                    .unwrap_or_else(|| "-".into());
+                println!(
+                    "{} {:?} {}: {} nodes, {} tet10, min SICN {:.3}, refined flanks {} ({} of them: {flank} requested {} x {}), volume mesh/CAD - 1 = {:.2e}, geometry {:.1} s, mesh {:.1} s",
+                    r.member,
+                    r.blank,
+                    r.level,
+                    r.nodes,
+                    r.tet10_elements,
+                    r.quality_min_sicn,
+                    r.refined_flanks.len(),
+                    r.refined_flanks.len(),
+                    r.requested.profile,
+                    r.requested.face,
+                    r.mesh_volume_m3 / r.occ_volume_m3 - 1.0,
+                    r.time_geometry_s,
+                    r.time_mesh_s
+                );
+            }
         }
     }
     Ok(())

@@ -320,3 +320,38 @@ impl PairGeometry {
         Ok(())
     }
 }
+
+/// Tooth pairs j (pinion tooth j with wheel tooth −j) whose roll φ + jτ lies
+/// inside the active roll range [r₀, r₁] at pinion angle φ.
+pub fn pairs_in_contact(phi: f64, roll_range: [f64; 2], tau: f64) -> Vec<i32> {
+    let jmin = ((roll_range[0] - phi) / tau).ceil() as i32;
+    let jmax = ((roll_range[1] - phi) / tau).floor() as i32;
+    (jmin..=jmax).collect()
+}
+
+/// Pinion and wheel teeth (indices mod z) that come into contact on `side`
+/// while the pinion turns `mesh_cycles` mesh cycles from the entry of tooth 0.
+pub fn teeth_in_contact(
+    g: &PairGeometry,
+    side: Side,
+    mesh_cycles: f64,
+    step: f64,
+) -> (Vec<usize>, Vec<usize>) {
+    let fp = g.side(side);
+    let tau = g.data.mesh_cycle();
+    let dir = pinion_direction(&g.data, side);
+    let n = (mesh_cycles * tau / step).round() as usize + 1;
+    let (z1, z2) = (
+        g.data.members[0].teeth as i32,
+        g.data.members[1].teeth as i32,
+    );
+    let mut p = std::collections::BTreeSet::new();
+    let mut w = std::collections::BTreeSet::new();
+    for k in 0..n {
+        for j in pairs_in_contact(fp.roll_range[0] + dir * step * k as f64, fp.roll_range, tau) {
+            p.insert(j.rem_euclid(z1) as usize);
+            w.insert((-j).rem_euclid(z2) as usize);
+        }
+    }
+    (p.into_iter().collect(), w.into_iter().collect())
+}

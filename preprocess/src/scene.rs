@@ -34,6 +34,9 @@ pub struct Scene {
     pub mesh: MeshLevels,
     pub utca: UtcaSettings,
     pub analyses: Analyses,
+    /// Blank dimensions; missing values get defaults from the design.
+    #[serde(default)]
+    pub blank_dimensions: crate::gear_body::BlankDimensionsMm,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]

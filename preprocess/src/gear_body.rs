@@ -1,0 +1,338 @@
+//! Geometry of the gear bodies for meshing, independent of the CAD kernel:
+//! the blank as a body of revolution (a polygon in the axial half-plane),
+//! the tooth-space (slot) sections whose loft is cut out of the blank, and
+//! the lightweight wheel's holes.
+//!
+//! Axial half-plane coordinates: z along the member axis from the apex, ρ
+//! radial; a point at cone distance L and height d above the pitch cone has
+//! z = L cos γ − d sin γ, ρ = L sin γ + d cos γ.
+
+use crate::design::{Member, PairData};
+use crate::error::GeometryError;
+use crate::flank::Flank;
+use crate::generation::Side;
+use crate::pair::PairGeometry;
+use crate::scene::Blank;
+use serde::{Deserialize, Serialize};
+
+/// Blank dimensions. Every field is optional in the scene file; missing ones
+/// get defaults from the design ([`BlankDimensions::resolve`]).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlankDimensionsMm {
+    /// Pinion bore radius.
+    pub pinion_bore_radius_mm: Option<f64>,
+    /// Depth of the pinion body below the root cone at toe and heel.
+    pub pinion_rim_depth_mm: Option<f64>,
+    /// Length of the pinion's shaft seat behind the heel.
+    pub pinion_shaft_length_mm: Option<f64>,
+    pub wheel_bore_radius_mm: Option<f64>,
+    pub wheel_hub_radius_mm: Option<f64>,
+    /// Depth of the wheel rim below the root cone at toe and heel.
+    pub wheel_rim_depth_mm: Option<f64>,
+    /// Axial web thickness, standard blank.
+    pub wheel_web_thickness_mm: Option<f64>,
+    /// Axial web thickness, lightweight blank.
+    pub wheel_lightweight_web_thickness_mm: Option<f64>,
+    /// Diameter of the three web holes, lightweight blank.
+    pub wheel_hole_diameter_mm: Option<f64>,
+}
+
+/// Resolved blank dimensions, m.
+#[derive(Debug, Clone, Serialize)]
+pub struct BlankDimensions {
+    pub pinion_bore_radius: f64,
+    pub pinion_rim_depth: f64,
+    pub pinion_shaft_length: f64,
+    pub wheel_bore_radius: f64,
+    pub wheel_hub_radius: f64,
+    pub wheel_rim_depth: f64,
+    pub wheel_web_thickness: f64,
+    pub wheel_lightweight_web_thickness: f64,
+    pub wheel_hole_diameter: f64,
+}
+
+/// A point of the axial half-plane from (L, d) of a member with pitch angle γ.
+pub fn axial_point(l: f64, d: f64, gamma: f64) -> [f64; 2] {
+    let (s, c) = gamma.sin_cos();
+    [l * c - d * s, l * s + d * c]
+}
+
+impl BlankDimensions {
+    /// Defaults: rims 2 m_n deep; pinion bore at 40% of the toe's rim-bottom
+    /// radius, shaft seat 0.5 b; wheel bore at 25% of the toe's rim-bottom
+    /// radius, hub radius 1.8 × bore; web 0.35 b (standard) or 0.2 b
+    /// (lightweight), holes filling 70% of the radial web height.
+    pub fn resolve(d: &BlankDimensionsMm, pair: &PairData) -> Self {
+        let mn = pair.normal_module;
+        let b = pair.face_width;
+        let mm = |v: Option<f64>, default: f64| v.map_or(default, |x| x * 1e-3);
+        let toe_bottom = |m: Member, depth: f64| {
+            let md = pair.member(m);
+            let ri = pair.inner_cone_distance();
+            let root = -md.mean_dedendum
+                + (ri - pair.mean_cone_distance) * (md.root_angle - md.pitch_angle).tan();
+            axial_point(ri, root - depth, md.pitch_angle)[1]
+        };
+        let pinion_rim_depth = mm(d.pinion_rim_depth_mm, 2.0 * mn);
+        let wheel_rim_depth = mm(d.wheel_rim_depth_mm, 2.0 * mn);
+        let wheel_bore_radius = mm(
+            d.wheel_bore_radius_mm,
+            0.25 * toe_bottom(Member::Wheel, wheel_rim_depth),
+        );
+        let wheel_hub_radius = mm(d.wheel_hub_radius_mm, 1.8 * wheel_bore_radius);
+        let web_height = toe_bottom(Member::Wheel, wheel_rim_depth) - wheel_hub_radius;
+        BlankDimensions {
+            pinion_bore_radius: mm(
+                d.pinion_bore_radius_mm,
+                0.4 * toe_bottom(Member::Pinion, pinion_rim_depth),
+            ),
+            pinion_rim_depth,
+            pinion_shaft_length: mm(d.pinion_shaft_length_mm, 0.5 * b),
+            wheel_bore_radius,
+            wheel_hub_radius,
+            wheel_rim_depth,
+            wheel_web_thickness: mm(d.wheel_web_thickness_mm, 0.35 * b),
+            wheel_lightweight_web_thickness: mm(d.wheel_lightweight_web_thickness_mm, 0.2 * b),
+            wheel_hole_diameter: mm(d.wheel_hole_diameter_mm, 0.7 * web_height),
+        }
+    }
+}
+
+/// The blank of one member: the polygon of its half-section (counter-clockwise
+/// in (z, ρ)), the bore radius, and for the lightweight wheel the web holes.
+#[derive(Debug, Clone, Serialize)]
+pub struct BlankShape {
+    pub polygon: Vec<[f64; 2]>,
+    pub bore_radius: f64,
+    /// Axial extent of the bore (z range).
+    pub bore_z: [f64; 2],
+    /// Web holes: axis parallel to the member axis at this radius, diameter,
+    /// z range to cut through; three holes at 0°, 120°, 240°.
+    pub holes: Option<Holes>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Holes {
+    pub count: usize,
+    pub circle_radius: f64,
+    pub diameter: f64,
+    pub z: [f64; 2],
+}
+
+/// Volume of the body of revolution of a simple polygon in (z, ρ) about the
+/// z axis, by Pappus: V = 2π Σ over edges of the signed area moment,
+/// V = (π/3) Σ (z_i − z_{i+1}) (ρ_i² + ρ_i ρ_{i+1} + ρ_{i+1}²) · sign.
+pub fn revolution_volume(poly: &[[f64; 2]]) -> f64 {
+    let n = poly.len();
+    let mut v = 0.0;
+    for i in 0..n {
+        let [z0, r0] = poly[i];
+        let [z1, r1] = poly[(i + 1) % n];
+        v += (z1 - z0) * (r0 * r0 + r0 * r1 + r1 * r1);
+    }
+    (std::f64::consts::PI / 3.0 * v).abs()
+}
+
+/// The blank of `member` with blank type `blank`.
+pub fn blank_shape(
+    pair: &PairData,
+    member: Member,
+    blank: Blank,
+    dims: &BlankDimensions,
+) -> BlankShape {
+    let md = pair.member(member);
+    let g = md.pitch_angle;
+    let (ri, re, rm) = (
+        pair.inner_cone_distance(),
+        pair.outer_cone_distance(),
+        pair.mean_cone_distance,
+    );
+    let face = |l: f64| md.mean_addendum + (l - rm) * (md.face_angle - g).tan();
+    let root = |l: f64| -md.mean_dedendum + (l - rm) * (md.root_angle - g).tan();
+    let a = axial_point(ri, face(ri), g);
+    let bpt = axial_point(re, face(re), g);
+    match member {
+        Member::Pinion => {
+            let depth = dims.pinion_rim_depth;
+            let c = axial_point(re, root(re) - depth, g);
+            let d = axial_point(ri, root(ri) - depth, g);
+            let rb = dims.pinion_bore_radius;
+            let z_back = c[0] + dims.pinion_shaft_length;
+            // Shaft seat behind the heel at the heel's rim-bottom radius.
+            BlankShape {
+                polygon: vec![d, a, bpt, c, [z_back, c[1]], [z_back, rb], [d[0], rb]],
+                bore_radius: rb,
+                bore_z: [d[0], z_back],
+                holes: None,
+            }
+        }
+        Member::Wheel => {
+            let depth = dims.wheel_rim_depth;
+            let c = axial_point(re, root(re) - depth, g);
+            let d = axial_point(ri, root(ri) - depth, g);
+            let web = match blank {
+                Blank::Standard => dims.wheel_web_thickness,
+                Blank::Lightweight => dims.wheel_lightweight_web_thickness,
+            }
+            // The web stays under the rim.
+            .min(0.9 * (c[0] - d[0]).abs());
+            // Web centred under the rim; the rim bottom runs from D (toe) to C (heel).
+            let zmid = 0.5 * (c[0] + d[0]);
+            let (zw0, zw1) = (zmid - 0.5 * web, zmid + 0.5 * web);
+            let on_rim = |z: f64| [z, d[1] + (z - d[0]) / (c[0] - d[0]) * (c[1] - d[1])];
+            let (rh, rb) = (dims.wheel_hub_radius, dims.wheel_bore_radius);
+            let (zh0, zh1) = (d[0], c[0]);
+            let w0 = on_rim(zw0);
+            let w1 = on_rim(zw1);
+            let holes = (blank == Blank::Lightweight).then(|| Holes {
+                count: 3,
+                circle_radius: 0.5 * (rh + w0[1].min(w1[1])),
+                diameter: dims.wheel_hole_diameter,
+                z: [zh0 - 1e-3, zh1 + 1e-3],
+            });
+            BlankShape {
+                polygon: vec![
+                    d,
+                    a,
+                    bpt,
+                    c,
+                    w1,
+                    [zw1, rh],
+                    [zh1, rh],
+                    [zh1, rb],
+                    [zh0, rb],
+                    [zh0, rh],
+                    [zw0, rh],
+                    w0,
+                ],
+                bore_radius: rb,
+                bore_z: [zh0, zh1],
+                holes,
+            }
+        }
+    }
+}
+
+/// One tooth-space section: 3-D points (member frame) of its six edges, in
+/// order around the section: flank of the lower tooth from above the face
+/// cone to the fillet, its fillet to the root, the root between the two
+/// fillets, the upper tooth's fillet, its flank up to above the face cone
+/// (the sixth edge, closing over the top, is the straight line back).
+#[derive(Debug, Clone, Serialize)]
+pub struct SlotSection {
+    pub cone_distance: f64,
+    pub edges: [Vec<[f64; 3]>; 5],
+}
+
+/// Which flank side bounds the slot between tooth 0 and tooth 1 on each
+/// side: (side of tooth 0 at the larger angle, side of tooth 1 at the smaller).
+pub fn slot_sides(g: &PairGeometry, m: Member) -> Result<(Side, Side), GeometryError> {
+    let ang = |s: Side| -> Result<f64, GeometryError> {
+        let p = g.flank(m, s).at(g.data.mean_cone_distance, 0.0)?;
+        Ok(p.pos[1].atan2(p.pos[0]))
+    };
+    let (a, c) = (ang(Side::Drive)?, ang(Side::Coast)?);
+    let wrap = |x: f64| {
+        (x + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI
+    };
+    Ok(if wrap(c - a) > 0.0 {
+        (Side::Coast, Side::Drive)
+    } else {
+        (Side::Drive, Side::Coast)
+    })
+}
+
+/// A polyline of 3-D points.
+type Points = Vec<[f64; 3]>;
+
+fn rot(p: [f64; 3], a: f64) -> [f64; 3] {
+    let (s, c) = a.sin_cos();
+    [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]]
+}
+
+/// Flank points from the fillet junction up to `d_top`, and fillet points from
+/// the junction down to the root, at cone distance `l`.
+fn flank_and_fillet(
+    f: &Flank,
+    l: f64,
+    d_top: f64,
+    n_flank: usize,
+    n_fillet: usize,
+) -> Result<(Points, Points), GeometryError> {
+    let d_low = f.bounds.low.at(l, f.bounds.rm);
+    let flank = (0..n_flank)
+        .map(|k| {
+            let d = d_low + (d_top - d_low) * k as f64 / (n_flank - 1) as f64;
+            f.at(l, d).map(|p| p.pos)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let arc = f.fillet_arc_at(l)?;
+    let fillet = (0..n_fillet)
+        .map(|k| f.gen.eval_fillet(k as f64 / (n_fillet - 1) as f64, arc).pos)
+        .collect();
+    Ok((flank, fillet))
+}
+
+/// Slot sections between tooth 0 and tooth 1 of `m`, at `n` cone distances
+/// from `margin` before the toe to `margin` beyond the heel; the flanks reach
+/// `top` above the face cone.
+pub fn slot_sections(
+    g: &PairGeometry,
+    m: Member,
+    n: usize,
+    margin: f64,
+    top: f64,
+) -> Result<Vec<SlotSection>, GeometryError> {
+    let (lo_side, hi_side) = slot_sides(g, m)?;
+    let pitch = 2.0 * std::f64::consts::PI / g.data.member(m).teeth as f64;
+    let (fa, fb) = (g.flank(m, lo_side), g.flank(m, hi_side));
+    let md = g.data.member(m);
+    let rm = g.data.mean_cone_distance;
+    let (l0, l1) = (
+        g.data.inner_cone_distance() - margin,
+        g.data.outer_cone_distance() + margin,
+    );
+    (0..n)
+        .map(|i| {
+            let l = l0 + (l1 - l0) * i as f64 / (n - 1) as f64;
+            let d_top = md.mean_addendum + (l - rm) * (md.face_angle - md.pitch_angle).tan() + top;
+            let (fl_a, fi_a) = flank_and_fillet(fa, l, d_top, 13, 7)?;
+            let (fl_b, fi_b) = flank_and_fillet(fb, l, d_top, 13, 7)?;
+            let fl_b: Vec<[f64; 3]> = fl_b.into_iter().map(|p| rot(p, pitch)).collect();
+            let fi_b: Vec<[f64; 3]> = fi_b.into_iter().map(|p| rot(p, pitch)).collect();
+            // Root between the fillet ends, on the root cone.
+            let (pa, pb) = (fi_a[fi_a.len() - 1], fi_b[fi_b.len() - 1]);
+            let (la, _) = fa.gen.frame.axial(&pa);
+            let (lb, _) = fa.gen.frame.axial(&pb);
+            let (ta, tb) = (pa[1].atan2(pa[0]), pb[1].atan2(pb[0]));
+            let tb = ta + (tb - ta).rem_euclid(2.0 * std::f64::consts::PI);
+            let root: Vec<[f64; 3]> = (0..5)
+                .map(|k| {
+                    let w = k as f64 / 4.0;
+                    let ll = la + w * (lb - la);
+                    let d = -md.mean_dedendum + (ll - rm) * (md.root_angle - md.pitch_angle).tan();
+                    let [z, r] = axial_point(ll, d, md.pitch_angle);
+                    let t = ta + w * (tb - ta);
+                    [r * t.cos(), r * t.sin(), z]
+                })
+                .collect();
+            let mut root = root;
+            root[0] = pa;
+            root[4] = pb;
+            // Shared section corners: the flank ends exactly where its fillet starts.
+            let mut fl_a = fl_a;
+            fl_a[0] = fi_a[0];
+            let mut fl_b = fl_b;
+            fl_b[0] = fi_b[0];
+            let mut e0 = fl_a;
+            e0.reverse();
+            let mut e3 = fi_b;
+            e3.reverse();
+            Ok(SlotSection {
+                cone_distance: l,
+                edges: [e0, fi_a, root, e3, fl_b],
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,634 @@
+//! Tetrahedral (tet10) meshes of the gear bodies with gmsh (OpenCASCADE).
+//!
+//! The blank is a body of revolution; one tooth space (slot) is lofted
+//! through sections of the generated flanks and root fillets, extended beyond
+//! toe, heel and face cone, copied to every tooth and cut out of the blank
+//! (with the lightweight wheel's holes). Loaded flanks of the teeth that the
+//! scene brings into contact get a structured (transfinite) surface mesh with
+//! the requested elements along the profile × face width; sizes grow away
+//! from them.
+
+use crate::design::Member;
+use crate::error::GeometryError;
+use crate::gear_body::{
+    blank_shape, revolution_volume, slot_sections, BlankDimensions, BlankShape,
+};
+use crate::generation::Side;
+use crate::pair::PairGeometry;
+use crate::scene::{Blank, FlankElements};
+use gmsh::{DimTag, Session};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Failure while building or meshing one member.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshError {
+    #[error("scene {scene}, {member} ({blank:?} blank): gmsh: {source}")]
+    Gmsh {
+        scene: String,
+        member: &'static str,
+        blank: Blank,
+        #[source]
+        source: Box<gmsh::GmshError>,
+    },
+    #[error("scene {scene}, {member}: {source}")]
+    Geometry {
+        scene: String,
+        member: &'static str,
+        #[source]
+        source: Box<GeometryError>,
+    },
+    #[error("scene {scene}, {member}: {message}")]
+    Other {
+        scene: String,
+        member: &'static str,
+        message: String,
+    },
+}
+
+/// What to mesh.
+#[derive(Debug, Clone)]
+pub struct MeshRequest<'a> {
+    pub scene: &'a str,
+    pub geom: &'a PairGeometry,
+    pub member: Member,
+    pub blank: Blank,
+    pub dims: &'a BlankDimensions,
+    /// Elements along the profile × face width of the refined flanks.
+    pub level: FlankElements,
+    pub level_name: &'a str,
+    /// Loaded flank side.
+    pub side: Side,
+    /// Teeth whose loaded flank is refined.
+    pub refined_teeth: Vec<usize>,
+}
+
+/// A refined flank and the elements achieved on it.
+#[derive(Debug, Clone, Serialize)]
+pub struct RefinedFlank {
+    pub tooth: usize,
+    pub flank: &'static str,
+    pub surface: i32,
+    pub elements_profile: usize,
+    pub elements_face: usize,
+}
+
+/// The mesh report written next to the mesh.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeshReport {
+    pub scene: String,
+    pub member: &'static str,
+    pub blank: Blank,
+    pub level: String,
+    pub requested: FlankElements,
+    pub nodes: usize,
+    pub tet10_elements: usize,
+    pub occ_volume_m3: f64,
+    pub mesh_volume_m3: f64,
+    pub blank_volume_occ_m3: f64,
+    pub blank_volume_analytic_m3: f64,
+    pub quality_min_sicn: f64,
+    pub quality_mean_sicn: f64,
+    pub algorithm_3d: &'static str,
+    pub fallback_used: bool,
+    pub refined_flanks: Vec<RefinedFlank>,
+    /// Physical groups (dim, tag, name).
+    pub physical_groups: Vec<(i32, i32, String)>,
+    /// Angular positions of the web holes, degrees.
+    pub hole_angles_deg: Vec<f64>,
+    pub time_geometry_s: f64,
+    pub time_mesh_s: f64,
+}
+
+/// Sections of the slot loft and points per edge.
+const SLOT_SECTIONS: usize = 5;
+
+fn point(s: &Session, p: [f64; 3]) -> gmsh::Result<i32> {
+    s.occ_add_point(p[0], p[1], p[2], 0.0, -1)
+}
+
+/// The blank: polygon revolved about z. Returns the volume.
+fn add_blank(s: &Session, shape: &BlankShape) -> gmsh::Result<DimTag> {
+    let pts: Vec<i32> = shape
+        .polygon
+        .iter()
+        .map(|&[z, r]| point(s, [r, 0.0, z]))
+        .collect::<gmsh::Result<_>>()?;
+    let n = pts.len();
+    let lines: Vec<i32> = (0..n)
+        .map(|i| s.occ_add_line(pts[i], pts[(i + 1) % n]))
+        .collect::<gmsh::Result<_>>()?;
+    let cl = s.occ_add_curve_loop(&lines)?;
+    let surf = s.occ_add_plane_surface(&[cl])?;
+    let rev = s.occ_revolve(
+        &[(2, surf)],
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        2.0 * std::f64::consts::PI,
+    )?;
+    Ok(*rev
+        .iter()
+        .find(|d| d.0 == 3)
+        .expect("revolve makes a volume"))
+}
+
+/// Keeps every `k`-th point of an edge and its last one.
+fn thin(e: &[[f64; 3]], keep: usize) -> Vec<[f64; 3]> {
+    let step = ((e.len() - 1) as f64 / (keep - 1) as f64).max(1.0);
+    (0..keep)
+        .map(|k| e[((k as f64 * step).round() as usize).min(e.len() - 1)])
+        .collect()
+}
+
+/// The slot loft of tooth space 0.
+fn add_slot(s: &Session, req: &MeshRequest) -> Result<DimTag, MeshError> {
+    let d = &req.geom.data;
+    let secs = slot_sections(
+        req.geom,
+        req.member,
+        SLOT_SECTIONS,
+        0.1 * d.face_width,
+        0.6 * d.normal_module,
+    )
+    .map_err(|e| geometry_err(req, e))?;
+    let mut wires = Vec::new();
+    for sec in &secs {
+        let keep = [7, 5, 3, 5, 7];
+        let mut curves = Vec::new();
+        let mut first = None;
+        let mut prev: Option<i32> = None;
+        for (e, &k) in sec.edges.iter().zip(&keep) {
+            let pts = thin(e, k);
+            let mut tags = Vec::with_capacity(pts.len());
+            for (i, p) in pts.iter().enumerate() {
+                match (i, prev) {
+                    (0, Some(t)) => tags.push(t),
+                    _ => tags.push(point(s, *p).map_err(|e| gmsh_err(req, e))?),
+                }
+            }
+            first.get_or_insert(tags[0]);
+            prev = Some(tags[tags.len() - 1]);
+            let c = if tags.len() > 2 {
+                s.occ_add_spline(&tags)
+            } else {
+                s.occ_add_line(tags[0], tags[1])
+            };
+            curves.push(c.map_err(|e| gmsh_err(req, e))?);
+        }
+        let close = s
+            .occ_add_line(prev.unwrap(), first.unwrap())
+            .map_err(|e| gmsh_err(req, e))?;
+        curves.push(close);
+        wires.push(
+            s.occ_add_wire(&curves, true)
+                .map_err(|e| gmsh_err(req, e))?,
+        );
+    }
+    let out = s
+        .occ_add_thru_sections(&wires, true, false, -1, "", "", false)
+        .map_err(|e| gmsh_err(req, e))?;
+    out.into_iter()
+        .find(|d| d.0 == 3)
+        .ok_or_else(|| other_err(req, "the slot loft made no volume".into()))
+}
+
+fn gmsh_err(req: &MeshRequest, e: gmsh::GmshError) -> MeshError {
+    MeshError::Gmsh {
+        scene: req.scene.to_string(),
+        member: req.member.name(),
+        blank: req.blank,
+        source: Box::new(e),
+    }
+}
+
+fn geometry_err(req: &MeshRequest, e: GeometryError) -> MeshError {
+    MeshError::Geometry {
+        scene: req.scene.to_string(),
+        member: req.member.name(),
+        source: Box::new(e),
+    }
+}
+
+fn other_err(req: &MeshRequest, message: String) -> MeshError {
+    MeshError::Other {
+        scene: req.scene.to_string(),
+        member: req.member.name(),
+        message,
+    }
+}
+
+/// Classification of a model surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Face {
+    Flank { tooth: usize, side: Side },
+    Bore,
+    Hole,
+    Other,
+}
+
+fn classify(
+    s: &Session,
+    req: &MeshRequest,
+    shape: &BlankShape,
+    tag: i32,
+) -> Result<Face, MeshError> {
+    let (lo, hi) = s
+        .get_parametrization_bounds(2, tag)
+        .map_err(|e| gmsh_err(req, e))?;
+    let mid: Vec<f64> = lo.iter().zip(&hi).map(|(a, b)| 0.5 * (a + b)).collect();
+    let v = s.get_value(2, tag, &mid).map_err(|e| gmsh_err(req, e))?;
+    let p = [v[0], v[1], v[2]];
+    let kind = s.get_type(2, tag).map_err(|e| gmsh_err(req, e))?;
+    let rho = p[0].hypot(p[1]);
+    if kind == "Cylinder" && (rho - shape.bore_radius).abs() < 1e-6 {
+        return Ok(Face::Bore);
+    }
+    if let Some(h) = &shape.holes {
+        if kind == "Cylinder" {
+            for k in 0..h.count {
+                let a = 2.0 * std::f64::consts::PI * k as f64 / h.count as f64;
+                let (cx, cy) = (h.circle_radius * a.cos(), h.circle_radius * a.sin());
+                if ((p[0] - cx).hypot(p[1] - cy) - 0.5 * h.diameter).abs() < 1e-6 {
+                    return Ok(Face::Hole);
+                }
+            }
+        }
+    }
+    let z = req.geom.data.member(req.member).teeth as usize;
+    let pitch = 2.0 * std::f64::consts::PI / z as f64;
+    for side in [Side::Drive, Side::Coast] {
+        let f = req.geom.flank(req.member, side);
+        let (l, d) = f.gen.frame.axial(&p);
+        if d < f.bounds.low.at(l, f.bounds.rm) + 1e-4 || d > f.bounds.face.at(l, f.bounds.rm) {
+            continue;
+        }
+        let Ok(q) = f.at(l, d) else { continue };
+        let k = ((p[1].atan2(p[0]) - q.pos[1].atan2(q.pos[0])) / pitch).round() as i64;
+        let a = -(k as f64) * pitch;
+        let (sa, ca) = a.sin_cos();
+        let pr = [ca * p[0] - sa * p[1], sa * p[0] + ca * p[1], p[2]];
+        let dist =
+            ((pr[0] - q.pos[0]).powi(2) + (pr[1] - q.pos[1]).powi(2) + (pr[2] - q.pos[2]).powi(2))
+                .sqrt();
+        if dist < 1e-5 {
+            return Ok(Face::Flank {
+                tooth: k.rem_euclid(z as i64) as usize,
+                side,
+            });
+        }
+    }
+    Ok(Face::Other)
+}
+
+/// Volume of a quadratic tetrahedron (gmsh node order: vertices 0–3, then
+/// edges 01, 12, 20, 30, 32, 31) by the degree-3 rule
+/// ∫ det J ≈ Σ w det J(ξ): centroid with w = −2/15, and (1/2, 1/6, 1/6)
+/// permutations with w = 3/40.
+pub fn tet10_volume(x: &[[f64; 3]; 10]) -> f64 {
+    let pts: [([f64; 3], f64); 5] = [
+        ([0.25, 0.25, 0.25], -2.0 / 15.0),
+        ([0.5, 1.0 / 6.0, 1.0 / 6.0], 3.0 / 40.0),
+        ([1.0 / 6.0, 0.5, 1.0 / 6.0], 3.0 / 40.0),
+        ([1.0 / 6.0, 1.0 / 6.0, 0.5], 3.0 / 40.0),
+        ([1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0], 3.0 / 40.0),
+    ];
+    let mut v = 0.0;
+    for (q, w) in pts {
+        let (u, s, t) = (q[0], q[1], q[2]);
+        let l = [1.0 - u - s - t, u, s, t];
+        // dN/d(u, s, t) of the 10 quadratic shape functions.
+        let dl = [
+            [-1.0, -1.0, -1.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let mut dn = [[0.0; 3]; 10];
+        for i in 0..4 {
+            for k in 0..3 {
+                dn[i][k] = (4.0 * l[i] - 1.0) * dl[i][k];
+            }
+        }
+        let edges = [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)];
+        for (e, &(a, b)) in edges.iter().enumerate() {
+            for k in 0..3 {
+                dn[4 + e][k] = 4.0 * (l[a] * dl[b][k] + l[b] * dl[a][k]);
+            }
+        }
+        let mut j = [[0.0; 3]; 3];
+        for (n, xn) in x.iter().enumerate() {
+            for r in 0..3 {
+                for c in 0..3 {
+                    j[r][c] += xn[r] * dn[n][c];
+                }
+            }
+        }
+        let det = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
+            - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
+            + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+        v += w * det;
+    }
+    v.abs()
+}
+
+/// Sum of the tet10 volumes of the current mesh.
+pub fn mesh_volume(s: &Session) -> gmsh::Result<(f64, usize, usize)> {
+    let (tags, coord, _) = s.mesh_get_nodes(-1, -1, false, false)?;
+    let max = tags.iter().copied().max().unwrap_or(0);
+    let mut idx = vec![usize::MAX; max + 1];
+    for (i, &t) in tags.iter().enumerate() {
+        idx[t] = i;
+    }
+    let (types, _, nodes) = s.mesh_get_elements(3, -1)?;
+    let mut vol = 0.0;
+    let mut count = 0;
+    for (ty, nn) in types.iter().zip(&nodes) {
+        if *ty != 11 {
+            continue;
+        }
+        for el in nn.chunks(10) {
+            let x: [[f64; 3]; 10] = std::array::from_fn(|k| {
+                let i = idx[el[k]];
+                [coord[3 * i], coord[3 * i + 1], coord[3 * i + 2]]
+            });
+            vol += tet10_volume(&x);
+            count += 1;
+        }
+    }
+    Ok((vol, count, tags.len()))
+}
+
+/// Elements along a curve of a second-order mesh: (nodes − 1) / 2.
+fn elements_on_curve(s: &Session, curve: i32) -> gmsh::Result<usize> {
+    let (t, _, _) = s.mesh_get_nodes(1, curve, true, false)?;
+    Ok(t.len().saturating_sub(1) / 2)
+}
+
+/// Cone distance of the two end points of a curve.
+fn curve_span(s: &Session, req: &MeshRequest, curve: i32) -> gmsh::Result<f64> {
+    let ends = s.get_boundary(&[(1, curve)], false, false, false)?;
+    let f = req.geom.flank(req.member, req.side);
+    let mut ls = Vec::new();
+    for (_, t) in ends {
+        let v = s.get_value(0, t.abs(), &[])?;
+        ls.push(f.gen.frame.axial(&[v[0], v[1], v[2]]).0);
+    }
+    Ok(if ls.len() == 2 {
+        (ls[0] - ls[1]).abs()
+    } else {
+        0.0
+    })
+}
+
+/// Builds, meshes and writes one member. `out` is the `.msh` path; the file is
+/// written to a temporary name and renamed, so nothing partial remains.
+pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshError> {
+    let t0 = Instant::now();
+    let s = Session::new().map_err(|e| gmsh_err(req, e))?;
+    let g = |e| gmsh_err(req, e);
+    s.option_set_number("General.NumThreads", 1.0).map_err(g)?;
+    s.option_set_number("Geometry.OCCParallel", 1.0)
+        .map_err(g)?;
+    s.add_model(&format!("{}_{}", req.scene, req.member.name()))
+        .map_err(g)?;
+    let shape = blank_shape(&req.geom.data, req.member, req.blank, req.dims);
+    let blank = add_blank(&s, &shape).map_err(g)?;
+    s.occ_synchronize().map_err(g)?;
+    let blank_volume_occ = s.occ_get_mass(3, blank.1).map_err(g)?;
+    let slot = add_slot(&s, req)?;
+    let z = req.geom.data.member(req.member).teeth as usize;
+    let pitch = 2.0 * std::f64::consts::PI / z as f64;
+    let mut tools = vec![slot];
+    for k in 1..z {
+        let c = s.occ_copy(&[slot]).map_err(g)?;
+        s.occ_rotate(&c, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, pitch * k as f64)
+            .map_err(g)?;
+        tools.extend(c);
+    }
+    if let Some(h) = &shape.holes {
+        for k in 0..h.count {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / h.count as f64;
+            let c = s
+                .occ_add_cylinder(
+                    h.circle_radius * a.cos(),
+                    h.circle_radius * a.sin(),
+                    h.z[0],
+                    0.0,
+                    0.0,
+                    h.z[1] - h.z[0],
+                    0.5 * h.diameter,
+                )
+                .map_err(g)?;
+            tools.push((3, c));
+        }
+    }
+    let (body, _) = s.occ_cut(&[blank], &tools, true, true).map_err(g)?;
+    s.occ_synchronize().map_err(g)?;
+    let vols: Vec<i32> = body.iter().filter(|d| d.0 == 3).map(|d| d.1).collect();
+    let occ_volume: f64 = vols
+        .iter()
+        .map(|&t| s.occ_get_mass(3, t))
+        .sum::<gmsh::Result<f64>>()
+        .map_err(g)?;
+
+    // Physical groups.
+    let mut bore = Vec::new();
+    let mut holes = Vec::new();
+    let mut flanks: std::collections::BTreeMap<(usize, &'static str), Vec<i32>> =
+        Default::default();
+    for (_, tag) in s.get_entities(2).map_err(g)? {
+        match classify(&s, req, &shape, tag)? {
+            Face::Bore => bore.push(tag),
+            Face::Hole => holes.push(tag),
+            Face::Flank { tooth, side } => flanks
+                .entry((tooth, side.flank_name(req.member)))
+                .or_default()
+                .push(tag),
+            Face::Other => {}
+        }
+    }
+    let mut groups = Vec::new();
+    let mut add = |dim: i32, tags: &[i32], name: String| -> Result<(), MeshError> {
+        if !tags.is_empty() {
+            let t = s
+                .add_physical_group(dim, tags, -1, &name)
+                .map_err(|e| gmsh_err(req, e))?;
+            groups.push((dim, t, name));
+        }
+        Ok(())
+    };
+    add(3, &vols, "body".into())?;
+    add(2, &bore, "bore".into())?;
+    add(2, &holes, "holes".into())?;
+    for ((tooth, flank), tags) in &flanks {
+        add(2, tags, format!("tooth{tooth}_{flank}"))?;
+    }
+    let hole_angles_deg = holes
+        .iter()
+        .map(|&t| {
+            let c = s.occ_get_center_of_mass(2, t).map_err(g)?;
+            Ok(c[1].atan2(c[0]).to_degrees().rem_euclid(360.0))
+        })
+        .collect::<Result<Vec<f64>, MeshError>>()?;
+
+    // Sizes: structured loaded flanks on the refined teeth, growth away from them.
+    let d = &req.geom.data;
+    let loaded = req.side.flank_name(req.member);
+    let mut refined = Vec::new();
+    let mut refined_tags = Vec::new();
+    for &tooth in &req.refined_teeth {
+        let Some(tags) = flanks.get(&(tooth, loaded)) else {
+            continue;
+        };
+        for &tag in tags {
+            let curves = s
+                .get_boundary(&[(2, tag)], false, false, false)
+                .map_err(g)?;
+            if curves.len() != 4 {
+                continue;
+            }
+            for &(_, c) in &curves {
+                let c = c.abs();
+                let along_face = curve_span(&s, req, c).map_err(g)? > 0.5 * d.face_width;
+                let n = if along_face {
+                    req.level.face
+                } else {
+                    req.level.profile
+                };
+                s.mesh_set_transfinite_curve(c, n as i32 + 1, "Progression", 1.0)
+                    .map_err(g)?;
+            }
+            s.mesh_set_transfinite_surface(tag, "Left", &[])
+                .map_err(g)?;
+            refined_tags.push((tooth, tag, curves));
+        }
+    }
+    let coarse = 0.9 * d.normal_module;
+    let fine = (d.face_width / req.level.face as f64)
+        .min(d.normal_module * 2.2 / req.level.profile as f64);
+    s.option_set_number("Mesh.MeshSizeMax", coarse).map_err(g)?;
+    s.option_set_number("Mesh.MeshSizeMin", 0.2 * fine)
+        .map_err(g)?;
+    if !refined_tags.is_empty() {
+        let dist = s.mesh_field_add("Distance").map_err(g)?;
+        let list: Vec<f64> = refined_tags.iter().map(|r| r.1 as f64).collect();
+        s.mesh_field_set_numbers(dist, "SurfacesList", &list)
+            .map_err(g)?;
+        s.mesh_field_set_number(dist, "Sampling", 30.0).map_err(g)?;
+        let th = s.mesh_field_add("Threshold").map_err(g)?;
+        s.mesh_field_set_number(th, "InField", dist as f64)
+            .map_err(g)?;
+        s.mesh_field_set_number(th, "SizeMin", fine).map_err(g)?;
+        s.mesh_field_set_number(th, "SizeMax", coarse).map_err(g)?;
+        s.mesh_field_set_number(th, "DistMin", 0.5 * fine)
+            .map_err(g)?;
+        s.mesh_field_set_number(th, "DistMax", 4.0 * d.normal_module)
+            .map_err(g)?;
+        s.mesh_field_set_as_background_mesh(th).map_err(g)?;
+    }
+    s.option_set_number("Mesh.MeshSizeExtendFromBoundary", 0.0)
+        .map_err(g)?;
+    s.option_set_number("Mesh.MeshSizeFromPoints", 0.0)
+        .map_err(g)?;
+    // Elements that follow the root fillets: coarse curved tets would invert there.
+    s.option_set_number("Mesh.MeshSizeFromCurvature", 8.0)
+        .map_err(g)?;
+    s.option_set_number("Mesh.Algorithm", 6.0).map_err(g)?;
+    let time_geometry = t0.elapsed().as_secs_f64();
+
+    let t1 = Instant::now();
+    let mut algorithm_3d = "Delaunay";
+    let mut fallback_used = false;
+    s.option_set_number("Mesh.Algorithm3D", 1.0).map_err(g)?;
+    if s.mesh_generate(3).is_err() {
+        s.mesh_clear().map_err(g)?;
+        s.option_set_number("Mesh.Algorithm3D", 4.0).map_err(g)?;
+        algorithm_3d = "Frontal";
+        fallback_used = true;
+        s.mesh_generate(3).map_err(g)?;
+    }
+    s.mesh_set_order(2).map_err(g)?;
+    // Curved tets along the fillet–root junction can invert: untangle the
+    // few below the threshold, in small patches.
+    s.option_set_number("Mesh.HighOrderThresholdMin", 0.1)
+        .map_err(g)?;
+    s.option_set_number("Mesh.HighOrderNumLayers", 2.0)
+        .map_err(g)?;
+    s.mesh_optimize("HighOrder", false, 1).map_err(g)?;
+    let time_mesh = t1.elapsed().as_secs_f64();
+
+    let (mesh_volume, tets, nodes) = mesh_volume(&s).map_err(g)?;
+    let (etypes, etags, _) = s.mesh_get_elements(3, -1).map_err(g)?;
+    let tet_tags: Vec<usize> = etypes
+        .iter()
+        .zip(&etags)
+        .filter(|(t, _)| **t == 11)
+        .flat_map(|(_, v)| v.iter().copied())
+        .collect();
+    let q = s
+        .mesh_get_element_qualities(&tet_tags, "minSICN")
+        .map_err(g)?;
+    let qmin = q.iter().copied().fold(f64::INFINITY, f64::min);
+    let qmean = q.iter().sum::<f64>() / q.len().max(1) as f64;
+    for (tooth, tag, curves) in &refined_tags {
+        let mut prof = Vec::new();
+        let mut face = Vec::new();
+        for &(_, c) in curves {
+            let n = elements_on_curve(&s, c.abs()).map_err(g)?;
+            if curve_span(&s, req, c.abs()).map_err(g)? > 0.5 * d.face_width {
+                face.push(n);
+            } else {
+                prof.push(n);
+            }
+        }
+        refined.push(RefinedFlank {
+            tooth: *tooth,
+            flank: loaded,
+            surface: *tag,
+            elements_profile: prof.iter().copied().max().unwrap_or(0),
+            elements_face: face.iter().copied().max().unwrap_or(0),
+        });
+    }
+
+    // Write atomically.
+    let dir = out.parent().unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)
+        .map_err(|e| other_err(req, format!("cannot create {}: {e}", dir.display())))?;
+    let tmp: PathBuf = dir.join(format!(
+        ".{}.tmp.msh",
+        out.file_stem().and_then(|x| x.to_str()).unwrap_or("mesh")
+    ));
+    s.option_set_number("Mesh.MshFileVersion", 4.1).map_err(g)?;
+    s.option_set_number("Mesh.Binary", 0.0).map_err(g)?;
+    s.write(&tmp).map_err(g)?;
+    std::fs::rename(&tmp, out)
+        .map_err(|e| other_err(req, format!("cannot rename {}: {e}", tmp.display())))?;
+
+    Ok(MeshReport {
+        scene: req.scene.to_string(),
+        member: req.member.name(),
+        blank: req.blank,
+        level: req.level_name.to_string(),
+        requested: req.level,
+        nodes,
+        tet10_elements: tets,
+        occ_volume_m3: occ_volume,
+        mesh_volume_m3: mesh_volume,
+        blank_volume_occ_m3: blank_volume_occ,
+        blank_volume_analytic_m3: revolution_volume(&shape.polygon),
+        quality_min_sicn: qmin,
+        quality_mean_sicn: qmean,
+        algorithm_3d,
+        fallback_used,
+        refined_flanks: refined,
+        physical_groups: groups,
+        hole_angles_deg,
+        time_geometry_s: time_geometry,
+        time_mesh_s: time_mesh,
+    })
+}

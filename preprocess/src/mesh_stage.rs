@@ -1,0 +1,128 @@
+//! The `preprocess mesh` stage: every member × blank × mesh level of a scene
+//! into `meshes/<scene>/`: `.msh` (4.1), `.vtu` (meshio) and a report.
+
+use crate::design::Member;
+use crate::gear_body::BlankDimensions;
+use crate::mesh::{mesh_member, MeshError, MeshReport, MeshRequest};
+use crate::output::write_json;
+use crate::pair::{teeth_in_contact, PairGeometry};
+use crate::scene::{Blank, FlankElements, LoadedScene};
+use std::path::{Path, PathBuf};
+
+/// Which mesh levels to build.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Level {
+    Reduced,
+    Reference,
+    Both,
+}
+
+/// The project's Python (venv with meshio; override with `PROJECT_PYTHON`)
+/// and its conversion script.
+pub fn meshio_command() -> (PathBuf, PathBuf) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let py = std::env::var_os("PROJECT_PYTHON")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join(".venv/bin/python"));
+    (py, root.join("scripts/msh_to_vtu.py"))
+}
+
+/// Converts a .msh into a .vtu with meshio, atomically.
+pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> Result<(), String> {
+    let tmp = vtu.with_extension("tmp.vtu");
+    let (py, script) = meshio_command();
+    let out = std::process::Command::new(&py)
+        .arg(&script)
+        .arg(msh)
+        .arg(&tmp)
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", py.display()))?;
+    if !out.status.success() {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(format!(
+            "meshio conversion of {} failed: {}",
+            msh.display(),
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    std::fs::rename(&tmp, vtu).map_err(|e| format!("cannot rename {}: {e}", tmp.display()))
+}
+
+/// Meshes every member × blank × level of the scene into `root/<scene>/`.
+pub fn run(
+    scene: &LoadedScene,
+    root: &Path,
+    level: Level,
+) -> Result<Vec<MeshReport>, anyhow::Error> {
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let dims = BlankDimensions::resolve(&sc.blank_dimensions, &g.data);
+    let dir = root.join(&sc.name);
+    let levels: Vec<(&str, FlankElements)> = match level {
+        Level::Reduced => vec![("reduced", sc.mesh.reduced_order)],
+        Level::Reference => vec![("reference", sc.mesh.reference)],
+        Level::Both => vec![
+            ("reduced", sc.mesh.reduced_order),
+            ("reference", sc.mesh.reference),
+        ],
+    };
+    let step = sc.rotation.step_deg.to_radians();
+    let mut reports = Vec::new();
+    for member in [Member::Pinion, Member::Wheel] {
+        let blanks = match member {
+            Member::Pinion => &sc.blanks.pinion,
+            Member::Wheel => &sc.blanks.wheel,
+        };
+        for &blank in blanks {
+            // Rotation range of this combination: the wheel blank decides it.
+            let cycles = sc
+                .blanks
+                .wheel
+                .iter()
+                .map(|&b| match b {
+                    Blank::Standard => sc.rotation.mesh_cycles_standard,
+                    Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
+                })
+                .fold(0.0, f64::max);
+            let cycles = if member == Member::Wheel {
+                match blank {
+                    Blank::Standard => sc.rotation.mesh_cycles_standard,
+                    Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
+                }
+            } else {
+                cycles
+            };
+            let (pt, wt) = teeth_in_contact(&g, sc.loaded_flank, cycles, step);
+            for &(name, lv) in &levels {
+                let req = MeshRequest {
+                    scene: &sc.name,
+                    geom: &g,
+                    member,
+                    blank,
+                    dims: &dims,
+                    level: lv,
+                    level_name: name,
+                    side: sc.loaded_flank,
+                    refined_teeth: if member == Member::Pinion {
+                        pt.clone()
+                    } else {
+                        wt.clone()
+                    },
+                };
+                let stem = format!(
+                    "{}_{}_{}",
+                    member.name(),
+                    format!("{blank:?}").to_lowercase(),
+                    name
+                );
+                let msh = dir.join(format!("{stem}.msh"));
+                let report = mesh_member(&req, &msh).map_err(|e: MeshError| anyhow::anyhow!(e))?;
+                convert_to_vtu(&msh, &dir.join(format!("{stem}.vtu")))
+                    .map_err(anyhow::Error::msg)?;
+                write_json(&dir.join(format!("{stem}.report.json")), &report)?;
+                reports.push(report);
+            }
+        }
+    }
+    Ok(reports)
+}
