@@ -21,9 +21,11 @@ test: setup
 
 bench: setup build
 	$(CARGO) bench -p preprocess --bench flanks
+	$(CARGO) bench -p preprocess --bench mesh
 
 preprocess: build
 	$(BIN)/preprocess flanks $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/flanks
+	$(BIN)/preprocess mesh $(SCENE) --level reduced --out meshes
 
 solve: build
 	$(BIN)/solver plan $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/plan.json

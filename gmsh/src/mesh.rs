@@ -237,6 +237,15 @@ impl Session {
         })
     }
 
+    /// Moves mesh node `tag` to `coord` (parametric coordinates dropped)
+    /// (`gmshModelMeshSetNode`).
+    pub fn mesh_set_node(&self, tag: usize, coord: [f64; 3]) -> Result<()> {
+        // SAFETY: valid 3-array; no parametric coordinates.
+        check("gmshModelMeshSetNode", |ierr| unsafe {
+            sys::gmshModelMeshSetNode(tag, coord.as_ptr(), 3, std::ptr::null(), 0, ierr)
+        })
+    }
+
     /// Clears the whole mesh of the current model (`gmshModelMeshClear`).
     pub fn mesh_clear(&self) -> Result<()> {
         // SAFETY: empty dimTags = all entities.

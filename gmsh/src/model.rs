@@ -214,6 +214,16 @@ impl Session {
         Ok((closest.to_vec(), param.to_vec()))
     }
 
+    /// The name of physical group `(dim, tag)` (`gmshModelGetPhysicalName`).
+    pub fn get_physical_name(&self, dim: i32, tag: i32) -> Result<String> {
+        let mut out = OutStr::new();
+        // SAFETY: valid out-pointer; the string is freed by OutStr.
+        check("gmshModelGetPhysicalName", |ierr| unsafe {
+            sys::gmshModelGetPhysicalName(dim, tag, out.ptr(), ierr)
+        })?;
+        Ok(out.to_string())
+    }
+
     /// The type of entity `(dim, tag)`, e.g. `"Plane"`, `"Cylinder"`,
     /// `"BSpline surface"` (`gmshModelGetType`).
     pub fn get_type(&self, dim: i32, tag: i32) -> Result<String> {

@@ -65,20 +65,20 @@ pub struct MeshRequest<'a> {
 }
 
 /// A refined flank and the elements achieved on it.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct RefinedFlank {
     pub tooth: usize,
-    pub flank: &'static str,
+    pub flank: String,
     pub surface: i32,
     pub elements_profile: usize,
     pub elements_face: usize,
 }
 
 /// The mesh report written next to the mesh.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct MeshReport {
     pub scene: String,
-    pub member: &'static str,
+    pub member: String,
     pub blank: Blank,
     pub level: String,
     pub requested: FlankElements,
@@ -90,7 +90,9 @@ pub struct MeshReport {
     pub blank_volume_analytic_m3: f64,
     pub quality_min_sicn: f64,
     pub quality_mean_sicn: f64,
-    pub algorithm_3d: &'static str,
+    /// Mid-edge nodes put back on straight edges to undo inverted curved tets.
+    pub straightened_nodes: usize,
+    pub algorithm_3d: String,
     pub fallback_used: bool,
     pub refined_flanks: Vec<RefinedFlank>,
     /// Physical groups (dim, tag, name).
@@ -385,10 +387,126 @@ fn curve_span(s: &Session, req: &MeshRequest, curve: i32) -> gmsh::Result<f64> {
     })
 }
 
+/// Curved tets along the fillet–root junction can invert when their
+/// mid-edge nodes are put on the curved geometry. Their mid-edge nodes go back
+/// to the edge midpoints (a straight tet with valid vertices is valid); this
+/// is repeated while neighbours are still inverted. Returns the nodes moved.
+/// (gmsh's high-order optimiser is not used: it can throw through the C API.)
+fn straighten_inverted(s: &Session) -> gmsh::Result<usize> {
+    let mut moved = std::collections::BTreeSet::new();
+    for _ in 0..4 {
+        let (types, tags, nodes) = s.mesh_get_elements(3, -1)?;
+        let Some(i) = types.iter().position(|&t| t == 11) else {
+            return Ok(0);
+        };
+        let q = s.mesh_get_element_qualities(&tags[i], "minSICN")?;
+        let bad: Vec<usize> = q
+            .iter()
+            .enumerate()
+            .filter(|(_, &v)| v <= 1e-3)
+            .map(|(k, _)| k)
+            .collect();
+        if bad.is_empty() {
+            break;
+        }
+        let (ntags, coord, _) = s.mesh_get_nodes(-1, -1, false, false)?;
+        let max = ntags.iter().copied().max().unwrap_or(0);
+        let mut idx = vec![usize::MAX; max + 1];
+        for (k, &t) in ntags.iter().enumerate() {
+            idx[t] = k;
+        }
+        let x = |t: usize| {
+            [
+                coord[3 * idx[t]],
+                coord[3 * idx[t] + 1],
+                coord[3 * idx[t] + 2],
+            ]
+        };
+        let edges = [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)];
+        for k in bad {
+            let el = &nodes[i][10 * k..10 * k + 10];
+            for (e, &(a, b)) in edges.iter().enumerate() {
+                let (pa, pb) = (x(el[a]), x(el[b]));
+                s.mesh_set_node(el[4 + e], std::array::from_fn(|c| 0.5 * (pa[c] + pb[c])))?;
+                moved.insert(el[4 + e]);
+            }
+        }
+    }
+    Ok(moved.len())
+}
+
+/// Angle of the blank's seam: opposite the circular mean of the refined teeth.
+fn seam_angle(req: &MeshRequest) -> f64 {
+    let z = req.geom.data.member(req.member).teeth as f64;
+    let pitch = 2.0 * std::f64::consts::PI / z;
+    let (sx, sy) = req.refined_teeth.iter().fold((0.0, 0.0), |(x, y), &k| {
+        (x + (k as f64 * pitch).cos(), y + (k as f64 * pitch).sin())
+    });
+    let base = req
+        .geom
+        .flank(req.member, req.side)
+        .at(req.geom.data.mean_cone_distance, 0.0)
+        .map(|p| p.pos[1].atan2(p.pos[0]))
+        .unwrap_or(0.0);
+    if sx == 0.0 && sy == 0.0 {
+        0.0
+    } else {
+        base + sy.atan2(sx) + std::f64::consts::PI
+    }
+}
+
+/// Rejects blank dimensions whose half-section is not a simple polygon off
+/// the axis (bore or hub wider than the body, web outside the rim).
+fn check_blank(req: &MeshRequest, shape: &BlankShape) -> Result<(), MeshError> {
+    let p = &shape.polygon;
+    let n = p.len();
+    let cross = |a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]| {
+        let o = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+            (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+        };
+        o(a, b, c) * o(a, b, d) < 0.0 && o(c, d, a) * o(c, d, b) < 0.0
+    };
+    let simple = (0..n).all(|i| {
+        (i + 2..n)
+            .all(|j| (i == 0 && j == n - 1) || !cross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]))
+    });
+    if simple && p.iter().all(|q| q[1] > 0.0) && revolution_volume_signed(p).abs() > 0.0 {
+        return Ok(());
+    }
+    let (field, value) = match req.member {
+        Member::Pinion => (
+            "blank_dimensions.pinion_bore_radius_mm",
+            req.dims.pinion_bore_radius,
+        ),
+        Member::Wheel => (
+            "blank_dimensions.wheel_hub_radius_mm",
+            req.dims.wheel_hub_radius,
+        ),
+    };
+    Err(other_err(
+        req,
+        format!(
+            "{field} = {}: the blank half-section crosses itself; the bore and hub must stay inside the body (rim bottom radius at the toe {:.1} mm)",
+            value * 1e3,
+            p[0][1] * 1e3
+        ),
+    ))
+}
+
+/// Twice the signed area of the polygon in (z, ρ).
+fn revolution_volume_signed(p: &[[f64; 2]]) -> f64 {
+    let n = p.len();
+    (0..n)
+        .map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1])
+        .sum()
+}
+
 /// Builds, meshes and writes one member. `out` is the `.msh` path; the file is
 /// written to a temporary name and renamed, so nothing partial remains.
 pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshError> {
     let t0 = Instant::now();
+    let shape = blank_shape(&req.geom.data, req.member, req.blank, req.dims);
+    check_blank(req, &shape)?;
     let s = Session::new().map_err(|e| gmsh_err(req, e))?;
     let g = |e| gmsh_err(req, e);
     s.option_set_number("General.NumThreads", 1.0).map_err(g)?;
@@ -398,6 +516,10 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         .map_err(g)?;
     let shape = blank_shape(&req.geom.data, req.member, req.blank, req.dims);
     let blank = add_blank(&s, &shape).map_err(g)?;
+    // The revolved blank's seam splits the faces it crosses: turn it away
+    // from the refined teeth so that their flanks stay four-sided.
+    s.occ_rotate(&[blank], 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, seam_angle(req))
+        .map_err(g)?;
     s.occ_synchronize().map_err(g)?;
     let blank_volume_occ = s.occ_get_mass(3, blank.1).map_err(g)?;
     let slot = add_slot(&s, req)?;
@@ -553,13 +675,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         s.mesh_generate(3).map_err(g)?;
     }
     s.mesh_set_order(2).map_err(g)?;
-    // Curved tets along the fillet–root junction can invert: untangle the
-    // few below the threshold, in small patches.
-    s.option_set_number("Mesh.HighOrderThresholdMin", 0.1)
-        .map_err(g)?;
-    s.option_set_number("Mesh.HighOrderNumLayers", 2.0)
-        .map_err(g)?;
-    s.mesh_optimize("HighOrder", false, 1).map_err(g)?;
+    let straightened = straighten_inverted(&s).map_err(g)?;
     let time_mesh = t1.elapsed().as_secs_f64();
 
     let (mesh_volume, tets, nodes) = mesh_volume(&s).map_err(g)?;
@@ -588,7 +704,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         }
         refined.push(RefinedFlank {
             tooth: *tooth,
-            flank: loaded,
+            flank: loaded.to_string(),
             surface: *tag,
             elements_profile: prof.iter().copied().max().unwrap_or(0),
             elements_face: face.iter().copied().max().unwrap_or(0),
@@ -611,7 +727,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
 
     Ok(MeshReport {
         scene: req.scene.to_string(),
-        member: req.member.name(),
+        member: req.member.name().to_string(),
         blank: req.blank,
         level: req.level_name.to_string(),
         requested: req.level,
@@ -623,7 +739,8 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         blank_volume_analytic_m3: revolution_volume(&shape.polygon),
         quality_min_sicn: qmin,
         quality_mean_sicn: qmean,
-        algorithm_3d,
+        straightened_nodes: straightened,
+        algorithm_3d: algorithm_3d.to_string(),
         fallback_used,
         refined_flanks: refined,
         physical_groups: groups,

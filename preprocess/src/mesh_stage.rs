@@ -7,7 +7,34 @@ use crate::mesh::{mesh_member, MeshError, MeshReport, MeshRequest};
 use crate::output::write_json;
 use crate::pair::{teeth_in_contact, PairGeometry};
 use crate::scene::{Blank, FlankElements, LoadedScene};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
+
+/// Bumped whenever the meshing changes what it produces for the same input.
+pub const MESH_SCHEMA: u32 = 1;
+
+/// What `<stem>.inputs.json` records: the hash of everything that determines a mesh.
+#[derive(Debug, Serialize, Deserialize, PartialEq)]
+struct Inputs {
+    schema: u32,
+    hash: String,
+}
+
+fn input_hash(design_text: &str, dims: &BlankDimensions, req: &MeshRequest) -> String {
+    let mut h = Sha256::new();
+    h.update(MESH_SCHEMA.to_le_bytes());
+    h.update(design_text.as_bytes());
+    h.update(serde_json::to_string(dims).unwrap_or_default().as_bytes());
+    h.update(
+        format!(
+            "{:?}{:?}{:?}{:?}{:?}",
+            req.member, req.blank, req.level, req.side, req.refined_teeth
+        )
+        .as_bytes(),
+    );
+    format!("{:x}", h.finalize())
+}
 
 /// Which mesh levels to build.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -67,6 +94,7 @@ pub fn run(
         ],
     };
     let step = sc.rotation.step_deg.to_radians();
+    let design_text = std::fs::read_to_string(&scene.design_path)?;
     let mut reports = Vec::new();
     for member in [Member::Pinion, Member::Wheel] {
         let blanks = match member {
@@ -116,10 +144,31 @@ pub fn run(
                     name
                 );
                 let msh = dir.join(format!("{stem}.msh"));
+                let vtu = dir.join(format!("{stem}.vtu"));
+                let report_path = dir.join(format!("{stem}.report.json"));
+                let inputs_path = dir.join(format!("{stem}.inputs.json"));
+                let inputs = Inputs {
+                    schema: MESH_SCHEMA,
+                    hash: input_hash(&design_text, &dims, &req),
+                };
+                let unchanged = std::fs::read_to_string(&inputs_path)
+                    .ok()
+                    .and_then(|t| serde_json::from_str::<Inputs>(&t).ok())
+                    .is_some_and(|i| i == inputs)
+                    && msh.exists()
+                    && vtu.exists();
+                let cached = std::fs::read_to_string(&report_path)
+                    .ok()
+                    .and_then(|t| serde_json::from_str::<MeshReport>(&t).ok());
+                if let (true, Some(r)) = (unchanged, cached) {
+                    eprintln!("{stem}: inputs unchanged, reusing {}", msh.display());
+                    reports.push(r);
+                    continue;
+                }
                 let report = mesh_member(&req, &msh).map_err(|e: MeshError| anyhow::anyhow!(e))?;
-                convert_to_vtu(&msh, &dir.join(format!("{stem}.vtu")))
-                    .map_err(anyhow::Error::msg)?;
-                write_json(&dir.join(format!("{stem}.report.json")), &report)?;
+                convert_to_vtu(&msh, &vtu).map_err(anyhow::Error::msg)?;
+                write_json(&report_path, &report)?;
+                write_json(&inputs_path, &inputs)?;
                 reports.push(report);
             }
         }

@@ -169,6 +169,20 @@ impl Scene {
                 return Err(fail(f, v.to_string(), "must lie in [5, 1000]"));
             }
         }
+        for (f, e) in [
+            ("mesh.reduced_order", self.mesh.reduced_order),
+            ("mesh.reference", self.mesh.reference),
+        ] {
+            for (k, v) in [("profile", e.profile), ("face", e.face)] {
+                if !(1..=500).contains(&v) {
+                    return Err(fail(
+                        &format!("{f}.{k}"),
+                        v.to_string(),
+                        "must lie in [1, 500]",
+                    ));
+                }
+            }
+        }
         if !(self.utca.marking_compound_um > 0.0 && self.utca.marking_compound_um < 100.0) {
             return Err(fail(
                 "utca.marking_compound_um",
