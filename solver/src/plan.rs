@@ -2,7 +2,7 @@
 
 use preprocess::error::GeometryError;
 use preprocess::generation::Side;
-use preprocess::pair::{pinion_direction, PairGeometry};
+use preprocess::pair::{pairs_in_contact, pinion_direction, PairGeometry};
 use preprocess::scene::{Blank, LoadedScene};
 use serde::Serialize;
 
@@ -24,13 +24,6 @@ pub struct Plan {
     pub pinion_teeth: Vec<i32>,
     /// Distinct wheel teeth that ever touch.
     pub wheel_teeth: Vec<i32>,
-}
-
-/// Tooth pairs j with roll φ + jτ inside the active roll range [r₀, r₁].
-pub fn pairs_in_contact(phi: f64, roll_range: [f64; 2], tau: f64) -> Vec<i32> {
-    let jmin = ((roll_range[0] - phi) / tau).ceil() as i32;
-    let jmax = ((roll_range[1] - phi) / tau).floor() as i32;
-    (jmin..=jmax).collect()
 }
 
 /// Plans every wheel blank of the scene.
