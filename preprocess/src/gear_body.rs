@@ -267,9 +267,17 @@ fn flank_and_fillet(
             f.at(l, d).map(|p| p.pos)
         })
         .collect::<Result<Vec<_>, _>>()?;
+    // The fillet carries the flank's ease-off at the junction, fading to
+    // zero at the root, so that flank and fillet meet without a step.
+    let e_junction = f.at(l, d_low)?.ease_off;
     let arc = f.fillet_arc_at(l)?;
     let fillet = (0..n_fillet)
-        .map(|k| f.gen.eval_fillet(k as f64 / (n_fillet - 1) as f64, arc).pos)
+        .map(|k| {
+            let psi = k as f64 / (n_fillet - 1) as f64;
+            let q = f.gen.eval_fillet(psi, arc);
+            let e = e_junction * (1.0 - psi);
+            std::array::from_fn(|i| q.pos[i] - e * q.normal[i])
+        })
         .collect();
     Ok((flank, fillet))
 }
@@ -320,11 +328,11 @@ pub fn slot_sections(
             let mut root = root;
             root[0] = pa;
             root[4] = pb;
-            // Shared section corners: the flank ends exactly where its fillet starts.
-            let mut fl_a = fl_a;
-            fl_a[0] = fi_a[0];
-            let mut fl_b = fl_b;
-            fl_b[0] = fi_b[0];
+            // Shared section corners: the fillet starts exactly where its flank ends.
+            let mut fi_a = fi_a;
+            fi_a[0] = fl_a[0];
+            let mut fi_b = fi_b;
+            fi_b[0] = fl_b[0];
             let mut e0 = fl_a;
             e0.reverse();
             let mut e3 = fi_b;

@@ -141,11 +141,12 @@ fn refined_flanks_have_the_requested_element_counts() {
 }
 
 /// What the five-section slot loft achieves today. The issue asks for 0.5 µm
-/// at every node; the loft reaches it at about half of them (see the issue
-/// note). These bounds guard against regressions until the flanks are built
-/// as fitted B-spline surfaces.
-const LOFT_WORST: f64 = 80e-6;
-const LOFT_MEDIAN: f64 = 1e-6;
+/// at every node; the loft reaches it at about four nodes in five, the rest
+/// lie near the flank–fillet junction (see the issue note). These bounds
+/// guard against regressions until the flanks are fitted B-spline surfaces.
+const LOFT_WORST: f64 = 25e-6;
+const LOFT_P99: f64 = 3e-6;
+const LOFT_MEDIAN: f64 = 0.5e-6;
 
 #[test]
 fn flank_nodes_lie_on_the_generated_flank_within_the_loft_tolerance() {
