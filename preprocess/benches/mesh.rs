@@ -6,7 +6,8 @@
 use preprocess::design::Member;
 use preprocess::gear_body::BlankDimensions;
 use preprocess::mesh::{mesh_member, MeshRequest};
-use preprocess::pair::{teeth_in_contact, PairGeometry};
+use preprocess::mesh_stage::refined_teeth;
+use preprocess::pair::PairGeometry;
 use preprocess::scene::{Blank, Scene};
 use serde_json::json;
 use std::path::Path;
@@ -37,16 +38,7 @@ fn main() {
         (Member::Wheel, Blank::Standard),
         (Member::Wheel, Blank::Lightweight),
     ] {
-        let cycles = match blank {
-            Blank::Standard => sc.rotation.mesh_cycles_standard,
-            Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-        };
-        let (pt, wt) = teeth_in_contact(
-            &g,
-            sc.loaded_flank,
-            cycles,
-            sc.rotation.step_deg.to_radians(),
-        );
+        let refined = refined_teeth(&g, sc, member, blank);
         for &(name, level, target) in &levels {
             let req = MeshRequest {
                 scene: &sc.name,
@@ -57,11 +49,7 @@ fn main() {
                 level,
                 level_name: name,
                 side: sc.loaded_flank,
-                refined_teeth: if member == Member::Pinion {
-                    pt.clone()
-                } else {
-                    wt.clone()
-                },
+                refined_teeth: refined.clone(),
             };
             let t = Instant::now();
             let r = mesh_member(&req, &dir.path().join("m.msh")).expect("mesh");

@@ -75,6 +75,40 @@ pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> Result<(), String> {
     std::fs::rename(&tmp, vtu).map_err(|e| format!("cannot rename {}: {e}", tmp.display()))
 }
 
+/// Teeth of `member` whose loaded flank the scene brings into contact: the
+/// wheel blank sets the rotation range (the pinion takes the longest of the
+/// scene's wheel blanks).
+pub fn refined_teeth(
+    g: &PairGeometry,
+    sc: &crate::scene::Scene,
+    member: Member,
+    blank: Blank,
+) -> Vec<usize> {
+    let cycles_of = |b: Blank| match b {
+        Blank::Standard => sc.rotation.mesh_cycles_standard,
+        Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
+    };
+    let cycles = match member {
+        Member::Wheel => cycles_of(blank),
+        Member::Pinion => sc
+            .blanks
+            .wheel
+            .iter()
+            .map(|&b| cycles_of(b))
+            .fold(0.0, f64::max),
+    };
+    let (pt, wt) = teeth_in_contact(
+        g,
+        sc.loaded_flank,
+        cycles,
+        sc.rotation.step_deg.to_radians(),
+    );
+    match member {
+        Member::Pinion => pt,
+        Member::Wheel => wt,
+    }
+}
+
 /// Meshes every member × blank × level of the scene into `root/<scene>/`.
 pub fn run(
     scene: &LoadedScene,
@@ -93,7 +127,6 @@ pub fn run(
             ("reference", sc.mesh.reference),
         ],
     };
-    let step = sc.rotation.step_deg.to_radians();
     let design_text = std::fs::read_to_string(&scene.design_path)?;
     let mut reports = Vec::new();
     for member in [Member::Pinion, Member::Wheel] {
@@ -102,25 +135,7 @@ pub fn run(
             Member::Wheel => &sc.blanks.wheel,
         };
         for &blank in blanks {
-            // Rotation range of this combination: the wheel blank decides it.
-            let cycles = sc
-                .blanks
-                .wheel
-                .iter()
-                .map(|&b| match b {
-                    Blank::Standard => sc.rotation.mesh_cycles_standard,
-                    Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-                })
-                .fold(0.0, f64::max);
-            let cycles = if member == Member::Wheel {
-                match blank {
-                    Blank::Standard => sc.rotation.mesh_cycles_standard,
-                    Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-                }
-            } else {
-                cycles
-            };
-            let (pt, wt) = teeth_in_contact(&g, sc.loaded_flank, cycles, step);
+            let refined = refined_teeth(&g, sc, member, blank);
             for &(name, lv) in &levels {
                 let req = MeshRequest {
                     scene: &sc.name,
@@ -131,11 +146,7 @@ pub fn run(
                     level: lv,
                     level_name: name,
                     side: sc.loaded_flank,
-                    refined_teeth: if member == Member::Pinion {
-                        pt.clone()
-                    } else {
-                        wt.clone()
-                    },
+                    refined_teeth: refined.clone(),
                 };
                 let stem = format!(
                     "{}_{}_{}",
