@@ -111,7 +111,7 @@ impl Bicubic {
             .iter()
             .map(|row| {
                 let m = slopes(&self.y, row);
-                let v: D = hermite(
+                hermite(
                     self.y[j],
                     self.y[j + 1],
                     D::from(row[j]),
@@ -119,8 +119,7 @@ impl Bicubic {
                     D::from(m[j]),
                     D::from(m[j + 1]),
                     y,
-                );
-                v
+                )
             })
             .collect();
         let i = cell(&self.x, x.re());

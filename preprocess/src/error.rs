@@ -53,4 +53,6 @@ pub enum GeometryError {
     },
     #[error("cannot write {path}: {message}")]
     Write { path: PathBuf, message: String },
+    #[error(transparent)]
+    Plot(#[from] crate::plots::PlotError),
 }

@@ -262,13 +262,6 @@ pub fn sweep(fp: &FlankPair, pair: &PairData, rs: &RollSurface, s: &UtcaSettings
     )
 }
 
-fn plot_err(e: plots::PlotError) -> GeometryError {
-    GeometryError::Write {
-        path: PathBuf::new(),
-        message: e.to_string(),
-    }
-}
-
 /// Runs the stage and writes `flanks.json`, `utca.json`, `summary.json` and SVG plots into `out`.
 pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, GeometryError> {
     let mut timing = Timing::default();
@@ -328,7 +321,7 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, Geometr
     write_json(&out.join("utca.json"), &report)?;
 
     let t = Instant::now();
-    write_plots(out, &g, &grids, &report, input.side).map_err(plot_err)?;
+    write_plots(out, &g, &grids, &report, input.side)?;
     timing.plots = t.elapsed().as_secs_f64();
 
     let summary = FlankSummary {
