@@ -8,9 +8,9 @@ mod common;
 use preprocess::direct::{direct_te, gap};
 use preprocess::generation::Side;
 use preprocess::pair::pinion_direction;
-use preprocess::utca::{LineGrid, LineSearch, RollSurface};
+use preprocess::utca::LineSearch;
 
-/// 1e-8 µrad-level tolerance in length: 0.01 µrad × 80 mm lever ≈ 0.8 nm.
+/// The limit, 0.01 µrad (about 0.9 nm of normal gap at the 87 mm wheel lever).
 const TE_TOL_RAD: f64 = 0.01e-6;
 
 #[test]
@@ -19,14 +19,7 @@ fn conjugate_flanks_give_zero_transmission_error_over_a_mesh_cycle() {
     let g = common::geometry(&p);
     for side in [Side::Drive, Side::Coast] {
         let fp = g.side(side);
-        let rs = RollSurface::new(
-            fp,
-            LineGrid {
-                n_face: 21,
-                n_profile: 21,
-            },
-        )
-        .unwrap();
+        let rs = common::coarse_roll_surface(fp);
         let dir = pinion_direction(&p, side);
         let tau = p.mesh_cycle();
         let mut worst: f64 = 0.0;
@@ -57,14 +50,7 @@ fn separation_is_zero_along_the_conjugate_contact_line() {
     let g = common::geometry(&p);
     for side in [Side::Drive, Side::Coast] {
         let fp = g.side(side);
-        let rs = RollSurface::new(
-            fp,
-            LineGrid {
-                n_face: 21,
-                n_profile: 21,
-            },
-        )
-        .unwrap();
+        let rs = common::coarse_roll_surface(fp);
         let ls = LineSearch::new(fp, &rs);
         let dir = pinion_direction(&p, side);
         let phi = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);

@@ -83,14 +83,7 @@ fn fast_utca_agrees_with_the_direct_contact_search() {
         let fp = g.side(side);
         let dir = pinion_direction(&p, side);
         let rs = RollSurface::new(fp, LineGrid::default()).unwrap();
-        let coarse = RollSurface::new(
-            fp,
-            LineGrid {
-                n_face: 21,
-                n_profile: 21,
-            },
-        )
-        .unwrap();
+        let coarse = common::coarse_roll_surface(fp);
         let step = p.mesh_cycle() / 5.0;
         let u = run(fp, &rs, fp.roll_range[0], step, 5, dir);
         for k in 0..5 {

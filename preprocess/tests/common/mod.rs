@@ -33,3 +33,16 @@ pub fn geometry(p: &PairData) -> PairGeometry {
 pub fn white_paper_file() -> DesignFile {
     DesignFile::load(&white_paper_path()).unwrap()
 }
+
+/// The tabulated surface of roll angles on a coarse 21 × 21 grid, for tests
+/// that search contact directly.
+pub fn coarse_roll_surface(fp: &preprocess::pair::FlankPair) -> preprocess::utca::RollSurface {
+    preprocess::utca::RollSurface::new(
+        fp,
+        preprocess::utca::LineGrid {
+            n_face: 21,
+            n_profile: 21,
+        },
+    )
+    .expect("roll surface")
+}
