@@ -1,0 +1,77 @@
+//! A tet10 mesh: node coordinates and element connectivity.
+
+use crate::FemError;
+
+/// Nodes (m) and 10-node tetrahedra (gmsh order), 0-based node indices.
+#[derive(Debug, Clone, Default)]
+pub struct TetMesh {
+    pub nodes: Vec<[f64; 3]>,
+    pub tets: Vec<[usize; 10]>,
+}
+
+impl TetMesh {
+    /// Checks that every element refers to existing nodes.
+    pub fn validate(&self) -> Result<(), FemError> {
+        let n = self.nodes.len();
+        if let Some((e, t)) = self
+            .tets
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&i| i >= n))
+        {
+            return Err(FemError::Invalid {
+                field: "tets",
+                value: format!("element {e} = {t:?}"),
+                limit: format!("node indices must be < {n}"),
+            });
+        }
+        Ok(())
+    }
+
+    /// Coordinates of element `e`'s ten nodes.
+    pub fn element(&self, e: usize) -> [[f64; 3]; 10] {
+        self.tets[e].map(|i| self.nodes[i])
+    }
+
+    /// Total volume (sum of element volumes).
+    pub fn volume(&self) -> f64 {
+        (0..self.tets.len())
+            .map(|e| crate::tet10::volume(&self.element(e)))
+            .sum()
+    }
+
+    /// For every node, the sorted node indices it shares an element with
+    /// (itself included); nodes in no element get an empty list.
+    pub fn node_adjacency(&self) -> Vec<Vec<u32>> {
+        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); self.nodes.len()];
+        for t in &self.tets {
+            for &a in t {
+                adj[a].extend(t.iter().map(|&b| b as u32));
+            }
+        }
+        for a in &mut adj {
+            a.sort_unstable();
+            a.dedup();
+        }
+        adj
+    }
+
+    /// The sub-mesh of the listed elements, with its nodes renumbered; returns
+    /// the sub-mesh and, for each of its nodes, the index in `self`.
+    pub fn submesh(&self, elements: &[usize]) -> (TetMesh, Vec<usize>) {
+        let mut new_of = vec![usize::MAX; self.nodes.len()];
+        let mut old_of = Vec::new();
+        let mut tets = Vec::with_capacity(elements.len());
+        for &e in elements {
+            tets.push(self.tets[e].map(|i| {
+                if new_of[i] == usize::MAX {
+                    new_of[i] = old_of.len();
+                    old_of.push(i);
+                }
+                new_of[i]
+            }));
+        }
+        let nodes = old_of.iter().map(|&i| self.nodes[i]).collect();
+        (TetMesh { nodes, tets }, old_of)
+    }
+}

@@ -1,0 +1,268 @@
+//! The FE core against closed-form elasticity: rigid-body modes, the patch
+//! test, a Timoshenko cantilever, Lamé's thick cylinder and its convergence
+//! rate under h-refinement.
+
+use fem::cholesky::Ordering;
+use fem::structured::{distort_interior, faces_where, mapped_block, Block};
+use fem::{assemble, tet10, tri6, Dofs, Factor, Material};
+
+const STEEL: Material = Material::STEEL;
+
+/// Solves the block with `fixed` dofs and nodal forces `f` (3 per node);
+/// returns the full displacement vector.
+fn solve(block: &Block, fixed: &[(usize, f64)], f: &[f64], ordering: Ordering) -> Vec<f64> {
+    let dofs = Dofs::new(&block.mesh, fixed).unwrap();
+    let sys = assemble(&block.mesh, &STEEL, &dofs).unwrap();
+    let node_of: Vec<usize> = (0..3 * block.mesh.nodes.len())
+        .filter(|&d| dofs.free_index(d).is_some())
+        .map(|d| d / 3)
+        .collect();
+    let factor = Factor::new(&sys.matrix, &node_of, ordering).unwrap();
+    let mut rhs = dofs.restrict(f);
+    for (r, l) in rhs.iter_mut().zip(&sys.lift) {
+        *r += l;
+    }
+    dofs.expand(&factor.solve(&rhs))
+}
+
+/// Nodal forces of a traction field on a set of faces.
+fn face_loads(
+    block: &Block,
+    faces: &[[usize; 6]],
+    traction: impl Fn([f64; 3], [f64; 3]) -> [f64; 3],
+) -> Vec<f64> {
+    let mut f = vec![0.0; 3 * block.mesh.nodes.len()];
+    for face in faces {
+        let x = face.map(|i| block.mesh.nodes[i]);
+        let fe = tri6::consistent_forces(&x, &traction);
+        for (l, &i) in face.iter().enumerate() {
+            for c in 0..3 {
+                f[3 * i + c] += fe[l][c];
+            }
+        }
+    }
+    f
+}
+
+#[test]
+fn rigid_body_modes_of_a_curved_element_give_zero_force_and_six_zero_eigenvalues() {
+    let map = |p: [f64; 3]| {
+        [
+            0.01 * (p[0] + 0.2 * p[1] * p[1]),
+            0.012 * (p[1] + 0.1 * p[0] * p[2]),
+            0.009 * (p[2] + 0.15 * p[0] * p[0]),
+        ]
+    };
+    let x = tet10::reference_nodes().map(map);
+    let (lambda, mu) = STEEL.lame();
+    let k = tet10::stiffness(&x, lambda, mu).unwrap();
+    let k = nalgebra::DMatrix::from_row_slice(30, 30, &k);
+    let kmax = k.amax();
+    let mut modes = Vec::new();
+    for c in 0..3 {
+        modes.push(nalgebra::DVector::from_fn(30, |d, _| {
+            if d % 3 == c {
+                1.0
+            } else {
+                0.0
+            }
+        }));
+        let omega = nalgebra::Vector3::from_fn(|i, _| if i == c { 1.0 } else { 0.0 });
+        modes.push(nalgebra::DVector::from_fn(30, |d, _| {
+            let p = nalgebra::Vector3::from(x[d / 3]);
+            omega.cross(&p)[d % 3]
+        }));
+    }
+    for r in &modes {
+        let f = &k * r;
+        assert!(
+            f.amax() < 1e-10 * kmax * r.amax().max(0.01),
+            "rigid mode force {}",
+            f.amax()
+        );
+    }
+    let eig = nalgebra::SymmetricEigen::new(k.clone()).eigenvalues;
+    let zeros = eig.iter().filter(|&&e| e.abs() < 1e-9 * kmax).count();
+    let positive = eig.iter().filter(|&&e| e > 1e-6 * kmax).count();
+    assert_eq!((zeros, positive), (6, 24), "eigenvalues {eig}");
+    assert!((k.clone() - k.transpose()).amax() < 1e-12 * kmax);
+}
+
+#[test]
+fn patch_test_distorted_mesh_reproduces_a_linear_field_exactly() {
+    let mut block = mapped_block([3, 3, 3], |p| [0.02 * p[0], 0.03 * p[1], 0.025 * p[2]]);
+    distort_interior(&mut block, 0.002, 7);
+    let exact = |x: [f64; 3], c: usize| {
+        let a = [1e-6, -2e-6, 0.5e-6];
+        let b = [
+            [1e-4, 2e-5, -3e-5],
+            [0.5e-4, -1e-4, 4e-5],
+            [-2e-5, 3e-5, 2e-4],
+        ];
+        a[c] + (0..3).map(|j| b[c][j] * x[j]).sum::<f64>()
+    };
+    let boundary: Vec<bool> = block
+        .params
+        .iter()
+        .map(|p| p.iter().any(|&c| c < 1e-12 || c > 1.0 - 1e-12))
+        .collect();
+    let fixed: Vec<(usize, f64)> = (0..block.mesh.nodes.len())
+        .filter(|&i| boundary[i])
+        .flat_map(|i| (0..3).map(move |c| (i, c)))
+        .map(|(i, c)| (3 * i + c, exact(block.mesh.nodes[i], c)))
+        .collect();
+    let f = vec![0.0; 3 * block.mesh.nodes.len()];
+    let u = solve(&block, &fixed, &f, Ordering::Metis);
+    let mut worst: f64 = 0.0;
+    for (i, x) in block.mesh.nodes.iter().enumerate() {
+        for c in 0..3 {
+            worst = worst.max((u[3 * i + c] - exact(*x, c)).abs());
+        }
+    }
+    assert!(
+        worst < 1e-15,
+        "interior nodes off the linear field by {worst:e} m"
+    );
+    // Constant strain in every element, at every quadrature point.
+    for e in 0..block.mesh.tets.len() {
+        let x = block.mesh.element(e);
+        let ue = block.mesh.tets[e].map(|i| [u[3 * i], u[3 * i + 1], u[3 * i + 2]]);
+        let eps = tet10::strain(&x, &ue, [0.1, 0.2, 0.3]);
+        assert!((eps[0][1] - 0.5 * (2e-5 + 0.5e-4)).abs() < 1e-12);
+        assert!((eps[2][2] - 2e-4).abs() < 1e-12);
+    }
+}
+
+/// Timoshenko cantilever with tip shear force P: δ = PL³/(3EI) + PL/(κGA),
+/// κ = 10(1+ν)/(12+11ν) for a rectangular section.
+#[test]
+fn cantilever_tip_deflection_matches_timoshenko_beam_within_one_percent() {
+    let (l, h, b, p) = (0.2, 0.02, 0.02, 1000.0);
+    let block = mapped_block([40, 4, 4], |q| [l * q[0], b * q[1], h * q[2]]);
+    let fixed: Vec<(usize, f64)> = (0..block.mesh.nodes.len())
+        .filter(|&i| block.params[i][0] < 1e-12)
+        .flat_map(|i| (0..3).map(move |c| (3 * i + c, 0.0)))
+        .collect();
+    let tip = faces_where(&block, |q| q[0] > 1.0 - 1e-12);
+    let f = face_loads(&block, &tip, |_, _| [0.0, 0.0, -p / (b * h)]);
+    let total: f64 = f.iter().skip(2).step_by(3).sum();
+    assert!((total + p).abs() < 1e-9 * p, "applied load {total}");
+    let u = solve(&block, &fixed, &f, Ordering::Metis);
+    // Deflection of the tip's centre node.
+    let centre = block
+        .params
+        .iter()
+        .position(|q| {
+            (q[0] - 1.0).abs() < 1e-12 && (q[1] - 0.5).abs() < 1e-12 && (q[2] - 0.5).abs() < 1e-12
+        })
+        .unwrap();
+    let w = -u[3 * centre + 2];
+    let nu = STEEL.poisson_ratio;
+    let e = STEEL.youngs_modulus_pa;
+    let i = b * h.powi(3) / 12.0;
+    let kappa = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
+    let exact = p * l.powi(3) / (3.0 * e * i) + p * l / (kappa * STEEL.shear_modulus() * b * h);
+    let err = (w - exact) / exact;
+    assert!(
+        err.abs() < 0.01,
+        "tip deflection {w:e} m vs Timoshenko {exact:e} m ({:.3}%)",
+        100.0 * err
+    );
+}
+
+/// Lamé: a thick cylinder a ≤ r ≤ b under internal pressure p, plane strain:
+/// u_r = (1+ν) p a² / (E (b² − a²)) · [(1 − 2ν) r + b²/r].
+fn lame_max_error(n: [usize; 3]) -> f64 {
+    let (a, b, t, p) = (0.05, 0.1, 0.01, 100e6);
+    let map = |q: [f64; 3]| {
+        let r = a + (b - a) * q[0];
+        let th = std::f64::consts::FRAC_PI_2 * q[1];
+        [r * th.cos(), r * th.sin(), t * q[2]]
+    };
+    let block = mapped_block(n, map);
+    let mut fixed = Vec::new();
+    for (i, q) in block.params.iter().enumerate() {
+        if q[2] < 1e-12 || q[2] > 1.0 - 1e-12 {
+            fixed.push((3 * i + 2, 0.0)); // plane strain
+        }
+        if q[1] < 1e-12 {
+            fixed.push((3 * i + 1, 0.0)); // symmetry y = 0
+        }
+        if q[1] > 1.0 - 1e-12 {
+            fixed.push((3 * i, 0.0)); // symmetry x = 0
+        }
+    }
+    let inner = faces_where(&block, |q| q[0] < 1e-12);
+    let f = face_loads(&block, &inner, |_, n| [-p * n[0], -p * n[1], -p * n[2]]);
+    let u = solve(&block, &fixed, &f, Ordering::Metis);
+    let (e, nu) = (STEEL.youngs_modulus_pa, STEEL.poisson_ratio);
+    let ur = |r: f64| {
+        (1.0 + nu) * p * a * a / (e * (b * b - a * a)) * ((1.0 - 2.0 * nu) * r + b * b / r)
+    };
+    let mut worst: f64 = 0.0;
+    for (i, x) in block.mesh.nodes.iter().enumerate() {
+        let r = x[0].hypot(x[1]);
+        let radial = (u[3 * i] * x[0] + u[3 * i + 1] * x[1]) / r;
+        let tangential = (-u[3 * i] * x[1] + u[3 * i + 1] * x[0]) / r;
+        worst = worst.max((radial - ur(r)).abs()).max(tangential.abs());
+    }
+    worst / ur(a)
+}
+
+#[test]
+fn lame_thick_cylinder_radial_displacement_within_a_tenth_of_a_percent() {
+    let err = lame_max_error([8, 16, 4]);
+    assert!(err < 1e-3, "max nodal error {:.4}% of u_r(a)", 100.0 * err);
+}
+
+#[test]
+fn lame_thick_cylinder_error_converges_at_quadratic_element_rate() {
+    let e: Vec<f64> = [[2, 4, 1], [4, 8, 2], [8, 16, 4]]
+        .iter()
+        .map(|&n| lame_max_error(n))
+        .collect();
+    let rates: Vec<f64> = e.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+    eprintln!("Lamé errors {e:?}, observed orders {rates:?}");
+    // Quadratic isoparametric elements: displacement error O(h³) in L2; the
+    // nodal maximum converges at least that fast.
+    for r in rates {
+        assert!(r > 2.5, "observed order {r:.2} (errors {e:?})");
+    }
+}
+
+#[test]
+fn metis_and_amd_orderings_give_the_same_solution() {
+    let (l, h) = (0.1, 0.02);
+    let block = mapped_block([10, 2, 3], |q| [l * q[0], h * q[1], h * q[2]]);
+    let fixed: Vec<(usize, f64)> = (0..block.mesh.nodes.len())
+        .filter(|&i| block.params[i][0] < 1e-12)
+        .flat_map(|i| (0..3).map(move |c| (3 * i + c, 0.0)))
+        .collect();
+    let tip = faces_where(&block, |q| q[0] > 1.0 - 1e-12);
+    let f = face_loads(&block, &tip, |_, _| [0.0, 1e6, -2e6]);
+    let a = solve(&block, &fixed, &f, Ordering::Metis);
+    let b = solve(&block, &fixed, &f, Ordering::Amd);
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .iter()
+        .zip(&b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(
+        diff < 1e-10 * scale,
+        "orderings differ by {diff:e} (scale {scale:e})"
+    );
+}
+
+#[test]
+fn unrestrained_body_is_reported_not_positive_definite() {
+    let block = mapped_block([2, 2, 2], |q| [0.01 * q[0], 0.01 * q[1], 0.01 * q[2]]);
+    let dofs = Dofs::new(&block.mesh, &[]).unwrap();
+    let sys = assemble(&block.mesh, &STEEL, &dofs).unwrap();
+    let node_of: Vec<usize> = (0..dofs.n_free()).map(|d| d / 3).collect();
+    let r = Factor::new(&sys.matrix, &node_of, Ordering::Metis);
+    assert!(
+        matches!(r, Err(fem::FemError::NotPositiveDefinite(_))),
+        "{:?}",
+        r.err()
+    );
+}
