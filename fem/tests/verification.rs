@@ -104,7 +104,7 @@ fn patch_test_distorted_mesh_reproduces_a_linear_field_exactly() {
     let boundary: Vec<bool> = block
         .params
         .iter()
-        .map(|p| p.iter().any(|&c| c < 1e-12 || c > 1.0 - 1e-12))
+        .map(|p| p.iter().any(|&c| !(1e-12..=1.0 - 1e-12).contains(&c)))
         .collect();
     let fixed: Vec<(usize, f64)> = (0..block.mesh.nodes.len())
         .filter(|&i| boundary[i])

@@ -4,6 +4,7 @@
 //! Data flow: design file → [`design::PairData`] → [`pair::PairGeometry`]
 //! (generated flanks, ease-off) → [`utca::Utca`] → outputs.
 
+pub mod body_mesh;
 pub mod design;
 pub mod direct;
 pub mod ease_off;
@@ -12,6 +13,7 @@ pub mod flank;
 pub mod flank_stage;
 pub mod gear_body;
 pub mod generation;
+pub mod influence;
 pub mod mesh;
 pub mod mesh_stage;
 pub mod minimize;
@@ -19,6 +21,8 @@ pub mod output;
 pub mod pair;
 pub mod plots;
 pub mod scene;
+pub mod stiffness_file;
+pub mod stiffness_stage;
 pub mod utca;
 
 /// Scalar type of the geometry kernels: `f64`, or a dual number for exact derivatives.

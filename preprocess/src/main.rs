@@ -36,6 +36,13 @@ enum Cmd {
         #[arg(long, default_value = "meshes")]
         out: PathBuf,
     },
+    /// FE influence fields (stiffness files) from the reduced-order meshes.
+    Stiffness {
+        scene: PathBuf,
+        /// Directory holding `<scene>/` meshes; stiffness files go next to them.
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -91,6 +98,31 @@ fn main() -> anyhow::Result<()> {
                     r.time_geometry_s,
                     r.time_mesh_s
                 );
+            }
+        }
+        Cmd::Stiffness { scene, meshes } => {
+            let s = preprocess::scene::Scene::load(&scene)?;
+            for r in preprocess::stiffness_stage::run(&s, &meshes)? {
+                match (&r.stats, r.reused) {
+                    (_, true) => println!("{} {} {}: reused {}", r.member, r.blank, r.level, r.path.display()),
+                    (Some(st), false) => println!(
+                        "{} {} {}: {} dofs, assemble {:.1} s, factor {:.1} s (L {:.0} M values), {} unit loads {:.1} ms each, local fields {:.1} s, reciprocity {:.1e}, total {:.1} s -> {}",
+                        r.member,
+                        r.blank,
+                        r.level,
+                        st.dofs,
+                        st.assemble_s,
+                        st.factor_s,
+                        st.factor_nnz as f64 / 1e6,
+                        st.right_hand_sides,
+                        1e3 * st.solve_s / st.right_hand_sides.max(1) as f64,
+                        st.local_s,
+                        r.reciprocity_error.unwrap_or(f64::NAN),
+                        r.total_s,
+                        r.path.display()
+                    ),
+                    _ => {}
+                }
             }
         }
     }

@@ -603,6 +603,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
     let loaded = req.side.flank_name(req.member);
     let mut refined = Vec::new();
     let mut refined_tags = Vec::new();
+    let mut edge_faces = Vec::new();
     for &tooth in &req.refined_teeth {
         let Some(tags) = flanks.get(&(tooth, loaded)) else {
             continue;
@@ -617,6 +618,11 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
             for &(_, c) in &curves {
                 let c = c.abs();
                 let along_face = curve_span(&s, req, c).map_err(g)? > 0.5 * d.face_width;
+                if along_face {
+                    // The root fillet and top land along this flank.
+                    let (up, _) = s.get_adjacencies(1, c).map_err(g)?;
+                    edge_faces.extend(up.into_iter().filter(|&f| f != tag));
+                }
                 let n = if along_face {
                     req.level.face
                 } else {
@@ -630,7 +636,9 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
             refined_tags.push((tooth, tag, curves));
         }
     }
-    let coarse = 0.9 * d.normal_module;
+    // Away from the refined flanks the body only has to carry the load path:
+    // 1.5 m_n keeps the FE compliance solve near 0.25 M dofs per member.
+    let coarse = 1.5 * d.normal_module;
     let fine = (d.face_width / req.level.face as f64)
         .min(d.normal_module * 2.2 / req.level.profile as f64);
     s.option_set_number("Mesh.MeshSizeMax", coarse).map_err(g)?;
@@ -651,14 +659,39 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
             .map_err(g)?;
         s.mesh_field_set_number(th, "DistMax", 4.0 * d.normal_module)
             .map_err(g)?;
-        s.mesh_field_set_as_background_mesh(th).map_err(g)?;
+        // Fillets and top lands of the refined flanks: elements small enough
+        // to follow the fillet radius, so their curved mid-edge nodes (shared
+        // with the flank) need no straightening.
+        let edge_size = (0.8 * d.edge_radius).min(fine);
+        let dist2 = s.mesh_field_add("Distance").map_err(g)?;
+        let list2: Vec<f64> = edge_faces.iter().map(|&t| t as f64).collect();
+        s.mesh_field_set_numbers(dist2, "SurfacesList", &list2)
+            .map_err(g)?;
+        s.mesh_field_set_number(dist2, "Sampling", 30.0)
+            .map_err(g)?;
+        let th2 = s.mesh_field_add("Threshold").map_err(g)?;
+        s.mesh_field_set_number(th2, "InField", dist2 as f64)
+            .map_err(g)?;
+        s.mesh_field_set_number(th2, "SizeMin", edge_size)
+            .map_err(g)?;
+        s.mesh_field_set_number(th2, "SizeMax", coarse).map_err(g)?;
+        s.mesh_field_set_number(th2, "DistMin", 0.5 * edge_size)
+            .map_err(g)?;
+        s.mesh_field_set_number(th2, "DistMax", 2.0 * d.normal_module)
+            .map_err(g)?;
+        let min = s.mesh_field_add("Min").map_err(g)?;
+        s.mesh_field_set_numbers(min, "FieldsList", &[th as f64, th2 as f64])
+            .map_err(g)?;
+        s.mesh_field_set_as_background_mesh(min).map_err(g)?;
     }
     s.option_set_number("Mesh.MeshSizeExtendFromBoundary", 0.0)
         .map_err(g)?;
     s.option_set_number("Mesh.MeshSizeFromPoints", 0.0)
         .map_err(g)?;
-    // Elements that follow the root fillets: coarse curved tets would invert there.
-    s.option_set_number("Mesh.MeshSizeFromCurvature", 8.0)
+    // No curvature-driven sizes: they refined the fillets of every tooth
+    // (3× the nodes). Coarse curved tets that would invert on the fillets of
+    // unloaded teeth are straightened instead (reported).
+    s.option_set_number("Mesh.MeshSizeFromCurvature", 0.0)
         .map_err(g)?;
     s.option_set_number("Mesh.Algorithm", 6.0).map_err(g)?;
     let time_geometry = t0.elapsed().as_secs_f64();

@@ -37,6 +37,37 @@ pub struct Scene {
     /// Blank dimensions; missing values get defaults from the design.
     #[serde(default)]
     pub blank_dimensions: crate::gear_body::BlankDimensionsMm,
+    /// FE influence fields (stiffness files); defaults when absent.
+    #[serde(default)]
+    pub stiffness: StiffnessSettings,
+}
+
+/// Settings of the FE influence fields written to the stiffness files.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct StiffnessSettings {
+    /// Contact grid points along the profile × face width of each loaded
+    /// flank; 0 means "the reduced-order mesh level".
+    pub grid_profile: usize,
+    pub grid_face: usize,
+    /// Radius of the distributed unit load, as a fraction of the largest grid spacing.
+    pub load_radius_factor: f64,
+    /// Responding teeth on each side of the loaded one.
+    pub response_teeth: usize,
+    /// Right-hand sides per sequential solve block (two blocks run in parallel).
+    pub solve_block: usize,
+}
+
+impl Default for StiffnessSettings {
+    fn default() -> Self {
+        StiffnessSettings {
+            grid_profile: 0,
+            grid_face: 0,
+            load_radius_factor: 0.75,
+            response_teeth: 2,
+            solve_block: 16,
+        }
+    }
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -198,6 +229,40 @@ impl Scene {
                     "must be >= 0",
                 ));
             }
+        }
+        let st = &self.stiffness;
+        for (f, v) in [
+            ("stiffness.grid_profile", st.grid_profile),
+            ("stiffness.grid_face", st.grid_face),
+        ] {
+            if v != 0 && !(2..=200).contains(&v) {
+                return Err(fail(
+                    f,
+                    v.to_string(),
+                    "must be 0 (mesh level) or lie in [2, 200]",
+                ));
+            }
+        }
+        if !(st.load_radius_factor >= 0.25 && st.load_radius_factor <= 3.0) {
+            return Err(fail(
+                "stiffness.load_radius_factor",
+                st.load_radius_factor.to_string(),
+                "must lie in [0.25, 3]",
+            ));
+        }
+        if st.response_teeth > 5 {
+            return Err(fail(
+                "stiffness.response_teeth",
+                st.response_teeth.to_string(),
+                "must be <= 5",
+            ));
+        }
+        if !(1..=256).contains(&st.solve_block) {
+            return Err(fail(
+                "stiffness.solve_block",
+                st.solve_block.to_string(),
+                "must lie in [1, 256]",
+            ));
         }
         if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {
             return Err(fail(

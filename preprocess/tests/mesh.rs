@@ -149,8 +149,17 @@ const LOFT_P99: f64 = 3e-6;
 const LOFT_MEDIAN: f64 = 0.5e-6;
 
 #[test]
-fn flank_nodes_lie_on_the_generated_flank_within_the_loft_tolerance() {
-    let (_, path) = pinion();
+fn refined_flank_nodes_lie_on_the_generated_flank_within_the_loft_tolerance() {
+    let (report, path) = pinion();
+    // Only the loaded flanks of the refined teeth carry contact. Flanks of
+    // teeth that never touch are meshed coarsely and may have straightened
+    // (uncurved) mid-edge nodes, so they are not held to this tolerance.
+    let refined: Vec<String> = report
+        .refined_flanks
+        .iter()
+        .map(|r| format!("tooth{}_{}", r.tooth, r.flank))
+        .collect();
+    assert!(!refined.is_empty());
     let g = geometry();
     let s = gmsh::Session::new().unwrap();
     s.open(path).unwrap();
@@ -161,9 +170,10 @@ fn flank_nodes_lie_on_the_generated_flank_within_the_loft_tolerance() {
     let mut count = 0;
     for (dim, tag) in s.get_physical_groups(2).unwrap() {
         let name = s_name(&s, dim, tag);
-        let Some(rest) = name.strip_prefix("tooth") else {
+        if !refined.contains(&name) {
             continue;
-        };
+        }
+        let rest = name.strip_prefix("tooth").unwrap();
         let (k, flank) = rest.split_once('_').unwrap();
         let k: usize = k.parse().unwrap();
         let side = if flank == "concave" {

@@ -1,0 +1,569 @@
+//! FE unit-load influence fields of one gear body (the reduced model's global
+//! compliance), with the local near-load part subtracted.
+//!
+//! For every grid point p of a loaded flank, a unit normal force pressed into
+//! the tooth is spread over the flank faces around p by a smooth bump
+//! q(r) ∝ (1 − r²/ρ²)², r < ρ, and the normal displacement at grid point q is
+//! measured with the same weights. So C_pq = w_pᵀ K⁻¹ w_q is symmetric by
+//! construction. The local part is the same load on the half tooth between
+//! the flank and its mid-surface (depth h), held fixed where it joins the rest
+//! of the body; global = total − local.
+
+use crate::body_mesh::BodyMesh;
+use crate::flank::Flank;
+use fem::cholesky::Ordering;
+use fem::{assemble, tri6, Dofs, Factor, Material, TetMesh};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Errors of the influence computation.
+#[derive(Debug, thiserror::Error)]
+pub enum InfluenceError {
+    #[error(transparent)]
+    Fem(#[from] fem::FemError),
+    #[error(transparent)]
+    Geometry(#[from] crate::error::GeometryError),
+    #[error("mesh has no face group `{0}`")]
+    MissingGroup(String),
+    #[error("grid point {point} of tooth {tooth}: {what}")]
+    Grid {
+        tooth: usize,
+        point: usize,
+        what: String,
+    },
+}
+
+/// Grid density on the loaded flank.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct GridSize {
+    pub profile: usize,
+    pub face: usize,
+}
+
+/// The contact grid of tooth 0's loaded flank (member frame). Point index =
+/// i_face · profile + i_profile; grid points are the centres of a regular
+/// profile × face partition of the flank (fillet junction to tip, toe to heel).
+#[derive(Debug, Clone)]
+pub struct FlankGrid {
+    pub size: GridSize,
+    /// Normalised face-width parameter ξ of each face column.
+    pub xi: Vec<f64>,
+    /// Normalised profile parameter η of each profile row.
+    pub eta: Vec<f64>,
+    pub position: Vec<[f64; 3]>,
+    /// Outward unit normal.
+    pub normal: Vec<[f64; 3]>,
+    /// Moment arm about the member axis of a unit force along −n, m.
+    pub lever: Vec<f64>,
+}
+
+/// Rotation about the member axis z.
+pub fn rotate_z(p: [f64; 3], a: f64) -> [f64; 3] {
+    let (s, c) = a.sin_cos();
+    [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]]
+}
+
+impl FlankGrid {
+    /// Grid of `size` on `flank`.
+    pub fn new(flank: &Flank, size: GridSize) -> Result<FlankGrid, InfluenceError> {
+        let xi: Vec<f64> = (0..size.face)
+            .map(|i| (i as f64 + 0.5) / size.face as f64)
+            .collect();
+        let eta: Vec<f64> = (0..size.profile)
+            .map(|j| (j as f64 + 0.5) / size.profile as f64)
+            .collect();
+        let mut g = FlankGrid {
+            size,
+            xi: xi.clone(),
+            eta: eta.clone(),
+            position: Vec::new(),
+            normal: Vec::new(),
+            lever: Vec::new(),
+        };
+        for &x in &xi {
+            for &e in &eta {
+                let p = flank.at_unit(x, e)?;
+                let f = p.normal.map(|c| -c);
+                g.lever.push(p.pos[0] * f[1] - p.pos[1] * f[0]);
+                g.position.push(p.pos);
+                g.normal.push(p.normal);
+            }
+        }
+        Ok(g)
+    }
+
+    pub fn len(&self) -> usize {
+        self.position.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.position.is_empty()
+    }
+
+    /// Spacing of neighbouring points in space: (largest along face, largest along profile).
+    pub fn spacing(&self) -> (f64, f64) {
+        let np = self.size.profile;
+        let mut sf: f64 = 0.0;
+        let mut sp: f64 = 0.0;
+        for i in 0..self.len() {
+            if i + np < self.len() {
+                sf = sf.max(dist(self.position[i], self.position[i + np]));
+            }
+            if (i + 1) % np != 0 {
+                sp = sp.max(dist(self.position[i], self.position[i + 1]));
+            }
+        }
+        (sf, sp)
+    }
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// A sparse weight vector over global dofs (3 · node + component).
+pub type Weights = Vec<(usize, f64)>;
+
+/// Weights of a unit force along `dir` at `center`, spread over `faces` by the
+/// bump q(r) ∝ (1 − r²/ρ²)² (r < ρ) and integrated consistently (6-point rule
+/// per tri6 face). The weights sum to `dir` (1 N).
+pub fn patch_weights(
+    mesh: &TetMesh,
+    faces: &[[usize; 6]],
+    center: [f64; 3],
+    dir: [f64; 3],
+    radius: f64,
+) -> Option<Weights> {
+    let bump = |p: [f64; 3]| {
+        let r2 = (0..3).map(|c| (p[c] - center[c]).powi(2)).sum::<f64>() / (radius * radius);
+        if r2 < 1.0 {
+            (1.0 - r2).powi(2)
+        } else {
+            0.0
+        }
+    };
+    let mut acc: std::collections::BTreeMap<usize, f64> = Default::default();
+    let mut total = 0.0;
+    for f in faces {
+        let x = f.map(|i| mesh.nodes[i]);
+        let size = (1..6).map(|k| dist(x[0], x[k])).fold(0.0, f64::max);
+        if dist(x[0], center) > radius + size {
+            continue;
+        }
+        let fe = tri6::consistent_forces(&x, |p, _| [bump(p), 0.0, 0.0]);
+        for (l, &node) in f.iter().enumerate() {
+            if fe[l][0] != 0.0 {
+                *acc.entry(node).or_default() += fe[l][0];
+                total += fe[l][0];
+            }
+        }
+    }
+    if total <= 0.0 {
+        return None;
+    }
+    Some(
+        acc.into_iter()
+            .flat_map(|(node, w)| (0..3).map(move |c| (3 * node + c, w / total * dir[c])))
+            .collect(),
+    )
+}
+
+/// Half the tooth thickness along −n from `p`: the distance to the first hit
+/// on the opposite flank's faces, halved (the mid-surface depth h).
+pub fn mid_surface_depth(
+    mesh: &TetMesh,
+    opposite: &[[usize; 6]],
+    p: [f64; 3],
+    n: [f64; 3],
+) -> Option<f64> {
+    let d = n.map(|c| -c);
+    let mut best: Option<f64> = None;
+    const SUB: [[usize; 3]; 4] = [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]];
+    for f in opposite {
+        for t in SUB {
+            let [a, b, c] = t.map(|l| mesh.nodes[f[l]]);
+            if let Some(s) = ray_triangle(p, d, a, b, c) {
+                if s > 0.0 && best.is_none_or(|b| s < b) {
+                    best = Some(s);
+                }
+            }
+        }
+    }
+    best.map(|s| 0.5 * s)
+}
+
+/// Möller–Trumbore ray/triangle intersection: distance along `d` or None.
+fn ray_triangle(o: [f64; 3], d: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<f64> {
+    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+    let cross = |x: [f64; 3], y: [f64; 3]| {
+        [
+            x[1] * y[2] - x[2] * y[1],
+            x[2] * y[0] - x[0] * y[2],
+            x[0] * y[1] - x[1] * y[0],
+        ]
+    };
+    let (e1, e2) = (sub(b, a), sub(c, a));
+    let pv = cross(d, e2);
+    let det = dot(e1, pv);
+    if det.abs() < 1e-30 {
+        return None;
+    }
+    let tv = sub(o, a);
+    let u = dot(tv, pv) / det;
+    if !(-1e-9..=1.0 + 1e-9).contains(&u) {
+        return None;
+    }
+    let qv = cross(tv, e1);
+    let v = dot(d, qv) / det;
+    if v < -1e-9 || u + v > 1.0 + 1e-9 {
+        return None;
+    }
+    Some(dot(e2, qv) / det)
+}
+
+/// What to compute for one member.
+#[derive(Debug, Clone)]
+pub struct InfluenceRequest<'a> {
+    pub body: &'a BodyMesh,
+    pub material: Material,
+    /// Teeth on the member.
+    pub teeth: usize,
+    /// Loaded flank name ("concave" or "convex") and the opposite one.
+    pub loaded: &'a str,
+    pub opposite: &'a str,
+    /// Tooth 0's grid (rotated by k · 2π/z for tooth k).
+    pub grid: &'a FlankGrid,
+    /// Teeth whose loaded flank is solved.
+    pub solved_teeth: Vec<usize>,
+    /// Responding teeth relative to the loaded one (e.g. −2..=2).
+    pub offsets: Vec<i32>,
+    /// Bump radius ρ, m.
+    pub load_radius: f64,
+    /// Right-hand sides per sequential solve block.
+    pub block: usize,
+}
+
+/// Influence fields: `total[s][o][i][j]` is the normal approach (m/N) at
+/// point j of tooth solved[s] + offsets[o] under the unit load at point i of
+/// tooth solved[s]; `local[s][i][j]` the local part on the loaded tooth;
+/// `global` = total − local (on offset 0).
+#[derive(Debug, Clone)]
+pub struct Influence {
+    pub solved_teeth: Vec<usize>,
+    pub offsets: Vec<i32>,
+    /// Mid-surface depth h of every grid point of every solved tooth, m.
+    pub depth: Vec<Vec<f64>>,
+    pub total: Vec<f64>,
+    pub local: Vec<f64>,
+    pub global: Vec<f64>,
+    pub stats: InfluenceStats,
+}
+
+/// Sizes and timings.
+#[derive(Debug, Clone, Default, serde::Serialize)]
+pub struct InfluenceStats {
+    pub dofs: usize,
+    pub factor_nnz: usize,
+    pub assemble_s: f64,
+    pub factor_s: f64,
+    pub solve_s: f64,
+    pub right_hand_sides: usize,
+    pub local_s: f64,
+    pub local_elements_mean: f64,
+}
+
+fn group<'a>(body: &'a BodyMesh, name: &str) -> Result<&'a [[usize; 6]], InfluenceError> {
+    body.groups
+        .get(name)
+        .map(|v| v.as_slice())
+        .ok_or_else(|| InfluenceError::MissingGroup(name.to_string()))
+}
+
+/// Weights of every grid point of tooth `k`.
+fn tooth_weights(req: &InfluenceRequest, k: usize) -> Result<Vec<Weights>, InfluenceError> {
+    let faces = group(req.body, &format!("tooth{k}_{}", req.loaded))?;
+    let a = 2.0 * std::f64::consts::PI * k as f64 / req.teeth as f64;
+    (0..req.grid.len())
+        .into_par_iter()
+        .map(|i| {
+            let p = rotate_z(req.grid.position[i], a);
+            let n = rotate_z(req.grid.normal[i], a);
+            patch_weights(&req.body.mesh, faces, p, n.map(|c| -c), req.load_radius).ok_or_else(
+                || InfluenceError::Grid {
+                    tooth: k,
+                    point: i,
+                    what: format!(
+                        "no flank face within the load radius {:.3} mm",
+                        req.load_radius * 1e3
+                    ),
+                },
+            )
+        })
+        .collect()
+}
+
+/// Mid-surface depths of tooth k's grid points. A ray that leaves the tooth
+/// through its toe or heel face instead of the opposite flank takes the
+/// value of the nearest grid point whose ray meets the opposite flank.
+fn tooth_depths(req: &InfluenceRequest, k: usize) -> Result<Vec<f64>, InfluenceError> {
+    let opp = group(req.body, &format!("tooth{k}_{}", req.opposite))?;
+    let a = 2.0 * std::f64::consts::PI * k as f64 / req.teeth as f64;
+    let raw: Vec<Option<f64>> = (0..req.grid.len())
+        .into_par_iter()
+        .map(|i| {
+            mid_surface_depth(
+                &req.body.mesh,
+                opp,
+                rotate_z(req.grid.position[i], a),
+                rotate_z(req.grid.normal[i], a),
+            )
+        })
+        .collect();
+    let np = req.grid.size.profile as i64;
+    let mut out = vec![0.0; raw.len()];
+    for (i, o) in out.iter_mut().enumerate() {
+        let (fi, pi) = (i as i64 / np, i as i64 % np);
+        let best = raw
+            .iter()
+            .enumerate()
+            .filter_map(|(j, h)| {
+                let (fj, pj) = (j as i64 / np, j as i64 % np);
+                h.map(|h| ((fi - fj).pow(2) + (pi - pj).pow(2), h))
+            })
+            .min_by_key(|x| x.0);
+        *o = best
+            .ok_or_else(|| InfluenceError::Grid {
+                tooth: k,
+                point: i,
+                what: "no normal ray of this flank meets the opposite flank".into(),
+            })?
+            .1;
+    }
+    Ok(out)
+}
+
+fn gather(w: &Weights, dofs: &Dofs, u: &[f64]) -> f64 {
+    w.iter()
+        .filter_map(|&(d, c)| dofs.free_index(d).map(|i| c * u[i]))
+        .sum()
+}
+
+/// Computes the influence fields. `fixed_groups` are clamped (all components).
+pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influence, InfluenceError> {
+    let mesh = &req.body.mesh;
+    let mut stats = InfluenceStats::default();
+    let mut fixed = Vec::new();
+    for g in fixed_groups {
+        group(req.body, g)?;
+        for n in req.body.group_nodes(g) {
+            fixed.extend((0..3).map(|c| (3 * n + c, 0.0)));
+        }
+    }
+    let t = Instant::now();
+    let dofs = Dofs::new(mesh, &fixed)?;
+    let sys = assemble(mesh, &req.material, &dofs)?;
+    stats.assemble_s = t.elapsed().as_secs_f64();
+    stats.dofs = dofs.n_free();
+    let node_of = free_nodes(mesh, &dofs);
+    let t = Instant::now();
+    let factor = Factor::new(&sys.matrix, &node_of, Ordering::Metis)?;
+    drop(sys);
+    stats.factor_s = t.elapsed().as_secs_f64();
+    stats.factor_nnz = factor.factor_nnz();
+
+    let z = req.teeth as i64;
+    let np = req.grid.len();
+    let no = req.offsets.len();
+    let ns = req.solved_teeth.len();
+    let mut total = vec![0.0; ns * no * np * np];
+    let mut local = vec![0.0; ns * np * np];
+    let mut depth = Vec::new();
+    let mut weights: std::collections::BTreeMap<usize, Vec<Weights>> = Default::default();
+    let n = dofs.n_free();
+    let batch = (2 * req.block).max(1);
+    let t = Instant::now();
+    for (s, &k) in req.solved_teeth.iter().enumerate() {
+        for &o in &req.offsets {
+            let j = (k as i64 + o as i64).rem_euclid(z) as usize;
+            if let std::collections::btree_map::Entry::Vacant(e) = weights.entry(j) {
+                e.insert(tooth_weights(req, j)?);
+            }
+        }
+        let wk = weights[&k].clone();
+        for start in (0..np).step_by(batch) {
+            let cols: Vec<usize> = (start..(start + batch).min(np)).collect();
+            let mut rhs = vec![0.0; n * cols.len()];
+            for (c, &i) in cols.iter().enumerate() {
+                for &(d, v) in &wk[i] {
+                    if let Some(f) = dofs.free_index(d) {
+                        rhs[c * n + f] += v;
+                    }
+                }
+            }
+            factor.solve_many(&mut rhs, req.block);
+            stats.right_hand_sides += cols.len();
+            for (c, &i) in cols.iter().enumerate() {
+                let u = &rhs[c * n..(c + 1) * n];
+                for (oi, &o) in req.offsets.iter().enumerate() {
+                    let j = (k as i64 + o as i64).rem_euclid(z) as usize;
+                    let row = ((s * no + oi) * np + i) * np;
+                    for (q, w) in weights[&j].iter().enumerate() {
+                        total[row + q] = gather(w, &dofs, u);
+                    }
+                }
+            }
+        }
+    }
+    stats.solve_s = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let mut elements = 0usize;
+    for (s, &k) in req.solved_teeth.iter().enumerate() {
+        let h = tooth_depths(req, k)?;
+        let (loc, ne) = local_field(req, k, &h, &weights[&k])?;
+        elements += ne;
+        local[s * np * np..(s + 1) * np * np].copy_from_slice(&loc);
+        depth.push(h);
+    }
+    stats.local_s = t.elapsed().as_secs_f64();
+    stats.local_elements_mean = elements as f64 / ns.max(1) as f64;
+
+    let mut global = total.clone();
+    if let Some(o0) = req.offsets.iter().position(|&o| o == 0) {
+        for s in 0..ns {
+            for ij in 0..np * np {
+                global[(s * no + o0) * np * np + ij] -= local[s * np * np + ij];
+            }
+        }
+    }
+    Ok(Influence {
+        solved_teeth: req.solved_teeth.clone(),
+        offsets: req.offsets.clone(),
+        depth,
+        total,
+        local,
+        global,
+        stats,
+    })
+}
+
+fn free_nodes(mesh: &TetMesh, dofs: &Dofs) -> Vec<usize> {
+    (0..3 * mesh.nodes.len())
+        .filter(|&d| dofs.free_index(d).is_some())
+        .map(|d| d / 3)
+        .collect()
+}
+
+/// The elements of the half tooth under tooth k's loaded flank: centroid
+/// within depth 0 ≤ t ≤ h of the nearest grid point and within the flank's
+/// extent sideways.
+pub fn half_tooth_elements(req: &InfluenceRequest, k: usize, h: &[f64]) -> Vec<usize> {
+    let a = 2.0 * std::f64::consts::PI * k as f64 / req.teeth as f64;
+    let pts: Vec<[f64; 3]> = req.grid.position.iter().map(|&p| rotate_z(p, a)).collect();
+    let nrm: Vec<[f64; 3]> = req.grid.normal.iter().map(|&p| rotate_z(p, a)).collect();
+    let (sf, sp) = req.grid.spacing();
+    let lateral_max = 0.6 * sf.max(sp);
+    let hmax = h.iter().copied().fold(0.0, f64::max);
+    let center = pts
+        .iter()
+        .fold([0.0; 3], |c, p| [c[0] + p[0], c[1] + p[1], c[2] + p[2]])
+        .map(|c| c / pts.len() as f64);
+    let reach = pts.iter().map(|&p| dist(p, center)).fold(0.0, f64::max) + hmax + lateral_max;
+    let mesh = &req.body.mesh;
+    (0..mesh.tets.len())
+        .into_par_iter()
+        .filter(|&e| {
+            let t = &mesh.tets[e];
+            let c = (0..4).fold([0.0; 3], |c, l| {
+                let x = mesh.nodes[t[l]];
+                [c[0] + 0.25 * x[0], c[1] + 0.25 * x[1], c[2] + 0.25 * x[2]]
+            });
+            if dist(c, center) > reach {
+                return false;
+            }
+            let (g, _) = pts
+                .iter()
+                .enumerate()
+                .map(|(g, &p)| (g, dist(p, c)))
+                .fold((0, f64::INFINITY), |b, x| if x.1 < b.1 { x } else { b });
+            let depth = dot(
+                [pts[g][0] - c[0], pts[g][1] - c[1], pts[g][2] - c[2]],
+                nrm[g],
+            );
+            let lat = [0, 1, 2].map(|i| c[i] - pts[g][i] + depth * nrm[g][i]);
+            depth >= 0.0 && depth <= h[g] && dot(lat, lat).sqrt() <= lateral_max
+        })
+        .collect()
+}
+
+/// The local field of tooth k: the half-tooth model, held fixed where it
+/// joins the rest of the body, under the same loads, measured with the same
+/// weights on tooth k. Returns the np × np block and the element count.
+fn local_field(
+    req: &InfluenceRequest,
+    k: usize,
+    h: &[f64],
+    w: &[Weights],
+) -> Result<(Vec<f64>, usize), InfluenceError> {
+    let mesh = &req.body.mesh;
+    let elements = half_tooth_elements(req, k, h);
+    let mut inside = vec![false; mesh.tets.len()];
+    for &e in &elements {
+        inside[e] = true;
+    }
+    let mut touches_inside = vec![false; mesh.nodes.len()];
+    let mut touches_outside = vec![false; mesh.nodes.len()];
+    for (e, t) in mesh.tets.iter().enumerate() {
+        for &i in t {
+            if inside[e] {
+                touches_inside[i] = true;
+            } else {
+                touches_outside[i] = true;
+            }
+        }
+    }
+    let (sub, old_of) = mesh.submesh(&elements);
+    let mut new_of = vec![usize::MAX; mesh.nodes.len()];
+    for (new, &old) in old_of.iter().enumerate() {
+        new_of[old] = new;
+    }
+    let fixed: Vec<(usize, f64)> = old_of
+        .iter()
+        .enumerate()
+        .filter(|(_, &old)| touches_outside[old])
+        .flat_map(|(new, _)| (0..3).map(move |c| (3 * new + c, 0.0)))
+        .collect();
+    let dofs = Dofs::new(&sub, &fixed)?;
+    let sys = assemble(&sub, &req.material, &dofs)?;
+    let factor = Factor::new(&sys.matrix, &free_nodes(&sub, &dofs), Ordering::Metis)?;
+    let map_w = |w: &Weights| -> Weights {
+        w.iter()
+            .filter(|(d, _)| touches_inside[d / 3])
+            .map(|&(d, v)| (3 * new_of[d / 3] + d % 3, v))
+            .collect()
+    };
+    let wl: Vec<Weights> = w.iter().map(map_w).collect();
+    let np = w.len();
+    let n = dofs.n_free();
+    let mut rhs = vec![0.0; n * np];
+    for (i, wi) in wl.iter().enumerate() {
+        for &(d, v) in wi {
+            if let Some(f) = dofs.free_index(d) {
+                rhs[i * n + f] += v;
+            }
+        }
+    }
+    factor.solve_many(&mut rhs, req.block);
+    let mut out = vec![0.0; np * np];
+    for i in 0..np {
+        let u = &rhs[i * n..(i + 1) * n];
+        for (q, wq) in wl.iter().enumerate() {
+            out[i * np + q] = gather(wq, &dofs, u);
+        }
+    }
+    Ok((out, elements.len()))
+}

@@ -1,0 +1,275 @@
+//! The `preprocess stiffness` stage: FE influence fields of every member ×
+//! blank of a scene at the reduced-order mesh level, written to
+//! `meshes/<scene>/<member>_<blank>_<level>.stiffness.h5` and reused while
+//! their inputs are unchanged.
+
+use crate::body_mesh;
+use crate::design::Member;
+use crate::influence::{compute, FlankGrid, GridSize, InfluenceRequest, InfluenceStats};
+use crate::mesh_stage::refined_teeth;
+use crate::output::write_json;
+use crate::pair::PairGeometry;
+use crate::scene::{Blank, LoadedScene};
+use crate::stiffness_file::{self, StiffnessData, STIFFNESS_SCHEMA};
+use anyhow::Context;
+use serde::Serialize;
+use sha2::{Digest, Sha256};
+use std::path::{Path, PathBuf};
+
+/// Everything besides the mesh that determines a stiffness file.
+#[derive(Debug, Clone, Serialize)]
+pub struct StiffnessConfig {
+    pub schema: u32,
+    pub member: String,
+    pub blank: String,
+    pub level: String,
+    pub loaded_flank: String,
+    pub grid: GridSize,
+    pub load_radius_m: f64,
+    pub offsets: Vec<i32>,
+    pub solved_teeth: Vec<usize>,
+    pub axisymmetric: bool,
+    pub youngs_modulus_pa: f64,
+    pub poisson_ratio: f64,
+    pub clamped_groups: Vec<String>,
+    /// Hash of the mesh inputs (from `<stem>.inputs.json`) and of the mesh file.
+    pub mesh_inputs_hash: String,
+    pub mesh_file_sha256: String,
+}
+
+/// What one member × blank produced.
+#[derive(Debug, Clone, Serialize)]
+pub struct StiffnessReport {
+    pub member: String,
+    pub blank: String,
+    pub level: String,
+    pub path: PathBuf,
+    pub reused: bool,
+    /// Why an existing file was not reused, if one was there.
+    pub replaced_because: Option<String>,
+    pub input_hash: String,
+    pub stats: Option<InfluenceStats>,
+    pub total_s: f64,
+    /// Largest relative asymmetry |C_ij − C_ji| / C_ii of the loaded tooth's total block.
+    pub reciprocity_error: Option<f64>,
+}
+
+fn sha256_file(path: &Path) -> anyhow::Result<String> {
+    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+    Ok(format!("{:x}", Sha256::digest(&bytes)))
+}
+
+/// Computes (or reuses) the stiffness files of the scene at the reduced level.
+pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Vec<StiffnessReport>> {
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let dir = root.join(&sc.name);
+    let level = "reduced";
+    let mut out = Vec::new();
+    for member in [Member::Pinion, Member::Wheel] {
+        let blanks = match member {
+            Member::Pinion => &sc.blanks.pinion,
+            Member::Wheel => &sc.blanks.wheel,
+        };
+        for &blank in blanks {
+            out.push(run_one(scene, &g, &dir, member, blank, level)?);
+        }
+    }
+    Ok(out)
+}
+
+fn run_one(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+    level: &str,
+) -> anyhow::Result<StiffnessReport> {
+    let t0 = std::time::Instant::now();
+    let sc = &scene.scene;
+    let blank_name = format!("{blank:?}").to_lowercase();
+    let stem = format!("{}_{blank_name}_{level}", member.name());
+    let msh = dir.join(format!("{stem}.msh"));
+    let inputs = dir.join(format!("{stem}.inputs.json"));
+    if !msh.exists() {
+        anyhow::bail!(
+            "scene {}: no mesh {} for the {} ({blank_name} blank); run `preprocess mesh {}` first",
+            sc.name,
+            msh.display(),
+            member.name(),
+            scene.path.display()
+        );
+    }
+    let mesh_inputs: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(&inputs)
+            .with_context(|| format!("reading {}", inputs.display()))?,
+    )?;
+    let d = &g.data;
+    let md = d.member(member);
+    let st = &sc.stiffness;
+    let grid = GridSize {
+        profile: if st.grid_profile == 0 {
+            sc.mesh.reduced_order.profile as usize
+        } else {
+            st.grid_profile
+        },
+        face: if st.grid_face == 0 {
+            sc.mesh.reduced_order.face as usize
+        } else {
+            st.grid_face
+        },
+    };
+    let flank = g.flank(member, sc.loaded_flank);
+    let fg = FlankGrid::new(flank, grid)?;
+    let (sf, sp) = fg.spacing();
+    let refined = refined_teeth(g, sc, member, blank);
+    let axisymmetric = blank == Blank::Standard;
+    let solved_teeth = if axisymmetric {
+        vec![refined[refined.len() / 2]]
+    } else {
+        refined.clone()
+    };
+    let r = st.response_teeth as i32;
+    let config = StiffnessConfig {
+        schema: STIFFNESS_SCHEMA,
+        member: member.name().into(),
+        blank: blank_name.clone(),
+        level: level.into(),
+        loaded_flank: sc.loaded_flank.flank_name(member).into(),
+        grid,
+        load_radius_m: st.load_radius_factor * sf.max(sp),
+        offsets: (-r..=r).collect(),
+        solved_teeth,
+        axisymmetric,
+        youngs_modulus_pa: md.youngs_modulus,
+        poisson_ratio: md.poisson_ratio,
+        clamped_groups: vec!["bore".into()],
+        mesh_inputs_hash: mesh_inputs["hash"].as_str().unwrap_or_default().to_string(),
+        mesh_file_sha256: sha256_file(&msh)?,
+    };
+    let config_json = serde_json::to_string(&config)?;
+    let hash = format!("{:x}", Sha256::digest(config_json.as_bytes()));
+    let path = dir.join(format!("{stem}.stiffness.h5"));
+    let mut replaced_because = None;
+    if path.exists() {
+        match stiffness_file::read_header(&path) {
+            Ok((s, h)) if s == STIFFNESS_SCHEMA && h == hash => {
+                // Make sure the data is readable too (not truncated).
+                match stiffness_file::read(&path, Some(&hash)) {
+                    Ok(_) => {
+                        eprintln!("{stem}: inputs unchanged, reusing {}", path.display());
+                        return Ok(StiffnessReport {
+                            member: member.name().into(),
+                            blank: blank_name,
+                            level: level.into(),
+                            path,
+                            reused: true,
+                            replaced_because: None,
+                            input_hash: hash,
+                            stats: None,
+                            total_s: t0.elapsed().as_secs_f64(),
+                            reciprocity_error: None,
+                        });
+                    }
+                    Err(e) => replaced_because = Some(format!("unreadable: {e}")),
+                }
+            }
+            Ok((s, _)) if s != STIFFNESS_SCHEMA => {
+                replaced_because = Some(format!("schema {s}, current {STIFFNESS_SCHEMA}"))
+            }
+            Ok(_) => replaced_because = Some("made from other inputs (hash differs)".into()),
+            Err(e) => replaced_because = Some(format!("unreadable: {e}")),
+        }
+        eprintln!(
+            "{stem}: existing {} not used ({}), recomputing",
+            path.display(),
+            replaced_because.as_deref().unwrap_or("")
+        );
+    }
+    eprintln!("{stem}: reading {}", msh.display());
+    let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
+    let opposite = match sc.loaded_flank.flank_name(member) {
+        "concave" => "convex",
+        _ => "concave",
+    };
+    let req = InfluenceRequest {
+        body: &body,
+        material: fem::Material {
+            youngs_modulus_pa: md.youngs_modulus,
+            poisson_ratio: md.poisson_ratio,
+        },
+        teeth: md.teeth as usize,
+        loaded: &config.loaded_flank,
+        opposite,
+        grid: &fg,
+        solved_teeth: config.solved_teeth.clone(),
+        offsets: config.offsets.clone(),
+        load_radius: config.load_radius_m,
+        block: st.solve_block,
+    };
+    eprintln!(
+        "{stem}: {} nodes, {} tet10; unit loads on {} tooth(s) x {} grid points",
+        body.mesh.nodes.len(),
+        body.mesh.tets.len(),
+        req.solved_teeth.len(),
+        fg.len()
+    );
+    let inf = compute(&req, &["bore"]).with_context(|| {
+        format!(
+            "scene {}: influence fields of the {} ({blank_name} blank)",
+            sc.name,
+            member.name()
+        )
+    })?;
+    let np = fg.len();
+    let no = inf.offsets.len();
+    let o0 = inf.offsets.iter().position(|&o| o == 0).unwrap_or(0);
+    let mut recip: f64 = 0.0;
+    for s in 0..inf.solved_teeth.len() {
+        let b = &inf.total[(s * no + o0) * np * np..(s * no + o0 + 1) * np * np];
+        for i in 0..np {
+            for j in 0..np {
+                recip = recip.max((b[i * np + j] - b[j * np + i]).abs() / b[i * np + i]);
+            }
+        }
+    }
+    let data = StiffnessData {
+        input_hash: hash.clone(),
+        config: config_json,
+        member: member.name().into(),
+        blank: blank_name.clone(),
+        level: level.into(),
+        teeth: md.teeth as usize,
+        axisymmetric,
+        grid_profile: grid.profile,
+        grid_face: grid.face,
+        xi: fg.xi.clone(),
+        eta: fg.eta.clone(),
+        position: fg.position.iter().flatten().copied().collect(),
+        normal: fg.normal.iter().flatten().copied().collect(),
+        lever: fg.lever.clone(),
+        solved_teeth: inf.solved_teeth.iter().map(|&k| k as u32).collect(),
+        offsets: inf.offsets.clone(),
+        depth_h: inf.depth.iter().flatten().copied().collect(),
+        total: inf.total,
+        local: inf.local,
+        global: inf.global,
+    };
+    std::fs::create_dir_all(dir)?;
+    stiffness_file::write(&path, &data)?;
+    let report = StiffnessReport {
+        member: member.name().into(),
+        blank: blank_name,
+        level: level.into(),
+        path: path.clone(),
+        reused: false,
+        replaced_because,
+        input_hash: hash,
+        stats: Some(inf.stats),
+        total_s: t0.elapsed().as_secs_f64(),
+        reciprocity_error: Some(recip),
+    };
+    write_json(&dir.join(format!("{stem}.stiffness.json")), &report)?;
+    Ok(report)
+}
