@@ -184,6 +184,9 @@ fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
         .and_then(|ds| ds.write_raw(&d.offsets[..]))
         .map_err(&e)?;
     f.flush().map_err(&e)?;
+    // Close now (not when the last handle drops) so the file can be renamed
+    // and reopened at once.
+    f.close().map_err(&e)?;
     Ok(())
 }
 
