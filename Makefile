@@ -22,10 +22,12 @@ test: setup
 bench: setup build
 	$(CARGO) bench -p preprocess --bench flanks
 	$(CARGO) bench -p preprocess --bench mesh
+	$(CARGO) bench -p preprocess --bench stiffness
 
 preprocess: build
 	$(BIN)/preprocess flanks $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/flanks
 	$(BIN)/preprocess mesh $(SCENE) --level reduced --out meshes
+	$(BIN)/preprocess stiffness $(SCENE) --meshes meshes
 
 solve: build
 	$(BIN)/solver plan $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/plan.json

@@ -56,7 +56,10 @@ fn stiffness_file_round_trips_and_h5py_reads_it() {
     let p = tmp("roundtrip.h5");
     let d = synthetic();
     stiffness_file::write(&p, &d).unwrap();
-    assert!(!p.with_extension("tmp.h5").exists(), "temporary file left behind");
+    assert!(
+        !p.with_extension("tmp.h5").exists(),
+        "temporary file left behind"
+    );
     let back = stiffness_file::read(&p, Some("abc123")).unwrap();
     assert_eq!(back, d);
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -65,11 +68,18 @@ fn stiffness_file_round_trips_and_h5py_reads_it() {
         .arg(&p)
         .output()
         .expect("run the project's python");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["attrs"]["schema_version"], 1);
     assert_eq!(v["attrs"]["input_hash"], "abc123");
-    assert_eq!(v["shapes"]["compliance/total"], serde_json::json!([1, 3, 6, 6]));
+    assert_eq!(
+        v["shapes"]["compliance/total"],
+        serde_json::json!([1, 3, 6, 6])
+    );
     assert_eq!(v["units"]["compliance/global"], "m/N");
     let sum: f64 = d.total.iter().sum();
     assert!((v["total_sum"].as_f64().unwrap() - sum).abs() < 1e-12 * sum);
@@ -80,17 +90,32 @@ fn stiffness_file_from_other_inputs_or_schema_is_rejected() {
     let p = tmp("other.h5");
     stiffness_file::write(&p, &synthetic()).unwrap();
     match stiffness_file::read(&p, Some("different")) {
-        Err(StiffnessFileError::Hash { found, expected, .. }) => {
+        Err(StiffnessFileError::Hash {
+            found, expected, ..
+        }) => {
             assert_eq!((found.as_str(), expected.as_str()), ("abc123", "different"))
         }
         other => panic!("expected a hash mismatch, got {other:?}"),
     }
     {
         let f = hdf5::File::open_rw(&p).unwrap();
-        f.attr("schema_version").unwrap().write_scalar(&99u32).unwrap();
+        f.attr("schema_version")
+            .unwrap()
+            .write_scalar(&99u32)
+            .unwrap();
     }
     let e = stiffness_file::read(&p, None).unwrap_err();
-    assert!(matches!(e, StiffnessFileError::Schema { found: 99, expected: 1, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            StiffnessFileError::Schema {
+                found: 99,
+                expected: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
 }
 
 #[test]
@@ -105,8 +130,14 @@ fn truncated_stiffness_file_gives_an_error_naming_the_file() {
 
 // ---- FE influence fields on a real (coarse) pinion mesh ----
 
-const LEVEL: FlankElements = FlankElements { profile: 6, face: 10 };
-const GRID: GridSize = GridSize { profile: 6, face: 10 };
+const LEVEL: FlankElements = FlankElements {
+    profile: 6,
+    face: 10,
+};
+const GRID: GridSize = GridSize {
+    profile: 6,
+    face: 10,
+};
 
 fn geometry() -> &'static PairGeometry {
     static G: OnceLock<PairGeometry> = OnceLock::new();
@@ -141,7 +172,11 @@ fn fields() -> &'static (BodyMesh, Vec<usize>, Influence) {
         // are refined too.
         let z = g.data.member(Member::Pinion).teeth as usize;
         let a = (0..z)
-            .find(|&a| [z - 1, 0, 1, 2].iter().all(|&o| pt.contains(&((a + o) % z))))
+            .find(|&a| {
+                [z - 1, 0, 1, 2]
+                    .iter()
+                    .all(|&o| pt.contains(&((a + o) % z)))
+            })
             .expect("four neighbouring refined teeth");
         let solved = vec![a, (a + 1) % z];
         let md = g.data.member(Member::Pinion);
@@ -196,7 +231,10 @@ fn influence_fields_are_reciprocal_within_and_across_teeth() {
     for i in 0..np {
         for j in 0..np {
             let d = (up[i * np + j] - down[j * np + i]).abs();
-            assert!(d <= 1e-6 * scale, "cross-tooth C({i},{j}) differs by {d:e} (scale {scale:e})");
+            assert!(
+                d <= 1e-6 * scale,
+                "cross-tooth C({i},{j}) differs by {d:e} (scale {scale:e})"
+            );
         }
     }
 }
@@ -209,7 +247,10 @@ fn loaded_tooth_compliance_is_positive_definite() {
         let b = block(inf, field, 0, 1);
         let m = nalgebra::DMatrix::from_row_slice(np, np, &b);
         let sym = (&m + m.transpose()) * 0.5;
-        assert!(nalgebra::Cholesky::new(sym).is_some(), "not positive definite");
+        assert!(
+            nalgebra::Cholesky::new(sym).is_some(),
+            "not positive definite"
+        );
     }
 }
 
@@ -258,7 +299,11 @@ fn standard_blank_neighbouring_teeth_have_the_same_compliance() {
             .fold(0.0f64, f64::max)
     };
     let (t, g) = (worst(&inf.total), worst(&inf.global));
-    println!("largest relative difference of the diagonal between teeth: total {:.3}%, global {:.3}%", 100.0 * t, 100.0 * g);
+    println!(
+        "largest relative difference of the diagonal between teeth: total {:.3}%, global {:.3}%",
+        100.0 * t,
+        100.0 * g
+    );
     assert!(t < 0.02, "total {:.3}%", 100.0 * t);
     assert!(g < 0.05, "global {:.3}%", 100.0 * g);
 }

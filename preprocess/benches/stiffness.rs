@@ -1,0 +1,110 @@
+//! `make bench` (stiffness): assembly, factorization, per-right-hand-side
+//! solve and total influence time of each member × blank of the default scene
+//! at the reduced level, the peak memory of the process, and the time of a
+//! second run that reuses the files. Meshes come from `meshes/default/` (made
+//! by `make preprocess`; built here into a temporary directory if missing).
+//! Targets (issue 4): all three members ≤ 10 min with peak memory ≤ 12 GB;
+//! a second run with nothing changed ≤ 10 s. Results in `bench/stiffness.json`.
+
+use preprocess::scene::Scene;
+use serde_json::json;
+use std::path::Path;
+use std::time::Instant;
+
+/// Peak resident memory of this process (VmHWM), GB.
+fn peak_memory_gb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|v| v.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0 / 1024.0)
+}
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join(&scene.scene.name);
+    std::fs::create_dir_all(&dir).unwrap();
+    let src = root.join("meshes").join(&scene.scene.name);
+    let mut copied = 0;
+    for stem in [
+        "pinion_standard_reduced",
+        "wheel_standard_reduced",
+        "wheel_lightweight_reduced",
+    ] {
+        for ext in ["msh", "inputs.json"] {
+            let f = src.join(format!("{stem}.{ext}"));
+            if f.exists() {
+                std::fs::copy(&f, dir.join(format!("{stem}.{ext}"))).unwrap();
+                copied += 1;
+            }
+        }
+    }
+    if copied < 6 {
+        eprintln!("meshes/default incomplete: meshing into a temporary directory first");
+        preprocess::mesh_stage::run(&scene, tmp.path(), preprocess::mesh_stage::Level::Reduced)
+            .expect("meshes");
+    }
+    let t = Instant::now();
+    let reports = preprocess::stiffness_stage::run(&scene, tmp.path()).expect("stiffness");
+    let cold = t.elapsed().as_secs_f64();
+    let peak = peak_memory_gb();
+    let t = Instant::now();
+    let again = preprocess::stiffness_stage::run(&scene, tmp.path()).expect("stiffness reuse");
+    let warm = t.elapsed().as_secs_f64();
+    assert!(again.iter().all(|r| r.reused));
+    println!(
+        "\nstiffness benchmark (default scene, reduced level, {} cores)\n",
+        std::thread::available_parallelism().map_or(0, |n| n.get())
+    );
+    println!(
+        "{:<8} {:<12} {:>8} {:>9} {:>9} {:>10} {:>6} {:>12} {:>9} {:>9}",
+        "member",
+        "blank",
+        "dofs",
+        "asm [s]",
+        "fact [s]",
+        "L [M val]",
+        "loads",
+        "ms per load",
+        "local [s]",
+        "total [s]"
+    );
+    let mut rows = Vec::new();
+    for r in &reports {
+        let s = r.stats.as_ref().expect("computed");
+        let per = 1e3 * s.solve_s / s.right_hand_sides.max(1) as f64;
+        println!(
+            "{:<8} {:<12} {:>8} {:>9.1} {:>9.1} {:>10.0} {:>6} {:>12.1} {:>9.1} {:>9.1}",
+            r.member,
+            r.blank,
+            s.dofs,
+            s.assemble_s,
+            s.factor_s,
+            s.factor_nnz as f64 / 1e6,
+            s.right_hand_sides,
+            per,
+            s.local_s,
+            r.total_s
+        );
+        rows.push(json!({"member": r.member, "blank": r.blank, "dofs": s.dofs, "assemble_s": s.assemble_s, "factor_s": s.factor_s,
+            "factor_values": s.factor_nnz, "right_hand_sides": s.right_hand_sides, "ms_per_right_hand_side": per,
+            "local_s": s.local_s, "total_s": r.total_s, "reciprocity_error": r.reciprocity_error}));
+    }
+    println!("\nall members {cold:.1} s (target 600 s), peak memory {peak:.2} GB (target 12 GB); second run reusing the files {warm:.2} s (target 10 s)");
+    let out = root.join("bench");
+    std::fs::create_dir_all(&out).unwrap();
+    preprocess::output::write_json(
+        &out.join("stiffness.json"),
+        &json!({"results": rows, "all_members_s": cold, "peak_memory_gb": peak, "reuse_s": warm,
+                "targets": {"all_members_s": 600.0, "peak_memory_gb": 12.0, "reuse_s": 10.0}}),
+    )
+    .unwrap();
+    println!("written to bench/stiffness.json");
+}
