@@ -65,6 +65,14 @@ impl Dofs {
         self.free[d]
     }
 
+    /// Node of each free dof (nondecreasing), as [`crate::Factor::new`] takes it.
+    pub fn node_of_free(&self) -> Vec<usize> {
+        (0..self.free.len())
+            .filter(|&d| self.free[d].is_some())
+            .map(|d| d / 3)
+            .collect()
+    }
+
     /// Full displacement vector (3 per node) from the free solution.
     pub fn expand(&self, u_free: &[f64]) -> Vec<f64> {
         self.free

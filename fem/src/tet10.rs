@@ -123,12 +123,28 @@ pub fn gradients(x: &[[f64; 3]; 10], xi: [f64; 3]) -> ([[f64; 3]; 10], f64) {
     (g, det)
 }
 
-/// Element volume ∫ det J dξ (4-point rule; exact for straight-sided elements).
+/// The 5-point rule on the reference tetrahedron (degree 3): centroid with
+/// weight −2/15, and (1/2, 1/6, 1/6) with its permutations and (1/6, 1/6, 1/6),
+/// weights 3/40.
+pub fn degree3() -> [([f64; 3], f64); 5] {
+    let (a, b) = (0.5, 1.0 / 6.0);
+    [
+        ([0.25, 0.25, 0.25], -2.0 / 15.0),
+        ([a, b, b], 3.0 / 40.0),
+        ([b, a, b], 3.0 / 40.0),
+        ([b, b, a], 3.0 / 40.0),
+        ([b, b, b], 3.0 / 40.0),
+    ]
+}
+
+/// Element volume |∫ det J dξ|. det J of a tet10 is cubic in ξ, so the
+/// degree-3 rule makes this exact for curved elements too.
 pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
-    gauss4()
+    degree3()
         .iter()
         .map(|(xi, w)| w * jacobian(x, &shape_derivatives(*xi)).1)
-        .sum()
+        .sum::<f64>()
+        .abs()
 }
 
 /// Isotropic element stiffness, 30×30 row-major with dof 3·node + component.

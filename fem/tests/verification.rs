@@ -13,11 +13,7 @@ const STEEL: Material = Material::STEEL;
 fn solve(block: &Block, fixed: &[(usize, f64)], f: &[f64], ordering: Ordering) -> Vec<f64> {
     let dofs = Dofs::new(&block.mesh, fixed).unwrap();
     let sys = assemble(&block.mesh, &STEEL, &dofs).unwrap();
-    let node_of: Vec<usize> = (0..3 * block.mesh.nodes.len())
-        .filter(|&d| dofs.free_index(d).is_some())
-        .map(|d| d / 3)
-        .collect();
-    let factor = Factor::new(&sys.matrix, &node_of, ordering).unwrap();
+    let factor = Factor::new(&sys.matrix, &dofs.node_of_free(), ordering).unwrap();
     let mut rhs = dofs.restrict(f);
     for (r, l) in rhs.iter_mut().zip(&sys.lift) {
         *r += l;
@@ -258,8 +254,7 @@ fn unrestrained_body_is_reported_not_positive_definite() {
     let block = mapped_block([2, 2, 2], |q| [0.01 * q[0], 0.01 * q[1], 0.01 * q[2]]);
     let dofs = Dofs::new(&block.mesh, &[]).unwrap();
     let sys = assemble(&block.mesh, &STEEL, &dofs).unwrap();
-    let node_of: Vec<usize> = (0..dofs.n_free()).map(|d| d / 3).collect();
-    let r = Factor::new(&sys.matrix, &node_of, Ordering::Metis);
+    let r = Factor::new(&sys.matrix, &dofs.node_of_free(), Ordering::Metis);
     assert!(
         matches!(r, Err(fem::FemError::NotPositiveDefinite(_))),
         "{:?}",

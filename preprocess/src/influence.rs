@@ -368,9 +368,8 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
     let sys = assemble(mesh, &req.material, &dofs)?;
     stats.assemble_s = t.elapsed().as_secs_f64();
     stats.dofs = dofs.n_free();
-    let node_of = free_nodes(mesh, &dofs);
     let t = Instant::now();
-    let factor = Factor::new(&sys.matrix, &node_of, Ordering::Metis)?;
+    let factor = Factor::new(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?;
     drop(sys);
     stats.factor_s = t.elapsed().as_secs_f64();
     stats.factor_nnz = factor.factor_nnz();
@@ -393,7 +392,7 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
                 e.insert(tooth_weights(req, j)?);
             }
         }
-        let wk = weights[&k].clone();
+        let wk = &weights[&k];
         for start in (0..np).step_by(batch) {
             let cols: Vec<usize> = (start..(start + batch).min(np)).collect();
             let mut rhs = vec![0.0; n * cols.len()];
@@ -449,13 +448,6 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
         global,
         stats,
     })
-}
-
-fn free_nodes(mesh: &TetMesh, dofs: &Dofs) -> Vec<usize> {
-    (0..3 * mesh.nodes.len())
-        .filter(|&d| dofs.free_index(d).is_some())
-        .map(|d| d / 3)
-        .collect()
 }
 
 /// The elements of the half tooth under tooth k's loaded flank: centroid
@@ -539,7 +531,7 @@ fn local_field(
         .collect();
     let dofs = Dofs::new(&sub, &fixed)?;
     let sys = assemble(&sub, &req.material, &dofs)?;
-    let factor = Factor::new(&sys.matrix, &free_nodes(&sub, &dofs), Ordering::Metis)?;
+    let factor = Factor::new(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?;
     let map_w = |w: &Weights| -> Weights {
         w.iter()
             .filter(|(d, _)| touches_inside[d / 3])

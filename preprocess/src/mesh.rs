@@ -287,55 +287,26 @@ fn classify(
     Ok(Face::Other)
 }
 
-/// Volume of a quadratic tetrahedron (gmsh node order: vertices 0–3, then
-/// edges 01, 12, 20, 30, 32, 31) by the degree-3 rule
-/// ∫ det J ≈ Σ w det J(ξ): centroid with w = −2/15, and (1/2, 1/6, 1/6)
-/// permutations with w = 3/40.
-pub fn tet10_volume(x: &[[f64; 3]; 10]) -> f64 {
-    let pts: [([f64; 3], f64); 5] = [
-        ([0.25, 0.25, 0.25], -2.0 / 15.0),
-        ([0.5, 1.0 / 6.0, 1.0 / 6.0], 3.0 / 40.0),
-        ([1.0 / 6.0, 0.5, 1.0 / 6.0], 3.0 / 40.0),
-        ([1.0 / 6.0, 1.0 / 6.0, 0.5], 3.0 / 40.0),
-        ([1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0], 3.0 / 40.0),
-    ];
-    let mut v = 0.0;
-    for (q, w) in pts {
-        let (u, s, t) = (q[0], q[1], q[2]);
-        let l = [1.0 - u - s - t, u, s, t];
-        // dN/d(u, s, t) of the 10 quadratic shape functions.
-        let dl = [
-            [-1.0, -1.0, -1.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ];
-        let mut dn = [[0.0; 3]; 10];
-        for i in 0..4 {
-            for k in 0..3 {
-                dn[i][k] = (4.0 * l[i] - 1.0) * dl[i][k];
-            }
-        }
-        let edges = [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)];
-        for (e, &(a, b)) in edges.iter().enumerate() {
-            for k in 0..3 {
-                dn[4 + e][k] = 4.0 * (l[a] * dl[b][k] + l[b] * dl[a][k]);
-            }
-        }
-        let mut j = [[0.0; 3]; 3];
-        for (n, xn) in x.iter().enumerate() {
-            for r in 0..3 {
-                for c in 0..3 {
-                    j[r][c] += xn[r] * dn[n][c];
-                }
-            }
-        }
-        let det = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
-            - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
-            + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
-        v += w * det;
-    }
-    v.abs()
+/// A Threshold size field on the distance to `surfaces`: `size` within half
+/// of it, growing to `coarse` at `dist_max`. Returns the field tag.
+fn size_near(
+    s: &Session,
+    surfaces: &[i32],
+    size: f64,
+    coarse: f64,
+    dist_max: f64,
+) -> gmsh::Result<i32> {
+    let dist = s.mesh_field_add("Distance")?;
+    let list: Vec<f64> = surfaces.iter().map(|&t| t as f64).collect();
+    s.mesh_field_set_numbers(dist, "SurfacesList", &list)?;
+    s.mesh_field_set_number(dist, "Sampling", 30.0)?;
+    let th = s.mesh_field_add("Threshold")?;
+    s.mesh_field_set_number(th, "InField", dist as f64)?;
+    s.mesh_field_set_number(th, "SizeMin", size)?;
+    s.mesh_field_set_number(th, "SizeMax", coarse)?;
+    s.mesh_field_set_number(th, "DistMin", 0.5 * size)?;
+    s.mesh_field_set_number(th, "DistMax", dist_max)?;
+    Ok(th)
 }
 
 /// Sum of the tet10 volumes of the current mesh.
@@ -358,7 +329,7 @@ pub fn mesh_volume(s: &Session) -> gmsh::Result<(f64, usize, usize)> {
                 let i = idx[el[k]];
                 [coord[3 * i], coord[3 * i + 1], coord[3 * i + 2]]
             });
-            vol += tet10_volume(&x);
+            vol += fem::tet10::volume(&x);
             count += 1;
         }
     }
@@ -645,40 +616,14 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
     s.option_set_number("Mesh.MeshSizeMin", 0.2 * fine)
         .map_err(g)?;
     if !refined_tags.is_empty() {
-        let dist = s.mesh_field_add("Distance").map_err(g)?;
-        let list: Vec<f64> = refined_tags.iter().map(|r| r.1 as f64).collect();
-        s.mesh_field_set_numbers(dist, "SurfacesList", &list)
-            .map_err(g)?;
-        s.mesh_field_set_number(dist, "Sampling", 30.0).map_err(g)?;
-        let th = s.mesh_field_add("Threshold").map_err(g)?;
-        s.mesh_field_set_number(th, "InField", dist as f64)
-            .map_err(g)?;
-        s.mesh_field_set_number(th, "SizeMin", fine).map_err(g)?;
-        s.mesh_field_set_number(th, "SizeMax", coarse).map_err(g)?;
-        s.mesh_field_set_number(th, "DistMin", 0.5 * fine)
-            .map_err(g)?;
-        s.mesh_field_set_number(th, "DistMax", 4.0 * d.normal_module)
-            .map_err(g)?;
+        let flanks: Vec<i32> = refined_tags.iter().map(|r| r.1).collect();
+        let th = size_near(&s, &flanks, fine, coarse, 4.0 * d.normal_module).map_err(g)?;
         // Fillets and top lands of the refined flanks: elements small enough
         // to follow the fillet radius, so their curved mid-edge nodes (shared
         // with the flank) need no straightening.
         let edge_size = (0.8 * d.edge_radius).min(fine);
-        let dist2 = s.mesh_field_add("Distance").map_err(g)?;
-        let list2: Vec<f64> = edge_faces.iter().map(|&t| t as f64).collect();
-        s.mesh_field_set_numbers(dist2, "SurfacesList", &list2)
-            .map_err(g)?;
-        s.mesh_field_set_number(dist2, "Sampling", 30.0)
-            .map_err(g)?;
-        let th2 = s.mesh_field_add("Threshold").map_err(g)?;
-        s.mesh_field_set_number(th2, "InField", dist2 as f64)
-            .map_err(g)?;
-        s.mesh_field_set_number(th2, "SizeMin", edge_size)
-            .map_err(g)?;
-        s.mesh_field_set_number(th2, "SizeMax", coarse).map_err(g)?;
-        s.mesh_field_set_number(th2, "DistMin", 0.5 * edge_size)
-            .map_err(g)?;
-        s.mesh_field_set_number(th2, "DistMax", 2.0 * d.normal_module)
-            .map_err(g)?;
+        let th2 =
+            size_near(&s, &edge_faces, edge_size, coarse, 2.0 * d.normal_module).map_err(g)?;
         let min = s.mesh_field_add("Min").map_err(g)?;
         s.mesh_field_set_numbers(min, "FieldsList", &[th as f64, th2 as f64])
             .map_err(g)?;

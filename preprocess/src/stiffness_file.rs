@@ -191,7 +191,7 @@ fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
 }
 
 /// Reads the schema version and input hash only.
-pub fn read_header(path: &Path) -> Result<(u32, String), StiffnessFileError> {
+fn read_header(path: &Path) -> Result<(u32, String), StiffnessFileError> {
     let e = h5err(path);
     let f = hdf5::File::open(path).map_err(&e)?;
     let schema: u32 = f

@@ -10,7 +10,7 @@ use crate::mesh_stage::refined_teeth;
 use crate::output::write_json;
 use crate::pair::PairGeometry;
 use crate::scene::{Blank, LoadedScene};
-use crate::stiffness_file::{self, StiffnessData, STIFFNESS_SCHEMA};
+use crate::stiffness_file::{self, StiffnessData, StiffnessFileError, STIFFNESS_SCHEMA};
 use anyhow::Context;
 use serde::Serialize;
 use sha2::{Digest, Sha256};
@@ -153,32 +153,29 @@ fn run_one(
     let path = dir.join(format!("{stem}.stiffness.h5"));
     let mut replaced_because = None;
     if path.exists() {
-        match stiffness_file::read_header(&path) {
-            Ok((s, h)) if s == STIFFNESS_SCHEMA && h == hash => {
-                // Make sure the data is readable too (not truncated).
-                match stiffness_file::read(&path, Some(&hash)) {
-                    Ok(_) => {
-                        eprintln!("{stem}: inputs unchanged, reusing {}", path.display());
-                        return Ok(StiffnessReport {
-                            member: member.name().into(),
-                            blank: blank_name,
-                            level: level.into(),
-                            path,
-                            reused: true,
-                            replaced_because: None,
-                            input_hash: hash,
-                            stats: None,
-                            total_s: t0.elapsed().as_secs_f64(),
-                            reciprocity_error: None,
-                        });
-                    }
-                    Err(e) => replaced_because = Some(format!("unreadable: {e}")),
-                }
+        // A full read also catches truncated data, not only a stale header.
+        match stiffness_file::read(&path, Some(&hash)) {
+            Ok(_) => {
+                eprintln!("{stem}: inputs unchanged, reusing {}", path.display());
+                return Ok(StiffnessReport {
+                    member: member.name().into(),
+                    blank: blank_name,
+                    level: level.into(),
+                    path,
+                    reused: true,
+                    replaced_because: None,
+                    input_hash: hash,
+                    stats: None,
+                    total_s: t0.elapsed().as_secs_f64(),
+                    reciprocity_error: None,
+                });
             }
-            Ok((s, _)) if s != STIFFNESS_SCHEMA => {
-                replaced_because = Some(format!("schema {s}, current {STIFFNESS_SCHEMA}"))
+            Err(StiffnessFileError::Schema { found, .. }) => {
+                replaced_because = Some(format!("schema {found}, current {STIFFNESS_SCHEMA}"))
             }
-            Ok(_) => replaced_because = Some("made from other inputs (hash differs)".into()),
+            Err(StiffnessFileError::Hash { .. }) => {
+                replaced_because = Some("made from other inputs (hash differs)".into())
+            }
             Err(e) => replaced_because = Some(format!("unreadable: {e}")),
         }
         eprintln!(

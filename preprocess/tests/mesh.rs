@@ -4,10 +4,11 @@
 
 mod common;
 
+use fem::tet10::volume as tet10_volume;
 use preprocess::design::Member;
 use preprocess::gear_body::{BlankDimensions, BlankDimensionsMm};
 use preprocess::generation::Side;
-use preprocess::mesh::{mesh_member, tet10_volume, MeshReport, MeshRequest};
+use preprocess::mesh::{mesh_member, MeshReport, MeshRequest};
 use preprocess::pair::{teeth_in_contact, PairGeometry};
 use preprocess::scene::{Blank, FlankElements};
 use std::path::PathBuf;
