@@ -96,6 +96,22 @@ fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> StiffnessFileError + '_ {
     }
 }
 
+/// Opens HDF5 files without HDF5's `flock` file locking. The lock belongs to
+/// the open file description, so a subprocess forked by another thread while
+/// a file is open (gmsh, meshio, python) inherits it and keeps the file locked
+/// after we have closed it. Writes are atomic by rename, so the lock protects
+/// nothing here.
+fn h5() -> hdf5::FileBuilder {
+    let mut b = hdf5::File::with_options();
+    b.fapl().file_locking(false);
+    b
+}
+
+/// Opens an existing stiffness file for reading and writing (no file locking).
+pub fn open_rw(path: &Path) -> hdf5::Result<hdf5::File> {
+    h5().open_rw(path)
+}
+
 fn vlu(s: &str) -> hdf5::types::VarLenUnicode {
     s.parse().expect("no NUL in attribute text")
 }
@@ -117,7 +133,7 @@ pub fn write(path: &Path, data: &StiffnessData) -> Result<(), StiffnessFileError
 
 fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
     let e = h5err(path);
-    let f = hdf5::File::create(path).map_err(&e)?;
+    let f = h5().create(path).map_err(&e)?;
     let sattr = |loc: &hdf5::Location, name: &str, v: &str| -> hdf5::Result<()> {
         loc.new_attr::<hdf5::types::VarLenUnicode>()
             .create(name)?
@@ -193,7 +209,7 @@ fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
 /// Reads the schema version and input hash only.
 fn read_header(path: &Path) -> Result<(u32, String), StiffnessFileError> {
     let e = h5err(path);
-    let f = hdf5::File::open(path).map_err(&e)?;
+    let f = h5().open(path).map_err(&e)?;
     let schema: u32 = f
         .attr("schema_version")
         .and_then(|a| a.read_scalar())
@@ -225,7 +241,7 @@ pub fn read(path: &Path, expected_hash: Option<&str>) -> Result<StiffnessData, S
         }
     }
     let e = h5err(path);
-    let f = hdf5::File::open(path).map_err(&e)?;
+    let f = h5().open(path).map_err(&e)?;
     let s = |k: &str| -> Result<String, StiffnessFileError> {
         let v: hdf5::types::VarLenUnicode = f.attr(k).and_then(|a| a.read_scalar()).map_err(&e)?;
         Ok(v.as_str().to_string())

@@ -98,7 +98,7 @@ fn stiffness_file_from_other_inputs_or_schema_is_rejected() {
         other => panic!("expected a hash mismatch, got {other:?}"),
     }
     {
-        let f = hdf5::File::open_rw(&p).unwrap();
+        let f = stiffness_file::open_rw(&p).unwrap();
         f.attr("schema_version")
             .unwrap()
             .write_scalar(&99u32)
