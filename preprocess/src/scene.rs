@@ -40,6 +40,23 @@ pub struct Scene {
     /// FE influence fields (stiffness files); defaults when absent.
     #[serde(default)]
     pub stiffness: StiffnessSettings,
+    /// Loaded TCA with the reduced model; defaults when absent.
+    #[serde(default)]
+    pub ltca: LtcaSettings,
+}
+
+/// Settings of the loaded TCA (the contact element).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct LtcaSettings {
+    /// Slices across the face width per tooth pair.
+    pub slices: usize,
+}
+
+impl Default for LtcaSettings {
+    fn default() -> Self {
+        LtcaSettings { slices: 30 }
+    }
 }
 
 /// Settings of the FE influence fields written to the stiffness files.
@@ -262,6 +279,13 @@ impl Scene {
                 "stiffness.solve_block",
                 st.solve_block.to_string(),
                 "must lie in [1, 256]",
+            ));
+        }
+        if !(4..=400).contains(&self.ltca.slices) {
+            return Err(fail(
+                "ltca.slices",
+                self.ltca.slices.to_string(),
+                "must lie in [4, 400]",
             ));
         }
         if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {

@@ -101,7 +101,7 @@ fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> StiffnessFileError + '_ {
 /// a file is open (gmsh, meshio, python) inherits it and keeps the file locked
 /// after we have closed it. Writes are atomic by rename, so the lock protects
 /// nothing here.
-fn h5() -> hdf5::FileBuilder {
+pub fn h5() -> hdf5::FileBuilder {
     let mut b = hdf5::File::with_options();
     b.fapl().file_locking(false);
     b

@@ -78,15 +78,28 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Vec<StiffnessRepo
     Ok(out)
 }
 
-fn run_one(
+/// Where a member × blank's stiffness file lives and what it must hold: the
+/// producing configuration, its JSON and hash, the flank grid.
+pub struct Planned {
+    pub stem: String,
+    pub msh: PathBuf,
+    pub path: PathBuf,
+    pub config: StiffnessConfig,
+    pub config_json: String,
+    pub hash: String,
+    pub grid: FlankGrid,
+}
+
+/// The stiffness file of `member` × `blank` that `scene` needs (the mesh must
+/// exist, since its SHA-256 is part of the hash).
+pub fn planned(
     scene: &LoadedScene,
     g: &PairGeometry,
     dir: &Path,
     member: Member,
     blank: Blank,
     level: &str,
-) -> anyhow::Result<StiffnessReport> {
-    let t0 = std::time::Instant::now();
+) -> anyhow::Result<Planned> {
     let sc = &scene.scene;
     let blank_name = format!("{blank:?}").to_lowercase();
     let stem = format!("{}_{blank_name}_{level}", member.name());
@@ -105,8 +118,7 @@ fn run_one(
         &std::fs::read_to_string(&inputs)
             .with_context(|| format!("reading {}", inputs.display()))?,
     )?;
-    let d = &g.data;
-    let md = d.member(member);
+    let md = g.data.member(member);
     let st = &sc.stiffness;
     let grid = GridSize {
         profile: if st.grid_profile == 0 {
@@ -150,7 +162,41 @@ fn run_one(
     };
     let config_json = serde_json::to_string(&config)?;
     let hash = format!("{:x}", Sha256::digest(config_json.as_bytes()));
-    let path = dir.join(format!("{stem}.stiffness.h5"));
+    Ok(Planned {
+        path: dir.join(format!("{stem}.stiffness.h5")),
+        stem,
+        msh,
+        config,
+        config_json,
+        hash,
+        grid: fg,
+    })
+}
+
+fn run_one(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+    level: &str,
+) -> anyhow::Result<StiffnessReport> {
+    let t0 = std::time::Instant::now();
+    let sc = &scene.scene;
+    let md = g.data.member(member);
+    let st = &sc.stiffness;
+    let blank_name = format!("{blank:?}").to_lowercase();
+    let Planned {
+        stem,
+        msh,
+        path,
+        config,
+        config_json,
+        hash,
+        grid: fg,
+    } = planned(scene, g, dir, member, blank, level)?;
+    let grid = config.grid;
+    let axisymmetric = config.axisymmetric;
     let mut replaced_because = None;
     if path.exists() {
         // A full read also catches truncated data, not only a stale header.

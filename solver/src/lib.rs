@@ -1,9 +1,36 @@
-//! Solver: the FE-analytical gear contact element, loaded TCA and multibody
-//! time integration (being built).
+//! Solver: the FE-analytical gear contact element and the quasi-static loaded
+//! tooth contact analysis (LTCA).
 //!
-//! Now: the contact-detection plan of a scene — for each pinion position,
-//! which tooth pairs can touch on the loaded flank, from the active roll-angle
-//! range of the surface of roll angles. The contact element will evaluate
-//! slices only for these pairs.
+//! Data flow: scene → flank pair and surface of roll angles (preprocess) →
+//! [`slices`] (contact geometry per position) → [`compliance`] (stiffness
+//! files interpolated to the slices) + [`weber_banaschek`] (line-contact
+//! approach) → [`contact_problem`] (forces and loaded TE) → [`ltca`] (sweep)
+//! → [`ltca_stage`] (files). [`plan`] lists the tooth pairs that can touch.
 
+pub mod compliance;
+pub mod contact_problem;
+pub mod interp;
+pub mod ltca;
+pub mod ltca_stage;
 pub mod plan;
+pub mod slices;
+pub mod weber_banaschek;
+
+/// Errors of the contact element and the LTCA.
+#[derive(Debug, thiserror::Error)]
+pub enum SolverError {
+    #[error("no tooth pair can touch at this position")]
+    NoContact,
+    #[error("pinion torque {0} N·m: must be finite and ≥ 0 (coast-side loading needs the coast flanks' stiffness files)")]
+    Torque(f64),
+    #[error("singular contact system with {slices} active slices")]
+    Singular { slices: usize },
+    #[error("{what} did not converge in {iterations} iterations")]
+    NotConverged { what: String, iterations: usize },
+    #[error("{member} tooth {tooth} is loaded but the stiffness file holds only teeth {solved:?}; rerun `preprocess stiffness` for this scene")]
+    ToothNotSolved {
+        member: String,
+        tooth: usize,
+        solved: Vec<usize>,
+    },
+}

@@ -23,6 +23,16 @@ enum Cmd {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Quasi-static loaded TCA of every blank combination and torque of the scene, from its stiffness files.
+    Ltca {
+        scene: PathBuf,
+        /// Root of the meshes and stiffness files (`<meshes>/<scene>/`).
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        /// Results go to `<out>/<scene>/ltca/`.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -41,6 +51,19 @@ fn main() -> anyhow::Result<()> {
             }
             if let Some(o) = out {
                 preprocess::output::write_json(&o, &plans)?;
+            }
+        }
+        Cmd::Ltca { scene, meshes, out } => {
+            let s = preprocess::scene::Scene::load(&scene)?;
+            let res = solver::ltca_stage::run(&s, &meshes, &out)?;
+            for b in &res {
+                println!(
+                    "{:?} pinion / {:?} wheel: {} positions -> {}",
+                    b.pinion_blank,
+                    b.wheel_blank,
+                    b.positions,
+                    b.dir.display()
+                );
             }
         }
     }

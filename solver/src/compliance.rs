@@ -1,0 +1,126 @@
+//! The reduced model's body compliance at the slices: C = C_pinion + C_wheel,
+//! interpolated from the stiffness files' global influence fields.
+//!
+//! A stiffness file holds G[s][o][a][b], the normal approach at grid point b
+//! of tooth (solved[s] + o) under a unit normal load at grid point a of tooth
+//! solved[s]. For slices k, l with interpolation weights W_k, W_l on the grid
+//! (bicubic in the flank parameters, see [`crate::interp`]) the member's part
+//! is C(k, l) = W_kᵀ G[s(k)][o(k, l)] W_l: smooth in the loaded and in the
+//! responding point. Pinion tooth j meshes with wheel tooth −j, so the pinion
+//! offset is j_l − j_k and the wheel offset j_k − j_l.
+
+use crate::interp::{grid_weights, Weights};
+use crate::weber_banaschek::Elastic;
+use crate::SolverError;
+use preprocess::stiffness_file::StiffnessData;
+
+/// One member's influence data, ready for interpolation.
+#[derive(Debug, Clone)]
+pub struct MemberCompliance {
+    pub member: String,
+    pub teeth: usize,
+    pub axisymmetric: bool,
+    xi: Vec<f64>,
+    eta: Vec<f64>,
+    np: usize,
+    solved: Vec<usize>,
+    offsets: Vec<i32>,
+    global: Vec<f64>,
+    depth: Vec<f64>,
+    pub elastic: Elastic,
+}
+
+impl MemberCompliance {
+    pub fn new(d: StiffnessData, elastic: Elastic) -> Self {
+        MemberCompliance {
+            member: d.member.clone(),
+            teeth: d.teeth,
+            axisymmetric: d.axisymmetric,
+            np: d.points(),
+            xi: d.xi,
+            eta: d.eta,
+            solved: d.solved_teeth.iter().map(|&t| t as usize).collect(),
+            offsets: d.offsets,
+            global: d.global,
+            depth: d.depth_h,
+            elastic,
+        }
+    }
+
+    /// Index of the solved tooth whose data serve tooth `tooth` (pair numbering, any sign).
+    pub fn solved_index(&self, tooth: i64) -> Result<usize, SolverError> {
+        if self.axisymmetric {
+            return Ok(0);
+        }
+        let t = tooth.rem_euclid(self.teeth as i64) as usize;
+        self.solved
+            .iter()
+            .position(|&s| s == t)
+            .ok_or_else(|| SolverError::ToothNotSolved {
+                member: self.member.clone(),
+                tooth: t,
+                solved: self.solved.clone(),
+            })
+    }
+
+    /// Interpolation weights of the flank point (ξ, η).
+    pub fn weights(&self, xi: f64, eta: f64) -> Weights {
+        grid_weights(&self.xi, &self.eta, xi, eta)
+    }
+
+    /// Reference depth h at the point with weights `w` on solved tooth `s`, m.
+    pub fn depth(&self, s: usize, w: &Weights) -> f64 {
+        crate::interp::apply(w, &self.depth[s * self.np..(s + 1) * self.np])
+    }
+
+    /// The np × np block of solved tooth `s` responding at offset `o` (None beyond the stored teeth).
+    fn block(&self, s: usize, o: i64) -> Option<&[f64]> {
+        let oi = self.offsets.iter().position(|&x| x as i64 == o)?;
+        let no = self.offsets.len();
+        let n2 = self.np * self.np;
+        let start = (s * no + oi) * n2;
+        Some(&self.global[start..start + n2])
+    }
+
+    /// Adds this member's compliance between slice groups to `c` (row-major
+    /// n × n): loads on slices `rows` of tooth `loaded`, responses on slices
+    /// `cols` of tooth `loaded + offset` (member numbering).
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_block(
+        &self,
+        s: usize,
+        offset: i64,
+        w_rows: &[&Weights],
+        w_cols: &[&Weights],
+        rows: &[usize],
+        cols: &[usize],
+        c: &mut [f64],
+        n: usize,
+    ) {
+        let Some(g) = self.block(s, offset) else {
+            return;
+        };
+        let np = self.np;
+        // t[a][l] = Σ_b G[a][b] W_l[b], then C[k][l] += Σ_a W_k[a] t[a][l].
+        let mut t = vec![0.0; np * w_cols.len()];
+        for (l, wl) in w_cols.iter().enumerate() {
+            for a in 0..np {
+                let row = &g[a * np..(a + 1) * np];
+                t[a * w_cols.len() + l] = wl.iter().map(|&(b, v)| v * row[b]).sum();
+            }
+        }
+        for (kk, wk) in w_rows.iter().enumerate() {
+            for l in 0..w_cols.len() {
+                let v: f64 = wk.iter().map(|&(a, x)| x * t[a * w_cols.len() + l]).sum();
+                c[rows[kk] * n + cols[l]] += v;
+            }
+        }
+    }
+}
+
+/// The two members' data.
+#[derive(Debug, Clone)]
+pub struct PairCompliance {
+    pub pinion: MemberCompliance,
+    pub wheel: MemberCompliance,
+}

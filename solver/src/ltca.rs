@@ -1,0 +1,304 @@
+//! Quasi-static loaded tooth contact analysis: at each pinion position the
+//! slices of every tooth pair that can touch, their compliance, and the
+//! contact problem for each pinion torque.
+//!
+//! The TE convention is the UTCA's: wheel lag behind the conjugate position,
+//! rad, positive = the wheel lags. Geometry and compliance of a position do
+//! not depend on the load, so they are computed once for all torques.
+
+use crate::compliance::PairCompliance;
+use crate::contact_problem::{ContactProblem, ContactSolution};
+use crate::slices::{pair_slices, Slice};
+use crate::weber_banaschek::{contact_modulus, half_width, LineContact};
+use crate::SolverError;
+use preprocess::pair::{pairs_in_contact, FlankPair};
+use preprocess::utca::RollSurface;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::time::Instant;
+
+/// The contact geometry of one position.
+#[derive(Debug, Clone)]
+pub struct Geometry {
+    /// Pinion angle, rad.
+    pub phi: f64,
+    /// Unloaded TE (UTCA) at this position, rad.
+    pub utca_te: f64,
+    pub slices: Vec<Slice>,
+}
+
+/// Slices of every tooth pair whose roll lies in the active range at `phi`.
+pub fn geometry(fp: &FlankPair, rs: &RollSurface, phi: f64, tau: f64, n_slices: usize) -> Geometry {
+    let mut utca_te = f64::INFINITY;
+    let mut slices = Vec::new();
+    for j in pairs_in_contact(phi, fp.roll_range, tau) {
+        if let Some(ps) = pair_slices(fp, rs, phi, tau, j, n_slices) {
+            utca_te = utca_te.min(ps.utca_lag);
+            slices.extend(ps.slices);
+        }
+    }
+    Geometry {
+        phi,
+        utca_te,
+        slices,
+    }
+}
+
+/// Compliance and line contacts of a position's slices.
+#[derive(Debug, Clone)]
+pub struct Assembled {
+    /// C = C_pinion + C_wheel, row-major n × n, m/N.
+    pub compliance: Vec<f64>,
+    pub line: Vec<LineContact>,
+}
+
+/// Interpolates both members' global influence fields and reference depths to the slices.
+pub fn assemble(g: &Geometry, pc: &PairCompliance) -> Result<Assembled, SolverError> {
+    let n = g.slices.len();
+    let mut c = vec![0.0; n * n];
+    let wp: Vec<_> = g
+        .slices
+        .iter()
+        .map(|s| pc.pinion.weights(s.xi, s.eta))
+        .collect();
+    let ww: Vec<_> = g
+        .slices
+        .iter()
+        .map(|s| pc.wheel.weights(s.wheel_xi_eta[0], s.wheel_xi_eta[1]))
+        .collect();
+    let mut pairs: Vec<i32> = g.slices.iter().map(|s| s.pair).collect();
+    pairs.dedup();
+    let members: Vec<Vec<usize>> = pairs
+        .iter()
+        .map(|&j| (0..n).filter(|&k| g.slices[k].pair == j).collect())
+        .collect();
+    let mut line = Vec::with_capacity(n);
+    let bodies = [pc.pinion.elastic, pc.wheel.elastic];
+    for (a, &ja) in pairs.iter().enumerate() {
+        let sp = pc.pinion.solved_index(ja as i64)?;
+        let sw = pc.wheel.solved_index(-(ja as i64))?;
+        for &k in &members[a] {
+            let h = [pc.pinion.depth(sp, &wp[k]), pc.wheel.depth(sw, &ww[k])];
+            line.push((k, g.slices[k].line_contact(h, bodies)));
+        }
+        let rows = &members[a];
+        let wpr: Vec<_> = rows.iter().map(|&k| &wp[k]).collect();
+        let wwr: Vec<_> = rows.iter().map(|&k| &ww[k]).collect();
+        for (b, &jb) in pairs.iter().enumerate() {
+            let cols = &members[b];
+            let wpc: Vec<_> = cols.iter().map(|&k| &wp[k]).collect();
+            let wwc: Vec<_> = cols.iter().map(|&k| &ww[k]).collect();
+            let o = (jb - ja) as i64;
+            pc.pinion
+                .add_block(sp, o, &wpr, &wpc, rows, cols, &mut c, n);
+            pc.wheel
+                .add_block(sw, -o, &wwr, &wwc, rows, cols, &mut c, n);
+        }
+    }
+    // Reciprocity holds to the FE's round-off; make C exactly symmetric.
+    for k in 0..n {
+        for l in 0..k {
+            let m = 0.5 * (c[k * n + l] + c[l * n + k]);
+            c[k * n + l] = m;
+            c[l * n + k] = m;
+        }
+    }
+    line.sort_by_key(|e| e.0);
+    Ok(Assembled {
+        compliance: c,
+        line: line.into_iter().map(|e| e.1).collect(),
+    })
+}
+
+/// Solves one position at pinion torque `torque` (N·m).
+pub fn solve(
+    g: &Geometry,
+    a: &Assembled,
+    torque: f64,
+    warm: Option<&[bool]>,
+) -> Result<ContactSolution, SolverError> {
+    let lag: Vec<f64> = g.slices.iter().map(|s| s.lag).collect();
+    let l2: Vec<f64> = g.slices.iter().map(|s| s.lever_wheel).collect();
+    let l1: Vec<f64> = g.slices.iter().map(|s| s.lever_pinion).collect();
+    ContactProblem {
+        compliance: &a.compliance,
+        lag: &lag,
+        lever_wheel: &l2,
+        lever_pinion: &l1,
+        line: &a.line,
+        torque,
+    }
+    .solve(warm)
+}
+
+/// The rotation sweep.
+#[derive(Debug, Clone, Copy)]
+pub struct Sweep {
+    /// First pinion angle, rad.
+    pub start: f64,
+    /// Step, rad (> 0), taken in `direction` (±1).
+    pub step: f64,
+    pub direction: f64,
+    pub positions: usize,
+    /// Slices across the face width per tooth pair.
+    pub slices: usize,
+}
+
+/// One loaded slice.
+#[derive(Debug, Clone, Serialize)]
+pub struct SliceLoad {
+    pub pair: i32,
+    pub xi: f64,
+    pub eta: f64,
+    pub force_n: f64,
+    pub line_load_n_per_m: f64,
+    /// Hertz maximum pressure p₀ = √(q E* / (π ρ)), Pa.
+    pub pressure_pa: f64,
+    pub half_width_m: f64,
+}
+
+/// Result of one position at one torque.
+#[derive(Debug, Clone, Serialize)]
+pub struct PositionLoad {
+    /// Loaded TE, rad.
+    pub te: f64,
+    /// Force of each tooth pair in contact: (pair, N).
+    pub pair_force: Vec<(i32, f64)>,
+    /// Share of the pinion torque carried by each pair (same order).
+    pub pair_share: Vec<f64>,
+    /// Torsional mesh stiffness T / (TE − TE_unloaded), N·m/rad (pinion torque per wheel lag).
+    pub mesh_stiffness: f64,
+    pub max_pressure_pa: f64,
+    /// Loaded slices only.
+    pub slices: Vec<SliceLoad>,
+    pub solve_s: f64,
+    pub iterations: usize,
+}
+
+/// A position over all torques.
+#[derive(Debug, Clone, Serialize)]
+pub struct PositionResult {
+    /// Pinion rotation from the sweep start, rad.
+    pub rotation: f64,
+    pub utca_te: f64,
+    pub slices: usize,
+    pub geometry_s: f64,
+    pub assembly_s: f64,
+    /// One entry per torque.
+    pub loads: Vec<PositionLoad>,
+}
+
+fn position_load(
+    g: &Geometry,
+    a: &Assembled,
+    s: &ContactSolution,
+    torque: f64,
+    dt: f64,
+) -> PositionLoad {
+    let mut pair_force: Vec<(i32, f64)> = Vec::new();
+    let mut pair_torque: Vec<f64> = Vec::new();
+    let mut slices = Vec::new();
+    let mut pmax: f64 = 0.0;
+    for (k, sl) in g.slices.iter().enumerate() {
+        match pair_force.iter().position(|p| p.0 == sl.pair) {
+            Some(i) => {
+                pair_force[i].1 += s.force[k];
+                pair_torque[i] += s.force[k] * sl.lever_pinion;
+            }
+            None => {
+                pair_force.push((sl.pair, s.force[k]));
+                pair_torque.push(s.force[k] * sl.lever_pinion);
+            }
+        }
+        if s.force[k] > 0.0 {
+            let lc = &a.line[k];
+            let q = s.force[k] / lc.length;
+            let es = contact_modulus(lc.bodies[0], lc.bodies[1]);
+            let b = half_width(q, lc.rho, es);
+            let p0 = 2.0 * q / (std::f64::consts::PI * b);
+            pmax = pmax.max(p0);
+            slices.push(SliceLoad {
+                pair: sl.pair,
+                xi: sl.xi,
+                eta: sl.eta,
+                force_n: s.force[k],
+                line_load_n_per_m: q,
+                pressure_pa: p0,
+                half_width_m: b,
+            });
+        }
+    }
+    let share = pair_torque
+        .iter()
+        .map(|t| if torque > 0.0 { t / torque } else { 0.0 })
+        .collect();
+    PositionLoad {
+        te: s.theta,
+        pair_force,
+        pair_share: share,
+        mesh_stiffness: if s.theta > g.utca_te {
+            torque / (s.theta - g.utca_te)
+        } else {
+            f64::INFINITY
+        },
+        max_pressure_pa: pmax,
+        slices,
+        solve_s: dt,
+        iterations: s.iterations,
+    }
+}
+
+/// Runs the sweep for every torque (positions in parallel).
+pub fn run(
+    fp: &FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    sweep: &Sweep,
+    torques: &[f64],
+) -> Result<Vec<PositionResult>, SolverError> {
+    let tau = fp.pinion.gen.frame.pitch();
+    (0..sweep.positions)
+        .into_par_iter()
+        .map(|k| {
+            let rotation = sweep.step * k as f64;
+            let phi = sweep.start + sweep.direction * rotation;
+            let t = Instant::now();
+            let g = geometry(fp, rs, phi, tau, sweep.slices);
+            let geometry_s = t.elapsed().as_secs_f64();
+            if g.slices.is_empty() {
+                return Err(SolverError::NoContact);
+            }
+            let t = Instant::now();
+            let a = assemble(&g, pc)?;
+            let assembly_s = t.elapsed().as_secs_f64();
+            let mut loads = Vec::with_capacity(torques.len());
+            let mut warm: Option<Vec<bool>> = None;
+            for &torque in torques {
+                let t = Instant::now();
+                let s = solve(&g, &a, torque, warm.as_deref())?;
+                let dt = t.elapsed().as_secs_f64();
+                loads.push(position_load(&g, &a, &s, torque, dt));
+                warm = Some(s.active);
+            }
+            Ok(PositionResult {
+                rotation,
+                utca_te: g.utca_te,
+                slices: g.slices.len(),
+                geometry_s,
+                assembly_s,
+                loads,
+            })
+        })
+        .collect()
+}
+
+/// Mean and peak-to-peak of a series.
+pub fn mean_ptp(v: &[f64]) -> (f64, f64) {
+    let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let (lo, hi) = v
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    (mean, hi - lo)
+}

@@ -1,0 +1,290 @@
+//! `solver ltca <scene>`: the quasi-static loaded TCA of every pinion ×
+//! wheel blank of a scene with the reduced model, from the stiffness files
+//! that `preprocess stiffness` wrote (their hashes are checked), to
+//! `<out>/<scene>/ltca/<pinion>_<wheel>/`: `te.csv`, `pairs.csv`,
+//! `slices.csv`, `ltca.h5` and `summary.json`.
+
+use crate::compliance::{MemberCompliance, PairCompliance};
+use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
+use crate::weber_banaschek::Elastic;
+use anyhow::Context;
+use preprocess::design::Member;
+use preprocess::flank_stage::roll_surface;
+use preprocess::output::{write_atomic, write_json};
+use preprocess::pair::{pinion_direction, PairGeometry};
+use preprocess::scene::{Blank, LoadedScene};
+use preprocess::stiffness_file;
+use preprocess::stiffness_stage::planned;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Per-torque summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct LoadSummary {
+    pub torque_nm: f64,
+    pub te_mean_urad: f64,
+    pub te_ptp_urad: f64,
+    /// Geometry + compliance + contact solve of one position at this torque, s.
+    pub cpu_s_per_position: f64,
+    /// Contact solve alone, s per position.
+    pub solve_s_per_position: f64,
+    pub max_pressure_mpa: f64,
+    pub mesh_stiffness_mean_nm_per_rad: f64,
+    /// Largest torque share of one tooth pair over the sweep.
+    pub max_pair_share: f64,
+}
+
+/// Summary of one pinion × wheel blank combination.
+#[derive(Debug, Clone, Serialize)]
+pub struct BlankSummary {
+    pub pinion_blank: Blank,
+    pub wheel_blank: Blank,
+    pub positions: usize,
+    pub step_deg: f64,
+    pub mesh_cycles: f64,
+    pub slices_per_pair: usize,
+    pub utca_te_mean_urad: f64,
+    pub utca_te_ptp_urad: f64,
+    pub stiffness_files: Vec<PathBuf>,
+    pub wall_s: f64,
+    pub loads: Vec<LoadSummary>,
+    pub dir: PathBuf,
+}
+
+fn member_compliance(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+) -> anyhow::Result<(MemberCompliance, PathBuf)> {
+    let p = planned(scene, g, dir, member, blank, "reduced")?;
+    let data = stiffness_file::read(&p.path, Some(&p.hash)).with_context(|| {
+        format!(
+            "scene {}: stiffness file of the {} ({blank:?} blank) is missing or stale; run `preprocess stiffness {}`",
+            scene.scene.name,
+            member.name(),
+            scene.path.display()
+        )
+    })?;
+    let md = g.data.member(member);
+    let e = Elastic {
+        youngs_modulus_pa: md.youngs_modulus,
+        poisson_ratio: md.poisson_ratio,
+    };
+    Ok((MemberCompliance::new(data, e), p.path))
+}
+
+/// Runs the LTCA of the scene.
+pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<BlankSummary>> {
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let side = sc.loaded_flank;
+    let fp = g.side(side);
+    let rs = roll_surface(fp, &sc.utca)?;
+    let tau = g.data.mesh_cycle();
+    let step = sc.rotation.step_deg.to_radians();
+    let dir = meshes.join(&sc.name);
+    let mut out_all = Vec::new();
+    for &pb in &sc.blanks.pinion {
+        let (pin, pin_path) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
+        for &wb in &sc.blanks.wheel {
+            let t0 = Instant::now();
+            let (whl, whl_path) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
+            let pc = PairCompliance {
+                pinion: pin.clone(),
+                wheel: whl,
+            };
+            let cycles = match wb {
+                Blank::Standard => sc.rotation.mesh_cycles_standard,
+                Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
+            };
+            let sweep = Sweep {
+                start: fp.roll_range[0],
+                step,
+                direction: pinion_direction(&g.data, side),
+                positions: (cycles * tau / step).round() as usize + 1,
+                slices: sc.ltca.slices,
+            };
+            eprintln!(
+                "ltca {pb:?}/{wb:?}: {} positions x {} torques, {} slices per pair",
+                sweep.positions,
+                sc.pinion_torque_nm.len(),
+                sweep.slices
+            );
+            let res = run_sweep(fp, &rs, &pc, &sweep, &sc.pinion_torque_nm)
+                .with_context(|| format!("scene {}: LTCA, {wb:?} wheel blank", sc.name))?;
+            let name = format!("{pb:?}_{wb:?}").to_lowercase();
+            let odir = out.join(&sc.name).join("ltca").join(&name);
+            std::fs::create_dir_all(&odir)?;
+            write_outputs(&odir, &res, &sc.pinion_torque_nm)?;
+            let (um, up) = mean_ptp(&res.iter().map(|p| p.utca_te).collect::<Vec<_>>());
+            let summary = BlankSummary {
+                pinion_blank: pb,
+                wheel_blank: wb,
+                positions: res.len(),
+                step_deg: sc.rotation.step_deg,
+                mesh_cycles: cycles,
+                slices_per_pair: sweep.slices,
+                utca_te_mean_urad: um * 1e6,
+                utca_te_ptp_urad: up * 1e6,
+                stiffness_files: vec![pin_path.clone(), whl_path],
+                wall_s: t0.elapsed().as_secs_f64(),
+                loads: load_summaries(&res, &sc.pinion_torque_nm),
+                dir: odir.clone(),
+            };
+            write_json(&odir.join("summary.json"), &summary)?;
+            for l in &summary.loads {
+                eprintln!(
+                    "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {:.2} ms/position",
+                    l.torque_nm,
+                    l.te_mean_urad,
+                    l.te_ptp_urad,
+                    l.cpu_s_per_position * 1e3
+                );
+            }
+            out_all.push(summary);
+        }
+    }
+    write_json(
+        &out.join(&sc.name).join("ltca").join("summary.json"),
+        &out_all,
+    )?;
+    Ok(out_all)
+}
+
+/// Per-torque statistics over the sweep.
+pub fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
+    let n = res.len().max(1) as f64;
+    torques
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| {
+            let te: Vec<f64> = res.iter().map(|p| p.loads[i].te).collect();
+            let (m, ptp) = mean_ptp(&te);
+            let solve: f64 = res.iter().map(|p| p.loads[i].solve_s).sum();
+            let setup: f64 = res.iter().map(|p| p.geometry_s + p.assembly_s).sum();
+            LoadSummary {
+                torque_nm: t,
+                te_mean_urad: m * 1e6,
+                te_ptp_urad: ptp * 1e6,
+                cpu_s_per_position: (setup + solve) / n,
+                solve_s_per_position: solve / n,
+                max_pressure_mpa: res
+                    .iter()
+                    .map(|p| p.loads[i].max_pressure_pa)
+                    .fold(0.0, f64::max)
+                    * 1e-6,
+                mesh_stiffness_mean_nm_per_rad: res
+                    .iter()
+                    .map(|p| p.loads[i].mesh_stiffness)
+                    .filter(|k| k.is_finite())
+                    .sum::<f64>()
+                    / n,
+                max_pair_share: res
+                    .iter()
+                    .flat_map(|p| p.loads[i].pair_share.iter().copied())
+                    .fold(0.0, f64::max),
+            }
+        })
+        .collect()
+}
+
+fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Result<()> {
+    let mut te = String::from("pinion_rotation_deg,utca_te_urad");
+    for t in torques {
+        write!(te, ",te_{t}nm_urad")?;
+    }
+    te.push('\n');
+    let mut pairs = String::from("torque_nm,pinion_rotation_deg,pair,force_n,torque_share\n");
+    let mut slices = String::from(
+        "torque_nm,pinion_rotation_deg,pair,xi,eta,force_n,line_load_n_per_mm,pressure_mpa,half_width_mm\n",
+    );
+    for p in res {
+        let deg = p.rotation.to_degrees();
+        write!(te, "{deg:.4},{:.5}", p.utca_te * 1e6)?;
+        for (i, l) in p.loads.iter().enumerate() {
+            write!(te, ",{:.5}", l.te * 1e6)?;
+            for (k, &(j, f)) in l.pair_force.iter().enumerate() {
+                writeln!(
+                    pairs,
+                    "{},{deg:.4},{j},{f:.6},{:.6}",
+                    torques[i], l.pair_share[k]
+                )?;
+            }
+            for s in &l.slices {
+                writeln!(
+                    slices,
+                    "{},{deg:.4},{},{:.5},{:.5},{:.6},{:.6},{:.3},{:.5}",
+                    torques[i],
+                    s.pair,
+                    s.xi,
+                    s.eta,
+                    s.force_n,
+                    s.line_load_n_per_m * 1e-3,
+                    s.pressure_pa * 1e-6,
+                    s.half_width_m * 1e3
+                )?;
+            }
+        }
+        te.push('\n');
+    }
+    write_atomic(&dir.join("te.csv"), te.as_bytes())?;
+    write_atomic(&dir.join("pairs.csv"), pairs.as_bytes())?;
+    write_atomic(&dir.join("slices.csv"), slices.as_bytes())?;
+    write_h5(&dir.join("ltca.h5"), res, torques)
+}
+
+/// Sweep arrays as HDF5 (written to a temporary file, then renamed).
+fn write_h5(path: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Result<()> {
+    let tmp = path.with_extension("tmp.h5");
+    let np = res.len();
+    let nl = torques.len();
+    let per_load = |f: &dyn Fn(&crate::ltca::PositionLoad) -> f64| -> Vec<f64> {
+        (0..nl)
+            .flat_map(|i| res.iter().map(move |p| (i, p)))
+            .map(|(i, p)| f(&p.loads[i]))
+            .collect()
+    };
+    {
+        let f = stiffness_file::h5().create(&tmp)?;
+        let put = |name: &str, shape: Vec<usize>, v: &[f64], units: &str| -> hdf5::Result<()> {
+            let ds = f.new_dataset::<f64>().shape(shape).create(name)?;
+            ds.write_raw(v)?;
+            ds.new_attr::<hdf5::types::VarLenUnicode>()
+                .create("units")?
+                .write_scalar(&units.parse::<hdf5::types::VarLenUnicode>().expect("ascii"))
+        };
+        put("torque", vec![nl], torques, "N m")?;
+        put(
+            "pinion_rotation",
+            vec![np],
+            &res.iter().map(|p| p.rotation).collect::<Vec<_>>(),
+            "rad",
+        )?;
+        put(
+            "utca_te",
+            vec![np],
+            &res.iter().map(|p| p.utca_te).collect::<Vec<_>>(),
+            "rad",
+        )?;
+        put("te", vec![nl, np], &per_load(&|l| l.te), "rad")?;
+        put(
+            "max_pressure",
+            vec![nl, np],
+            &per_load(&|l| l.max_pressure_pa),
+            "Pa",
+        )?;
+        put(
+            "mesh_stiffness",
+            vec![nl, np],
+            &per_load(&|l| l.mesh_stiffness),
+            "N m/rad",
+        )?;
+        f.close()?;
+    }
+    std::fs::rename(&tmp, path).with_context(|| format!("renaming {}", tmp.display()))?;
+    Ok(())
+}
