@@ -1,0 +1,255 @@
+//! The contact element and the quasi-static LTCA on the white-paper pair with
+//! FE influence fields computed here on coarse meshes (6 × 10 elements per
+//! refined flank, both members, standard blanks): the unloaded limit against
+//! the UTCA, torque balance and complementarity, slice convergence, and the
+//! assembled compliance.
+
+use preprocess::body_mesh;
+use preprocess::design::{load_pair, Member};
+use preprocess::gear_body::{BlankDimensions, BlankDimensionsMm};
+use preprocess::generation::Side;
+use preprocess::influence::{compute, FlankGrid, GridSize, InfluenceRequest};
+use preprocess::mesh::{mesh_member, MeshRequest};
+use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
+use preprocess::scene::{Blank, FlankElements};
+use preprocess::stiffness_file::StiffnessData;
+use preprocess::utca::{LineGrid, RollSurface};
+use solver::compliance::{MemberCompliance, PairCompliance};
+use solver::ltca::{assemble, geometry, mean_ptp, run, solve, Sweep};
+use solver::weber_banaschek::Elastic;
+use std::sync::OnceLock;
+
+const LEVEL: FlankElements = FlankElements {
+    profile: 6,
+    face: 10,
+};
+const GRID: GridSize = GridSize {
+    profile: 6,
+    face: 10,
+};
+
+struct Fixture {
+    g: PairGeometry,
+    rs: RollSurface,
+    pc: PairCompliance,
+}
+
+fn member(g: &PairGeometry, m: Member, refined: Vec<usize>) -> MemberCompliance {
+    let dir = std::env::temp_dir().join(format!("bevel-solver-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("{}.msh", m.name()));
+    let dims = BlankDimensions::resolve(&BlankDimensionsMm::default(), &g.data);
+    mesh_member(
+        &MeshRequest {
+            scene: "solver-test",
+            geom: g,
+            member: m,
+            blank: Blank::Standard,
+            dims: &dims,
+            level: LEVEL,
+            level_name: "reduced",
+            side: Side::Drive,
+            refined_teeth: refined.clone(),
+        },
+        &path,
+    )
+    .expect("mesh");
+    let body = body_mesh::read(&path).unwrap();
+    let grid = FlankGrid::new(g.flank(m, Side::Drive), GRID).unwrap();
+    let (sf, sp) = grid.spacing();
+    let md = g.data.member(m);
+    let loaded = Side::Drive.flank_name(m);
+    let opposite = if loaded == "concave" { "convex" } else { "concave" };
+    let inf = compute(
+        &InfluenceRequest {
+            body: &body,
+            material: fem::Material {
+                youngs_modulus_pa: md.youngs_modulus,
+                poisson_ratio: md.poisson_ratio,
+            },
+            teeth: md.teeth as usize,
+            loaded,
+            opposite,
+            grid: &grid,
+            solved_teeth: vec![refined[refined.len() / 2]],
+            offsets: (-2..=2).collect(),
+            load_radius: 0.75 * sf.max(sp),
+            block: 8,
+        },
+        &["bore"],
+    )
+    .unwrap();
+    let data = StiffnessData {
+        input_hash: "test".into(),
+        config: "{}".into(),
+        member: m.name().into(),
+        blank: "standard".into(),
+        level: "test".into(),
+        teeth: md.teeth as usize,
+        axisymmetric: true,
+        grid_profile: GRID.profile,
+        grid_face: GRID.face,
+        xi: grid.xi.clone(),
+        eta: grid.eta.clone(),
+        position: grid.position.iter().flatten().copied().collect(),
+        normal: grid.normal.iter().flatten().copied().collect(),
+        lever: grid.lever.clone(),
+        solved_teeth: inf.solved_teeth.iter().map(|&k| k as u32).collect(),
+        offsets: inf.offsets.clone(),
+        depth_h: inf.depth.iter().flatten().copied().collect(),
+        total: inf.total,
+        local: inf.local,
+        global: inf.global,
+    };
+    MemberCompliance::new(
+        data,
+        Elastic {
+            youngs_modulus_pa: md.youngs_modulus,
+            poisson_ratio: md.poisson_ratio,
+        },
+    )
+}
+
+fn fixture() -> &'static Fixture {
+    static F: OnceLock<Fixture> = OnceLock::new();
+    F.get_or_init(|| {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../reference/white_paper_20x43.toml");
+        let g = PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap();
+        let (pt, wt) = teeth_in_contact(&g, Side::Drive, 2.0, 0.5f64.to_radians());
+        let pc = PairCompliance {
+            pinion: member(&g, Member::Pinion, pt),
+            wheel: member(&g, Member::Wheel, wt),
+        };
+        let rs = RollSurface::new(
+            g.side(Side::Drive),
+            LineGrid {
+                n_face: 41,
+                n_profile: 41,
+            },
+        )
+        .unwrap();
+        Fixture { g, rs, pc }
+    })
+}
+
+/// One mesh cycle in `n` steps from the entry of tooth 0.
+fn sweep(f: &Fixture, n: usize, slices: usize) -> Sweep {
+    let tau = f.g.data.mesh_cycle();
+    Sweep {
+        start: f.g.side(Side::Drive).roll_range[0],
+        step: tau / n as f64,
+        direction: pinion_direction(&f.g.data, Side::Drive),
+        positions: n,
+        slices,
+    }
+}
+
+#[test]
+fn vanishing_torque_reproduces_the_unloaded_te() {
+    let f = fixture();
+    let fp = f.g.side(Side::Drive);
+    let sw = sweep(f, 12, 30);
+    let res = run(fp, &f.rs, &f.pc, &sw, &[1e-3]).unwrap();
+    // The UTCA's own sweep over the same angles (preprocess, independent of the slices).
+    let utca = preprocess::utca::run(fp, &f.rs, sw.start, sw.step, sw.positions, sw.direction);
+    let mut worst: f64 = 0.0;
+    for (p, te0) in res.iter().zip(&utca.te) {
+        assert!((p.utca_te - te0).abs() < 1e-12, "slices' UTCA {} vs {}", p.utca_te, te0);
+        worst = worst.max((p.loads[0].te - te0).abs());
+    }
+    eprintln!("largest |TE(1e-3 N m) - TE_UTCA| = {:.4} µrad", worst * 1e6);
+    assert!(worst < 0.01e-6, "{} µrad", worst * 1e6);
+}
+
+#[test]
+fn slice_forces_balance_the_pinion_torque_and_are_complementary_to_the_gaps() {
+    let f = fixture();
+    let fp = f.g.side(Side::Drive);
+    let tau = f.g.data.mesh_cycle();
+    let sw = sweep(f, 6, 30);
+    for k in 0..sw.positions {
+        let phi = sw.start + sw.direction * sw.step * k as f64;
+        let g = geometry(fp, &f.rs, phi, tau, 30);
+        let a = assemble(&g, &f.pc).unwrap();
+        for torque in [100.0, 700.0] {
+            let s = solve(&g, &a, torque, None).unwrap();
+            // Levers recomputed from the slice points: |(r × n)·z|.
+            let moment: f64 = g
+                .slices
+                .iter()
+                .zip(&s.force)
+                .map(|(sl, &fk)| fk * (sl.pos[0] * sl.normal[1] - sl.pos[1] * sl.normal[0]).abs())
+                .sum();
+            assert!(
+                ((moment - torque) / torque).abs() < 1e-9,
+                "position {k}: {moment} vs {torque}"
+            );
+            let n = g.slices.len();
+            let fmax = s.force.iter().copied().fold(0.0, f64::max);
+            for i in 0..n {
+                assert!(s.force[i] >= 0.0);
+                let gap = g.slices[i].lever_wheel * (g.slices[i].lag - s.theta)
+                    + (0..n)
+                        .map(|j| a.compliance[i * n + j] * s.force[j])
+                        .sum::<f64>()
+                    + a.line[i].approach(s.force[i]);
+                assert!(gap > -1e-12, "position {k}, slice {i}: gap {gap:e}");
+                if s.force[i] > 1e-9 * fmax {
+                    assert!(gap.abs() < 1e-11, "loaded slice {i} open by {gap:e}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn mean_te_changes_less_than_half_a_percent_when_the_slices_double() {
+    let f = fixture();
+    let fp = f.g.side(Side::Drive);
+    let torques = [100.0, 300.0, 700.0];
+    let te = |slices: usize| {
+        let res = run(fp, &f.rs, &f.pc, &sweep(f, 18, slices), &torques).unwrap();
+        (0..torques.len())
+            .map(|i| mean_ptp(&res.iter().map(|p| p.loads[i].te).collect::<Vec<_>>()))
+            .collect::<Vec<_>>()
+    };
+    let (a, b) = (te(30), te(60));
+    for (i, t) in torques.iter().enumerate() {
+        let rel = (a[i].0 - b[i].0).abs() / b[i].0;
+        eprintln!(
+            "{t} N m: mean TE {:.3} / {:.3} µrad ({:.3} %), ptp {:.3} / {:.3} µrad",
+            a[i].0 * 1e6,
+            b[i].0 * 1e6,
+            rel * 100.0,
+            a[i].1 * 1e6,
+            b[i].1 * 1e6
+        );
+        assert!(rel < 0.005, "{t} N m: {:.3} %", rel * 100.0);
+    }
+}
+
+#[test]
+fn slice_compliance_is_symmetric_positive_definite_and_load_sharing_adds_up() {
+    let f = fixture();
+    let fp = f.g.side(Side::Drive);
+    let tau = f.g.data.mesh_cycle();
+    let phi = fp.roll_range[0] + 0.3 * tau * pinion_direction(&f.g.data, Side::Drive);
+    let g = geometry(fp, &f.rs, phi, tau, 30);
+    let a = assemble(&g, &f.pc).unwrap();
+    let n = g.slices.len();
+    let pairs: std::collections::BTreeSet<i32> = g.slices.iter().map(|s| s.pair).collect();
+    assert!(pairs.len() >= 2, "pairs {pairs:?}");
+    let m = nalgebra::DMatrix::from_row_slice(n, n, &a.compliance);
+    assert!((&m - m.transpose()).norm() <= 1e-14 * m.norm());
+    assert!(
+        m.clone().cholesky().is_some(),
+        "C of {n} slices is not positive definite"
+    );
+    let s = solve(&g, &a, 300.0, None).unwrap();
+    let res = run(fp, &f.rs, &f.pc, &sweep(f, 6, 30), &[300.0]).unwrap();
+    for p in &res {
+        let share: f64 = p.loads[0].pair_share.iter().sum();
+        assert!((share - 1.0).abs() < 1e-9, "shares add to {share}");
+    }
+    assert!(s.theta > g.utca_te);
+}
