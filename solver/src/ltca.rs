@@ -95,7 +95,9 @@ pub fn assemble(g: &Geometry, pc: &PairCompliance) -> Result<Assembled, SolverEr
                 .add_block(sw, -o, &wwr, &wwc, rows, cols, &mut c, n);
         }
     }
-    // Reciprocity holds to the FE's round-off; make C exactly symmetric.
+    // C(k, l) and C(l, k) come from different blocks (load on k's tooth, or on
+    // l's): equal by reciprocity up to the FE's round-off and, across teeth,
+    // the mesh's departure from rotational symmetry; use their mean.
     for k in 0..n {
         for l in 0..k {
             let m = 0.5 * (c[k * n + l] + c[l * n + k]);

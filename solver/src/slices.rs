@@ -93,40 +93,47 @@ impl Column<'_> {
 
     /// Minimum of lag along the column, from `start`: damped Newton with
     /// finite-difference derivatives; stops at the edge of the active region.
-    fn minimum(&self, start: f64) -> Option<(f64, preprocess::flank::FlankPoint)> {
-        let mut x = start.clamp(0.0, 1.0);
+    /// Returns the minimum, its flank point and, where the minimum is interior,
+    /// the second derivative d²lag/dη² and |∂r/∂η| there.
+    fn minimum(&self, start: f64) -> Option<ColumnMin> {
+        let ((lo, lo_out), (hi, hi_out)) = self.active_interval()?;
+        let mut x = start.clamp(lo, hi);
         let mut fx = self.value(x);
         if !fx.is_finite() {
-            let (best, fb) = (0..=32)
-                .map(|k| k as f64 / 32.0)
-                .map(|e| (e, self.value(e)))
-                .min_by(|a, b| a.1.total_cmp(&b.1))?;
-            if !fb.is_finite() {
-                return None;
-            }
-            (x, fx) = (best, fb);
+            return None;
         }
         let d = 1e-5;
+        let mut curv = None;
         for _ in 0..40 {
-            let (fm, fpl) = (self.value(x - d), self.value(x + d));
-            let step = match (fm.is_finite(), fpl.is_finite()) {
-                (true, true) => {
+            let (em, ep) = (self.eval(x - d), self.eval(x + d));
+            let (fm, fpl) = (
+                em.map_or(f64::INFINITY, |e| e.0),
+                ep.map_or(f64::INFINITY, |e| e.0),
+            );
+            curv = None;
+            let newton = match (em, ep) {
+                (Some(m), Some(p)) => {
                     let g1 = (fpl - fm) / (2.0 * d);
                     let g2 = (fpl + fm - 2.0 * fx) / (d * d);
                     if g2 > 0.0 {
+                        curv = Some((g2, sub(p.1.pos, m.1.pos).map(|c| c / (2.0 * d))));
                         -g1 / g2
                     } else {
-                        -0.02 * g1.signum()
+                        -0.05 * g1.signum()
                     }
                 }
-                (false, true) => -0.02 * ((fpl - fx) / d).signum(),
-                (true, false) => -0.02 * ((fx - fm) / d).signum(),
-                (false, false) => break,
+                (None, Some(_)) => -0.05 * ((fpl - fx) / d).signum(),
+                (Some(_), None) => -0.05 * ((fx - fm) / d).signum(),
+                (None, None) => break,
+            };
+            // Projected onto the active interval.
+            let step = (x + newton.clamp(-0.1, 0.1)).clamp(lo, hi) - x;
+            if step.abs() < 1e-9 {
+                break;
             }
-            .clamp(-0.1, 0.1);
             let mut s = step;
             let mut moved = false;
-            while s.abs() > 1e-13 {
+            while s.abs() > 1e-9 {
                 let fnew = self.value(x + s);
                 if fnew < fx {
                     x += s;
@@ -136,11 +143,96 @@ impl Column<'_> {
                 }
                 s *= 0.5;
             }
-            if !moved || s.abs() < 1e-10 {
+            if !moved {
+                break;
+            }
+            // Quadratic convergence: after a full Newton step of < 1e-6 the
+            // next one is below round-off.
+            if step.abs() < 1e-6 && s == step {
                 break;
             }
         }
-        self.eval(x)
+        // At an end of the node-based interval with the minimum beyond it:
+        // the contact sits on the active region's boundary; find it.
+        if x <= lo && lo_out.is_some() && self.value(lo - 1e-5) < fx {
+            x = self.boundary(lo, lo_out.unwrap_or(lo));
+            curv = None;
+        } else if x >= hi && hi_out.is_some() && self.value(hi + 1e-5) < fx {
+            x = self.boundary(hi, hi_out.unwrap_or(hi));
+            curv = None;
+        }
+        let (lag, point) = self.eval(x)?;
+        Some(ColumnMin {
+            eta: x,
+            lag,
+            point,
+            curvature: curv,
+        })
+    }
+
+    /// The active part of the column from the surface of roll angles'
+    /// activity flags: (last active node, first inactive node) at each end;
+    /// the outer bound is None where the column is active to its end.
+    fn active_interval(&self) -> Option<((f64, Option<f64>), (f64, Option<f64>))> {
+        let rs = self.rs;
+        let (nf, np) = (rs.n_face, rs.n_profile);
+        let x = (self.xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
+        let i = (x as usize).min(nf - 2);
+        let on = |k: usize| rs.active[i * np + k] && rs.active[(i + 1) * np + k];
+        let eta = |k: usize| k as f64 / (np - 1) as f64;
+        let first = (0..np).find(|&k| on(k))?;
+        let last = (0..np).rev().find(|&k| on(k))?;
+        Some((
+            (eta(first), first.checked_sub(1).map(eta)),
+            (eta(last), (last + 1 < np).then(|| eta(last + 1))),
+        ))
+    }
+
+    /// Boundary of the active region between an active and an inactive η.
+    fn boundary(&self, inside: f64, outside: f64) -> f64 {
+        let (mut a, mut b) = (inside, outside);
+        for _ in 0..14 {
+            let m = 0.5 * (a + b);
+            if self.eval(m).is_some() {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        a
+    }
+}
+
+struct ColumnMin {
+    eta: f64,
+    lag: f64,
+    point: preprocess::flank::FlankPoint,
+    /// (d²lag/dη², ∂r/∂η) at an interior minimum.
+    curvature: Option<(f64, [f64; 3])>,
+}
+
+/// Start of the column search: where the tabulated roll angle along the
+/// column ξ crosses `target` (linear in the surface of roll angles' nodes),
+/// else the column end nearer to it.
+fn level_crossing(rs: &RollSurface, xi: f64, target: f64) -> f64 {
+    let (nf, np) = (rs.n_face, rs.n_profile);
+    let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
+    let i = (x as usize).min(nf - 2);
+    let w = x - i as f64;
+    let roll = |k: usize| (1.0 - w) * rs.roll[i * np + k] + w * rs.roll[(i + 1) * np + k];
+    let mut prev = roll(0) - target;
+    for k in 1..np {
+        let cur = roll(k) - target;
+        if prev == 0.0 || prev.signum() != cur.signum() {
+            return (k as f64 - 1.0 + prev / (prev - cur)) / (np - 1) as f64;
+        }
+        prev = cur;
+    }
+    let (r0, r1) = (roll(0), roll(np - 1));
+    if (r0 - target).abs() < (r1 - target).abs() {
+        0.0
+    } else {
+        1.0
     }
 }
 
@@ -211,80 +303,99 @@ pub fn pair_slices(
             if i + 1 == m { 1.0 } else { xi + 0.5 * delta },
         ];
         let col = Column { fp, rs, target, xi };
-        let start = ls
-            .line_point(xi * (rs.n_face - 1) as f64, target)
-            .map(|uv| {
-                let (l, d) = fp.pinion.ld(uv[0], uv[1]);
-                fp.pinion.bounds.to_unit(l, d).1
-            })
-            .unwrap_or_else(|| {
-                if col.value(0.0) < col.value(1.0) {
-                    0.0
-                } else {
-                    1.0
-                }
-            });
-        if let Some((lag, p)) = col.minimum(start) {
-            raw.push((band, xi, lag, p));
+        if let Some(c) = col.minimum(level_crossing(rs, xi, target)) {
+            raw.push((band, xi, c));
         }
     }
-    // Contact-line tangent from neighbouring contact points (pinion and wheel
-    // frames), slice length and relative curvature across the line.
-    let wheel_pts: Vec<_> = raw
-        .iter()
-        .map(|r| fp.wheel.eval_uv(r.3.uv[0], r.3.uv[1]))
-        .collect();
     let m = raw.len();
     let slices = (0..m)
         .map(|i| {
-            let (band, xi, lag, p) = raw[i];
+            let (band, xi, ref c) = raw[i];
+            let p = c.point;
+            // Contact-line tangent from the neighbouring contact points.
             let (a, b) = match m {
                 1 => (i, i),
                 _ if i == 0 => (0, 1),
                 _ if i + 1 == m => (m - 2, m - 1),
                 _ => (i - 1, i + 1),
             };
-            let (dp, dw, dxi) = if a == b {
-                let q = fp.pinion.at_unit((xi + 1e-4).min(1.0), p_eta(fp, &p)).ok();
-                match q {
-                    Some(q) => {
-                        let w = fp.wheel.eval_uv(q.uv[0], q.uv[1]);
-                        (sub(q.pos, p.pos), sub(w.pos, wheel_pts[i].pos), 1e-4)
-                    }
-                    None => ([1.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.0),
-                }
+            let (dp, dxi) = if a == b {
+                let q = fp.pinion.at_unit((xi + 1e-4).min(1.0), c.eta).ok();
+                (q.map_or([1.0, 0.0, 0.0], |q| sub(q.pos, p.pos)), 1e-4)
             } else {
                 (
-                    sub(raw[b].3.pos, raw[a].3.pos),
-                    sub(wheel_pts[b].pos, wheel_pts[a].pos),
+                    sub(raw[b].2.point.pos, raw[a].2.point.pos),
                     raw[b].1 - raw[a].1,
                 )
             };
             let length = norm(dp) / dxi.abs() * (band[1] - band[0]);
-            let k1 = curvature_across(&fp.pinion, p.uv, p.normal, dp);
-            let k2 = curvature_across(&fp.wheel, p.uv, wheel_pts[i].normal, dw);
-            let (lw, dw_) = fp.wheel.ld(p.uv[0], p.uv[1]);
-            let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw_);
+            let kappa = match c.curvature {
+                Some((h, dr)) => separation_curvature(&p, h, dr, dp),
+                None => geometric_curvature(fp, &p, dp),
+            };
+            let (lw, dw) = fp.wheel.ld(p.uv[0], p.uv[1]);
+            let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw);
             Slice {
                 pair,
                 band,
                 xi,
-                eta: p_eta(fp, &p),
+                eta: c.eta,
                 uv: p.uv,
                 wheel_xi_eta: [xw, ew],
-                lag,
+                lag: c.lag,
                 lever_wheel: p.wheel_lever,
                 lever_pinion: pinion_lever(p.pos, p.normal),
                 pos: p.pos,
                 normal: p.normal,
                 length,
-                rho: 1.0 / (k1 + k2).max(1.0 / RHO_MAX),
+                rho: 1.0 / kappa.max(1.0 / RHO_MAX),
             }
         })
         .collect();
     Some(PairSlices { utca_lag, slices })
 }
 
-fn p_eta(fp: &FlankPair, p: &preprocess::flank::FlankPoint) -> f64 {
-    fp.pinion.bounds.to_unit(p.l, p.d).1
+/// Relative normal curvature across the contact line from the separation
+/// field itself: along the column the gap λ₂·lag has second derivative
+/// λ₂ H per dη², i.e. λ₂ H / |∂r/∂η|² per arc length² (λ₂ taken as constant
+/// over the short distance); the column crosses the
+/// contact line `line` at angle γ, so across the line κ = that / sin²γ.
+fn separation_curvature(
+    p: &preprocess::flank::FlankPoint,
+    h: f64,
+    dr: [f64; 3],
+    line: [f64; 3],
+) -> f64 {
+    let cos = dot(dr, line) / (norm(dr) * norm(line));
+    let sin2 = (1.0 - cos * cos).max(1e-6);
+    p.wheel_lever * h / dot(dr, dr) / sin2
+}
+
+/// Relative normal curvature across the contact line `line` from the two
+/// flanks' principal curvatures (convex positive): κ₁(t₁) + κ₂(t₂), t = n × line.
+pub fn geometric_curvature(
+    fp: &FlankPair,
+    p: &preprocess::flank::FlankPoint,
+    line: [f64; 3],
+) -> f64 {
+    let w = fp.wheel.eval_uv(p.uv[0], p.uv[1]);
+    let q = fp.wheel.eval_uv(p.uv[0] + 1e-6, p.uv[1]);
+    let r = fp.pinion.eval_uv(p.uv[0] + 1e-6, p.uv[1]);
+    // The wheel's image of `line`: map the pinion tangent through the common (u, v) parametrisation.
+    let du_p = sub(r.pos, p.pos);
+    let du_w = sub(q.pos, w.pos);
+    let dv_p = sub(fp.pinion.eval_uv(p.uv[0], p.uv[1] + 1e-6).pos, p.pos);
+    let dv_w = sub(fp.wheel.eval_uv(p.uv[0], p.uv[1] + 1e-6).pos, w.pos);
+    // line = a du_p + b dv_p (least squares in the tangent plane).
+    let (g11, g12, g22) = (dot(du_p, du_p), dot(du_p, dv_p), dot(dv_p, dv_p));
+    let (r1, r2) = (dot(line, du_p), dot(line, dv_p));
+    let det = g11 * g22 - g12 * g12;
+    let (a, b) = ((r1 * g22 - r2 * g12) / det, (r2 * g11 - r1 * g12) / det);
+    let line_w = [
+        a * du_w[0] + b * dv_w[0],
+        a * du_w[1] + b * dv_w[1],
+        a * du_w[2] + b * dv_w[2],
+    ];
+    curvature_across(&fp.pinion, p.uv, p.normal, line)
+        + curvature_across(&fp.wheel, p.uv, w.normal, line_w)
 }

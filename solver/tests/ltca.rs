@@ -59,7 +59,11 @@ fn member(g: &PairGeometry, m: Member, refined: Vec<usize>) -> MemberCompliance 
     let (sf, sp) = grid.spacing();
     let md = g.data.member(m);
     let loaded = Side::Drive.flank_name(m);
-    let opposite = if loaded == "concave" { "convex" } else { "concave" };
+    let opposite = if loaded == "concave" {
+        "convex"
+    } else {
+        "concave"
+    };
     let inf = compute(
         &InfluenceRequest {
             body: &body,
@@ -113,7 +117,10 @@ fn member(g: &PairGeometry, m: Member, refined: Vec<usize>) -> MemberCompliance 
 fn fixture() -> &'static Fixture {
     static F: OnceLock<Fixture> = OnceLock::new();
     F.get_or_init(|| {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../reference/white_paper_20x43.toml");
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../reference/white_paper_20x43.toml"
+        );
         let g = PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap();
         let (pt, wt) = teeth_in_contact(&g, Side::Drive, 2.0, 0.5f64.to_radians());
         let pc = PairCompliance {
@@ -154,7 +161,12 @@ fn vanishing_torque_reproduces_the_unloaded_te() {
     let utca = preprocess::utca::run(fp, &f.rs, sw.start, sw.step, sw.positions, sw.direction);
     let mut worst: f64 = 0.0;
     for (p, te0) in res.iter().zip(&utca.te) {
-        assert!((p.utca_te - te0).abs() < 1e-12, "slices' UTCA {} vs {}", p.utca_te, te0);
+        assert!(
+            (p.utca_te - te0).abs() < 1e-12,
+            "slices' UTCA {} vs {}",
+            p.utca_te,
+            te0
+        );
         worst = worst.max((p.loads[0].te - te0).abs());
     }
     eprintln!("largest |TE(1e-3 N m) - TE_UTCA| = {:.4} µrad", worst * 1e6);
@@ -252,4 +264,42 @@ fn slice_compliance_is_symmetric_positive_definite_and_load_sharing_adds_up() {
         assert!((share - 1.0).abs() < 1e-9, "shares add to {share}");
     }
     assert!(s.theta > g.utca_te);
+}
+
+#[test]
+fn relative_curvature_from_the_separation_field_matches_the_flanks_principal_curvatures() {
+    // The slices take ρ from the second derivative of the model's own gap
+    // along the profile; compare with κ₁(t) + κ₂(t) from the two generated
+    // flanks' principal curvatures across the contact line.
+    let f = fixture();
+    let fp = f.g.side(Side::Drive);
+    let tau = f.g.data.mesh_cycle();
+    let phi = fp.roll_range[0] + 1.4 * tau * pinion_direction(&f.g.data, Side::Drive);
+    let g = geometry(fp, &f.rs, phi, tau, 30);
+    let lag_min = g.slices.iter().map(|s| s.lag).fold(f64::INFINITY, f64::min);
+    let mut worst: f64 = 0.0;
+    let mut checked = 0;
+    for w in g.slices.windows(3) {
+        let [a, s, b] = [&w[0], &w[1], &w[2]];
+        // Slices of one pair near its contact (within 60 µrad of touching).
+        if a.pair != s.pair || b.pair != s.pair || s.lag > lag_min + 60e-6 || s.rho >= 0.999 {
+            continue;
+        }
+        let line = [
+            b.pos[0] - a.pos[0],
+            b.pos[1] - a.pos[1],
+            b.pos[2] - a.pos[2],
+        ];
+        let p = fp.pinion.eval_uv(s.uv[0], s.uv[1]);
+        let k_geo = solver::slices::geometric_curvature(fp, &p, line);
+        let rel = (1.0 / s.rho - k_geo).abs() / k_geo;
+        worst = worst.max(rel);
+        checked += 1;
+    }
+    eprintln!(
+        "{checked} slices, largest relative difference {:.2} %",
+        worst * 100.0
+    );
+    assert!(checked >= 8, "only {checked} slices near contact");
+    assert!(worst < 0.05, "{:.2} %", worst * 100.0);
 }
