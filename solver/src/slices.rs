@@ -173,7 +173,7 @@ impl Column<'_> {
     /// The active part of the column from the surface of roll angles'
     /// activity flags: (last active node, first inactive node) at each end;
     /// the outer bound is None where the column is active to its end.
-    fn active_interval(&self) -> Option<((f64, Option<f64>), (f64, Option<f64>))> {
+    fn active_interval(&self) -> Option<(End, End)> {
         let rs = self.rs;
         let (nf, np) = (rs.n_face, rs.n_profile);
         let x = (self.xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
@@ -202,6 +202,9 @@ impl Column<'_> {
         a
     }
 }
+
+/// An end of a column's active interval: (last active η, first inactive η beyond it).
+type End = (f64, Option<f64>);
 
 struct ColumnMin {
     eta: f64,
