@@ -19,20 +19,22 @@ test: setup
 	$(CARGO) test $(RELEASE) --workspace
 	bash scripts/check_env.sh
 
-bench: setup build
+bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench flanks
 	$(CARGO) bench -p preprocess --bench mesh
 	$(CARGO) bench -p preprocess --bench stiffness
+	$(CARGO) bench -p solver --bench ltca
 
 preprocess: build
 	$(BIN)/preprocess flanks $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/flanks
 	$(BIN)/preprocess mesh $(SCENE) --level reduced --out meshes
 	$(BIN)/preprocess stiffness $(SCENE) --meshes meshes
 
-solve: build
+solve: preprocess
 	$(BIN)/solver plan $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/plan.json
+	$(BIN)/solver ltca $(SCENE) --meshes meshes --out $(OUT)
 
-validate: preprocess
+validate: solve
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports
 
 clean:

@@ -1,0 +1,165 @@
+//! `make bench` (ltca): the quasi-static LTCA of the default scene with the
+//! stiffness files in `meshes/default/` (made by `make preprocess`): time per
+//! position split into slice geometry, compliance assembly and contact solve,
+//! next to the white paper's 0.6–0.9 s CPU per multibody step (its Table 5);
+//! and run time against error over the slice count (error against 160
+//! slices). Target (issue 5): quasi-static LTCA ≤ 2 ms per position.
+//! Results in `bench/ltca.json`.
+
+use preprocess::design::Member;
+use preprocess::flank_stage::roll_surface;
+use preprocess::pair::{pinion_direction, PairGeometry};
+use preprocess::scene::{Blank, Scene};
+use preprocess::stiffness_file;
+use preprocess::stiffness_stage::planned;
+use serde_json::json;
+use solver::compliance::{MemberCompliance, PairCompliance};
+use solver::ltca::{mean_ptp, run, Sweep};
+use solver::weber_banaschek::Elastic;
+use std::path::Path;
+use std::time::Instant;
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
+    let dir = root.join("meshes").join(&sc.name);
+    let load = |m: Member, b: Blank| {
+        let p = planned(&scene, &g, &dir, m, b, "reduced")
+            .expect("meshes/default: run `make preprocess` first");
+        let d = stiffness_file::read(&p.path, Some(&p.hash))
+            .expect("stiffness file missing or stale: run `make preprocess` first");
+        let md = g.data.member(m);
+        MemberCompliance::new(
+            d,
+            Elastic {
+                youngs_modulus_pa: md.youngs_modulus,
+                poisson_ratio: md.poisson_ratio,
+            },
+        )
+    };
+    let fp = g.side(sc.loaded_flank);
+    let rs = roll_surface(fp, &sc.utca).unwrap();
+    let tau = g.data.mesh_cycle();
+    let step = sc.rotation.step_deg.to_radians();
+    let torques = &sc.pinion_torque_nm;
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    println!("\nLTCA benchmark (default scene, {cores} cores; times are CPU per position, positions run in parallel)\n");
+    println!(
+        "{:<12} {:>5} {:>7} {:>9} {:>9} {:>11} {:>12} {:>9}",
+        "wheel blank",
+        "pos",
+        "slices",
+        "geom [ms]",
+        "asm [ms]",
+        "solve [ms]",
+        "1 load [ms]",
+        "wall [s]"
+    );
+    let pinion = load(Member::Pinion, Blank::Standard);
+    let mut rows = Vec::new();
+    for &wb in &sc.blanks.wheel {
+        let pc = PairCompliance {
+            pinion: pinion.clone(),
+            wheel: load(Member::Wheel, wb),
+        };
+        let cycles = match wb {
+            Blank::Standard => sc.rotation.mesh_cycles_standard,
+            Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
+        };
+        let sweep = Sweep {
+            start: fp.roll_range[0],
+            step,
+            direction: pinion_direction(&g.data, sc.loaded_flank),
+            positions: (cycles * tau / step).round() as usize + 1,
+            slices: sc.ltca.slices,
+        };
+        let t = Instant::now();
+        let res = run(fp, &rs, &pc, &sweep, torques).unwrap();
+        let wall = t.elapsed().as_secs_f64();
+        let n = res.len() as f64;
+        let geom = res.iter().map(|p| p.geometry_s).sum::<f64>() / n;
+        let asm = res.iter().map(|p| p.assembly_s).sum::<f64>() / n;
+        let solve = res
+            .iter()
+            .map(|p| p.loads.iter().map(|l| l.solve_s).sum::<f64>())
+            .sum::<f64>()
+            / n
+            / torques.len() as f64;
+        let slices = res.iter().map(|p| p.slices).sum::<usize>() as f64 / n;
+        println!(
+            "{:<12} {:>5} {:>7.0} {:>9.2} {:>9.2} {:>11.3} {:>12.2} {:>9.2}",
+            format!("{wb:?}"),
+            res.len(),
+            slices,
+            geom * 1e3,
+            asm * 1e3,
+            solve * 1e3,
+            (geom + asm + solve) * 1e3,
+            wall
+        );
+        rows.push(json!({"wheel_blank": format!("{wb:?}").to_lowercase(), "positions": res.len(), "torques": torques,
+            "slices_per_position": slices, "geometry_ms": geom * 1e3, "assembly_ms": asm * 1e3,
+            "solve_ms_per_torque": solve * 1e3, "one_torque_ms_per_position": (geom + asm + solve) * 1e3,
+            "all_torques_ms_per_position": (geom + asm + solve * torques.len() as f64) * 1e3, "wall_s": wall}));
+    }
+
+    // Run time against error over the slice count: standard blank, 300 N·m, one mesh cycle.
+    let pc = PairCompliance {
+        pinion: pinion.clone(),
+        wheel: load(Member::Wheel, Blank::Standard),
+    };
+    let sweep = |slices: usize| Sweep {
+        start: fp.roll_range[0],
+        step,
+        direction: pinion_direction(&g.data, sc.loaded_flank),
+        positions: (tau / step).round() as usize + 1,
+        slices,
+    };
+    let case = |slices: usize| {
+        let res = run(fp, &rs, &pc, &sweep(slices), &[300.0]).unwrap();
+        let n = res.len() as f64;
+        let cpu = res
+            .iter()
+            .map(|p| p.geometry_s + p.assembly_s + p.loads[0].solve_s)
+            .sum::<f64>()
+            / n;
+        let (m, ptp) = mean_ptp(&res.iter().map(|p| p.loads[0].te).collect::<Vec<_>>());
+        (cpu, m, ptp)
+    };
+    let (_, m_ref, ptp_ref) = case(160);
+    println!("\nslices per pair vs error (standard blank, 300 N·m, 1 mesh cycle; reference 160 slices)\n");
+    println!(
+        "{:>7} {:>12} {:>14} {:>14} {:>12} {:>12}",
+        "slices", "ms/position", "mean TE [µrad]", "ptp TE [µrad]", "mean err %", "ptp err %"
+    );
+    let mut conv = Vec::new();
+    for slices in [10, 20, 30, 40, 60, 90] {
+        let (cpu, m, ptp) = case(slices);
+        let (em, ep) = (
+            100.0 * (m - m_ref).abs() / m_ref,
+            100.0 * (ptp - ptp_ref).abs() / ptp_ref,
+        );
+        println!(
+            "{slices:>7} {:>12.2} {:>14.3} {:>14.3} {em:>12.3} {ep:>12.3}",
+            cpu * 1e3,
+            m * 1e6,
+            ptp * 1e6
+        );
+        conv.push(json!({"slices": slices, "ms_per_position": cpu * 1e3, "te_mean_urad": m * 1e6, "te_ptp_urad": ptp * 1e6,
+            "mean_error_percent": em, "ptp_error_percent": ep}));
+    }
+    println!("\ntarget: <= 2 ms per position (one torque); white paper, Table 5: 0.6-0.9 s CPU per multibody step");
+    let out = root.join("bench");
+    std::fs::create_dir_all(&out).unwrap();
+    preprocess::output::write_json(
+        &out.join("ltca.json"),
+        &json!({"machine": format!("{cores} cores, {}", std::env::consts::ARCH), "sweeps": rows,
+                "slice_convergence": {"reference_slices": 160, "te_mean_urad": m_ref * 1e6, "te_ptp_urad": ptp_ref * 1e6, "cases": conv},
+                "targets": {"one_torque_ms_per_position": 2.0},
+                "white_paper_cpu_s_per_step": [0.6, 0.9]}),
+    )
+    .unwrap();
+    println!("written to bench/ltca.json");
+}
