@@ -176,6 +176,16 @@ pub struct MemberData {
     pub density: f64,
 }
 
+impl MemberData {
+    /// The member's elastic constants.
+    pub fn material(&self) -> fem::Material {
+        fem::Material {
+            youngs_modulus_pa: self.youngs_modulus,
+            poisson_ratio: self.poisson_ratio,
+        }
+    }
+}
+
 impl PairData {
     pub fn member(&self, m: Member) -> &MemberData {
         match m {

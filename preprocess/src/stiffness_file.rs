@@ -107,9 +107,19 @@ pub fn h5() -> hdf5::FileBuilder {
     b
 }
 
-/// Opens an existing stiffness file for reading and writing (no file locking).
-pub fn open_rw(path: &Path) -> hdf5::Result<hdf5::File> {
-    h5().open_rw(path)
+/// Writes a float dataset of `shape` with a `units` attribute.
+pub fn write_dataset(
+    f: &hdf5::File,
+    name: &str,
+    shape: &[usize],
+    v: &[f64],
+    units: &str,
+) -> hdf5::Result<()> {
+    let ds = f.new_dataset::<f64>().shape(shape.to_vec()).create(name)?;
+    ds.write_raw(v)?;
+    ds.new_attr::<hdf5::types::VarLenUnicode>()
+        .create("units")?
+        .write_scalar(&vlu(units))
 }
 
 fn vlu(s: &str) -> hdf5::types::VarLenUnicode {
@@ -170,12 +180,8 @@ fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
     let np = d.points();
     let ns = d.solved_teeth.len();
     let no = d.offsets.len();
-    let put = |name: &str, shape: &[usize], v: &[f64], units: &str| -> hdf5::Result<()> {
-        let ds = f.new_dataset::<f64>().shape(shape.to_vec()).create(name)?;
-        ds.write_raw(v)?;
-        ds.new_attr::<hdf5::types::VarLenUnicode>()
-            .create("units")?
-            .write_scalar(&vlu(units))
+    let put = |name: &str, shape: &[usize], v: &[f64], units: &str| {
+        write_dataset(&f, name, shape, v, units)
     };
     f.create_group("grid").map_err(&e)?;
     f.create_group("teeth").map_err(&e)?;

@@ -5,7 +5,7 @@
 
 use crate::body_mesh;
 use crate::design::Member;
-use crate::influence::{compute, FlankGrid, GridSize, InfluenceRequest, InfluenceStats};
+use crate::influence::{compute, FlankGrid, GridSize, Influence, InfluenceRequest, InfluenceStats};
 use crate::mesh_stage::refined_teeth;
 use crate::output::write_json;
 use crate::pair::PairGeometry;
@@ -173,6 +173,39 @@ pub fn planned(
     })
 }
 
+/// The content of a stiffness file holding influence fields `inf` on grid
+/// `fg`; the header strings (hash, config, member, blank, level) are left
+/// empty for the caller to fill.
+pub fn stiffness_data(
+    fg: &FlankGrid,
+    inf: Influence,
+    teeth: usize,
+    axisymmetric: bool,
+) -> StiffnessData {
+    StiffnessData {
+        input_hash: String::new(),
+        config: String::new(),
+        member: String::new(),
+        blank: String::new(),
+        level: String::new(),
+        teeth,
+        axisymmetric,
+        grid_profile: fg.size.profile,
+        grid_face: fg.size.face,
+        xi: fg.xi.clone(),
+        eta: fg.eta.clone(),
+        position: fg.position.iter().flatten().copied().collect(),
+        normal: fg.normal.iter().flatten().copied().collect(),
+        lever: fg.lever.clone(),
+        solved_teeth: inf.solved_teeth.iter().map(|&k| k as u32).collect(),
+        offsets: inf.offsets,
+        depth_h: inf.depth.iter().flatten().copied().collect(),
+        total: inf.total,
+        local: inf.local,
+        global: inf.global,
+    }
+}
+
 fn run_one(
     scene: &LoadedScene,
     g: &PairGeometry,
@@ -195,7 +228,6 @@ fn run_one(
         hash,
         grid: fg,
     } = planned(scene, g, dir, member, blank, level)?;
-    let grid = config.grid;
     let axisymmetric = config.axisymmetric;
     let mut replaced_because = None;
     if path.exists() {
@@ -238,10 +270,7 @@ fn run_one(
     };
     let req = InfluenceRequest {
         body: &body,
-        material: fem::Material {
-            youngs_modulus_pa: md.youngs_modulus,
-            poisson_ratio: md.poisson_ratio,
-        },
+        material: md.material(),
         teeth: md.teeth as usize,
         loaded: &config.loaded_flank,
         opposite,
@@ -277,27 +306,14 @@ fn run_one(
             }
         }
     }
+    let stats = inf.stats.clone();
     let data = StiffnessData {
         input_hash: hash.clone(),
         config: config_json,
         member: member.name().into(),
         blank: blank_name.clone(),
         level: level.into(),
-        teeth: md.teeth as usize,
-        axisymmetric,
-        grid_profile: grid.profile,
-        grid_face: grid.face,
-        xi: fg.xi.clone(),
-        eta: fg.eta.clone(),
-        position: fg.position.iter().flatten().copied().collect(),
-        normal: fg.normal.iter().flatten().copied().collect(),
-        lever: fg.lever.clone(),
-        solved_teeth: inf.solved_teeth.iter().map(|&k| k as u32).collect(),
-        offsets: inf.offsets.clone(),
-        depth_h: inf.depth.iter().flatten().copied().collect(),
-        total: inf.total,
-        local: inf.local,
-        global: inf.global,
+        ..stiffness_data(&fg, inf, md.teeth as usize, axisymmetric)
     };
     std::fs::create_dir_all(dir)?;
     stiffness_file::write(&path, &data)?;
@@ -309,7 +325,7 @@ fn run_one(
         reused: false,
         replaced_because,
         input_hash: hash,
-        stats: Some(inf.stats),
+        stats: Some(stats),
         total_s: t0.elapsed().as_secs_f64(),
         reciprocity_error: Some(recip),
     };

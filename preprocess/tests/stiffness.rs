@@ -98,7 +98,7 @@ fn stiffness_file_from_other_inputs_or_schema_is_rejected() {
         other => panic!("expected a hash mismatch, got {other:?}"),
     }
     {
-        let f = stiffness_file::open_rw(&p).unwrap();
+        let f = stiffness_file::h5().open_rw(&p).unwrap();
         f.attr("schema_version")
             .unwrap()
             .write_scalar(&99u32)
@@ -183,10 +183,7 @@ fn fields() -> &'static (BodyMesh, Vec<usize>, Influence) {
         let inf = compute(
             &InfluenceRequest {
                 body: &body,
-                material: fem::Material {
-                    youngs_modulus_pa: md.youngs_modulus,
-                    poisson_ratio: md.poisson_ratio,
-                },
+                material: md.material(),
                 teeth: md.teeth as usize,
                 loaded: "concave",
                 opposite: "convex",

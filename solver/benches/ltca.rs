@@ -8,14 +8,12 @@
 
 use preprocess::design::Member;
 use preprocess::flank_stage::roll_surface;
-use preprocess::pair::{pinion_direction, PairGeometry};
+use preprocess::pair::PairGeometry;
 use preprocess::scene::{Blank, Scene};
-use preprocess::stiffness_file;
-use preprocess::stiffness_stage::planned;
 use serde_json::json;
-use solver::compliance::{MemberCompliance, PairCompliance};
+use solver::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run, Sweep};
-use solver::weber_banaschek::Elastic;
+use solver::ltca_stage::{member_compliance, scene_sweep};
 use std::path::Path;
 use std::time::Instant;
 
@@ -26,18 +24,9 @@ fn main() {
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
     let dir = root.join("meshes").join(&sc.name);
     let load = |m: Member, b: Blank| {
-        let p = planned(&scene, &g, &dir, m, b, "reduced")
-            .expect("meshes/default: run `make preprocess` first");
-        let d = stiffness_file::read(&p.path, Some(&p.hash))
-            .expect("stiffness file missing or stale: run `make preprocess` first");
-        let md = g.data.member(m);
-        MemberCompliance::new(
-            d,
-            Elastic {
-                youngs_modulus_pa: md.youngs_modulus,
-                poisson_ratio: md.poisson_ratio,
-            },
-        )
+        member_compliance(&scene, &g, &dir, m, b)
+            .expect("meshes/default: run `make preprocess` first")
+            .0
     };
     let fp = g.side(sc.loaded_flank);
     let rs = roll_surface(fp, &sc.utca).unwrap();
@@ -64,17 +53,7 @@ fn main() {
             pinion: pinion.clone(),
             wheel: load(Member::Wheel, wb),
         };
-        let cycles = match wb {
-            Blank::Standard => sc.rotation.mesh_cycles_standard,
-            Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-        };
-        let sweep = Sweep {
-            start: fp.roll_range[0],
-            step,
-            direction: pinion_direction(&g.data, sc.loaded_flank),
-            positions: (cycles * tau / step).round() as usize + 1,
-            slices: sc.ltca.slices,
-        };
+        let sweep = scene_sweep(&scene, &g, wb);
         let t = Instant::now();
         let res = run(fp, &rs, &pc, &sweep, torques).unwrap();
         let wall = t.elapsed().as_secs_f64();
@@ -110,12 +89,13 @@ fn main() {
         pinion: pinion.clone(),
         wheel: load(Member::Wheel, Blank::Standard),
     };
-    let sweep = |slices: usize| Sweep {
-        start: fp.roll_range[0],
-        step,
-        direction: pinion_direction(&g.data, sc.loaded_flank),
+    let one_cycle = Sweep {
         positions: (tau / step).round() as usize + 1,
+        ..scene_sweep(&scene, &g, Blank::Standard)
+    };
+    let sweep = |slices: usize| Sweep {
         slices,
+        ..one_cycle
     };
     let case = |slices: usize| {
         let res = run(fp, &rs, &pc, &sweep(slices), &[300.0]).unwrap();

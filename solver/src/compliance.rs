@@ -10,8 +10,8 @@
 //! offset is j_l − j_k and the wheel offset j_k − j_l.
 
 use crate::interp::{grid_weights, Weights};
-use crate::weber_banaschek::Elastic;
 use crate::SolverError;
+use fem::Material;
 use preprocess::stiffness_file::StiffnessData;
 
 /// One member's influence data, ready for interpolation.
@@ -27,11 +27,11 @@ pub struct MemberCompliance {
     offsets: Vec<i32>,
     global: Vec<f64>,
     depth: Vec<f64>,
-    pub elastic: Elastic,
+    pub material: Material,
 }
 
 impl MemberCompliance {
-    pub fn new(d: StiffnessData, elastic: Elastic) -> Self {
+    pub fn new(d: StiffnessData, material: Material) -> Self {
         MemberCompliance {
             member: d.member.clone(),
             teeth: d.teeth,
@@ -43,7 +43,7 @@ impl MemberCompliance {
             offsets: d.offsets,
             global: d.global,
             depth: d.depth_h,
-            elastic,
+            material,
         }
     }
 

@@ -222,12 +222,9 @@ impl ContactProblem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::weber_banaschek::Elastic;
+    use fem::Material;
 
-    const STEEL: Elastic = Elastic {
-        youngs_modulus_pa: 206e9,
-        poisson_ratio: 0.3,
-    };
+    const STEEL: Material = Material::STEEL;
 
     fn line() -> LineContact {
         LineContact {

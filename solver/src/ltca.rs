@@ -50,6 +50,10 @@ pub struct Assembled {
     /// C = C_pinion + C_wheel, row-major n × n, m/N.
     pub compliance: Vec<f64>,
     pub line: Vec<LineContact>,
+    /// Per slice: touching lag (rad), wheel and pinion normal levers.
+    pub lag: Vec<f64>,
+    pub lever_wheel: Vec<f64>,
+    pub lever_pinion: Vec<f64>,
 }
 
 /// Interpolates both members' global influence fields and reference depths to the slices.
@@ -73,7 +77,7 @@ pub fn assemble(g: &Geometry, pc: &PairCompliance) -> Result<Assembled, SolverEr
         .map(|&j| (0..n).filter(|&k| g.slices[k].pair == j).collect())
         .collect();
     let mut line = Vec::with_capacity(n);
-    let bodies = [pc.pinion.elastic, pc.wheel.elastic];
+    let bodies = [pc.pinion.material, pc.wheel.material];
     for (a, &ja) in pairs.iter().enumerate() {
         let sp = pc.pinion.solved_index(ja as i64)?;
         let sw = pc.wheel.solved_index(-(ja as i64))?;
@@ -109,24 +113,23 @@ pub fn assemble(g: &Geometry, pc: &PairCompliance) -> Result<Assembled, SolverEr
     Ok(Assembled {
         compliance: c,
         line: line.into_iter().map(|e| e.1).collect(),
+        lag: g.slices.iter().map(|s| s.lag).collect(),
+        lever_wheel: g.slices.iter().map(|s| s.lever_wheel).collect(),
+        lever_pinion: g.slices.iter().map(|s| s.lever_pinion).collect(),
     })
 }
 
 /// Solves one position at pinion torque `torque` (N·m).
 pub fn solve(
-    g: &Geometry,
     a: &Assembled,
     torque: f64,
     warm: Option<&[bool]>,
 ) -> Result<ContactSolution, SolverError> {
-    let lag: Vec<f64> = g.slices.iter().map(|s| s.lag).collect();
-    let l2: Vec<f64> = g.slices.iter().map(|s| s.lever_wheel).collect();
-    let l1: Vec<f64> = g.slices.iter().map(|s| s.lever_pinion).collect();
     ContactProblem {
         compliance: &a.compliance,
-        lag: &lag,
-        lever_wheel: &l2,
-        lever_pinion: &l1,
+        lag: &a.lag,
+        lever_wheel: &a.lever_wheel,
+        lever_pinion: &a.lever_pinion,
         line: &a.line,
         torque,
     }
@@ -277,7 +280,7 @@ pub fn run(
             let mut warm: Option<Vec<bool>> = None;
             for &torque in torques {
                 let t = Instant::now();
-                let s = solve(&g, &a, torque, warm.as_deref())?;
+                let s = solve(&a, torque, warm.as_deref())?;
                 let dt = t.elapsed().as_secs_f64();
                 loads.push(position_load(&g, &a, &s, torque, dt));
                 warm = Some(s.active);

@@ -6,7 +6,6 @@
 
 use crate::compliance::{MemberCompliance, PairCompliance};
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
-use crate::weber_banaschek::Elastic;
 use anyhow::Context;
 use preprocess::design::Member;
 use preprocess::flank_stage::roll_surface;
@@ -53,7 +52,8 @@ pub struct BlankSummary {
     pub dir: PathBuf,
 }
 
-fn member_compliance(
+/// Reads the member × blank stiffness file that `scene` needs, checking its hash.
+pub fn member_compliance(
     scene: &LoadedScene,
     g: &PairGeometry,
     dir: &Path,
@@ -69,12 +69,33 @@ fn member_compliance(
             scene.path.display()
         )
     })?;
-    let md = g.data.member(member);
-    let e = Elastic {
-        youngs_modulus_pa: md.youngs_modulus,
-        poisson_ratio: md.poisson_ratio,
-    };
-    Ok((MemberCompliance::new(data, e), p.path))
+    Ok((
+        MemberCompliance::new(data, g.data.member(member).material()),
+        p.path,
+    ))
+}
+
+/// Mesh cycles the scene sweeps for a wheel blank.
+pub fn mesh_cycles(sc: &preprocess::scene::Scene, wheel: Blank) -> f64 {
+    match wheel {
+        Blank::Standard => sc.rotation.mesh_cycles_standard,
+        Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
+    }
+}
+
+/// The scene's sweep for a wheel blank: from the entry of tooth 0, the
+/// blank's mesh cycles at the scene's step.
+pub fn scene_sweep(scene: &LoadedScene, g: &PairGeometry, wheel: Blank) -> Sweep {
+    let sc = &scene.scene;
+    let cycles = mesh_cycles(sc, wheel);
+    let step = sc.rotation.step_deg.to_radians();
+    Sweep {
+        start: g.side(sc.loaded_flank).roll_range[0],
+        step,
+        direction: pinion_direction(&g.data, sc.loaded_flank),
+        positions: (cycles * g.data.mesh_cycle() / step).round() as usize + 1,
+        slices: sc.ltca.slices,
+    }
 }
 
 /// Runs the LTCA of the scene.
@@ -84,8 +105,6 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let side = sc.loaded_flank;
     let fp = g.side(side);
     let rs = roll_surface(fp, &sc.utca)?;
-    let tau = g.data.mesh_cycle();
-    let step = sc.rotation.step_deg.to_radians();
     let dir = meshes.join(&sc.name);
     let mut out_all = Vec::new();
     for &pb in &sc.blanks.pinion {
@@ -97,17 +116,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 pinion: pin.clone(),
                 wheel: whl,
             };
-            let cycles = match wb {
-                Blank::Standard => sc.rotation.mesh_cycles_standard,
-                Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-            };
-            let sweep = Sweep {
-                start: fp.roll_range[0],
-                step,
-                direction: pinion_direction(&g.data, side),
-                positions: (cycles * tau / step).round() as usize + 1,
-                slices: sc.ltca.slices,
-            };
+            let sweep = scene_sweep(scene, &g, wb);
             eprintln!(
                 "ltca {pb:?}/{wb:?}: {} positions x {} torques, {} slices per pair",
                 sweep.positions,
@@ -126,7 +135,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 wheel_blank: wb,
                 positions: res.len(),
                 step_deg: sc.rotation.step_deg,
-                mesh_cycles: cycles,
+                mesh_cycles: mesh_cycles(sc, wb),
                 slices_per_pair: sweep.slices,
                 utca_te_mean_urad: um * 1e6,
                 utca_te_ptp_urad: up * 1e6,
@@ -177,12 +186,13 @@ pub fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummar
                     .map(|p| p.loads[i].max_pressure_pa)
                     .fold(0.0, f64::max)
                     * 1e-6,
-                mesh_stiffness_mean_nm_per_rad: res
-                    .iter()
-                    .map(|p| p.loads[i].mesh_stiffness)
-                    .filter(|k| k.is_finite())
-                    .sum::<f64>()
-                    / n,
+                mesh_stiffness_mean_nm_per_rad: mean_ptp(
+                    &res.iter()
+                        .map(|p| p.loads[i].mesh_stiffness)
+                        .filter(|k| k.is_finite())
+                        .collect::<Vec<_>>(),
+                )
+                .0,
                 max_pair_share: res
                     .iter()
                     .flat_map(|p| p.loads[i].pair_share.iter().copied())
@@ -250,12 +260,8 @@ fn write_h5(path: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Res
     };
     {
         let f = stiffness_file::h5().create(&tmp)?;
-        let put = |name: &str, shape: Vec<usize>, v: &[f64], units: &str| -> hdf5::Result<()> {
-            let ds = f.new_dataset::<f64>().shape(shape).create(name)?;
-            ds.write_raw(v)?;
-            ds.new_attr::<hdf5::types::VarLenUnicode>()
-                .create("units")?
-                .write_scalar(&units.parse::<hdf5::types::VarLenUnicode>().expect("ascii"))
+        let put = |name: &str, shape: Vec<usize>, v: &[f64], units: &str| {
+            stiffness_file::write_dataset(&f, name, &shape, v, units)
         };
         put("torque", vec![nl], torques, "N m")?;
         put(

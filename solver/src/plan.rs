@@ -41,10 +41,7 @@ pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
         .wheel
         .iter()
         .map(|&blank| {
-            let cycles = match blank {
-                Blank::Standard => scene.scene.rotation.mesh_cycles_standard,
-                Blank::Lightweight => scene.scene.rotation.mesh_cycles_lightweight,
-            };
+            let cycles = crate::ltca_stage::mesh_cycles(&scene.scene, blank);
             let n = (cycles * tau / step).round() as usize + 1;
             let positions: Vec<Position> = (0..n)
                 .map(|k| {

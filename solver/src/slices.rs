@@ -16,7 +16,8 @@
 //! at the pair's closest point (the UTCA minimum), ξ_c = ξ* + kΔ, so that
 //! with vanishing load the element reproduces the UTCA exactly.
 
-use crate::weber_banaschek::{Elastic, LineContact};
+use crate::weber_banaschek::LineContact;
+use fem::Material;
 use preprocess::flank::Flank;
 use preprocess::pair::FlankPair;
 use preprocess::utca::{LineSearch, RollSurface};
@@ -51,7 +52,7 @@ pub struct Slice {
 
 impl Slice {
     /// Weber–Banaschek line contact of this slice with depths `h` (pinion, wheel).
-    pub fn line_contact(&self, h: [f64; 2], bodies: [Elastic; 2]) -> LineContact {
+    pub fn line_contact(&self, h: [f64; 2], bodies: [Material; 2]) -> LineContact {
         LineContact {
             rho: self.rho,
             length: self.length,

@@ -16,23 +16,16 @@
 //! w = w₁(h₁) + w₂(h₂), with b = √(4qρ/(πE*)), 1/E* = Σ (1 − νᵢ²)/Eᵢ and ρ the
 //! relative radius of curvature across the contact line.
 
-/// Elastic constants of one body.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Elastic {
-    pub youngs_modulus_pa: f64,
-    pub poisson_ratio: f64,
-}
+use fem::Material;
 
-impl Elastic {
-    /// (1 − ν²)/E, 1/Pa.
-    pub fn plane_strain_compliance(&self) -> f64 {
-        (1.0 - self.poisson_ratio.powi(2)) / self.youngs_modulus_pa
-    }
+/// Plane-strain compliance (1 − ν²)/E of a body, 1/Pa.
+pub fn plane_strain_compliance(m: Material) -> f64 {
+    (1.0 - m.poisson_ratio.powi(2)) / m.youngs_modulus_pa
 }
 
 /// Contact modulus E* of two bodies: 1/E* = Σ (1 − νᵢ²)/Eᵢ.
-pub fn contact_modulus(a: Elastic, b: Elastic) -> f64 {
-    1.0 / (a.plane_strain_compliance() + b.plane_strain_compliance())
+pub fn contact_modulus(a: Material, b: Material) -> f64 {
+    1.0 / (plane_strain_compliance(a) + plane_strain_compliance(b))
 }
 
 /// Hertz half-width of a line contact: b = √(4 q ρ / (π E*)).
@@ -42,13 +35,13 @@ pub fn half_width(q: f64, rho: f64, e_star: f64) -> f64 {
 
 /// Approach (m) of one body's surface to depth `h` under line load `q` (N/m)
 /// with Hertz half-width `b`: the exact half-plane form of the module doc.
-pub fn body_approach(q: f64, b: f64, h: f64, m: Elastic) -> f64 {
+pub fn body_approach(q: f64, b: f64, h: f64, m: Material) -> f64 {
     if q <= 0.0 {
         return 0.0;
     }
     let nu = m.poisson_ratio;
     let x = h / b;
-    2.0 * q * m.plane_strain_compliance() / std::f64::consts::PI
+    2.0 * q * plane_strain_compliance(m) / std::f64::consts::PI
         * (x.asinh() - nu / (1.0 - nu) * lateral(x))
 }
 
@@ -60,9 +53,9 @@ fn lateral(x: f64) -> f64 {
 
 /// The classical Weber–Banaschek formula for one body (valid for h ≫ b):
 /// 2q(1 − ν²)/(πE) · [ln(2h/b) − ν/(2(1 − ν))].
-pub fn body_approach_log(q: f64, b: f64, h: f64, m: Elastic) -> f64 {
+pub fn body_approach_log(q: f64, b: f64, h: f64, m: Material) -> f64 {
     let nu = m.poisson_ratio;
-    2.0 * q * m.plane_strain_compliance() / std::f64::consts::PI
+    2.0 * q * plane_strain_compliance(m) / std::f64::consts::PI
         * ((2.0 * h / b).ln() - nu / (2.0 * (1.0 - nu)))
 }
 
@@ -75,7 +68,7 @@ pub struct LineContact {
     /// Slice length along the contact line, m.
     pub length: f64,
     pub h: [f64; 2],
-    pub bodies: [Elastic; 2],
+    pub bodies: [Material; 2],
 }
 
 impl LineContact {
@@ -101,10 +94,7 @@ impl LineContact {
 mod tests {
     use super::*;
 
-    const STEEL: Elastic = Elastic {
-        youngs_modulus_pa: 206e9,
-        poisson_ratio: 0.3,
-    };
+    const STEEL: Material = Material::STEEL;
 
     #[test]
     fn deep_reference_point_gives_the_weber_banaschek_logarithm() {
@@ -130,7 +120,7 @@ mod tests {
             let r = (b * b + z * z).sqrt();
             let sz = -p0 * b / r;
             let sx = -(p0 / b) * ((b * b + 2.0 * z * z) / r - 2.0 * z);
-            STEEL.plane_strain_compliance() * (sz - nu / (1.0 - nu) * sx)
+            plane_strain_compliance(STEEL) * (sz - nu / (1.0 - nu) * sx)
         };
         let n = 2000;
         let dz = h / n as f64;
@@ -163,7 +153,7 @@ mod tests {
 
     #[test]
     fn different_materials_add_per_body() {
-        let bronze = Elastic {
+        let bronze = Material {
             youngs_modulus_pa: 110e9,
             poisson_ratio: 0.34,
         };
@@ -185,7 +175,7 @@ mod tests {
         };
         let b = half_width(q, c.rho, contact_modulus(STEEL, STEEL));
         let nu = STEEL.poisson_ratio;
-        let wb = 2.0 * q * STEEL.plane_strain_compliance() / std::f64::consts::PI
+        let wb = 2.0 * q * plane_strain_compliance(STEEL) / std::f64::consts::PI
             * ((2.0 * 3e-3 / b).ln() + (2.0 * 4e-3 / b).ln() - nu / (1.0 - nu));
         assert!(((s.approach(f) - wb) / wb).abs() < 1e-3);
     }

@@ -12,11 +12,9 @@ use preprocess::influence::{compute, FlankGrid, GridSize, InfluenceRequest};
 use preprocess::mesh::{mesh_member, MeshRequest};
 use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use preprocess::scene::{Blank, FlankElements};
-use preprocess::stiffness_file::StiffnessData;
 use preprocess::utca::{LineGrid, RollSurface};
 use solver::compliance::{MemberCompliance, PairCompliance};
 use solver::ltca::{assemble, geometry, mean_ptp, run, solve, Sweep};
-use solver::weber_banaschek::Elastic;
 use std::sync::OnceLock;
 
 const LEVEL: FlankElements = FlankElements {
@@ -67,10 +65,7 @@ fn member(g: &PairGeometry, m: Member, refined: Vec<usize>) -> MemberCompliance 
     let inf = compute(
         &InfluenceRequest {
             body: &body,
-            material: fem::Material {
-                youngs_modulus_pa: md.youngs_modulus,
-                poisson_ratio: md.poisson_ratio,
-            },
+            material: md.material(),
             teeth: md.teeth as usize,
             loaded,
             opposite,
@@ -83,35 +78,11 @@ fn member(g: &PairGeometry, m: Member, refined: Vec<usize>) -> MemberCompliance 
         &["bore"],
     )
     .unwrap();
-    let data = StiffnessData {
-        input_hash: "test".into(),
-        config: "{}".into(),
+    let data = preprocess::stiffness_file::StiffnessData {
         member: m.name().into(),
-        blank: "standard".into(),
-        level: "test".into(),
-        teeth: md.teeth as usize,
-        axisymmetric: true,
-        grid_profile: GRID.profile,
-        grid_face: GRID.face,
-        xi: grid.xi.clone(),
-        eta: grid.eta.clone(),
-        position: grid.position.iter().flatten().copied().collect(),
-        normal: grid.normal.iter().flatten().copied().collect(),
-        lever: grid.lever.clone(),
-        solved_teeth: inf.solved_teeth.iter().map(|&k| k as u32).collect(),
-        offsets: inf.offsets.clone(),
-        depth_h: inf.depth.iter().flatten().copied().collect(),
-        total: inf.total,
-        local: inf.local,
-        global: inf.global,
+        ..preprocess::stiffness_stage::stiffness_data(&grid, inf, md.teeth as usize, true)
     };
-    MemberCompliance::new(
-        data,
-        Elastic {
-            youngs_modulus_pa: md.youngs_modulus,
-            poisson_ratio: md.poisson_ratio,
-        },
-    )
+    MemberCompliance::new(data, md.material())
 }
 
 fn fixture() -> &'static Fixture {
@@ -184,7 +155,7 @@ fn slice_forces_balance_the_pinion_torque_and_are_complementary_to_the_gaps() {
         let g = geometry(fp, &f.rs, phi, tau, 30);
         let a = assemble(&g, &f.pc).unwrap();
         for torque in [100.0, 700.0] {
-            let s = solve(&g, &a, torque, None).unwrap();
+            let s = solve(&a, torque, None).unwrap();
             // Levers recomputed from the slice points: |(r × n)·z|.
             let moment: f64 = g
                 .slices
@@ -257,7 +228,7 @@ fn slice_compliance_is_symmetric_positive_definite_and_load_sharing_adds_up() {
         m.clone().cholesky().is_some(),
         "C of {n} slices is not positive definite"
     );
-    let s = solve(&g, &a, 300.0, None).unwrap();
+    let s = solve(&a, 300.0, None).unwrap();
     let res = run(fp, &f.rs, &f.pc, &sweep(f, 6, 30), &[300.0]).unwrap();
     for p in &res {
         let share: f64 = p.loads[0].pair_share.iter().sum();
