@@ -63,15 +63,55 @@ impl ContactProblem<'_> {
 
     /// Solves the problem; `warm` is a starting active set (e.g. the previous load's).
     pub fn solve(&self, warm: Option<&[bool]>) -> Result<ContactSolution, SolverError> {
+        if !(self.torque >= 0.0 && self.torque.is_finite()) {
+            return Err(SolverError::Torque(self.torque));
+        }
+        self.fixed_point(warm, None)
+    }
+
+    /// Lag control: the slice forces when the wheel lags by `theta` (rad);
+    /// the `torque` field is not used. Zero forces where no slice penetrates.
+    pub fn solve_at_lag(
+        &self,
+        theta: f64,
+        warm: Option<&[bool]>,
+    ) -> Result<ContactSolution, SolverError> {
+        if !theta.is_finite() {
+            return Err(SolverError::NotConverged {
+                what: format!("lag control: wheel lag {theta} rad is not finite"),
+                iterations: 0,
+            });
+        }
+        self.fixed_point(warm, Some(theta))
+    }
+
+    /// Pinion torque Σ λ₁ F of a force vector, N·m.
+    pub fn pinion_torque(&self, force: &[f64]) -> f64 {
+        force.iter().zip(self.lever_pinion).map(|(f, l)| f * l).sum()
+    }
+
+    fn fixed_point(
+        &self,
+        warm: Option<&[bool]>,
+        prescribed: Option<f64>,
+    ) -> Result<ContactSolution, SolverError> {
         let n = self.n();
         if n == 0 {
             return Err(SolverError::NoContact);
         }
-        if !(self.torque >= 0.0 && self.torque.is_finite()) {
-            return Err(SolverError::Torque(self.torque));
-        }
         let (kmin, lmin) = self.min_lag();
-        if self.torque == 0.0 {
+        let closed = |th: f64| -> Vec<bool> { self.lag.iter().map(|&l| l < th).collect() };
+        if let Some(th) = prescribed {
+            if th <= lmin {
+                return Ok(ContactSolution {
+                    force: vec![0.0; n],
+                    theta: th,
+                    active: vec![false; n],
+                    iterations: 0,
+                    active_set_changes: 0,
+                });
+            }
+        } else if self.torque == 0.0 {
             let mut active = vec![false; n];
             active[kmin] = true;
             return Ok(ContactSolution {
@@ -82,12 +122,21 @@ impl ContactProblem<'_> {
                 active_set_changes: 0,
             });
         }
-        // Nominal slice force: the torque over ~8 slices at the mean lever.
-        let lever = self.lever_pinion.iter().sum::<f64>() / n as f64;
-        let f_nom = self.torque / lever / 8.0;
+        // Nominal slice force: the torque over ~8 slices at the mean lever,
+        // or under lag control the largest penetration over its own compliance.
+        let f_nom = match prescribed {
+            None => {
+                let lever = self.lever_pinion.iter().sum::<f64>() / n as f64;
+                self.torque / lever / 8.0
+            }
+            Some(th) => (0..n)
+                .map(|k| self.lever_wheel[k] * (th - self.lag[k]) / self.compliance[k * n + k])
+                .fold(0.0, f64::max),
+        };
         let mut u: Vec<f64> = self.line.iter().map(|l| l.secant(f_nom)).collect();
-        let mut active = match warm {
-            Some(w) if w.len() == n && w.iter().any(|&a| a) => w.to_vec(),
+        let mut active = match (warm, prescribed) {
+            (Some(w), _) if w.len() == n && w.iter().any(|&a| a) => w.to_vec(),
+            (_, Some(th)) => closed(th),
             _ => {
                 let mut a = vec![false; n];
                 a[kmin] = true;
@@ -98,7 +147,7 @@ impl ContactProblem<'_> {
         let mut theta = lmin;
         let mut changes = 0;
         for it in 1..=200 {
-            let (f, th, ch) = self.linear(&u, &mut active)?;
+            let (f, th, ch) = self.linear(&u, &mut active, prescribed)?;
             changes += ch;
             let fmax = f.iter().fold(0.0f64, |a, &b| a.max(b));
             let df = f
@@ -140,30 +189,43 @@ impl ContactProblem<'_> {
         &self,
         u: &[f64],
         active: &mut [bool],
+        prescribed: Option<f64>,
     ) -> Result<(Vec<f64>, f64, usize), SolverError> {
         let n = self.n();
         let c = self.compliance;
         let mut changes = 0;
+        // Torque control: m forces + θ; lag control: m forces.
+        let extra = usize::from(prescribed.is_none());
         for iter in 0..10 * n + 20 {
             let idx: Vec<usize> = (0..n).filter(|&k| active[k]).collect();
             let m = idx.len();
-            let mut a = DMatrix::<f64>::zeros(m + 1, m + 1);
-            let mut rhs = DVector::<f64>::zeros(m + 1);
+            let mut a = DMatrix::<f64>::zeros(m + extra, m + extra);
+            let mut rhs = DVector::<f64>::zeros(m + extra);
             for (i, &k) in idx.iter().enumerate() {
                 for (j, &l) in idx.iter().enumerate() {
                     a[(i, j)] = c[k * n + l];
                 }
                 a[(i, i)] += u[k];
-                a[(i, m)] = -self.lever_wheel[k];
-                a[(m, i)] = self.lever_pinion[k];
-                rhs[i] = -self.lever_wheel[k] * self.lag[k];
+                match prescribed {
+                    None => {
+                        a[(i, m)] = -self.lever_wheel[k];
+                        a[(m, i)] = self.lever_pinion[k];
+                        rhs[i] = -self.lever_wheel[k] * self.lag[k];
+                    }
+                    Some(th) => rhs[i] = self.lever_wheel[k] * (th - self.lag[k]),
+                }
             }
-            rhs[m] = self.torque;
-            let x = a
-                .lu()
-                .solve(&rhs)
-                .ok_or(SolverError::Singular { slices: m })?;
-            let theta = x[m];
+            if prescribed.is_none() {
+                rhs[m] = self.torque;
+            }
+            let x = if m + extra == 0 {
+                DVector::zeros(0)
+            } else {
+                a.lu()
+                    .solve(&rhs)
+                    .ok_or(SolverError::Singular { slices: m })?
+            };
+            let theta = prescribed.unwrap_or_else(|| x[m]);
             let mut force = vec![0.0; n];
             for (i, &k) in idx.iter().enumerate() {
                 force[k] = x[i];
@@ -183,7 +245,7 @@ impl ContactProblem<'_> {
                         active[k] = false;
                     }
                 }
-                if !active.iter().any(|&x| x) {
+                if prescribed.is_none() && !active.iter().any(|&x| x) {
                     active[self.min_lag().0] = true;
                 }
                 changes += 1;
@@ -286,6 +348,31 @@ mod tests {
         assert!(!s.active[2]);
         let torque: f64 = s.force.iter().map(|f| f * 0.1).sum();
         assert!((torque - 30.0).abs() < 1e-9 * 30.0);
+    }
+
+    #[test]
+    fn lag_control_inverts_torque_control() {
+        // Three slices, coupled compliance and WB: the forces at the lag that
+        // torque control found carry the same torque; below the first
+        // touching lag the forces vanish.
+        let c = [2e-9, 5e-10, 1e-10, 5e-10, 2e-9, 5e-10, 1e-10, 5e-10, 2e-9];
+        let p = ContactProblem {
+            compliance: &c,
+            lag: &[1e-5, 0.0, 2e-6],
+            lever_wheel: &[0.1, 0.11, 0.12],
+            lever_pinion: &[0.05, 0.051, 0.052],
+            line: &[line(); 3],
+            torque: 150.0,
+        };
+        let s = p.solve(None).unwrap();
+        let l = p.solve_at_lag(s.theta, None).unwrap();
+        let t = p.pinion_torque(&l.force);
+        assert!((t - 150.0).abs() < 1e-7 * 150.0, "{t}");
+        for (a, b) in s.force.iter().zip(&l.force) {
+            assert!((a - b).abs() < 1e-7 * 150.0 / 0.05, "{a} vs {b}");
+        }
+        let open = p.solve_at_lag(-1e-7, None).unwrap();
+        assert!(open.force.iter().all(|&f| f == 0.0));
     }
 
     #[test]

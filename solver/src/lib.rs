@@ -12,6 +12,8 @@ pub mod contact_problem;
 pub mod interp;
 pub mod ltca;
 pub mod ltca_stage;
+pub mod mesh_table;
+pub mod multibody;
 pub mod plan;
 pub mod slices;
 pub mod weber_banaschek;
@@ -27,6 +29,8 @@ pub enum SolverError {
     Singular { slices: usize },
     #[error("{what} did not converge in {iterations} iterations")]
     NotConverged { what: String, iterations: usize },
+    #[error("multibody mesh table: {0}")]
+    Table(String),
     #[error("{member} tooth {tooth} is loaded but the stiffness file holds only teeth {solved:?}; rerun `preprocess stiffness` for this scene")]
     ToothNotSolved {
         member: String,

@@ -294,18 +294,21 @@ pub fn pair_slices(
     let (l, d) = fp.pinion.ld(uv_star[0], uv_star[1]);
     let (xi_star, _) = fp.pinion.bounds.to_unit(l, d);
     let delta = 1.0 / n as f64;
-    let k0 = -((xi_star / delta).floor() as i64);
-    let k1 = ((1.0 - xi_star) / delta).floor() as i64;
-    let centres: Vec<f64> = (k0..=k1)
-        .map(|k| (xi_star + k as f64 * delta).clamp(0.0, 1.0))
-        .collect();
-    let m = centres.len();
-    let mut raw = Vec::with_capacity(m);
-    for (i, &xi) in centres.iter().enumerate() {
-        let band = [
-            if i == 0 { 0.0 } else { xi - 0.5 * delta },
-            if i + 1 == m { 1.0 } else { xi + 0.5 * delta },
-        ];
+    // Bands [c − Δ/2, c + Δ/2] ∩ [0, 1] around c = ξ* + kΔ. A band whose
+    // centre lies outside the face keeps its clipped part, loaded at the
+    // face edge: as ξ* moves with the pinion, an edge band grows from zero
+    // length instead of appearing whole, so the element stays continuous in
+    // the rotation.
+    let k0 = ((-0.5 * delta - xi_star) / delta).ceil() as i64;
+    let k1 = ((1.0 + 0.5 * delta - xi_star) / delta).floor() as i64;
+    let mut raw = Vec::with_capacity((k1 - k0 + 1).max(0) as usize);
+    for k in k0..=k1 {
+        let c = xi_star + k as f64 * delta;
+        let band = [(c - 0.5 * delta).max(0.0), (c + 0.5 * delta).min(1.0)];
+        if band[1] - band[0] <= 1e-9 * delta {
+            continue;
+        }
+        let xi = c.clamp(0.0, 1.0);
         let col = Column { fp, rs, target, xi };
         if let Some(c) = col.minimum(level_crossing(rs, xi, target)) {
             raw.push((band, xi, c));

@@ -1,0 +1,555 @@
+//! Multibody time integration: pinion and wheel as rigid bodies on revolute
+//! joints (rigid bearings), coupled by the tabulated contact element
+//! ([`crate::mesh_table`]) with viscous mesh damping, driven as in the white
+//! paper (an imposed speed on one member, a torque on the other).
+//!
+//! Equations of motion in q = (q₁, q₂) (see [`crate::mesh_table`]):
+//!
+//!   J₁ q̈₁ = T₁ − ∂V/∂q₁ − c s(u) θ̇ r
+//!   J₂ q̈₂ = −T₂ − ∂V/∂q₂ + c s(u) θ̇,     θ = r q₁ − q₂,
+//!
+//! with s(u) a smooth step from 0 (open) to 1 over the first lag step of
+//! the table. A member with imposed speed follows its ramp; its equation
+//! gives the reaction torque. Two implicit one-step schemes, both solved by
+//! Newton with the element's tangent (the Hessian of V):
+//! - generalized-α (Chung & Hulbert 1993) with spectral radius ρ∞ (numerical
+//!   damping of the high modes for ρ∞ < 1),
+//! - the energy-conserving midpoint rule with the coordinate-wise discrete
+//!   gradient of V (Itoh & Abe 1988): without damping, kinetic energy + V −
+//!   work of the torques is constant to the Newton tolerance.
+//!
+//! Step control: the difference between the step's θ and its explicit
+//! Taylor predictor estimates the local error; steps above the tolerance
+//! are retried with a smaller step, and the step never exceeds the maximum.
+
+use crate::mesh_table::{MeshState, MeshTable};
+use crate::SolverError;
+
+/// A speed ramp: linear from `from` to `to` (rad/s) over `duration` (s), then constant.
+#[derive(Debug, Clone, Copy)]
+pub struct Ramp {
+    pub from: f64,
+    pub to: f64,
+    pub duration: f64,
+}
+
+impl Ramp {
+    /// (angle from t = 0, speed, acceleration) at time t.
+    pub fn at(&self, t: f64) -> [f64; 3] {
+        let acc = if self.duration > 0.0 {
+            (self.to - self.from) / self.duration
+        } else {
+            0.0
+        };
+        if t <= self.duration {
+            [
+                self.from * t + 0.5 * acc * t * t,
+                self.from + acc * t,
+                acc,
+            ]
+        } else {
+            let d = self.duration;
+            let a0 = self.from * d + 0.5 * acc * d * d;
+            [a0 + self.to * (t - d), self.to, 0.0]
+        }
+    }
+}
+
+/// How the pair is driven. Torques in N·m, positive in the drive sense.
+#[derive(Debug, Clone, Copy)]
+pub enum Drive {
+    /// The wheel follows a speed ramp (the white paper's quasi-static 10 rpm
+    /// run); the pinion carries the driving torque.
+    WheelSpeed { speed: Ramp, pinion_torque: f64 },
+    /// The pinion follows a speed ramp (the run-up); the wheel carries a
+    /// resisting torque.
+    PinionSpeed { speed: Ramp, wheel_torque: f64 },
+    /// Both free: a driving pinion torque and a resisting wheel torque.
+    Free { pinion_torque: f64, wheel_torque: f64 },
+}
+
+impl Drive {
+    /// Which coordinates are free.
+    fn free(&self) -> [bool; 2] {
+        match self {
+            Drive::WheelSpeed { .. } => [true, false],
+            Drive::PinionSpeed { .. } => [false, true],
+            Drive::Free { .. } => [true, true],
+        }
+    }
+
+    /// External generalized forces on (q₁, q₂).
+    fn torques(&self) -> [f64; 2] {
+        match *self {
+            Drive::WheelSpeed { pinion_torque, .. } => [pinion_torque, 0.0],
+            Drive::PinionSpeed { wheel_torque, .. } => [0.0, -wheel_torque],
+            Drive::Free {
+                pinion_torque,
+                wheel_torque,
+            } => [pinion_torque, -wheel_torque],
+        }
+    }
+}
+
+/// The mechanical model.
+#[derive(Debug, Clone, Copy)]
+pub struct Model<'a> {
+    pub table: &'a MeshTable,
+    /// Polar moments of inertia of pinion and wheel, kg·m².
+    pub inertia: [f64; 2],
+    /// Mesh damping on the wheel lag, N·m·s/rad (pinion torque per lag rate).
+    pub damping: f64,
+    pub drive: Drive,
+}
+
+/// State of the pair at time t.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct State {
+    pub t: f64,
+    pub q: [f64; 2],
+    pub v: [f64; 2],
+    pub a: [f64; 2],
+}
+
+/// Loads of a state.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Loads {
+    pub mesh: MeshState,
+    /// Generalized contact + damping forces on (q₁, q₂), N·m.
+    pub contact: [f64; 2],
+    /// Torque the imposed-speed member needs (its drive's reaction), N·m.
+    pub reaction: f64,
+}
+
+/// Smooth step 0 → 1 on [0, 1] (C¹).
+fn smoothstep(x: f64) -> (f64, f64) {
+    let x = x.clamp(0.0, 1.0);
+    (x * x * (3.0 - 2.0 * x), 6.0 * x * (1.0 - x))
+}
+
+impl Model<'_> {
+    /// Imposed (angle, speed, acceleration) of the driven member, if any, at t,
+    /// relative to its value at t = 0.
+    fn imposed(&self, t: f64) -> Option<(usize, [f64; 3])> {
+        match self.drive {
+            Drive::WheelSpeed { speed, .. } => Some((1, speed.at(t))),
+            Drive::PinionSpeed { speed, .. } => Some((0, speed.at(t))),
+            Drive::Free { .. } => None,
+        }
+    }
+
+    /// Contact and damping generalized forces at (q, v), their stiffness
+    /// K = −∂Q/∂q (Hessian of V) and damping matrix D = −∂Q/∂v.
+    pub fn contact(
+        &self,
+        q: [f64; 2],
+        v: [f64; 2],
+    ) -> Result<([f64; 2], [[f64; 2]; 2], [[f64; 2]; 2], MeshState), SolverError> {
+        let ms = self.table.state(q[0], q[1])?;
+        let r = self.table.ratio;
+        let (s, _) = smoothstep(ms.u / self.table.du);
+        let rate = r * v[0] - v[1];
+        let c = self.damping * s;
+        let dir = [r, -1.0];
+        let q_c = [
+            -ms.grad[0] - c * rate * dir[0],
+            -ms.grad[1] - c * rate * dir[1],
+        ];
+        let d = [
+            [c * dir[0] * dir[0], c * dir[0] * dir[1]],
+            [c * dir[1] * dir[0], c * dir[1] * dir[1]],
+        ];
+        Ok((q_c, ms.hess, d, ms))
+    }
+
+    /// Loads of a state (forces, the drive's reaction torque).
+    pub fn loads(&self, s: &State) -> Result<Loads, SolverError> {
+        let (qc, _, _, ms) = self.contact(s.q, s.v)?;
+        let ext = self.drive.torques();
+        let reaction = match self.imposed(s.t) {
+            Some((i, _)) => self.inertia[i] * s.a[i] - ext[i] - qc[i],
+            None => 0.0,
+        };
+        Ok(Loads {
+            mesh: ms,
+            contact: qc,
+            reaction,
+        })
+    }
+
+    /// Kinetic + mesh potential energy − work of the constant torques, J
+    /// (constant in a run without damping and with both members free).
+    pub fn energy(&self, s: &State) -> Result<f64, SolverError> {
+        let ms = self.table.state(s.q[0], s.q[1])?;
+        let ext = self.drive.torques();
+        Ok(0.5 * self.inertia[0] * s.v[0] * s.v[0]
+            + 0.5 * self.inertia[1] * s.v[1] * s.v[1]
+            + ms.potential
+            - ext[0] * s.q[0]
+            - ext[1] * s.q[1])
+    }
+
+    /// The quasi-static state at pinion rotation q₁ (wheel lag from the
+    /// table under the drive's torque), moving at the drive's initial speed.
+    pub fn static_state(&self, q1: f64) -> Result<State, SolverError> {
+        let r = self.table.ratio;
+        let torque = match self.drive {
+            Drive::WheelSpeed { pinion_torque, .. } => pinion_torque,
+            Drive::PinionSpeed { wheel_torque, .. } => wheel_torque * r,
+            Drive::Free { pinion_torque, .. } => pinion_torque,
+        };
+        let lag = |q1: f64| -> Result<f64, SolverError> {
+            // Solve ∂V/∂q₁ = T at fixed q₁ for θ (Newton on q₂ = r q₁ − θ).
+            let mut theta = self.table.unloaded(q1)?[0] + 0.1 * self.table.du;
+            for _ in 0..100 {
+                let ms = self.table.state(q1, r * q1 - theta)?;
+                let f = ms.grad[0] - torque;
+                // d(∂V/∂q₁)/dθ = −∂²V/∂q₁∂q₂.
+                let df = -ms.hess[0][1];
+                let step = if df > 0.0 {
+                    -f / df
+                } else {
+                    0.1 * self.table.du
+                };
+                theta += step.clamp(-10.0 * self.table.du, 10.0 * self.table.du);
+                if step.abs() < 1e-16 + 1e-12 * theta.abs() {
+                    return Ok(theta);
+                }
+            }
+            Err(SolverError::NotConverged {
+                what: "quasi-static initial lag".into(),
+                iterations: 100,
+            })
+        };
+        if torque <= 0.0 {
+            let theta = self.table.unloaded(q1)?[0];
+            let w = self.initial_speed();
+            return Ok(State {
+                t: 0.0,
+                q: [q1, r * q1 - theta],
+                v: w,
+                a: [0.0; 2],
+            });
+        }
+        let theta = lag(q1)?;
+        let d = 0.1 * self.table.spec.step;
+        let slope = (lag(q1 + d)? - lag(q1 - d)?) / (2.0 * d);
+        let w = self.initial_speed();
+        // θ̇ = θ' q̇₁ keeps the static lag: r q̇₁ − q̇₂ = θ' q̇₁.
+        let v = match self.drive {
+            Drive::WheelSpeed { .. } => [w[1] / (r - slope), w[1]],
+            _ => [w[0], (r - slope) * w[0]],
+        };
+        Ok(State {
+            t: 0.0,
+            q: [q1, r * q1 - theta],
+            v,
+            a: [0.0; 2],
+        })
+    }
+
+    /// Mesh damping c (N·m·s/rad) that gives the torsional mesh mode the
+    /// damping ratio ζ at state `s`: with k = ∂T₁/∂θ (pinion torque per lag),
+    /// ω² = k (r/J₁ + 1/(r J₂)) and 2ζω = c (r²/J₁ + 1/J₂); a member with
+    /// imposed speed counts as infinitely heavy.
+    pub fn damping_for_ratio(&self, zeta: f64, s: &State) -> Result<f64, SolverError> {
+        let ms = self.table.state(s.q[0], s.q[1])?;
+        let r = self.table.ratio;
+        let k = r * ms.hess[1][1];
+        let free = self.drive.free();
+        let inv = |i: usize| if free[i] { 1.0 / self.inertia[i] } else { 0.0 };
+        let w2 = k * (r * inv(0) + inv(1) / r);
+        Ok(2.0 * zeta * w2.max(0.0).sqrt() / (r * r * inv(0) + inv(1)))
+    }
+
+    fn initial_speed(&self) -> [f64; 2] {
+        let r = self.table.ratio;
+        match self.drive {
+            Drive::WheelSpeed { speed, .. } => [speed.from / r, speed.from],
+            Drive::PinionSpeed { speed, .. } => [speed.from, speed.from * r],
+            Drive::Free { .. } => [0.0, 0.0],
+        }
+    }
+}
+
+/// The time integration scheme.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scheme {
+    /// Generalized-α with spectral radius at infinity ρ∞ ∈ [0, 1].
+    GeneralizedAlpha { rho_inf: f64 },
+    /// Energy-conserving midpoint rule with a discrete gradient.
+    EnergyConserving,
+}
+
+/// Step control.
+#[derive(Debug, Clone, Copy)]
+pub struct StepControl {
+    /// Largest and smallest step, s.
+    pub max_step: f64,
+    pub min_step: f64,
+    /// Local error tolerance on the wheel lag, rad.
+    pub tolerance: f64,
+}
+
+/// Integrator state carried from step to step.
+#[derive(Debug, Clone, Copy)]
+pub struct Integrator {
+    pub scheme: Scheme,
+    pub control: StepControl,
+    /// Step to try next, s.
+    pub h: f64,
+    pub rejected: usize,
+    pub newton_iterations: usize,
+}
+
+impl Integrator {
+    pub fn new(scheme: Scheme, control: StepControl) -> Self {
+        Integrator {
+            scheme,
+            control,
+            h: control.max_step,
+            rejected: 0,
+            newton_iterations: 0,
+        }
+    }
+
+    /// One accepted step from `s` (retrying smaller steps as needed), not
+    /// past `t_end`.
+    pub fn step(&mut self, m: &Model, s: &State, t_end: f64) -> Result<State, SolverError> {
+        loop {
+            let h = self.h.min(t_end - s.t).max(0.0);
+            if h <= 0.0 {
+                return Ok(*s);
+            }
+            let trial = match self.scheme {
+                Scheme::GeneralizedAlpha { rho_inf } => alpha_step(m, s, h, rho_inf),
+                Scheme::EnergyConserving => midpoint_step(m, s, h),
+            };
+            let (next, iters) = match trial {
+                Ok(x) => x,
+                Err(e) => {
+                    if h <= self.control.min_step {
+                        return Err(e);
+                    }
+                    self.rejected += 1;
+                    self.h = (0.25 * h).max(self.control.min_step);
+                    continue;
+                }
+            };
+            self.newton_iterations += iters;
+            // Local error: corrector − Taylor predictor, on θ.
+            let r = m.table.ratio;
+            let pred = |i: usize| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
+            let err = (r * (next.q[0] - pred(0)) - (next.q[1] - pred(1))).abs();
+            let ratio = err / self.control.tolerance;
+            let grow = if ratio > 0.0 {
+                (0.9 * ratio.powf(-1.0 / 3.0)).clamp(0.2, 2.0)
+            } else {
+                2.0
+            };
+            if ratio > 1.0 && h > self.control.min_step {
+                self.rejected += 1;
+                self.h = (h * grow).max(self.control.min_step);
+                continue;
+            }
+            self.h = (h * grow).min(self.control.max_step);
+            return Ok(next);
+        }
+    }
+}
+
+/// Solves the 1 × 1 or 2 × 2 system J x = b on the free coordinates.
+fn solve_free(jac: [[f64; 2]; 2], b: [f64; 2], free: [bool; 2]) -> Option<[f64; 2]> {
+    match free {
+        [true, true] => {
+            let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+            if det.abs() < f64::MIN_POSITIVE || !det.is_finite() {
+                return None;
+            }
+            Some([
+                (jac[1][1] * b[0] - jac[0][1] * b[1]) / det,
+                (jac[0][0] * b[1] - jac[1][0] * b[0]) / det,
+            ])
+        }
+        [true, false] => Some([b[0] / jac[0][0], 0.0]),
+        [false, true] => Some([0.0, b[1] / jac[1][1]]),
+        [false, false] => Some([0.0, 0.0]),
+    }
+}
+
+/// Imposed coordinate of the driven member at t (absolute).
+fn imposed_at(m: &Model, s0: &State, t: f64) -> Option<(usize, [f64; 3])> {
+    m.imposed(t).map(|(i, [ang, w, a])| {
+        let [ang_now, _, _] = m.imposed(s0.t).unwrap().1;
+        (i, [s0.q[i] + ang - ang_now, w, a])
+    })
+}
+
+const NEWTON_MAX: usize = 25;
+
+/// Newton converges when the update is a few ulps of the coordinates.
+fn converged(dx: [f64; 2], q: [f64; 2]) -> bool {
+    dx[0].abs().max(dx[1].abs()) <= 1e-15 * (1.0 + q[0].abs().max(q[1].abs()))
+}
+
+/// Generalized-α step (Chung & Hulbert 1993): Newton on q_{n+1}.
+fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), SolverError> {
+    let am = (2.0 * rho - 1.0) / (rho + 1.0);
+    let af = rho / (rho + 1.0);
+    let gamma = 0.5 - am + af;
+    let beta = 0.25 * (1.0 - am + af).powi(2);
+    let free = m.drive.free();
+    let ext = m.drive.torques();
+    let t1 = s.t + h;
+    let mut q = [0.0; 2];
+    for i in 0..2 {
+        q[i] = s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
+    }
+    let fixed = imposed_at(m, s, t1);
+    let kin = |q: [f64; 2]| -> ([f64; 2], [f64; 2]) {
+        let mut a = [0.0; 2];
+        let mut v = [0.0; 2];
+        for i in 0..2 {
+            a[i] = (q[i] - s.q[i] - h * s.v[i] - h * h * (0.5 - beta) * s.a[i]) / (beta * h * h);
+            v[i] = s.v[i] + h * ((1.0 - gamma) * s.a[i] + gamma * a[i]);
+        }
+        if let Some((i, [_, w, acc])) = fixed {
+            a[i] = acc;
+            v[i] = w;
+        }
+        (v, a)
+    };
+    if let Some((i, [x, _, _])) = fixed {
+        q[i] = x;
+    }
+    for it in 1..=NEWTON_MAX {
+        let (v, a) = kin(q);
+        let qm = [0, 1].map(|i| (1.0 - af) * q[i] + af * s.q[i]);
+        let vm = [0, 1].map(|i| (1.0 - af) * v[i] + af * s.v[i]);
+        let (qc, k, d, _) = m.contact(qm, vm)?;
+        let mut res = [0.0; 2];
+        let mut jac = [[0.0; 2]; 2];
+        for i in 0..2 {
+            let am_i = (1.0 - am) * a[i] + am * s.a[i];
+            res[i] = m.inertia[i] * am_i - ext[i] - qc[i];
+            for j in 0..2 {
+                jac[i][j] = (1.0 - af) * (k[i][j] + d[i][j] * gamma / (beta * h));
+            }
+            jac[i][i] += m.inertia[i] * (1.0 - am) / (beta * h * h);
+        }
+        let dx = solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
+        for i in 0..2 {
+            if free[i] {
+                q[i] += dx[i];
+            }
+        }
+        if converged(dx, q) {
+            let (v, a) = kin(q);
+            return Ok((State { t: t1, q, v, a }, it));
+        }
+    }
+    Err(SolverError::NotConverged {
+        what: "generalized-α Newton".into(),
+        iterations: NEWTON_MAX,
+    })
+}
+
+/// Coordinate-wise discrete gradient of V between q and q'.
+fn discrete_gradient(m: &Model, q: [f64; 2], qn: [f64; 2]) -> Result<[f64; 2], SolverError> {
+    let v = |a: [f64; 2]| m.table.state(a[0], a[1]).map(|s| s.potential);
+    let mid = [0.5 * (q[0] + qn[0]), 0.5 * (q[1] + qn[1])];
+    let g_mid = m.table.state(mid[0], mid[1])?.grad;
+    let corner = [qn[0], q[1]];
+    let g0 = if (qn[0] - q[0]).abs() > 1e-10 {
+        (v(corner)? - v(q)?) / (qn[0] - q[0])
+    } else {
+        g_mid[0]
+    };
+    let g1 = if (qn[1] - q[1]).abs() > 1e-10 {
+        (v(qn)? - v(corner)?) / (qn[1] - q[1])
+    } else {
+        g_mid[1]
+    };
+    Ok([g0, g1])
+}
+
+/// Energy-conserving midpoint step: Newton on q_{n+1} with the midpoint tangent.
+fn midpoint_step(m: &Model, s: &State, h: f64) -> Result<(State, usize), SolverError> {
+    let free = m.drive.free();
+    let ext = m.drive.torques();
+    let t1 = s.t + h;
+    let fixed = imposed_at(m, s, t1);
+    let mut q = [0, 1].map(|i| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i]);
+    if let Some((i, [x, _, _])) = fixed {
+        q[i] = x;
+    }
+    let vel = |q: [f64; 2]| -> [f64; 2] {
+        let mut v = [0, 1].map(|i| 2.0 * (q[i] - s.q[i]) / h - s.v[i]);
+        if let Some((i, [_, w, _])) = fixed {
+            v[i] = w;
+        }
+        v
+    };
+    for it in 1..=NEWTON_MAX {
+        let v = vel(q);
+        let qm = [0, 1].map(|i| 0.5 * (q[i] + s.q[i]));
+        let vm = [0, 1].map(|i| 0.5 * (v[i] + s.v[i]));
+        let (qc, k, d, _) = m.contact(qm, vm)?;
+        let g = discrete_gradient(m, s.q, q)?;
+        let mut res = [0.0; 2];
+        let mut jac = [[0.0; 2]; 2];
+        for i in 0..2 {
+            // Damping part of the midpoint forces, without the potential.
+            let damp = qc[i] + m.table.state(qm[0], qm[1])?.grad[i];
+            res[i] = m.inertia[i] * (v[i] - s.v[i]) / h - ext[i] + g[i] - damp;
+            for j in 0..2 {
+                jac[i][j] = 0.5 * k[i][j] + d[i][j] / h;
+            }
+            jac[i][i] += 2.0 * m.inertia[i] / (h * h);
+        }
+        let dx = solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
+        for i in 0..2 {
+            if free[i] {
+                q[i] += dx[i];
+            }
+        }
+        if converged(dx, q) {
+            let v = vel(q);
+            let mut a = [0, 1].map(|i| (v[i] - s.v[i]) / h);
+            if let Some((i, [_, _, acc])) = fixed {
+                a[i] = acc;
+            }
+            return Ok((State { t: t1, q, v, a }, it));
+        }
+    }
+    Err(SolverError::NotConverged {
+        what: "energy-conserving midpoint Newton".into(),
+        iterations: NEWTON_MAX,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn speed_ramp_integrates_to_its_angle() {
+        let r = Ramp {
+            from: 1.0,
+            to: 5.0,
+            duration: 2.0,
+        };
+        // ∫₀² (1 + 2t) dt = 6, then 5 rad/s.
+        assert!((r.at(2.0)[0] - 6.0).abs() < 1e-14);
+        assert!((r.at(3.0)[0] - 11.0).abs() < 1e-14);
+        assert_eq!(r.at(1.0)[2], 2.0);
+        assert_eq!(r.at(2.5)[1], 5.0);
+    }
+
+    #[test]
+    fn smoothstep_is_c1() {
+        assert_eq!(smoothstep(-1.0), (0.0, 0.0));
+        assert_eq!(smoothstep(2.0), (1.0, 0.0));
+        assert!((smoothstep(0.5).0 - 0.5).abs() < 1e-15);
+    }
+}
