@@ -33,6 +33,7 @@ preprocess: build
 solve: preprocess
 	$(BIN)/solver plan $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/plan.json
 	$(BIN)/solver ltca $(SCENE) --meshes meshes --out $(OUT)
+	$(BIN)/solver dynamic $(SCENE) --meshes meshes --out $(OUT)
 
 validate: solve
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports

@@ -40,6 +40,27 @@ impl TetMesh {
             .sum()
     }
 
+    /// Polar moment of inertia about the z axis, ∫ ρ (x² + y²) dV, kg·m²
+    /// (degree-3 rule on the isoparametric elements: exact for straight-sided
+    /// ones, where the integrand is quadratic).
+    pub fn polar_moment(&self, density: f64) -> f64 {
+        (0..self.tets.len())
+            .map(|e| {
+                let x = self.element(e);
+                crate::tet10::degree3()
+                    .iter()
+                    .map(|(xi, w)| {
+                        let det =
+                            crate::tet10::jacobian(&x, &crate::tet10::shape_derivatives(*xi)).1;
+                        let p = crate::tet10::position(&x, *xi);
+                        w * det.abs() * (p[0] * p[0] + p[1] * p[1])
+                    })
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+            * density
+    }
+
     /// For every node, the sorted node indices it shares an element with
     /// (itself included); nodes in no element get an empty list.
     pub fn node_adjacency(&self) -> Vec<Vec<u32>> {

@@ -261,3 +261,29 @@ fn unrestrained_body_is_reported_not_positive_definite() {
         r.err()
     );
 }
+
+#[test]
+fn polar_moment_of_a_box_and_a_tube_match_the_closed_forms() {
+    // Box a × b × c centred off the axis at (x0, y0): ρabc[(a² + b²)/12 + x0² + y0²].
+    let (a, b, c, x0, y0, rho) = (0.03, 0.05, 0.02, 0.01, -0.02, 7850.0);
+    let bx = mapped_block([3, 4, 2], |p| {
+        [x0 + a * (p[0] - 0.5), y0 + b * (p[1] - 0.5), c * p[2]]
+    });
+    let exact = rho * a * b * c * ((a * a + b * b) / 12.0 + x0 * x0 + y0 * y0);
+    let j = bx.mesh.polar_moment(rho);
+    assert!((j - exact).abs() < 1e-12 * exact, "{j} vs {exact}");
+    // Thick tube r ∈ [ri, ro], length l, curved (isoparametric) elements:
+    // ρπl(ro⁴ − ri⁴)/2, converging as the elements follow the arcs.
+    let (ri, ro, l): (f64, f64, f64) = (0.02, 0.05, 0.03);
+    let exact = rho * std::f64::consts::PI * l * (ro.powi(4) - ri.powi(4)) / 2.0;
+    let err = |n: usize| {
+        let t = mapped_block([2, 4 * n, 1], |p| {
+            let (r, th) = (ri + (ro - ri) * p[0], 2.0 * std::f64::consts::PI * p[1]);
+            [r * th.cos(), r * th.sin(), l * p[2]]
+        });
+        (t.mesh.polar_moment(rho) - exact).abs() / exact
+    };
+    let (e1, e2) = (err(4), err(8));
+    // Halving the element size: at least second order.
+    assert!(e2 < 1e-4 && e1 / e2 > 4.0, "{e1:e} {e2:e}");
+}

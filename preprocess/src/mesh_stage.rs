@@ -84,12 +84,14 @@ pub fn refined_teeth(
     member: Member,
     blank: Blank,
 ) -> Vec<usize> {
+    // A standard pinion's loads repeat from tooth to tooth: its range is the
+    // loaded sweep's. A lightweight wheel needs every tooth a run-up meets.
     let cycles_of = |b: Blank| match b {
         Blank::Standard => sc.rotation.mesh_cycles_standard,
         Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
     };
     let cycles = match member {
-        Member::Wheel => cycles_of(blank),
+        Member::Wheel => sc.contact_mesh_cycles(blank, g.data.mesh_cycle()),
         Member::Pinion => sc
             .blanks
             .wheel

@@ -43,6 +43,94 @@ pub struct Scene {
     /// Loaded TCA with the reduced model; defaults when absent.
     #[serde(default)]
     pub ltca: LtcaSettings,
+    /// Multibody runs (quasi-static and run-up); defaults when absent.
+    #[serde(default)]
+    pub multibody: MultibodySettings,
+}
+
+/// Settings of the multibody runs (`solver dynamic`): rigid pinion and
+/// wheel on revolute joints, coupled by the contact element.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct MultibodySettings {
+    /// Quasi-static run: imposed wheel speed (rpm) with each scene torque on
+    /// the pinion, over the LTCA's rotation range; largest step (s).
+    pub quasi_static_wheel_rpm: f64,
+    pub quasi_static_max_step_s: f64,
+    /// Run-up: pinion speed ramp (rpm) over `runup_time_s` with
+    /// `runup_pinion_torque_nm` resisted at the wheel; largest step (s); the
+    /// wheel blanks run up (each needs stiffness data of every wheel tooth
+    /// the run-up turns through).
+    pub runup_rpm: [f64; 2],
+    pub runup_time_s: f64,
+    pub runup_pinion_torque_nm: f64,
+    pub runup_max_step_s: f64,
+    pub runup_wheel_blanks: Vec<Blank>,
+    /// Damping ratio of the torsional mesh mode (viscous, on the wheel lag).
+    pub damping_ratio: f64,
+    /// Spectral radius at infinity of the generalized-α scheme, in [0, 1].
+    pub rho_inf: f64,
+    /// Local error tolerance of the step control on the TE, µrad.
+    pub te_tolerance_urad: f64,
+    /// Contact-element table: pinion rotation step (deg), lag nodes, and the
+    /// largest pinion torque covered as a multiple of the largest scene torque.
+    pub table_step_deg: f64,
+    pub table_lag_nodes: usize,
+    pub table_torque_factor: f64,
+    /// Polar moments of inertia, kg·m²; computed from the body meshes when absent.
+    pub pinion_inertia_kgm2: Option<f64>,
+    pub wheel_inertia_kgm2: Option<f64>,
+}
+
+impl Default for MultibodySettings {
+    fn default() -> Self {
+        MultibodySettings {
+            quasi_static_wheel_rpm: 10.0,
+            quasi_static_max_step_s: 1e-3,
+            runup_rpm: [0.0, 1000.0],
+            runup_time_s: 0.15,
+            runup_pinion_torque_nm: 300.0,
+            runup_max_step_s: 1e-5,
+            runup_wheel_blanks: vec![Blank::Standard],
+            damping_ratio: 0.05,
+            rho_inf: 0.9,
+            te_tolerance_urad: 1e-3,
+            table_step_deg: 0.125,
+            table_lag_nodes: 96,
+            table_torque_factor: 2.0,
+            pinion_inertia_kgm2: None,
+            wheel_inertia_kgm2: None,
+        }
+    }
+}
+
+impl Scene {
+    /// Mesh cycles through which the scene's analyses turn a wheel blank:
+    /// the loaded sweep, or for a lightweight blank that runs up, the run-up
+    /// where it is longer (1 cycle margin). A standard blank's stiffness
+    /// repeats from tooth to tooth, so its run-up reuses the sweep's teeth.
+    pub fn contact_mesh_cycles(&self, wheel: Blank, mesh_cycle_rad: f64) -> f64 {
+        let sweep = match wheel {
+            Blank::Standard => self.rotation.mesh_cycles_standard,
+            Blank::Lightweight => self.rotation.mesh_cycles_lightweight,
+        };
+        if wheel == Blank::Lightweight
+            && self.analyses.multibody
+            && self.multibody.runup_wheel_blanks.contains(&wheel)
+        {
+            sweep.max(self.multibody.runup_rotation() / mesh_cycle_rad + 1.0)
+        } else {
+            sweep
+        }
+    }
+}
+
+impl MultibodySettings {
+    /// Pinion rotation of the run-up, rad.
+    pub fn runup_rotation(&self) -> f64 {
+        let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
+        0.5 * (w(self.runup_rpm[0]) + w(self.runup_rpm[1])) * self.runup_time_s
+    }
 }
 
 /// Settings of the loaded TCA (the contact element).
@@ -287,6 +375,73 @@ impl Scene {
                 self.ltca.slices.to_string(),
                 "must lie in [4, 400]",
             ));
+        }
+        let mb = &self.multibody;
+        for (f, v, lo, hi) in [
+            (
+                "multibody.quasi_static_wheel_rpm",
+                mb.quasi_static_wheel_rpm,
+                1e-3,
+                1e4,
+            ),
+            (
+                "multibody.quasi_static_max_step_s",
+                mb.quasi_static_max_step_s,
+                1e-8,
+                1.0,
+            ),
+            ("multibody.runup_time_s", mb.runup_time_s, 1e-4, 100.0),
+            (
+                "multibody.runup_pinion_torque_nm",
+                mb.runup_pinion_torque_nm,
+                0.0,
+                1e6,
+            ),
+            ("multibody.runup_max_step_s", mb.runup_max_step_s, 1e-8, 1.0),
+            ("multibody.damping_ratio", mb.damping_ratio, 0.0, 10.0),
+            ("multibody.rho_inf", mb.rho_inf, 0.0, 1.0),
+            (
+                "multibody.te_tolerance_urad",
+                mb.te_tolerance_urad,
+                1e-9,
+                100.0,
+            ),
+            ("multibody.table_step_deg", mb.table_step_deg, 1e-3, 2.0),
+            (
+                "multibody.table_torque_factor",
+                mb.table_torque_factor,
+                1.0,
+                100.0,
+            ),
+        ] {
+            if !(v >= lo && v <= hi) {
+                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
+            }
+        }
+        for (f, v) in [
+            ("multibody.runup_rpm[0]", mb.runup_rpm[0]),
+            ("multibody.runup_rpm[1]", mb.runup_rpm[1]),
+        ] {
+            if !(0.0..=1e5).contains(&v) {
+                return Err(fail(f, v.to_string(), "must lie in [0, 100000]"));
+            }
+        }
+        if !(8..=2000).contains(&mb.table_lag_nodes) {
+            return Err(fail(
+                "multibody.table_lag_nodes",
+                mb.table_lag_nodes.to_string(),
+                "must lie in [8, 2000]",
+            ));
+        }
+        for (f, v) in [
+            ("multibody.pinion_inertia_kgm2", mb.pinion_inertia_kgm2),
+            ("multibody.wheel_inertia_kgm2", mb.wheel_inertia_kgm2),
+        ] {
+            if let Some(j) = v {
+                if !(j > 0.0 && j.is_finite()) {
+                    return Err(fail(f, j.to_string(), "must be finite and > 0"));
+                }
+            }
         }
         if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {
             return Err(fail(

@@ -87,7 +87,11 @@ impl ContactProblem<'_> {
 
     /// Pinion torque Σ λ₁ F of a force vector, N·m.
     pub fn pinion_torque(&self, force: &[f64]) -> f64 {
-        force.iter().zip(self.lever_pinion).map(|(f, l)| f * l).sum()
+        force
+            .iter()
+            .zip(self.lever_pinion)
+            .map(|(f, l)| f * l)
+            .sum()
     }
 
     fn fixed_point(

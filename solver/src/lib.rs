@@ -1,14 +1,19 @@
-//! Solver: the FE-analytical gear contact element and the quasi-static loaded
-//! tooth contact analysis (LTCA).
+//! Solver: the FE-analytical gear contact element, the quasi-static loaded
+//! tooth contact analysis (LTCA) and multibody time integration.
 //!
 //! Data flow: scene → flank pair and surface of roll angles (preprocess) →
 //! [`slices`] (contact geometry per position) → [`compliance`] (stiffness
 //! files interpolated to the slices) + [`weber_banaschek`] (line-contact
 //! approach) → [`contact_problem`] (forces and loaded TE) → [`ltca`] (sweep)
 //! → [`ltca_stage`] (files). [`plan`] lists the tooth pairs that can touch.
+//! Multibody: [`mesh_table`] (the element as a conservative force element
+//! between rigid bodies) → [`multibody`] (equations of motion, time
+//! integration) → [`dynamic_stage`] (10 rpm and run-up files, with
+//! [`spectrum`] for the bearing-force spectrogram).
 
 pub mod compliance;
 pub mod contact_problem;
+pub mod dynamic_stage;
 pub mod interp;
 pub mod ltca;
 pub mod ltca_stage;
@@ -16,6 +21,7 @@ pub mod mesh_table;
 pub mod multibody;
 pub mod plan;
 pub mod slices;
+pub mod spectrum;
 pub mod weber_banaschek;
 
 /// Errors of the contact element and the LTCA.

@@ -33,6 +33,16 @@ enum Cmd {
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+    /// Multibody runs (10 rpm quasi-static per torque, run-up) of every blank combination, from the stiffness files.
+    Dynamic {
+        scene: PathBuf,
+        /// Root of the meshes and stiffness files (`<meshes>/<scene>/`).
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        /// Results go to `<out>/<scene>/multibody/`.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -51,6 +61,18 @@ fn main() -> anyhow::Result<()> {
             }
             if let Some(o) = out {
                 preprocess::output::write_json(&o, &plans)?;
+            }
+        }
+        Cmd::Dynamic { scene, meshes, out } => {
+            let s = preprocess::scene::Scene::load(&scene)?;
+            let res = solver::dynamic_stage::run(&s, &meshes, &out)?;
+            for b in &res {
+                for q in &b.quasi_static {
+                    println!(
+                        "{:?}/{:?} {:6.1} N·m: multibody TE mean {:8.2} µrad, ptp {:7.2} µrad ({} steps)",
+                        b.pinion_blank, b.wheel_blank, q.torque_nm, q.te_mean_urad, q.te_ptp_urad, q.steps
+                    );
+                }
             }
         }
         Cmd::Ltca { scene, meshes, out } => {

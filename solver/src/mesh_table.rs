@@ -306,7 +306,9 @@ impl MeshTable {
         let (wq, wu) = (catmull_rom(tq), catmull_rom(tu));
         let (hq, hu) = (self.spec.step, self.du);
         let mut out = [0.0; 6];
-        for b in 0..4 {
+        // Weights of lag node b: value, first and second derivative.
+        let lag_weights = (0..4).map(|b| [wu[0][b], wu[1][b], wu[2][b]]);
+        for (b, wb) in lag_weights.enumerate() {
             let k = m - 1 + b as i64;
             let col = stencil(self.spec.positions, self.spec.periodic, i, |p| {
                 if k < 0 {
@@ -319,12 +321,12 @@ impl MeshTable {
             });
             for a in 0..4 {
                 let v = col[a];
-                out[0] += wq[0][a] * wu[0][b] * v;
-                out[1] += wq[1][a] * wu[0][b] * v / hq;
-                out[2] += wq[0][a] * wu[1][b] * v / hu;
-                out[3] += wq[2][a] * wu[0][b] * v / (hq * hq);
-                out[4] += wq[1][a] * wu[1][b] * v / (hq * hu);
-                out[5] += wq[0][a] * wu[2][b] * v / (hu * hu);
+                out[0] += wq[0][a] * wb[0] * v;
+                out[1] += wq[1][a] * wb[0] * v / hq;
+                out[2] += wq[0][a] * wb[1] * v / hu;
+                out[3] += wq[2][a] * wb[0] * v / (hq * hq);
+                out[4] += wq[1][a] * wb[1] * v / (hq * hu);
+                out[5] += wq[0][a] * wb[2] * v / (hu * hu);
             }
         }
         Ok(out)
@@ -336,9 +338,7 @@ impl MeshTable {
             return Ok(0.0);
         }
         let nu = self.spec.lag_nodes;
-        Ok(self
-            .field(|p, m| self.torque[p * nu + m], q1, theta)?[0]
-            .max(0.0))
+        Ok(self.field(|p, m| self.torque[p * nu + m], q1, theta)?[0].max(0.0))
     }
 
     /// Potential, gradient, Hessian and force at (q₁, q₂).

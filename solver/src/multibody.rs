@@ -42,11 +42,7 @@ impl Ramp {
             0.0
         };
         if t <= self.duration {
-            [
-                self.from * t + 0.5 * acc * t * t,
-                self.from + acc * t,
-                acc,
-            ]
+            [self.from * t + 0.5 * acc * t * t, self.from + acc * t, acc]
         } else {
             let d = self.duration;
             let a0 = self.from * d + 0.5 * acc * d * d;
@@ -65,7 +61,10 @@ pub enum Drive {
     /// resisting torque.
     PinionSpeed { speed: Ramp, wheel_torque: f64 },
     /// Both free: a driving pinion torque and a resisting wheel torque.
-    Free { pinion_torque: f64, wheel_torque: f64 },
+    Free {
+        pinion_torque: f64,
+        wheel_torque: f64,
+    },
 }
 
 impl Drive {
@@ -121,6 +120,17 @@ pub struct Loads {
     pub reaction: f64,
 }
 
+/// Contact + damping forces of a state and their derivatives.
+#[derive(Debug, Clone, Copy)]
+pub struct Contact {
+    /// Generalized forces on (q₁, q₂), N·m.
+    pub force: [f64; 2],
+    /// K = −∂force/∂q, N·m/rad, and D = −∂force/∂q̇, N·m·s/rad.
+    pub stiffness: [[f64; 2]; 2],
+    pub damping: [[f64; 2]; 2],
+    pub mesh: MeshState,
+}
+
 /// Smooth step 0 → 1 on [0, 1] (C¹).
 fn smoothstep(x: f64) -> (f64, f64) {
     let x = x.clamp(0.0, 1.0);
@@ -140,11 +150,7 @@ impl Model<'_> {
 
     /// Contact and damping generalized forces at (q, v), their stiffness
     /// K = −∂Q/∂q (Hessian of V) and damping matrix D = −∂Q/∂v.
-    pub fn contact(
-        &self,
-        q: [f64; 2],
-        v: [f64; 2],
-    ) -> Result<([f64; 2], [[f64; 2]; 2], [[f64; 2]; 2], MeshState), SolverError> {
+    pub fn contact(&self, q: [f64; 2], v: [f64; 2]) -> Result<Contact, SolverError> {
         let ms = self.table.state(q[0], q[1])?;
         let r = self.table.ratio;
         let (s, _) = smoothstep(ms.u / self.table.du);
@@ -159,12 +165,21 @@ impl Model<'_> {
             [c * dir[0] * dir[0], c * dir[0] * dir[1]],
             [c * dir[1] * dir[0], c * dir[1] * dir[1]],
         ];
-        Ok((q_c, ms.hess, d, ms))
+        Ok(Contact {
+            force: q_c,
+            stiffness: ms.hess,
+            damping: d,
+            mesh: ms,
+        })
     }
 
     /// Loads of a state (forces, the drive's reaction torque).
     pub fn loads(&self, s: &State) -> Result<Loads, SolverError> {
-        let (qc, _, _, ms) = self.contact(s.q, s.v)?;
+        let Contact {
+            force: qc,
+            mesh: ms,
+            ..
+        } = self.contact(s.q, s.v)?;
         let ext = self.drive.torques();
         let reaction = match self.imposed(s.t) {
             Some((i, _)) => self.inertia[i] * s.a[i] - ext[i] - qc[i],
@@ -189,53 +204,58 @@ impl Model<'_> {
             - ext[1] * s.q[1])
     }
 
-    /// The quasi-static state at pinion rotation q₁ (wheel lag from the
-    /// table under the drive's torque), moving at the drive's initial speed.
+    /// Pinion torque of the drive's quasi-static balance, N·m.
+    fn static_torque(&self) -> f64 {
+        match self.drive {
+            Drive::WheelSpeed { pinion_torque, .. } => pinion_torque,
+            Drive::PinionSpeed { wheel_torque, .. } => wheel_torque * self.table.ratio,
+            Drive::Free { pinion_torque, .. } => pinion_torque,
+        }
+    }
+
+    /// Quasi-static wheel lag at pinion rotation q₁ under the drive's
+    /// torque: ∂V/∂q₁ = T₁ solved for θ by Newton (the unloaded TE at zero torque).
+    pub fn static_lag(&self, q1: f64) -> Result<f64, SolverError> {
+        let r = self.table.ratio;
+        let torque = self.static_torque();
+        let t0 = self.table.unloaded(q1)?[0];
+        if torque <= 0.0 {
+            return Ok(t0);
+        }
+        let mut theta = t0 + 0.1 * self.table.du;
+        for _ in 0..100 {
+            let ms = self.table.state(q1, r * q1 - theta)?;
+            let f = ms.grad[0] - torque;
+            // d(∂V/∂q₁)/dθ = −∂²V/∂q₁∂q₂.
+            let df = -ms.hess[0][1];
+            let step = if df > 0.0 {
+                -f / df
+            } else {
+                0.1 * self.table.du
+            };
+            theta += step.clamp(-10.0 * self.table.du, 10.0 * self.table.du);
+            if step.abs() < 1e-16 + 1e-12 * theta.abs() {
+                return Ok(theta);
+            }
+        }
+        Err(SolverError::NotConverged {
+            what: "quasi-static lag".into(),
+            iterations: 100,
+        })
+    }
+
+    /// The quasi-static state at pinion rotation q₁, moving at the drive's
+    /// initial speed with the static lag kept (θ̇ = θ'(q₁) q̇₁).
     pub fn static_state(&self, q1: f64) -> Result<State, SolverError> {
         let r = self.table.ratio;
-        let torque = match self.drive {
-            Drive::WheelSpeed { pinion_torque, .. } => pinion_torque,
-            Drive::PinionSpeed { wheel_torque, .. } => wheel_torque * r,
-            Drive::Free { pinion_torque, .. } => pinion_torque,
-        };
-        let lag = |q1: f64| -> Result<f64, SolverError> {
-            // Solve ∂V/∂q₁ = T at fixed q₁ for θ (Newton on q₂ = r q₁ − θ).
-            let mut theta = self.table.unloaded(q1)?[0] + 0.1 * self.table.du;
-            for _ in 0..100 {
-                let ms = self.table.state(q1, r * q1 - theta)?;
-                let f = ms.grad[0] - torque;
-                // d(∂V/∂q₁)/dθ = −∂²V/∂q₁∂q₂.
-                let df = -ms.hess[0][1];
-                let step = if df > 0.0 {
-                    -f / df
-                } else {
-                    0.1 * self.table.du
-                };
-                theta += step.clamp(-10.0 * self.table.du, 10.0 * self.table.du);
-                if step.abs() < 1e-16 + 1e-12 * theta.abs() {
-                    return Ok(theta);
-                }
-            }
-            Err(SolverError::NotConverged {
-                what: "quasi-static initial lag".into(),
-                iterations: 100,
-            })
-        };
-        if torque <= 0.0 {
-            let theta = self.table.unloaded(q1)?[0];
-            let w = self.initial_speed();
-            return Ok(State {
-                t: 0.0,
-                q: [q1, r * q1 - theta],
-                v: w,
-                a: [0.0; 2],
-            });
-        }
-        let theta = lag(q1)?;
+        let theta = self.static_lag(q1)?;
         let d = 0.1 * self.table.spec.step;
-        let slope = (lag(q1 + d)? - lag(q1 - d)?) / (2.0 * d);
+        // Central difference, one-sided at the start of a non-periodic table.
+        let slope = match self.static_lag(q1 - d) {
+            Ok(before) => (self.static_lag(q1 + d)? - before) / (2.0 * d),
+            Err(_) => (self.static_lag(q1 + d)? - theta) / d,
+        };
         let w = self.initial_speed();
-        // θ̇ = θ' q̇₁ keeps the static lag: r q̇₁ − q̇₂ = θ' q̇₁.
         let v = match self.drive {
             Drive::WheelSpeed { .. } => [w[1] / (r - slope), w[1]],
             _ => [w[0], (r - slope) * w[0]],
@@ -401,10 +421,7 @@ fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), 
     let free = m.drive.free();
     let ext = m.drive.torques();
     let t1 = s.t + h;
-    let mut q = [0.0; 2];
-    for i in 0..2 {
-        q[i] = s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
-    }
+    let mut q = [0, 1].map(|i| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i]);
     let fixed = imposed_at(m, s, t1);
     let kin = |q: [f64; 2]| -> ([f64; 2], [f64; 2]) {
         let mut a = [0.0; 2];
@@ -426,7 +443,12 @@ fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), 
         let (v, a) = kin(q);
         let qm = [0, 1].map(|i| (1.0 - af) * q[i] + af * s.q[i]);
         let vm = [0, 1].map(|i| (1.0 - af) * v[i] + af * s.v[i]);
-        let (qc, k, d, _) = m.contact(qm, vm)?;
+        let Contact {
+            force: qc,
+            stiffness: k,
+            damping: d,
+            ..
+        } = m.contact(qm, vm)?;
         let mut res = [0.0; 2];
         let mut jac = [[0.0; 2]; 2];
         for i in 0..2 {
@@ -437,7 +459,8 @@ fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), 
             }
             jac[i][i] += m.inertia[i] * (1.0 - am) / (beta * h * h);
         }
-        let dx = solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
+        let dx =
+            solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
         for i in 0..2 {
             if free[i] {
                 q[i] += dx[i];
@@ -494,7 +517,12 @@ fn midpoint_step(m: &Model, s: &State, h: f64) -> Result<(State, usize), SolverE
         let v = vel(q);
         let qm = [0, 1].map(|i| 0.5 * (q[i] + s.q[i]));
         let vm = [0, 1].map(|i| 0.5 * (v[i] + s.v[i]));
-        let (qc, k, d, _) = m.contact(qm, vm)?;
+        let Contact {
+            force: qc,
+            stiffness: k,
+            damping: d,
+            ..
+        } = m.contact(qm, vm)?;
         let g = discrete_gradient(m, s.q, q)?;
         let mut res = [0.0; 2];
         let mut jac = [[0.0; 2]; 2];
@@ -507,7 +535,8 @@ fn midpoint_step(m: &Model, s: &State, h: f64) -> Result<(State, usize), SolverE
             }
             jac[i][i] += 2.0 * m.inertia[i] / (h * h);
         }
-        let dx = solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
+        let dx =
+            solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
         for i in 0..2 {
             if free[i] {
                 q[i] += dx[i];

@@ -440,7 +440,11 @@ fn ten_rpm_multibody_te_matches_the_quasi_static_ltca() {
             ptp * 1e6,
             mb.len() - 1
         );
-        assert!(worst < 0.01 * ptp, "{torque} N m: {:.2} % of ptp", 100.0 * worst / ptp);
+        assert!(
+            worst < 0.01 * ptp,
+            "{torque} N m: {:.2} % of ptp",
+            100.0 * worst / ptp
+        );
     }
 }
 

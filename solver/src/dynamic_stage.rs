@@ -1,0 +1,535 @@
+//! `solver dynamic <scene>`: the multibody runs of every pinion × wheel blank
+//! of a scene, to `<out>/<scene>/multibody/<pinion>_<wheel>/`:
+//! - `quasi_static_<T>nm.csv` per scene torque: the white paper's 10 rpm run
+//!   (imposed wheel speed, torque on the pinion) over the LTCA's rotation
+//!   range: time, pinion rotation, TE, mesh torques, bearing forces;
+//! - `runup.csv`, `runup_te.svg` (dynamic against quasi-static TE over the
+//!   pinion speed, the white paper's Figure 13) and `runup_spectrogram.svg`
+//!   (the wheel bearing force with the mesh orders) for the blanks that run up;
+//! - `summary.json`: per torque TE mean and peak-to-peak, steps and CPU time.
+//!
+//! Bearings are rigid: the bearing force of each member is the reaction to
+//! the contact force (the wheel's is reported; the pinion's is its negative).
+
+use crate::compliance::PairCompliance;
+use crate::ltca::mean_ptp;
+use crate::ltca_stage::{member_compliance, mesh_cycles, scene_sweep};
+use crate::mesh_table::{MeshTable, TableSpec};
+use crate::multibody::{Drive, Integrator, Model, Ramp, Scheme, State, StepControl};
+use crate::spectrum::{plot, resample, stft, OrderLine};
+use anyhow::Context;
+use preprocess::design::Member;
+use preprocess::flank_stage::roll_surface;
+use preprocess::output::{write_atomic, write_json};
+use preprocess::pair::PairGeometry;
+use preprocess::plots::{te_curve, Series};
+use preprocess::scene::{Blank, LoadedScene};
+use preprocess::stiffness_stage::planned;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// One quasi-static run.
+#[derive(Debug, Clone, Serialize)]
+pub struct QuasiStaticSummary {
+    pub torque_nm: f64,
+    /// TE sampled at the LTCA's positions.
+    pub te_mean_urad: f64,
+    pub te_ptp_urad: f64,
+    pub steps: usize,
+    pub rejected_steps: usize,
+    pub cpu_s: f64,
+    pub cpu_s_per_step: f64,
+}
+
+/// The run-up.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunupSummary {
+    pub pinion_torque_nm: f64,
+    pub rpm: [f64; 2],
+    pub sim_time_s: f64,
+    pub max_step_s: f64,
+    pub steps: usize,
+    pub rejected_steps: usize,
+    pub cpu_s: f64,
+    pub cpu_s_per_step: f64,
+    /// Dynamic minus quasi-static TE: extremes over the run, µrad.
+    pub te_dynamic_minus_static_urad: [f64; 2],
+}
+
+/// Summary of one pinion × wheel blank.
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicSummary {
+    pub pinion_blank: Blank,
+    pub wheel_blank: Blank,
+    pub inertia_kgm2: [f64; 2],
+    /// "scene" or "mesh" (∫ρr² dV over the body mesh).
+    pub inertia_source: String,
+    pub damping_nm_s_per_rad: f64,
+    pub table_positions: usize,
+    pub table_lag_nodes: usize,
+    pub table_build_s: f64,
+    pub table_cpu_s_per_position: f64,
+    pub quasi_static: Vec<QuasiStaticSummary>,
+    pub runup: Option<RunupSummary>,
+    pub dir: PathBuf,
+}
+
+struct Trace {
+    t: Vec<f64>,
+    q1: Vec<f64>,
+    speed: Vec<f64>,
+    te: Vec<f64>,
+    torque: Vec<[f64; 2]>,
+    force: Vec<[f64; 3]>,
+}
+
+/// Integrates to `t_end`, recording every step.
+fn integrate(
+    m: &Model,
+    s0: State,
+    integ: &mut Integrator,
+    t_end: f64,
+) -> Result<(Trace, usize), crate::SolverError> {
+    let r = m.table.ratio;
+    let mut tr = Trace {
+        t: vec![],
+        q1: vec![],
+        speed: vec![],
+        te: vec![],
+        torque: vec![],
+        force: vec![],
+    };
+    let mut push = |s: &State| -> Result<(), crate::SolverError> {
+        let l = m.loads(s)?;
+        tr.t.push(s.t);
+        tr.q1.push(s.q[0]);
+        tr.speed.push(s.v[0]);
+        tr.te.push(r * s.q[0] - s.q[1]);
+        tr.torque.push([l.mesh.grad[0], -l.mesh.grad[1]]);
+        tr.force.push(l.mesh.force);
+        Ok(())
+    };
+    let mut s = s0;
+    push(&s)?;
+    let mut steps = 0;
+    while s.t < t_end * (1.0 - 1e-12) {
+        s = integ.step(m, &s, t_end)?;
+        push(&s)?;
+        steps += 1;
+    }
+    Ok((tr, steps))
+}
+
+fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
+    let mut out = String::from(
+        "time_s,pinion_rotation_deg,pinion_rpm,te_urad,pinion_mesh_torque_nm,wheel_mesh_torque_nm,wheel_bearing_fx_n,wheel_bearing_fy_n,wheel_bearing_fz_n",
+    );
+    if statics.is_some() {
+        out.push_str(",te_quasi_static_urad");
+    }
+    out.push('\n');
+    for k in 0..tr.t.len() {
+        // Rigid bearings: the wheel's bearing carries the contact force.
+        let f = tr.force[k].map(|c| -c);
+        let _ = write!(
+            out,
+            "{:.7},{:.5},{:.4},{:.5},{:.5},{:.5},{:.4},{:.4},{:.4}",
+            tr.t[k],
+            tr.q1[k].to_degrees(),
+            tr.speed[k] * 30.0 / std::f64::consts::PI,
+            tr.te[k] * 1e6,
+            tr.torque[k][0],
+            tr.torque[k][1],
+            f[0],
+            f[1],
+            f[2]
+        );
+        if let Some(st) = statics {
+            let _ = write!(out, ",{:.5}", st[k] * 1e6);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// Polar moment of a member: the scene's value, or ∫ρr² dV over its mesh.
+fn inertia(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+) -> anyhow::Result<(f64, &'static str)> {
+    let mb = &scene.scene.multibody;
+    let given = match member {
+        Member::Pinion => mb.pinion_inertia_kgm2,
+        Member::Wheel => mb.wheel_inertia_kgm2,
+    };
+    if let Some(j) = given {
+        return Ok((j, "scene"));
+    }
+    let p = planned(scene, g, dir, member, blank, "reduced")?;
+    let body = preprocess::body_mesh::read(&p.msh)
+        .map_err(|e| anyhow::anyhow!("reading {}: {e}", p.msh.display()))?;
+    Ok((
+        body.mesh.polar_moment(g.data.member(member).density),
+        "mesh",
+    ))
+}
+
+/// Runs the multibody analyses of the scene.
+pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<DynamicSummary>> {
+    let sc = &scene.scene;
+    let mb = &sc.multibody;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let side = sc.loaded_flank;
+    let fp = g.side(side);
+    let rs = roll_surface(fp, &sc.utca)?;
+    let dir = meshes.join(&sc.name);
+    let tau = g.data.mesh_cycle();
+    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
+    let mut all = Vec::new();
+    for &pb in &sc.blanks.pinion {
+        let (pin, _) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
+        let (j1, src1) = inertia(scene, &g, &dir, Member::Pinion, pb)?;
+        for &wb in &sc.blanks.wheel {
+            let (whl, _) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
+            let (j2, src2) = inertia(scene, &g, &dir, Member::Wheel, wb)?;
+            let pc = PairCompliance {
+                pinion: pin.clone(),
+                wheel: whl,
+            };
+            let sweep = scene_sweep(scene, &g, wb);
+            let runs_up = mb.runup_wheel_blanks.contains(&wb);
+            // Standard wheels repeat every mesh cycle; lightweight ones are
+            // tabulated over the whole rotation their runs need.
+            let periodic = wb == Blank::Standard;
+            let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
+            // The 10 rpm runs go one sweep step past the sweep's end.
+            let range = if runs_up {
+                mesh_cycles(sc, wb).max(mb.runup_rotation() / tau) * tau
+            } else {
+                mesh_cycles(sc, wb) * tau
+            } + 3.0 * sweep.step;
+            let step = tau / per_cycle as f64;
+            let positions = if periodic {
+                per_cycle
+            } else {
+                (range / step).ceil() as usize + 3
+            };
+            let torque_max = sc
+                .pinion_torque_nm
+                .iter()
+                .copied()
+                .chain(runs_up.then_some(mb.runup_pinion_torque_nm))
+                .fold(0.0, f64::max)
+                * mb.table_torque_factor;
+            let t0 = Instant::now();
+            eprintln!(
+                "multibody {pb:?}/{wb:?}: contact-element table {positions} positions x {} lags",
+                mb.table_lag_nodes
+            );
+            let table = MeshTable::build(
+                fp,
+                &rs,
+                &pc,
+                &g.frames[0],
+                ratio,
+                TableSpec {
+                    start: sweep.start,
+                    direction: sweep.direction,
+                    step,
+                    positions,
+                    periodic,
+                    slices: sc.ltca.slices,
+                    lag_nodes: mb.table_lag_nodes,
+                    torque_max_nm: torque_max.max(1.0),
+                },
+            )
+            .with_context(|| format!("scene {}: contact-element table, {wb:?} wheel", sc.name))?;
+            let table_s = t0.elapsed().as_secs_f64();
+            let name = format!("{pb:?}_{wb:?}").to_lowercase();
+            let odir = out.join(&sc.name).join("multibody").join(&name);
+            std::fs::create_dir_all(&odir)?;
+            let inertia = [j1, j2];
+            let control = |max_step: f64| StepControl {
+                max_step,
+                min_step: max_step * 1e-6,
+                tolerance: mb.te_tolerance_urad * 1e-6,
+            };
+            let scheme = Scheme::GeneralizedAlpha {
+                rho_inf: mb.rho_inf,
+            };
+            // Quasi-static runs.
+            let wheel_speed = mb.quasi_static_wheel_rpm * std::f64::consts::PI / 30.0;
+            let sweep_range = sweep.step * (sweep.positions - 1) as f64;
+            let mut qs = Vec::new();
+            let mut damping = 0.0;
+            let mut qs_series = Vec::new();
+            for &torque in &sc.pinion_torque_nm {
+                let mut m = Model {
+                    table: &table,
+                    inertia,
+                    damping: 0.0,
+                    drive: Drive::WheelSpeed {
+                        speed: Ramp {
+                            from: wheel_speed,
+                            to: wheel_speed,
+                            duration: 0.0,
+                        },
+                        pinion_torque: torque,
+                    },
+                };
+                let s0 = m.static_state(0.0)?;
+                m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;
+                damping = m.damping;
+                let mut integ = Integrator::new(scheme, control(mb.quasi_static_max_step_s));
+                let t = Instant::now();
+                // Slightly beyond the sweep so that its last position is inside.
+                let t_end = (sweep_range + 2.0 * sweep.step) / (wheel_speed / ratio);
+                let (tr, steps) = integrate(&m, s0, &mut integ, t_end)
+                    .with_context(|| format!("scene {}: 10 rpm run at {torque} N·m", sc.name))?;
+                let cpu = t.elapsed().as_secs_f64();
+                let sampled: Vec<f64> = (0..sweep.positions)
+                    .map(|k| interpolate(&tr.q1, &tr.te, sweep.step * k as f64))
+                    .collect();
+                let (mean, ptp) = mean_ptp(&sampled);
+                write_atomic(
+                    &odir.join(format!("quasi_static_{torque}nm.csv")),
+                    trace_csv(&tr, None).as_bytes(),
+                )?;
+                qs_series.push(Series {
+                    name: format!("{torque} N·m"),
+                    x: (0..sweep.positions)
+                        .map(|k| (sweep.step * k as f64).to_degrees())
+                        .collect(),
+                    y: sampled.iter().map(|v| v * 1e6).collect(),
+                    dashed: false,
+                });
+                eprintln!(
+                    "  10 rpm {torque:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {steps} steps, {:.1} µs/step",
+                    mean * 1e6,
+                    ptp * 1e6,
+                    cpu / steps.max(1) as f64 * 1e6
+                );
+                qs.push(QuasiStaticSummary {
+                    torque_nm: torque,
+                    te_mean_urad: mean * 1e6,
+                    te_ptp_urad: ptp * 1e6,
+                    steps,
+                    rejected_steps: integ.rejected,
+                    cpu_s: cpu,
+                    cpu_s_per_step: cpu / steps.max(1) as f64,
+                });
+            }
+            te_curve(
+                &odir.join("quasi_static_te.svg"),
+                &format!(
+                    "Multibody {} rpm wheel, {pb:?} pinion / {wb:?} wheel",
+                    mb.quasi_static_wheel_rpm
+                ),
+                "pinion rotation (deg)",
+                "transmission error (µrad)",
+                &qs_series,
+            )?;
+            let runup = if runs_up {
+                Some(run_up(
+                    &table,
+                    inertia,
+                    mb,
+                    &odir,
+                    scheme,
+                    &control,
+                    pb,
+                    wb,
+                    g.data.members[0].teeth as f64,
+                )?)
+            } else {
+                None
+            };
+            let summary = DynamicSummary {
+                pinion_blank: pb,
+                wheel_blank: wb,
+                inertia_kgm2: inertia,
+                inertia_source: if src1 == src2 {
+                    src1.into()
+                } else {
+                    format!("pinion {src1}, wheel {src2}")
+                },
+                damping_nm_s_per_rad: damping,
+                table_positions: positions,
+                table_lag_nodes: mb.table_lag_nodes,
+                table_build_s: table_s,
+                table_cpu_s_per_position: table.cpu_s_per_position,
+                quasi_static: qs,
+                runup,
+                dir: odir.clone(),
+            };
+            write_json(&odir.join("summary.json"), &summary)?;
+            all.push(summary);
+        }
+    }
+    write_json(
+        &out.join(&sc.name).join("multibody").join("summary.json"),
+        &all,
+    )?;
+    Ok(all)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_up(
+    table: &MeshTable,
+    inertia: [f64; 2],
+    mb: &preprocess::scene::MultibodySettings,
+    odir: &Path,
+    scheme: Scheme,
+    control: &dyn Fn(f64) -> StepControl,
+    pb: Blank,
+    wb: Blank,
+    z1: f64,
+) -> anyhow::Result<RunupSummary> {
+    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
+    let ramp = Ramp {
+        from: w(mb.runup_rpm[0]),
+        to: w(mb.runup_rpm[1]),
+        duration: mb.runup_time_s,
+    };
+    let torque = mb.runup_pinion_torque_nm;
+    let mut m = Model {
+        table,
+        inertia,
+        damping: 0.0,
+        drive: Drive::PinionSpeed {
+            speed: ramp,
+            wheel_torque: torque / table.ratio,
+        },
+    };
+    let s0 = m.static_state(0.0)?;
+    m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;
+    let mut integ = Integrator::new(scheme, control(mb.runup_max_step_s));
+    let t = Instant::now();
+    eprintln!(
+        "  run-up {}..{} rpm in {} s at {torque} N·m",
+        mb.runup_rpm[0], mb.runup_rpm[1], mb.runup_time_s
+    );
+    let (tr, steps) = integrate(&m, s0, &mut integ, mb.runup_time_s).context("multibody run-up")?;
+    let cpu = t.elapsed().as_secs_f64();
+    // Quasi-static TE at the same pinion rotations (the table's static lag).
+    let qs_model = Model {
+        drive: Drive::WheelSpeed {
+            speed: Ramp {
+                from: 0.0,
+                to: 0.0,
+                duration: 0.0,
+            },
+            pinion_torque: torque,
+        },
+        ..m
+    };
+    let statics: Vec<f64> = tr
+        .q1
+        .iter()
+        .map(|&q| qs_model.static_lag(q))
+        .collect::<Result<_, _>>()?;
+    write_atomic(
+        &odir.join("runup.csv"),
+        trace_csv(&tr, Some(&statics)).as_bytes(),
+    )?;
+    let diff: Vec<f64> = tr.te.iter().zip(&statics).map(|(a, b)| a - b).collect();
+    let lo = diff.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = diff.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let rpm: Vec<f64> = tr
+        .speed
+        .iter()
+        .map(|v| v * 30.0 / std::f64::consts::PI)
+        .collect();
+    te_curve(
+        &odir.join("runup_te.svg"),
+        &format!(
+            "Run-up at {torque} N·m, {pb:?} pinion / {wb:?} wheel: dynamic and quasi-static TE"
+        ),
+        "pinion speed (rpm)",
+        "transmission error (µrad)",
+        &[
+            Series {
+                name: "dynamic".into(),
+                x: rpm.clone(),
+                y: tr.te.iter().map(|v| v * 1e6).collect(),
+                dashed: false,
+            },
+            Series {
+                name: "quasi-static".into(),
+                x: rpm,
+                y: statics.iter().map(|v| v * 1e6).collect(),
+                dashed: true,
+            },
+        ],
+    )?;
+    // Spectrogram of the wheel bearing force magnitude.
+    let dt = mb.runup_max_step_s.max(mb.runup_time_s / 2e5);
+    let mag: Vec<f64> = tr
+        .force
+        .iter()
+        .map(|f| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt())
+        .collect();
+    let y = resample(&tr.t, &mag, dt);
+    let window = ((mb.runup_time_s / 8.0) / dt).round().max(16.0) as usize;
+    let fmax = 3.2 * z1 * ramp.to / (2.0 * std::f64::consts::PI);
+    let freq: Vec<f64> = (0..200).map(|k| fmax * k as f64 / 199.0).collect();
+    let spec = stft(&y, dt, window.min(y.len()), (window / 8).max(1), &freq);
+    let hz = |t: f64| ramp.at(t)[1] / (2.0 * std::f64::consts::PI);
+    let mut orders: Vec<OrderLine> = (1..=3)
+        .map(|k| OrderLine {
+            order: z1 * k as f64,
+            label: format!("{}", z1 * k as f64),
+        })
+        .collect();
+    if wb == Blank::Lightweight {
+        let o = 3.0 * table.ratio;
+        orders.push(OrderLine {
+            order: z1 + o,
+            label: format!("{z1}+{o:.2}"),
+        });
+        orders.push(OrderLine {
+            order: z1 - o,
+            label: format!("{z1}-{o:.2}"),
+        });
+    }
+    plot(
+        &odir.join("runup_spectrogram.svg"),
+        &format!("Wheel bearing force |F|, run-up at {torque} N·m ({pb:?}/{wb:?})"),
+        &spec,
+        &hz,
+        &orders,
+    )?;
+    eprintln!(
+        "  run-up: {steps} steps ({} rejected), {:.1} µs/step, dynamic - static TE in [{:.2}, {:.2}] µrad",
+        integ.rejected,
+        cpu / steps.max(1) as f64 * 1e6,
+        lo * 1e6,
+        hi * 1e6
+    );
+    Ok(RunupSummary {
+        pinion_torque_nm: torque,
+        rpm: mb.runup_rpm,
+        sim_time_s: mb.runup_time_s,
+        max_step_s: mb.runup_max_step_s,
+        steps,
+        rejected_steps: integ.rejected,
+        cpu_s: cpu,
+        cpu_s_per_step: cpu / steps.max(1) as f64,
+        te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
+    })
+}
+
+/// Linear interpolation of y(x) on increasing x.
+fn interpolate(x: &[f64], y: &[f64], at: f64) -> f64 {
+    let k = x.partition_point(|v| *v < at).clamp(1, x.len() - 1);
+    let (a, b) = (k - 1, k);
+    if x[b] == x[a] {
+        return y[a];
+    }
+    y[a] + (y[b] - y[a]) * (at - x[a]) / (x[b] - x[a])
+}
