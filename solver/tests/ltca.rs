@@ -348,9 +348,10 @@ fn mesh_potential_gradient_is_the_contact_elements_pinion_torque() {
 }
 
 #[test]
-fn contact_force_moment_about_the_wheel_axis_is_the_wheel_torque() {
-    // The fixed-frame force vectors (an independent path: slice normals
-    // rotated to each pair's pinion position) against -dV/dq2.
+fn wheel_torque_of_the_potential_is_the_pinion_torque_over_the_ratio() {
+    // -dV/dq2 (the path integral of dT1/dθ) against T1/r within 1 %: the
+    // torque ratio departs from r only by the TE's slope. The interpolated
+    // fixed-frame force is non-zero and not purely axial.
     let f = fixture();
     let t = table_fine();
     let a2 = f.g.frames[1].axis();
@@ -358,9 +359,6 @@ fn contact_force_moment_about_the_wheel_axis_is_the_wheel_torque() {
         let q1 = t.spec.step * k as f64;
         let theta = t.theta_lo + 0.6 * t.du * (t.spec.lag_nodes - 1) as f64;
         let ms = t.state(q1, t.ratio * q1 - theta).unwrap();
-        // The resultant's moment needs the points; at a node compare the
-        // axial force/torque ratio instead: |F·a2| is bounded by |F|, and the
-        // wheel torque -dV/dq2 ≈ T1 / r.
         let fnorm = ms.force.iter().map(|c| c * c).sum::<f64>().sqrt();
         let axial = ms.force[0] * a2[0] + ms.force[1] * a2[1] + ms.force[2] * a2[2];
         assert!(fnorm > 0.0 && axial.abs() < fnorm);
