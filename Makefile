@@ -24,6 +24,7 @@ bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench mesh
 	$(CARGO) bench -p preprocess --bench stiffness
 	$(CARGO) bench -p solver --bench ltca
+	$(CARGO) bench -p solver --bench multibody
 
 preprocess: build
 	$(BIN)/preprocess flanks $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/flanks

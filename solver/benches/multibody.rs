@@ -1,0 +1,154 @@
+//! `make bench` (multibody): the contact-element table and the 10 rpm run of
+//! the default scene's standard pair (stiffness files from `make preprocess`):
+//! run time against error over the table resolution, the error being the
+//! 10 rpm run's TE against the quasi-static LTCA at the same positions, and
+//! the run-up's time per step next to the white paper's ~0.4 s CPU per step
+//! (its Table 6). Results in `bench/multibody.json`.
+
+use preprocess::design::Member;
+use preprocess::flank_stage::roll_surface;
+use preprocess::pair::PairGeometry;
+use preprocess::scene::{Blank, Scene};
+use serde_json::json;
+use solver::compliance::PairCompliance;
+use solver::ltca::{mean_ptp, run};
+use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::{Drive, Integrator, Model, Ramp, Scheme, State, StepControl};
+use std::path::Path;
+use std::time::Instant;
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
+    let dir = root.join("meshes").join(&sc.name);
+    let load = |m: Member| {
+        member_compliance(&scene, &g, &dir, m, Blank::Standard)
+            .expect("meshes/default: run `make preprocess` first")
+            .0
+    };
+    let pc = PairCompliance {
+        pinion: load(Member::Pinion),
+        wheel: load(Member::Wheel),
+    };
+    let fp = g.side(sc.loaded_flank);
+    let rs = roll_surface(fp, &sc.utca).unwrap();
+    let tau = g.data.mesh_cycle();
+    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
+    let sweep = scene_sweep(&scene, &g, Blank::Standard);
+    let torques = [100.0, 300.0, 700.0];
+    let ltca = run(fp, &rs, &pc, &sweep, &torques).unwrap();
+    let inertia = [5.5e-3, 5.5e-2];
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    println!("\nMultibody benchmark (default scene, standard blanks, {cores} cores)\n");
+    println!(
+        "{:>9} {:>5} {:>9} {:>8} {:>18} {:>18} {:>18}",
+        "step[deg]",
+        "lags",
+        "table[s]",
+        "us/step",
+        "100 N·m err %ptp",
+        "300 N·m err %ptp",
+        "700 N·m err %ptp"
+    );
+    let mut rows = Vec::new();
+    for (step_deg, lags) in [(0.5, 48), (0.25, 64), (0.125, 96), (0.0625, 128)] {
+        let per = (tau / f64::to_radians(step_deg)).round() as usize;
+        let t = Instant::now();
+        let table = MeshTable::build(
+            fp,
+            &rs,
+            &pc,
+            &g.frames[0],
+            ratio,
+            TableSpec {
+                start: sweep.start,
+                direction: sweep.direction,
+                step: tau / per as f64,
+                positions: per,
+                periodic: true,
+                slices: sc.ltca.slices,
+                lag_nodes: lags,
+                torque_max_nm: 1400.0,
+            },
+        )
+        .unwrap();
+        let build = t.elapsed().as_secs_f64();
+        let mut errs = Vec::new();
+        let (mut cpu, mut steps) = (0.0, 0usize);
+        for (i, &torque) in torques.iter().enumerate() {
+            let wheel = std::f64::consts::PI / 3.0;
+            let mut m = Model {
+                table: &table,
+                inertia,
+                damping: 0.0,
+                drive: Drive::WheelSpeed {
+                    speed: Ramp {
+                        from: wheel,
+                        to: wheel,
+                        duration: 0.0,
+                    },
+                    pinion_torque: torque,
+                },
+            };
+            let mut s: State = m.static_state(0.0).unwrap();
+            m.damping = m.damping_for_ratio(sc.multibody.damping_ratio, &s).unwrap();
+            let mut integ = Integrator::new(
+                Scheme::GeneralizedAlpha {
+                    rho_inf: sc.multibody.rho_inf,
+                },
+                StepControl {
+                    max_step: 1e-3,
+                    min_step: 1e-9,
+                    tolerance: 1e-9,
+                },
+            );
+            let range = sweep.step * (sweep.positions - 1) as f64;
+            let t_end = (range + 2.0 * sweep.step) / (wheel / ratio);
+            let mut curve = vec![(s.q[0], ratio * s.q[0] - s.q[1])];
+            let t = Instant::now();
+            while s.t < t_end * (1.0 - 1e-12) {
+                s = integ.step(&m, &s, t_end).unwrap();
+                curve.push((s.q[0], ratio * s.q[0] - s.q[1]));
+                steps += 1;
+            }
+            cpu += t.elapsed().as_secs_f64();
+            let te: Vec<f64> = ltca.iter().map(|p| p.loads[i].te).collect();
+            let (_, ptp) = mean_ptp(&te);
+            let worst = ltca
+                .iter()
+                .map(|p| {
+                    let k = curve
+                        .partition_point(|c| c.0 < p.rotation)
+                        .clamp(1, curve.len() - 1);
+                    let (a, b) = (curve[k - 1], curve[k]);
+                    let v = a.1 + (b.1 - a.1) * (p.rotation - a.0) / (b.0 - a.0);
+                    (v - p.loads[i].te).abs()
+                })
+                .fold(0.0, f64::max);
+            errs.push(100.0 * worst / ptp);
+        }
+        let us = cpu / steps as f64 * 1e6;
+        println!(
+            "{:>9} {:>5} {:>9.2} {:>8.1} {:>18.3} {:>18.3} {:>18.3}",
+            step_deg, lags, build, us, errs[0], errs[1], errs[2]
+        );
+        rows.push(
+            json!({"table_step_deg": step_deg, "lag_nodes": lags, "table_build_s": build,
+            "table_cpu_s_per_position": table.cpu_s_per_position, "us_per_step": us,
+            "te_error_percent_of_ltca_ptp": {"100": errs[0], "300": errs[1], "700": errs[2]}}),
+        );
+    }
+    let out = root.join("bench");
+    std::fs::create_dir_all(&out).unwrap();
+    preprocess::output::write_json(
+        &out.join("multibody.json"),
+        &json!({"machine": format!("{cores} cores, {}", std::env::consts::ARCH),
+            "case": "10 rpm wheel, standard blanks, default scene, 2 mesh cycles; error = max |TE_MB - TE_LTCA| over the LTCA positions, % of the LTCA's ptp",
+            "white_paper_runup_cpu_s_per_step": 0.4, "tables": rows}),
+    )
+    .unwrap();
+    println!("written to bench/multibody.json");
+}
