@@ -203,9 +203,9 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             };
             let sweep = scene_sweep(scene, &g, wb);
             let runs_up = mb.runup_wheel_blanks.contains(&wb);
-            // Standard wheels repeat every mesh cycle; lightweight ones are
-            // tabulated over the whole rotation their runs need.
-            let periodic = wb == Blank::Standard;
+            // Standard blanks repeat every mesh cycle; with a lightweight
+            // member the table spans the whole rotation the runs need.
+            let periodic = wb == Blank::Standard && pb == Blank::Standard;
             let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
             // The 10 rpm runs go one sweep step past the sweep's end.
             let range = if runs_up {
