@@ -11,10 +11,11 @@ use preprocess::pair::PairGeometry;
 use preprocess::scene::{Blank, Scene};
 use serde_json::json;
 use solver::compliance::PairCompliance;
+use solver::dynamic_stage::inertia;
 use solver::ltca::{mean_ptp, run};
 use solver::ltca_stage::{member_compliance, scene_sweep};
 use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{Drive, Integrator, Model, Ramp, Scheme, State, StepControl};
+use solver::multibody::{integrate, interpolate, wheel_driven, Integrator, Scheme, StepControl};
 use std::path::Path;
 use std::time::Instant;
 
@@ -24,15 +25,14 @@ fn main() {
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
     let dir = root.join("meshes").join(&sc.name);
+    // Compliance and polar moment (from the body mesh, as `solver dynamic`) per member.
     let load = |m: Member| {
-        member_compliance(&scene, &g, &dir, m, Blank::Standard)
-            .expect("meshes/default: run `make preprocess` first")
-            .0
+        let (c, plan) = member_compliance(&scene, &g, &dir, m, Blank::Standard)
+            .expect("meshes/default: run `make preprocess` first");
+        (c, inertia(&scene, &g, &plan.msh, m).unwrap().0)
     };
-    let pc = PairCompliance {
-        pinion: load(Member::Pinion),
-        wheel: load(Member::Wheel),
-    };
+    let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
+    let pc = PairCompliance { pinion, wheel };
     let fp = g.side(sc.loaded_flank);
     let rs = roll_surface(fp, &sc.utca).unwrap();
     let tau = g.data.mesh_cycle();
@@ -40,7 +40,7 @@ fn main() {
     let sweep = scene_sweep(&scene, &g, Blank::Standard);
     let torques = [100.0, 300.0, 700.0];
     let ltca = run(fp, &rs, &pc, &sweep, &torques).unwrap();
-    let inertia = [5.5e-3, 5.5e-2];
+    let inertia = [j1, j2];
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
     println!("\nMultibody benchmark (default scene, standard blanks, {cores} cores)\n");
     println!(
@@ -80,21 +80,8 @@ fn main() {
         let (mut cpu, mut steps) = (0.0, 0usize);
         for (i, &torque) in torques.iter().enumerate() {
             let wheel = std::f64::consts::PI / 3.0;
-            let mut m = Model {
-                table: &table,
-                inertia,
-                damping: 0.0,
-                drive: Drive::WheelSpeed {
-                    speed: Ramp {
-                        from: wheel,
-                        to: wheel,
-                        duration: 0.0,
-                    },
-                    pinion_torque: torque,
-                },
-            };
-            let mut s: State = m.static_state(0.0).unwrap();
-            m.damping = m.damping_for_ratio(sc.multibody.damping_ratio, &s).unwrap();
+            let (m, s) =
+                wheel_driven(&table, inertia, wheel, torque, sc.multibody.damping_ratio).unwrap();
             let mut integ = Integrator::new(
                 Scheme::GeneralizedAlpha {
                     rho_inf: sc.multibody.rho_inf,
@@ -107,26 +94,20 @@ fn main() {
             );
             let range = sweep.step * (sweep.positions - 1) as f64;
             let t_end = (range + 2.0 * sweep.step) / (wheel / ratio);
-            let mut curve = vec![(s.q[0], ratio * s.q[0] - s.q[1])];
+            let (mut q1, mut te) = (Vec::new(), Vec::new());
             let t = Instant::now();
-            while s.t < t_end * (1.0 - 1e-12) {
-                s = integ.step(&m, &s, t_end).unwrap();
-                curve.push((s.q[0], ratio * s.q[0] - s.q[1]));
-                steps += 1;
-            }
+            let (_, n) = integrate(&m, s, &mut integ, t_end, |s| {
+                q1.push(s.q[0]);
+                te.push(ratio * s.q[0] - s.q[1]);
+                Ok(())
+            })
+            .unwrap();
             cpu += t.elapsed().as_secs_f64();
-            let te: Vec<f64> = ltca.iter().map(|p| p.loads[i].te).collect();
-            let (_, ptp) = mean_ptp(&te);
+            steps += n;
+            let (_, ptp) = mean_ptp(&ltca.iter().map(|p| p.loads[i].te).collect::<Vec<_>>());
             let worst = ltca
                 .iter()
-                .map(|p| {
-                    let k = curve
-                        .partition_point(|c| c.0 < p.rotation)
-                        .clamp(1, curve.len() - 1);
-                    let (a, b) = (curve[k - 1], curve[k]);
-                    let v = a.1 + (b.1 - a.1) * (p.rotation - a.0) / (b.0 - a.0);
-                    (v - p.loads[i].te).abs()
-                })
+                .map(|p| (interpolate(&q1, &te, p.rotation) - p.loads[i].te).abs())
                 .fold(0.0, f64::max);
             errs.push(100.0 * worst / ptp);
         }

@@ -15,7 +15,10 @@ use crate::compliance::PairCompliance;
 use crate::ltca::mean_ptp;
 use crate::ltca_stage::{member_compliance, mesh_cycles, scene_sweep};
 use crate::mesh_table::{MeshTable, TableSpec};
-use crate::multibody::{Drive, Integrator, Model, Ramp, Scheme, State, StepControl};
+use crate::multibody::{
+    integrate, interpolate, wheel_driven, Drive, Integrator, Model, Ramp, Scheme, State,
+    StepControl,
+};
 use crate::spectrum::{plot, resample, stft, OrderLine};
 use anyhow::Context;
 use preprocess::design::Member;
@@ -24,7 +27,6 @@ use preprocess::output::{write_atomic, write_json};
 use preprocess::pair::PairGeometry;
 use preprocess::plots::{te_curve, Series};
 use preprocess::scene::{Blank, LoadedScene};
-use preprocess::stiffness_stage::planned;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -86,7 +88,7 @@ struct Trace {
 }
 
 /// Integrates to `t_end`, recording every step.
-fn integrate(
+fn record(
     m: &Model,
     s0: State,
     integ: &mut Integrator,
@@ -101,24 +103,16 @@ fn integrate(
         torque: vec![],
         force: vec![],
     };
-    let mut push = |s: &State| -> Result<(), crate::SolverError> {
-        let l = m.loads(s)?;
+    let (_, steps) = integrate(m, s0, integ, t_end, |s| {
+        let ms = m.table.state(s.q[0], s.q[1])?;
         tr.t.push(s.t);
         tr.q1.push(s.q[0]);
         tr.speed.push(s.v[0]);
         tr.te.push(r * s.q[0] - s.q[1]);
-        tr.torque.push([l.mesh.grad[0], -l.mesh.grad[1]]);
-        tr.force.push(l.mesh.force);
+        tr.torque.push([ms.grad[0], -ms.grad[1]]);
+        tr.force.push(ms.force);
         Ok(())
-    };
-    let mut s = s0;
-    push(&s)?;
-    let mut steps = 0;
-    while s.t < t_end * (1.0 - 1e-12) {
-        s = integ.step(m, &s, t_end)?;
-        push(&s)?;
-        steps += 1;
-    }
+    })?;
     Ok((tr, steps))
 }
 
@@ -154,13 +148,12 @@ fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
     out
 }
 
-/// Polar moment of a member: the scene's value, or ∫ρr² dV over its mesh.
-fn inertia(
+/// Polar moment of a member: the scene's value, or ∫ρr² dV over its mesh `msh`.
+pub fn inertia(
     scene: &LoadedScene,
     g: &PairGeometry,
-    dir: &Path,
+    msh: &Path,
     member: Member,
-    blank: Blank,
 ) -> anyhow::Result<(f64, &'static str)> {
     let mb = &scene.scene.multibody;
     let given = match member {
@@ -170,9 +163,8 @@ fn inertia(
     if let Some(j) = given {
         return Ok((j, "scene"));
     }
-    let p = planned(scene, g, dir, member, blank, "reduced")?;
-    let body = preprocess::body_mesh::read(&p.msh)
-        .map_err(|e| anyhow::anyhow!("reading {}: {e}", p.msh.display()))?;
+    let body = preprocess::body_mesh::read(msh)
+        .map_err(|e| anyhow::anyhow!("reading {}: {e}", msh.display()))?;
     Ok((
         body.mesh.polar_moment(g.data.member(member).density),
         "mesh",
@@ -192,11 +184,11 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
     let mut all = Vec::new();
     for &pb in &sc.blanks.pinion {
-        let (pin, _) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
-        let (j1, src1) = inertia(scene, &g, &dir, Member::Pinion, pb)?;
+        let (pin, pin_plan) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
+        let (j1, src1) = inertia(scene, &g, &pin_plan.msh, Member::Pinion)?;
         for &wb in &sc.blanks.wheel {
-            let (whl, _) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
-            let (j2, src2) = inertia(scene, &g, &dir, Member::Wheel, wb)?;
+            let (whl, whl_plan) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
+            let (j2, src2) = inertia(scene, &g, &whl_plan.msh, Member::Wheel)?;
             let pc = PairCompliance {
                 pinion: pin.clone(),
                 wheel: whl,
@@ -269,27 +261,13 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             let mut damping = 0.0;
             let mut qs_series = Vec::new();
             for &torque in &sc.pinion_torque_nm {
-                let mut m = Model {
-                    table: &table,
-                    inertia,
-                    damping: 0.0,
-                    drive: Drive::WheelSpeed {
-                        speed: Ramp {
-                            from: wheel_speed,
-                            to: wheel_speed,
-                            duration: 0.0,
-                        },
-                        pinion_torque: torque,
-                    },
-                };
-                let s0 = m.static_state(0.0)?;
-                m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;
+                let (m, s0) = wheel_driven(&table, inertia, wheel_speed, torque, mb.damping_ratio)?;
                 damping = m.damping;
                 let mut integ = Integrator::new(scheme, control(mb.quasi_static_max_step_s));
                 let t = Instant::now();
                 // Slightly beyond the sweep so that its last position is inside.
                 let t_end = (sweep_range + 2.0 * sweep.step) / (wheel_speed / ratio);
-                let (tr, steps) = integrate(&m, s0, &mut integ, t_end)
+                let (tr, steps) = record(&m, s0, &mut integ, t_end)
                     .with_context(|| format!("scene {}: 10 rpm run at {torque} N·m", sc.name))?;
                 let cpu = t.elapsed().as_secs_f64();
                 let sampled: Vec<f64> = (0..sweep.positions)
@@ -414,7 +392,7 @@ fn run_up(
         "  run-up {}..{} rpm in {} s at {torque} N·m",
         mb.runup_rpm[0], mb.runup_rpm[1], mb.runup_time_s
     );
-    let (tr, steps) = integrate(&m, s0, &mut integ, mb.runup_time_s).context("multibody run-up")?;
+    let (tr, steps) = record(&m, s0, &mut integ, mb.runup_time_s).context("multibody run-up")?;
     let cpu = t.elapsed().as_secs_f64();
     // Quasi-static TE at the same pinion rotations (the table's static lag).
     let qs_model = Model {
@@ -522,14 +500,4 @@ fn run_up(
         cpu_s_per_step: cpu / steps.max(1) as f64,
         te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
     })
-}
-
-/// Linear interpolation of y(x) on increasing x.
-fn interpolate(x: &[f64], y: &[f64], at: f64) -> f64 {
-    let k = x.partition_point(|v| *v < at).clamp(1, x.len() - 1);
-    let (a, b) = (k - 1, k);
-    if x[b] == x[a] {
-        return y[a];
-    }
-    y[a] + (y[b] - y[a]) * (at - x[a]) / (x[b] - x[a])
 }

@@ -13,7 +13,7 @@ use preprocess::output::{write_atomic, write_json};
 use preprocess::pair::{pinion_direction, PairGeometry};
 use preprocess::scene::{Blank, LoadedScene};
 use preprocess::stiffness_file;
-use preprocess::stiffness_stage::planned;
+use preprocess::stiffness_stage::{planned, Planned};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -52,14 +52,15 @@ pub struct BlankSummary {
     pub dir: PathBuf,
 }
 
-/// Reads the member × blank stiffness file that `scene` needs, checking its hash.
+/// Reads the member × blank stiffness file that `scene` needs, checking its
+/// hash; also returns its plan (stiffness file and mesh paths).
 pub fn member_compliance(
     scene: &LoadedScene,
     g: &PairGeometry,
     dir: &Path,
     member: Member,
     blank: Blank,
-) -> anyhow::Result<(MemberCompliance, PathBuf)> {
+) -> anyhow::Result<(MemberCompliance, Planned)> {
     let p = planned(scene, g, dir, member, blank, "reduced")?;
     let data = stiffness_file::read(&p.path, Some(&p.hash)).with_context(|| {
         format!(
@@ -71,7 +72,7 @@ pub fn member_compliance(
     })?;
     Ok((
         MemberCompliance::new(data, g.data.member(member).material()),
-        p.path,
+        p,
     ))
 }
 
@@ -139,7 +140,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 slices_per_pair: sweep.slices,
                 utca_te_mean_urad: um * 1e6,
                 utca_te_ptp_urad: up * 1e6,
-                stiffness_files: vec![pin_path.clone(), whl_path],
+                stiffness_files: vec![pin_path.path.clone(), whl_path.path],
                 wall_s: t0.elapsed().as_secs_f64(),
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
                 dir: odir.clone(),

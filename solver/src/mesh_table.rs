@@ -332,15 +332,6 @@ impl MeshTable {
         Ok(out)
     }
 
-    /// Interpolated pinion torque T₁(q₁, θ) of the contact element, N·m.
-    pub fn pinion_torque(&self, q1: f64, theta: f64) -> Result<f64, SolverError> {
-        if theta <= self.theta_lo {
-            return Ok(0.0);
-        }
-        let nu = self.spec.lag_nodes;
-        Ok(self.field(|p, m| self.torque[p * nu + m], q1, theta)?[0].max(0.0))
-    }
-
     /// Potential, gradient, Hessian and force at (q₁, q₂).
     pub fn state(&self, q1: f64, q2: f64) -> Result<MeshState, SolverError> {
         let r = self.ratio;

@@ -9,8 +9,7 @@
 //!   J₂ q̈₂ = −T₂ − ∂V/∂q₂ + c s(u) θ̇,     θ = r q₁ − q₂,
 //!
 //! with s(u) a smooth step from 0 (open) to 1 over the first lag step of
-//! the table. A member with imposed speed follows its ramp; its equation
-//! gives the reaction torque. Two implicit one-step schemes, both solved by
+//! the table. A member with imposed speed follows its ramp. Two implicit one-step schemes, both solved by
 //! Newton with the element's tangent (the Hessian of V):
 //! - generalized-α (Chung & Hulbert 1993) with spectral radius ρ∞ (numerical
 //!   damping of the high modes for ρ∞ < 1),
@@ -110,16 +109,6 @@ pub struct State {
     pub a: [f64; 2],
 }
 
-/// Loads of a state.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Loads {
-    pub mesh: MeshState,
-    /// Generalized contact + damping forces on (q₁, q₂), N·m.
-    pub contact: [f64; 2],
-    /// Torque the imposed-speed member needs (its drive's reaction), N·m.
-    pub reaction: f64,
-}
-
 /// Contact + damping forces of a state and their derivatives.
 #[derive(Debug, Clone, Copy)]
 pub struct Contact {
@@ -170,25 +159,6 @@ impl Model<'_> {
             stiffness: ms.hess,
             damping: d,
             mesh: ms,
-        })
-    }
-
-    /// Loads of a state (forces, the drive's reaction torque).
-    pub fn loads(&self, s: &State) -> Result<Loads, SolverError> {
-        let Contact {
-            force: qc,
-            mesh: ms,
-            ..
-        } = self.contact(s.q, s.v)?;
-        let ext = self.drive.torques();
-        let reaction = match self.imposed(s.t) {
-            Some((i, _)) => self.inertia[i] * s.a[i] - ext[i] - qc[i],
-            None => 0.0,
-        };
-        Ok(Loads {
-            mesh: ms,
-            contact: qc,
-            reaction,
         })
     }
 
@@ -290,6 +260,64 @@ impl Model<'_> {
             Drive::Free { .. } => [0.0, 0.0],
         }
     }
+}
+
+/// Integrates from `s` to `t_end`, calling `record` with the start and after
+/// every accepted step; returns the final state and the number of steps.
+pub fn integrate(
+    m: &Model,
+    s: State,
+    integ: &mut Integrator,
+    t_end: f64,
+    mut record: impl FnMut(&State) -> Result<(), SolverError>,
+) -> Result<(State, usize), SolverError> {
+    let mut s = s;
+    record(&s)?;
+    let mut steps = 0;
+    while s.t < t_end * (1.0 - 1e-12) {
+        s = integ.step(m, &s, t_end)?;
+        record(&s)?;
+        steps += 1;
+    }
+    Ok((s, steps))
+}
+
+/// The white paper's quasi-static drive: constant wheel speed (rad/s), the
+/// torque on the pinion, mesh damping ratio ζ; with its quasi-static start
+/// at q₁ = 0.
+pub fn wheel_driven<'a>(
+    table: &'a MeshTable,
+    inertia: [f64; 2],
+    wheel_speed: f64,
+    pinion_torque: f64,
+    zeta: f64,
+) -> Result<(Model<'a>, State), SolverError> {
+    let mut m = Model {
+        table,
+        inertia,
+        damping: 0.0,
+        drive: Drive::WheelSpeed {
+            speed: Ramp {
+                from: wheel_speed,
+                to: wheel_speed,
+                duration: 0.0,
+            },
+            pinion_torque,
+        },
+    };
+    let s = m.static_state(0.0)?;
+    m.damping = m.damping_for_ratio(zeta, &s)?;
+    Ok((m, s))
+}
+
+/// Linear interpolation of y(x) on increasing x (end segments extended).
+pub fn interpolate(x: &[f64], y: &[f64], at: f64) -> f64 {
+    let k = x.partition_point(|v| *v < at).clamp(1, x.len() - 1);
+    let (a, b) = (k - 1, k);
+    if x[b] == x[a] {
+        return y[a];
+    }
+    y[a] + (y[b] - y[a]) * (at - x[a]) / (x[b] - x[a])
 }
 
 /// The time integration scheme.
@@ -477,11 +505,15 @@ fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), 
     })
 }
 
-/// Coordinate-wise discrete gradient of V between q and q'.
-fn discrete_gradient(m: &Model, q: [f64; 2], qn: [f64; 2]) -> Result<[f64; 2], SolverError> {
+/// Coordinate-wise discrete gradient of V between q and q'; `g_mid`, the
+/// gradient at the midpoint, stands in where a coordinate does not move.
+fn discrete_gradient(
+    m: &Model,
+    q: [f64; 2],
+    qn: [f64; 2],
+    g_mid: [f64; 2],
+) -> Result<[f64; 2], SolverError> {
     let v = |a: [f64; 2]| m.table.state(a[0], a[1]).map(|s| s.potential);
-    let mid = [0.5 * (q[0] + qn[0]), 0.5 * (q[1] + qn[1])];
-    let g_mid = m.table.state(mid[0], mid[1])?.grad;
     let corner = [qn[0], q[1]];
     let g0 = if (qn[0] - q[0]).abs() > 1e-10 {
         (v(corner)? - v(q)?) / (qn[0] - q[0])
@@ -521,14 +553,14 @@ fn midpoint_step(m: &Model, s: &State, h: f64) -> Result<(State, usize), SolverE
             force: qc,
             stiffness: k,
             damping: d,
-            ..
+            mesh,
         } = m.contact(qm, vm)?;
-        let g = discrete_gradient(m, s.q, q)?;
+        let g = discrete_gradient(m, s.q, q, mesh.grad)?;
         let mut res = [0.0; 2];
         let mut jac = [[0.0; 2]; 2];
         for i in 0..2 {
             // Damping part of the midpoint forces, without the potential.
-            let damp = qc[i] + m.table.state(qm[0], qm[1])?.grad[i];
+            let damp = qc[i] + mesh.grad[i];
             res[i] = m.inertia[i] * (v[i] - s.v[i]) / h - ext[i] + g[i] - damp;
             for j in 0..2 {
                 jac[i][j] = 0.5 * k[i][j] + d[i][j] / h;

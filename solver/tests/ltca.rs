@@ -279,11 +279,13 @@ fn relative_curvature_from_the_separation_field_matches_the_flanks_principal_cur
 // Multibody: the contact element as the force element between rigid bodies.
 
 use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{Drive, Integrator, Model, Ramp, Scheme, State, StepControl};
+use solver::multibody::{
+    integrate, interpolate, wheel_driven, Drive, Integrator, Model, Scheme, State, StepControl,
+};
 
 const TABLE_SLICES: usize = 20;
-/// Polar moments of inertia of the test bodies, kg·m² (the order of the
-/// white-paper pair's pinion and wheel).
+/// Polar moments of inertia of the test bodies, kg·m² (test values; the
+/// stage computes the real ones from the body meshes).
 const INERTIA: [f64; 2] = [2e-3, 2.5e-2];
 
 /// One mesh cycle, periodic, `per_cycle` positions.
@@ -369,23 +371,10 @@ fn wheel_torque_of_the_potential_is_the_pinion_torque_over_the_ratio() {
 }
 
 /// TE (rad) against pinion rotation of a quasi-static run.
-fn quasi_static_run(t: &MeshTable, torque: f64, cycles: f64, scheme: Scheme) -> Vec<(f64, f64)> {
+/// Pinion rotations and TE (rad) of a quasi-static run.
+fn quasi_static_run(t: &MeshTable, torque: f64, cycles: f64, scheme: Scheme) -> [Vec<f64>; 2] {
     let wheel = 10.0 * std::f64::consts::PI / 30.0;
-    let mut m = Model {
-        table: t,
-        inertia: INERTIA,
-        damping: 0.0,
-        drive: Drive::WheelSpeed {
-            speed: Ramp {
-                from: wheel,
-                to: wheel,
-                duration: 0.0,
-            },
-            pinion_torque: torque,
-        },
-    };
-    let mut s = m.static_state(0.0).unwrap();
-    m.damping = m.damping_for_ratio(0.1, &s).unwrap();
+    let (m, s) = wheel_driven(t, INERTIA, wheel, torque, 0.1).unwrap();
     let mut integ = Integrator::new(
         scheme,
         StepControl {
@@ -395,18 +384,14 @@ fn quasi_static_run(t: &MeshTable, torque: f64, cycles: f64, scheme: Scheme) -> 
         },
     );
     let t_end = cycles * t.span() / (wheel / t.ratio);
-    let mut out = vec![(s.q[0], t.ratio * s.q[0] - s.q[1])];
-    while s.t < t_end {
-        s = integ.step(&m, &s, t_end).unwrap();
-        out.push((s.q[0], t.ratio * s.q[0] - s.q[1]));
-    }
-    out
-}
-
-fn interpolate(curve: &[(f64, f64)], x: f64) -> f64 {
-    let k = curve.partition_point(|p| p.0 < x).clamp(1, curve.len() - 1);
-    let (a, b) = (curve[k - 1], curve[k]);
-    a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
+    let (mut q1, mut te) = (Vec::new(), Vec::new());
+    integrate(&m, s, &mut integ, t_end, |s| {
+        q1.push(s.q[0]);
+        te.push(t.ratio * s.q[0] - s.q[1]);
+        Ok(())
+    })
+    .unwrap();
+    [q1, te]
 }
 
 #[test]
@@ -429,14 +414,14 @@ fn ten_rpm_multibody_te_matches_the_quasi_static_ltca() {
         let (_, ptp) = mean_ptp(&te);
         let worst = ltca
             .iter()
-            .map(|p| (interpolate(&mb, p.rotation) - p.loads[i].te).abs())
+            .map(|p| (interpolate(&mb[0], &mb[1], p.rotation) - p.loads[i].te).abs())
             .fold(0.0, f64::max);
         eprintln!(
             "{torque} N m: |TE_MB - TE_LTCA| <= {:.4} µrad, {:.2} % of the LTCA's ptp {:.3} µrad ({} steps)",
             worst * 1e6,
             100.0 * worst / ptp,
             ptp * 1e6,
-            mb.len() - 1
+            mb[0].len() - 1
         );
         assert!(
             worst < 0.01 * ptp,
