@@ -5,6 +5,10 @@
 //! against the direct geometric contact search ([`preprocess::direct`]),
 //! and the unloaded TE against the white paper's 1 N·m value.
 
+pub mod body_compliance;
+pub mod contact_pairs;
+pub mod contact_surface;
+pub mod penalty;
 pub mod published;
 pub mod report;
 pub mod utca_check;
