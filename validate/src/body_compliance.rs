@@ -27,22 +27,24 @@ pub struct BodyCompliance {
     pub dofs_free: usize,
 }
 
+/// The dofs of `nodes`, all three components (a clamped support).
+pub fn clamped(nodes: &[usize]) -> Vec<usize> {
+    nodes.iter().flat_map(|&n| (0..3).map(move |c| 3 * n + c)).collect()
+}
+
 impl BodyCompliance {
-    /// Assembles and factors the body with `clamped` nodes held; responses
-    /// are kept at the `universe` nodes. Column blocks of `block`
-    /// right-hand sides are solved two at a time.
+    /// Assembles and factors the body with the `fixed` dofs (3 · node +
+    /// component) held at zero; responses are kept at the `universe` nodes.
+    /// Column blocks of `block` right-hand sides are solved two at a time.
     pub fn new(
         mesh: &TetMesh,
         material: &Material,
-        clamped: &[usize],
+        fixed: &[usize],
         universe: &[usize],
         block: usize,
     ) -> Result<BodyCompliance, ContactError> {
         let t = std::time::Instant::now();
-        let fixed: Vec<(usize, f64)> = clamped
-            .iter()
-            .flat_map(|&n| (0..3).map(move |c| (3 * n + c, 0.0)))
-            .collect();
+        let fixed: Vec<(usize, f64)> = fixed.iter().map(|&d| (d, 0.0)).collect();
         let dofs = Dofs::new(mesh, &fixed)?;
         let sys = assemble(mesh, material, &dofs)?;
         let factor = Factor::new(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?;

@@ -289,3 +289,64 @@ mod tests {
         assert!((a.values().sum::<f64>() - 2.0).abs() < 1e-14);
     }
 }
+
+/// Outward unit normal of a surface at each of its nodes (mean of the
+/// adjacent faces' normals at the node).
+pub fn nodal_normals(nodes: &[V3], faces: &[[usize; 6]]) -> HashMap<usize, V3> {
+    const AT: [[f64; 2]; 6] = [
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [0.0, 1.0],
+        [0.5, 0.0],
+        [0.5, 0.5],
+        [0.0, 0.5],
+    ];
+    let mut out: HashMap<usize, V3> = HashMap::new();
+    for f in faces {
+        let x = f.map(|i| nodes[i]);
+        for (k, &i) in f.iter().enumerate() {
+            let (_, nn) = tri6::point_and_normal(&x, AT[k]);
+            let l = norm(nn);
+            let e = out.entry(i).or_default();
+            for c in 0..3 {
+                e[c] += nn[c] / l;
+            }
+        }
+    }
+    for v in out.values_mut() {
+        let l = norm(*v);
+        *v = v.map(|c| c / l);
+    }
+    out
+}
+
+/// Contact pressure at each node of `faces` (Pa) from the normal nodal
+/// forces `f` (N, compressive positive). On quadratic faces a smooth
+/// pressure loads vertex nodes about half as much as mid-edge nodes, so
+/// force over a node's own lumped area alternates from node to node. Each
+/// node's force is shared among its faces in proportion to the lumped area
+/// it has in each; a face's pressure is its share of force over its area
+/// (this balances the alternation exactly), and a node's pressure is the
+/// area-weighted mean of its faces'.
+pub fn smoothed_pressure(
+    nodes: &[V3],
+    faces: &[[usize; 6]],
+    f: &HashMap<usize, f64>,
+) -> HashMap<usize, f64> {
+    let area = lumped_areas(nodes, faces);
+    let mut sum: HashMap<usize, (f64, f64)> = HashMap::new();
+    for fc in faces {
+        let own = lumped_areas(nodes, std::slice::from_ref(fc));
+        let a_face: f64 = own.values().sum();
+        let force: f64 = own
+            .iter()
+            .map(|(i, a)| f.get(i).copied().unwrap_or(0.0) * a / area[i])
+            .sum();
+        for &i in fc {
+            let e = sum.entry(i).or_default();
+            e.0 += force;
+            e.1 += a_face;
+        }
+    }
+    sum.into_iter().map(|(i, (fs, a))| (i, fs / a)).collect()
+}

@@ -305,3 +305,27 @@ mod tests {
         assert!((carried_load(&cs, &s.force) - 2.0).abs() < 1e-12);
     }
 }
+
+/// The normal contact force on each node of `body` (N, positive pressing
+/// into the body): Σ_c λ_c v_ci · ν_i, with ν_i the inward unit normal of the
+/// body at node i (body frame) from `inward`.
+pub fn nodal_normal_forces(
+    constraints: &[Constraint],
+    force: &[f64],
+    body: usize,
+    inward: &std::collections::HashMap<usize, [f64; 3]>,
+) -> std::collections::HashMap<usize, f64> {
+    let mut out = std::collections::HashMap::new();
+    for (c, &f) in constraints.iter().zip(force) {
+        if f == 0.0 {
+            continue;
+        }
+        for t in c.terms.iter().filter(|t| t.body == body) {
+            if let Some(nu) = inward.get(&t.node) {
+                let v = f * (t.dir[0] * nu[0] + t.dir[1] * nu[1] + t.dir[2] * nu[2]);
+                *out.entry(t.node).or_insert(0.0) += v;
+            }
+        }
+    }
+    out
+}

@@ -3,7 +3,7 @@
 
 use fem::structured::{faces_where, mapped_block, Block};
 use fem::{assemble, Dofs, Material};
-use validate::body_compliance::BodyCompliance;
+use validate::body_compliance::{clamped, BodyCompliance};
 use validate::contact_pairs::{two_pass, ContactBody, PenaltySettings};
 use validate::penalty::{carried_load, condensed_matrix, solve, Compliance, Constraint};
 
@@ -67,8 +67,8 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
     assert_eq!(cs.len(), 2 * 49, "every contact node of both faces projects");
     let all_up: Vec<usize> = (0..upper.mesh.nodes.len()).collect();
     let all_lo: Vec<usize> = (0..lower.mesh.nodes.len()).collect();
-    let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamp_up, &all_up, 8).unwrap();
-    let mut cb = BodyCompliance::new(&lower.mesh, &mat, &clamp_lo, &all_lo, 8).unwrap();
+    let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), &all_up, 8).unwrap();
+    let mut cb = BodyCompliance::new(&lower.mesh, &mat, &clamped(&clamp_lo), &all_lo, 8).unwrap();
     ca.ensure(&contact_nodes(&cs, 0)).unwrap();
     cb.ensure(&contact_nodes(&cs, 1)).unwrap();
     let idx: Vec<usize> = (0..cs.len()).collect();
@@ -178,4 +178,186 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
             }
         }
     }
+}
+
+/// Vertex coordinates on [0, total]: `n_fine` equal elements up to `fine`,
+/// then `n_grow` elements growing geometrically to `total`.
+fn graded(fine: f64, n_fine: usize, total: f64, n_grow: usize) -> Vec<f64> {
+    let h = fine / n_fine as f64;
+    let rest = total - fine;
+    let sum = |r: f64| (1..=n_grow).map(|k| h * r.powi(k as i32)).sum::<f64>();
+    let (mut lo, mut hi) = (1.0, 3.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if sum(mid) < rest {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let r = 0.5 * (lo + hi);
+    let mut v: Vec<f64> = (0..=n_fine).map(|i| i as f64 * h).collect();
+    let mut x = fine;
+    for k in 1..=n_grow {
+        x += h * r.powi(k as i32);
+        v.push(x);
+    }
+    *v.last_mut().unwrap() = total;
+    v
+}
+
+/// The same coordinates mirrored about 0: [−total, total].
+fn symmetric(half: &[f64]) -> Vec<f64> {
+    let mut v: Vec<f64> = half.iter().rev().map(|x| -x).collect();
+    v.extend_from_slice(&half[1..]);
+    v
+}
+
+/// Piecewise-linear map of a block parameter onto vertex coordinates (mid-edge
+/// nodes land on element midpoints).
+fn along(v: &[f64], u: f64) -> f64 {
+    let n = v.len() - 1;
+    let t = u * n as f64;
+    let i = (t.floor() as usize).min(n - 1);
+    v[i] + (t - i as f64) * (v[i + 1] - v[i])
+}
+
+/// A steel cylinder (R = 20 mm) pressed on a steel block in plane strain
+/// (one element layer, axial displacement held), both meshed with tet10 at
+/// about 16 nodes across the contact width and solved by the reference
+/// contact machinery: the peak pressure and the half-width are within 3% of
+/// Hertz, and each body's approach between its surface and a point at depth
+/// h ≈ 5b is within 3% of Weber–Banaschek,
+/// w = 2q(1−ν²)/(πE) [ln(2h/b) − ν/(2(1−ν))].
+#[test]
+fn hertz_line_contact_cylinder_on_block() {
+    let mat = Material::STEEL;
+    let (e, nu) = (mat.youngs_modulus_pa, mat.poisson_ratio);
+    let (r, thick, q_line) = (0.02, 1e-3, 2e5);
+    let e_star = e / (2.0 * (1.0 - nu * nu));
+    let b = (4.0 * q_line * r / (std::f64::consts::PI * e_star)).sqrt();
+    let p0 = 2.0 * q_line / (std::f64::consts::PI * b);
+    let xs = symmetric(&graded(3.0 * b, 12, 0.01, 14));
+    let ds = graded(3.0 * b, 12, 0.01, 14);
+    let (nx, nd) = (xs.len() - 1, ds.len() - 1);
+    let cyl = mapped_block([nx, nd, 1], |p| {
+        let (s, d) = (along(&xs, p[0]), along(&ds, p[1]));
+        let (rr, th) = (r - d, s / r);
+        [rr * th.sin(), r - rr * th.cos(), thick * p[2]]
+    });
+    let blk = mapped_block([nx, nd, 1], |p| {
+        [along(&xs, p[0]), -along(&ds, 1.0 - p[1]), thick * p[2]]
+    });
+    let plane = |blk: &Block, clamp: &dyn Fn([f64; 3]) -> bool| -> Vec<usize> {
+        let mut f: Vec<usize> = (0..blk.params.len()).map(|i| 3 * i + 2).collect();
+        f.extend(clamped(&nodes_where(blk, clamp)));
+        f.sort_unstable();
+        f.dedup();
+        f
+    };
+    let down = |_: [f64; 3]| [0.0, -1.0, 0.0];
+    let none = |_: [f64; 3]| [0.0, 0.0, 0.0];
+    let a = ContactBody {
+        body: 0,
+        nodes: cyl.mesh.nodes.clone(),
+        to_body: IDENTITY,
+        faces: faces_where(&cyl, |p| p[1] < 1e-12),
+        rigid: &down,
+        youngs_modulus_pa: e,
+    };
+    let bb = ContactBody {
+        body: 1,
+        nodes: blk.mesh.nodes.clone(),
+        to_body: IDENTITY,
+        faces: faces_where(&blk, |p| p[1] > 1.0 - 1e-12),
+        rigid: &none,
+        youngs_modulus_pa: e,
+    };
+    let set = PenaltySettings {
+        factor: 100.0,
+        max_gap: 30e-6,
+        reach: 1e-3,
+    };
+    let pairs = two_pass(&a, &bb, &set);
+    let cs: Vec<Constraint> = pairs.iter().map(|c| c.0.clone()).collect();
+    // Probe nodes: surface centre and depth ≈ 5b on the middle layer.
+    let k = (0..ds.len())
+        .min_by(|&i, &j| (ds[i] - 5.0 * b).abs().total_cmp(&(ds[j] - 5.0 * b).abs()))
+        .unwrap();
+    let h = ds[k];
+    let vk = k as f64 / nd as f64;
+    let find = |blk: &Block, p: [f64; 3]| -> usize {
+        (0..blk.params.len())
+            .find(|&i| (0..3).all(|c| (blk.params[i][c] - p[c]).abs() < 1e-12))
+            .unwrap()
+    };
+    let probes_c = [find(&cyl, [0.5, 0.0, 0.5]), find(&cyl, [0.5, vk, 0.5])];
+    let probes_b = [find(&blk, [0.5, 1.0, 0.5]), find(&blk, [0.5, 1.0 - vk, 0.5])];
+    let mut uc = contact_nodes(&cs, 0);
+    uc.extend(probes_c);
+    let mut ub = contact_nodes(&cs, 1);
+    ub.extend(probes_b);
+    let fixed_c = plane(&cyl, &|p| p[1] > 1.0 - 1e-12);
+    let fixed_b = plane(&blk, &|p| p[1] < 1e-12);
+    let mut cc = BodyCompliance::new(&cyl.mesh, &mat, &fixed_c, &uc, 16).unwrap();
+    let mut cb = BodyCompliance::new(&blk.mesh, &mat, &fixed_b, &ub, 16).unwrap();
+    cc.ensure(&contact_nodes(&cs, 0)).unwrap();
+    cb.ensure(&contact_nodes(&cs, 1)).unwrap();
+    let idx: Vec<usize> = (0..cs.len()).collect();
+    let w = condensed_matrix(&cs, &idx, &idx, &[&cc, &cb]).unwrap();
+    let load = q_line * thick;
+    let s = solve(&cs, &w, load, None).unwrap();
+    assert!((carried_load(&cs, &s.force) - load).abs() < 1e-9 * load);
+    // No constraint at the edge of the candidate band may be active.
+    let edge = cs
+        .iter()
+        .zip(&s.active)
+        .filter(|(c, &on)| on && c.gap0 > 0.5 * set.max_gap)
+        .count();
+    assert_eq!(edge, 0);
+
+    // Half-width from the second moment of the load: ⟨x²⟩ = b²/4 for Hertz.
+    let (mut f0, mut f2) = (0.0, 0.0);
+    for (i, (_, o)) in pairs.iter().enumerate() {
+        let x = if o.slave_body == 0 { a.nodes[o.slave_node][0] } else { bb.nodes[o.slave_node][0] };
+        f0 += s.force[i];
+        f2 += s.force[i] * x * x;
+    }
+    let b_fe = 2.0 * (f2 / f0).sqrt();
+    // Contact pressure on the block's surface, recovered from all the
+    // contact forces on its nodes (both passes).
+    let inward: std::collections::HashMap<usize, [f64; 3]> =
+        validate::contact_surface::nodal_normals(&bb.nodes, &bb.faces)
+            .into_iter()
+            .map(|(i, n)| (i, n.map(|c| -c)))
+            .collect();
+    let fb = validate::penalty::nodal_normal_forces(&cs, &s.force, 1, &inward);
+    let p = validate::contact_surface::smoothed_pressure(&bb.nodes, &bb.faces, &fb);
+    let p_max = p.values().cloned().fold(0.0, f64::max);
+    // Approaches: displacement of the surface centre relative to depth h.
+    let disp = |comp: &BodyCompliance, body: usize, node: usize| -> [f64; 3] {
+        let mut u = [0.0; 3];
+        for (c, con) in cs.iter().enumerate() {
+            for t in con.terms.iter().filter(|t| t.body == body) {
+                let m = comp.block(node, t.node).unwrap();
+                for r in 0..3 {
+                    u[r] += (0..3).map(|q| m[r][q] * t.dir[q]).sum::<f64>() * s.force[c];
+                }
+            }
+        }
+        u
+    };
+    let w_cyl = disp(&cc, 0, probes_c[0])[1] - disp(&cc, 0, probes_c[1])[1];
+    let w_blk = disp(&cb, 1, probes_b[1])[1] - disp(&cb, 1, probes_b[0])[1];
+    let wb = 2.0 * q_line * (1.0 - nu * nu) / (std::f64::consts::PI * e)
+        * ((2.0 * h / b).ln() - nu / (2.0 * (1.0 - nu)));
+    let rel = |x: f64, y: f64| (x - y).abs() / y;
+    eprintln!(
+        "Hertz: b {:.4} mm (FE {:.4}), p0 {:.1} MPa (FE {:.1}); h {:.3} mm: WB {:.4} um, cylinder {:.4}, block {:.4}",
+        b * 1e3, b_fe * 1e3, p0 * 1e-6, p_max * 1e-6, h * 1e3, wb * 1e6, w_cyl * 1e6, w_blk * 1e6
+    );
+    assert!(rel(b_fe, b) < 0.03, "half-width {b_fe} vs {b}");
+    assert!(rel(p_max, p0) < 0.03, "peak pressure {p_max} vs {p0}");
+    assert!(rel(w_blk, wb) < 0.03, "block approach {w_blk} vs {wb}");
+    assert!(rel(w_cyl, wb) < 0.03, "cylinder approach {w_cyl} vs {wb}");
 }
