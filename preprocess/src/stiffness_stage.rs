@@ -54,7 +54,8 @@ pub struct StiffnessReport {
     pub reciprocity_error: Option<f64>,
 }
 
-fn sha256_file(path: &Path) -> anyhow::Result<String> {
+/// SHA-256 of a file's bytes, hex.
+pub fn sha256_file(path: &Path) -> anyhow::Result<String> {
     let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
     Ok(format!("{:x}", Sha256::digest(&bytes)))
 }

@@ -6,9 +6,12 @@
 //! and the unloaded TE against the white paper's 1 N·m value.
 
 pub mod body_compliance;
+pub mod comparison;
 pub mod contact_pairs;
 pub mod contact_surface;
 pub mod penalty;
 pub mod published;
+pub mod reference_ltca;
+pub mod reference_stage;
 pub mod report;
 pub mod utca_check;

@@ -30,6 +30,39 @@ enum Cmd {
         /// Positions per mesh cycle for the direct search.
         #[arg(long, default_value_t = 12)]
         positions: usize,
+        /// Output root of the solver and `validate reference`: when given, the
+        /// report also compares their loaded TE (Tables 3-5).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Reference loaded TCA: fine FE bodies in penalty contact.
+    Reference {
+        /// Scene file.
+        scene: PathBuf,
+        /// Mesh directory (as written by `preprocess mesh`).
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        /// Output directory.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Mesh level of both bodies: reduced or reference.
+        #[arg(long, default_value = "reduced")]
+        level: String,
+        /// Penalty ε = factor · E / (local face size).
+        #[arg(long, default_value_t = 100.0)]
+        penalty: f64,
+        /// Second penalty factor, whose TE is compared.
+        #[arg(long, default_value_t = 200.0)]
+        penalty_check: f64,
+        /// Initial gap below which flank nodes are contact candidates, um.
+        #[arg(long, default_value_t = 20.0)]
+        max_gap_um: f64,
+        /// Solve every n-th position of the scene's sweep.
+        #[arg(long, default_value_t = 1)]
+        stride: usize,
+        /// Right-hand sides per solve block.
+        #[arg(long, default_value_t = 16)]
+        block: usize,
     },
 }
 
@@ -40,11 +73,18 @@ fn main() -> anyhow::Result<()> {
             flanks,
             reports,
             positions,
+            out,
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
             let published = validate::published::te_ptp_1nm(&input.design_path);
-            validate::report::write(&reports, &c, published.as_ref(), &flanks)?;
+            let loaded = out.as_ref().and_then(|o| {
+                let sc = preprocess::scene::Scene::load(&scene).ok()?;
+                let wp = input.design_path.file_stem()? == "white_paper_20x43";
+                let pub_dir = input.design_path.parent()?.join("published");
+                validate::comparison::compare(o, &sc.scene.name, &pub_dir, wp)
+            });
+            validate::report::write(&reports, &c, published.as_ref(), &flanks, loaded.as_ref())?;
             println!(
                 "UTCA cross-check: {} positions, max |fast - direct| = {:.4} urad, TE ptp {:.2} urad{}; reports in {}",
                 c.rows.len(),
@@ -53,6 +93,38 @@ fn main() -> anyhow::Result<()> {
                 published.map(|p| format!(" (published {:.1} at 1 N m)", p.value)).unwrap_or_default(),
                 reports.display()
             );
+        }
+        Cmd::Reference {
+            scene,
+            meshes,
+            out,
+            level,
+            penalty,
+            penalty_check,
+            max_gap_um,
+            stride,
+            block,
+        } => {
+            if !["reduced", "reference"].contains(&level.as_str()) {
+                anyhow::bail!("--level {level}: must be reduced or reference");
+            }
+            for (field, v) in [("--penalty", penalty), ("--penalty-check", penalty_check), ("--max-gap-um", max_gap_um)] {
+                if !(v.is_finite() && v > 0.0) {
+                    anyhow::bail!("{field} {v}: must be a positive number");
+                }
+            }
+            let sc = preprocess::scene::Scene::load(&scene)?;
+            let opt = validate::reference_stage::StageOptions {
+                level,
+                settings: validate::reference_ltca::ReferenceSettings {
+                    penalty_factor: penalty,
+                    penalty_factor_check: penalty_check,
+                    max_gap_m: max_gap_um * 1e-6,
+                },
+                stride,
+                block,
+            };
+            validate::reference_stage::run(&sc, &meshes, &out, &opt)?;
         }
     }
     Ok(())

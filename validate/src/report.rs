@@ -18,11 +18,18 @@ pub struct Published {
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary<'a> {
     pub utca: &'a UtcaCheck,
+    /// Per blank and load: TE of the reduced model and the reference, their
+    /// differences and run times.
+    pub loaded_te: Option<&'a [crate::comparison::Row]>,
     pub published_te_ptp_1nm_urad: Option<&'a Published>,
     pub te_ptp_difference_percent: Option<f64>,
 }
 
-fn markdown(c: &UtcaCheck, published: Option<&Published>) -> String {
+fn markdown(
+    c: &UtcaCheck,
+    published: Option<&Published>,
+    loaded: Option<&crate::comparison::Comparison>,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Validation report: scene `{}`\n", c.name);
     let _ = writeln!(s, "## Unloaded tooth contact ({} flank)\n", c.side);
@@ -69,10 +76,18 @@ fn markdown(c: &UtcaCheck, published: Option<&Published>) -> String {
             r.pinion_rotation_deg, r.fast_te_urad, r.direct_te_urad, r.difference_urad
         );
     }
-    let _ = writeln!(
-        s,
-        "\n## Not yet in this report\n\nLoaded TCA (reduced model and fine-mesh reference), Tables 3–5 of the white paper and the run-time/error study need the meshing, stiffness, solver and validator stages, which are not built yet."
-    );
+    match loaded {
+        Some(cmp) => {
+            s.push('\n');
+            s.push_str(&cmp.markdown);
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "\n## Loaded TCA\n\nNo comparison: run `solver dynamic` and `validate reference` first (`make validate` does)."
+            );
+        }
+    }
     s
 }
 
@@ -123,8 +138,9 @@ pub fn write(
     c: &UtcaCheck,
     published: Option<&Published>,
     plots_dir: &Path,
+    loaded: Option<&crate::comparison::Comparison>,
 ) -> Result<(), GeometryError> {
-    let md = markdown(c, published);
+    let md = markdown(c, published, loaded);
     write_atomic(&dir.join("report.md"), md.as_bytes())?;
     let svgs: Vec<(String, String)> = [
         ("Unloaded transmission error", "te.svg"),
@@ -141,6 +157,7 @@ pub fn write(
     write_atomic(&dir.join("report.html"), html(&md, &svgs).as_bytes())?;
     let summary = Summary {
         utca: c,
+        loaded_te: loaded.map(|l| l.rows.as_slice()),
         published_te_ptp_1nm_urad: published,
         te_ptp_difference_percent: published
             .map(|p| (c.fast_te_ptp_urad - p.value) / p.value * 100.0),

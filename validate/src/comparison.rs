@@ -1,0 +1,248 @@
+//! Loaded TE of the reduced model (the multibody 10 rpm run, and the
+//! quasi-static LTCA) against the reference FE contact, per blank and load:
+//! the white paper's Tables 3–5, our way, from the stages' `summary.json`
+//! files, with the published values beside them.
+
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::path::Path;
+
+#[derive(Deserialize)]
+struct MbLoad {
+    torque_nm: f64,
+    te_mean_urad: f64,
+    te_ptp_urad: f64,
+    steps: usize,
+    cpu_s: f64,
+    cpu_s_per_step: f64,
+}
+
+#[derive(Deserialize)]
+struct MbBlank {
+    pinion_blank: String,
+    wheel_blank: String,
+    quasi_static: Vec<MbLoad>,
+}
+
+#[derive(Deserialize)]
+struct PubTe {
+    load_nm: f64,
+    mean_te_multibody_urad: f64,
+    mean_te_nlfea_urad: f64,
+    ptp_te_multibody_urad: f64,
+    ptp_te_nlfea_urad: f64,
+}
+
+#[derive(Deserialize)]
+struct PubTables {
+    standard_blank: Vec<PubTe>,
+    lightweight_blank: Vec<PubTe>,
+}
+
+#[derive(Deserialize)]
+struct PubCpu {
+    pinion_load_nm: f64,
+    blank: String,
+    cpu_step_s: f64,
+}
+
+#[derive(Deserialize)]
+struct PubCpuTable {
+    multibody: Vec<PubCpu>,
+    nlfea_ltca: Vec<PubCpu>,
+}
+
+/// One blank × load row.
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    pub pinion_blank: String,
+    pub wheel_blank: String,
+    pub torque_nm: f64,
+    pub multibody_te_mean_urad: f64,
+    pub multibody_te_ptp_urad: f64,
+    pub reference_te_mean_urad: f64,
+    pub reference_te_ptp_urad: f64,
+    /// (multibody − reference) / reference, %.
+    pub te_mean_difference_pct: f64,
+    pub te_ptp_difference_pct: f64,
+    pub reference_penalty_difference_pct: f64,
+    pub reference_max_pressure_mpa: f64,
+    pub multibody_steps: usize,
+    pub multibody_cpu_s_per_step: f64,
+    pub multibody_cpu_s: f64,
+    pub reference_positions: usize,
+    pub reference_cpu_s_per_position: f64,
+    pub reference_cpu_s: f64,
+    pub reference_level: String,
+    pub published_multibody_te_mean_urad: Option<f64>,
+    pub published_nlfea_te_mean_urad: Option<f64>,
+    pub published_multibody_te_ptp_urad: Option<f64>,
+    pub published_nlfea_te_ptp_urad: Option<f64>,
+    pub published_multibody_cpu_s_per_step: Option<f64>,
+    pub published_nlfea_cpu_s_per_step: Option<f64>,
+}
+
+/// The comparison: rows and the markdown section.
+#[derive(Debug, Clone, Serialize)]
+pub struct Comparison {
+    pub rows: Vec<Row>,
+    #[serde(skip)]
+    pub markdown: String,
+}
+
+fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Option<T> {
+    serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
+}
+
+/// Builds the comparison from `<out>/<scene>/{multibody,reference}/summary.json`;
+/// `published_dir` holds the white paper's tables (used when `white_paper`).
+/// None when either stage has not run.
+pub fn compare(
+    out: &Path,
+    scene: &str,
+    published_dir: &Path,
+    white_paper: bool,
+) -> Option<Comparison> {
+    let mb: Vec<MbBlank> = read(&out.join(scene).join("multibody/summary.json"))?;
+    let rf: Vec<crate::reference_stage::BlankSummary> =
+        read(&out.join(scene).join("reference/summary.json"))?;
+    let pub_te: Option<PubTables> = white_paper
+        .then(|| {
+            toml::from_str(
+                &std::fs::read_to_string(published_dir.join("white_paper_tables3_4_te.toml"))
+                    .ok()?,
+            )
+            .ok()
+        })
+        .flatten();
+    let pub_cpu: Option<PubCpuTable> = white_paper
+        .then(|| {
+            toml::from_str(
+                &std::fs::read_to_string(published_dir.join("white_paper_table5_cpu.toml")).ok()?,
+            )
+            .ok()
+        })
+        .flatten();
+    let mut rows = Vec::new();
+    for r in &rf {
+        let Some(m) = mb
+            .iter()
+            .find(|m| m.pinion_blank == r.pinion_blank && m.wheel_blank == r.wheel_blank)
+        else {
+            continue;
+        };
+        for l in &r.loads {
+            let Some(q) = m
+                .quasi_static
+                .iter()
+                .find(|q| (q.torque_nm - l.torque_nm).abs() < 1e-9)
+            else {
+                continue;
+            };
+            let table = pub_te.as_ref().map(|p| match r.wheel_blank.as_str() {
+                "lightweight" => &p.lightweight_blank,
+                _ => &p.standard_blank,
+            });
+            let pt = table.and_then(|t| t.iter().find(|p| (p.load_nm - l.torque_nm).abs() < 1e-9));
+            let cpu = |v: Option<&Vec<PubCpu>>| {
+                v.and_then(|v| {
+                    v.iter()
+                        .find(|c| {
+                            c.blank == r.wheel_blank && (c.pinion_load_nm - l.torque_nm).abs() < 1e-9
+                        })
+                        .map(|c| c.cpu_step_s)
+                })
+            };
+            rows.push(Row {
+                pinion_blank: r.pinion_blank.clone(),
+                wheel_blank: r.wheel_blank.clone(),
+                torque_nm: l.torque_nm,
+                multibody_te_mean_urad: q.te_mean_urad,
+                multibody_te_ptp_urad: q.te_ptp_urad,
+                reference_te_mean_urad: l.te_mean_urad,
+                reference_te_ptp_urad: l.te_ptp_urad,
+                te_mean_difference_pct: (q.te_mean_urad - l.te_mean_urad) / l.te_mean_urad * 100.0,
+                te_ptp_difference_pct: (q.te_ptp_urad - l.te_ptp_urad) / l.te_ptp_urad * 100.0,
+                reference_penalty_difference_pct: l.penalty_difference_pct,
+                reference_max_pressure_mpa: l.max_pressure_mpa,
+                multibody_steps: q.steps,
+                multibody_cpu_s_per_step: q.cpu_s_per_step,
+                multibody_cpu_s: q.cpu_s,
+                reference_positions: r.positions,
+                reference_cpu_s_per_position: r.cpu_s_per_position,
+                reference_cpu_s: r.wall_s,
+                reference_level: r.level.clone(),
+                published_multibody_te_mean_urad: pt.map(|p| p.mean_te_multibody_urad),
+                published_nlfea_te_mean_urad: pt.map(|p| p.mean_te_nlfea_urad),
+                published_multibody_te_ptp_urad: pt.map(|p| p.ptp_te_multibody_urad),
+                published_nlfea_te_ptp_urad: pt.map(|p| p.ptp_te_nlfea_urad),
+                published_multibody_cpu_s_per_step: cpu(pub_cpu.as_ref().map(|c| &c.multibody)),
+                published_nlfea_cpu_s_per_step: cpu(pub_cpu.as_ref().map(|c| &c.nlfea_ltca)),
+            });
+        }
+    }
+    let markdown = markdown(&rows, &rf);
+    Some(Comparison { rows, markdown })
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or("–".into(), |x| format!("{x:.digits$}"))
+}
+
+fn markdown(rows: &[Row], rf: &[crate::reference_stage::BlankSummary]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "## Loaded TE: reduced model against the reference FE contact (Tables 3 and 4)\n");
+    let _ = writeln!(
+        s,
+        "Reduced model: the multibody run with the wheel at 10 rpm and the torque on the pinion (FE-analytical contact element from the stiffness files). Reference: both gear bodies as full tet10 FE bodies in two-pass node-to-surface penalty contact on their own quadratic flank faces, solved statically at every position (`validate reference`). Differences are (reduced − reference) / reference. Published: the white paper's multibody and NLFEA values.\n"
+    );
+    for r in rf {
+        let _ = writeln!(
+            s,
+            "Reference {} / {}: {} mesh level, {} positions every {:.2}° over {} mesh cycles, {} + {} dofs, penalty check at twice the penalty.\n",
+            r.pinion_blank, r.wheel_blank, r.level, r.positions, r.step_deg, r.mesh_cycles, r.dofs[0], r.dofs[1]
+        );
+    }
+    let _ = writeln!(s, "| wheel blank | load, N·m | mean TE reduced, µrad | mean TE reference, µrad | diff % | ptp TE reduced, µrad | ptp TE reference, µrad | diff % | penalty check % | published mean MB / NLFEA | published ptp MB / NLFEA |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.2} | {:.2} | {:+.2} | {:.2} | {:.2} | {:+.1} | {:.3} | {} / {} | {} / {} |",
+            r.wheel_blank,
+            r.torque_nm,
+            r.multibody_te_mean_urad,
+            r.reference_te_mean_urad,
+            r.te_mean_difference_pct,
+            r.multibody_te_ptp_urad,
+            r.reference_te_ptp_urad,
+            r.te_ptp_difference_pct,
+            r.reference_penalty_difference_pct,
+            opt(r.published_multibody_te_mean_urad, 1),
+            opt(r.published_nlfea_te_mean_urad, 1),
+            opt(r.published_multibody_te_ptp_urad, 1),
+            opt(r.published_nlfea_te_ptp_urad, 1),
+        );
+    }
+    let _ = writeln!(s, "\n## Run time (Table 5)\n");
+    let _ = writeln!(s, "Measured on this machine (2 cores). Reduced model: multibody 10 rpm run (integration steps, CPU per step, total, contact-element table excluded). Reference: positions, wall time per position (unit-load columns, condensation and both penalties for all loads), and the whole run including factoring.\n");
+    let _ = writeln!(s, "| wheel blank | load, N·m | MB steps | MB s/step | MB total, s | reference positions | reference s/position | reference total, s | published MB s/step | published NLFEA s/step |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.2e} | {:.2} | {} | {:.2} | {:.0} | {} | {} |",
+            r.wheel_blank,
+            r.torque_nm,
+            r.multibody_steps,
+            r.multibody_cpu_s_per_step,
+            r.multibody_cpu_s,
+            r.reference_positions,
+            r.reference_cpu_s_per_position,
+            r.reference_cpu_s,
+            opt(r.published_multibody_cpu_s_per_step, 1),
+            opt(r.published_nlfea_cpu_s_per_step, 0),
+        );
+    }
+    s
+}

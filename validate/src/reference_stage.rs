@@ -1,0 +1,326 @@
+//! `validate reference <scene>`: the reference loaded TCA of every pinion ×
+//! wheel blank of a scene, from the meshes of one level, to
+//! `<out>/<scene>/reference/<pinion>_<wheel>/`: `te.csv` (TE per position
+//! and torque), `pattern_<T>nm.csv` (contact pressure on the pinion flanks at
+//! the largest torque) and `summary.json`. A run whose inputs (mesh files,
+//! settings, positions, torques) hash to an existing summary reuses it.
+
+use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
+use anyhow::Context;
+use preprocess::design::Member as Which;
+use preprocess::output::{write_atomic, write_json};
+use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
+use preprocess::scene::{Blank, LoadedScene};
+use preprocess::stiffness_stage::sha256_file;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Version of the summary layout; part of the input hash.
+pub const REFERENCE_SCHEMA: u32 = 1;
+
+/// Options of the stage.
+#[derive(Debug, Clone, Serialize)]
+pub struct StageOptions {
+    /// Mesh level ("reduced" or "reference").
+    pub level: String,
+    pub settings: ReferenceSettings,
+    /// Solve every n-th position of the scene's sweep.
+    pub stride: usize,
+    /// Right-hand sides per solve block.
+    pub block: usize,
+}
+
+/// Per-torque statistics over the sweep.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct LoadSummary {
+    pub torque_nm: f64,
+    pub te_mean_urad: f64,
+    pub te_ptp_urad: f64,
+    /// Largest |TE(penalty) − TE(check penalty)| over the positions, % of TE.
+    pub penalty_difference_pct: f64,
+    pub max_pressure_mpa: f64,
+    /// Largest |Σ forces × levers − torque| / torque over the positions.
+    pub torque_balance_max: f64,
+    /// Smallest loaded gap of the candidates in the outer half of the
+    /// candidate band (> 0: the band was wide enough), µm.
+    pub band_margin_min_um: f64,
+    /// Contact solves (both penalties) per position, s.
+    pub cpu_s_per_position: f64,
+}
+
+/// Summary of one pinion × wheel blank combination.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct BlankSummary {
+    pub input_hash: String,
+    pub pinion_blank: String,
+    pub wheel_blank: String,
+    pub level: String,
+    pub positions: usize,
+    pub step_deg: f64,
+    pub mesh_cycles: f64,
+    pub dofs: [usize; 2],
+    pub factor_s: [f64; 2],
+    /// Unit-load right-hand sides solved, and their time, per body.
+    pub right_hand_sides: [usize; 2],
+    pub solve_s: [f64; 2],
+    pub constraints_mean: f64,
+    /// Wall time of the whole combination (factoring included), s.
+    pub wall_s: f64,
+    /// Wall time per position (columns, condensation, all torques), s.
+    pub cpu_s_per_position: f64,
+    pub loads: Vec<LoadSummary>,
+}
+
+fn blank_name(b: Blank) -> String {
+    format!("{b:?}").to_lowercase()
+}
+
+/// Runs the reference LTCA of the scene.
+pub fn run(
+    scene: &LoadedScene,
+    meshes: &Path,
+    out: &Path,
+    opt: &StageOptions,
+) -> anyhow::Result<Vec<BlankSummary>> {
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let side = sc.loaded_flank;
+    let fp = g.side(side);
+    let direction = pinion_direction(&g.data, side);
+    let step = sc.rotation.step_deg.to_radians();
+    let dir = meshes.join(&sc.name);
+    let cycles = |wb: Blank| match wb {
+        Blank::Standard => sc.rotation.mesh_cycles_standard,
+        Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
+    };
+    let msh = |m: Which, b: Blank| dir.join(format!("{}_{}_{}.msh", m.name(), blank_name(b), opt.level));
+    let mut pinion_teeth = std::collections::BTreeSet::new();
+    for &wb in &sc.blanks.wheel {
+        pinion_teeth.extend(teeth_in_contact(&g, side, cycles(wb), step).0);
+    }
+    let pinion_teeth: Vec<usize> = pinion_teeth.into_iter().collect();
+    let mut all = Vec::new();
+    for &pb in &sc.blanks.pinion {
+        let mut pinion: Option<Member> = None;
+        for &wb in &sc.blanks.wheel {
+            let t0 = std::time::Instant::now();
+            let name = format!("{}_{}", blank_name(pb), blank_name(wb));
+            let odir = out.join(&sc.name).join("reference").join(&name);
+            let n_pos = (cycles(wb) * g.data.mesh_cycle() / step).round() as usize + 1;
+            let positions: Vec<f64> = (0..n_pos)
+                .step_by(opt.stride.max(1))
+                .map(|i| fp.roll_range[0] + direction * step * i as f64)
+                .collect();
+            let (pm, wm) = (msh(Which::Pinion, pb), msh(Which::Wheel, wb));
+            for p in [&pm, &wm] {
+                if !p.exists() {
+                    anyhow::bail!(
+                        "scene {}: no mesh {}; run `preprocess mesh {} --level {}`",
+                        sc.name,
+                        p.display(),
+                        scene.path.display(),
+                        opt.level
+                    );
+                }
+            }
+            let hash = {
+                let key = serde_json::json!({
+                    "schema": REFERENCE_SCHEMA,
+                    "pinion_mesh": sha256_file(&pm)?,
+                    "wheel_mesh": sha256_file(&wm)?,
+                    "options": opt,
+                    "positions": positions,
+                    "torques": sc.pinion_torque_nm,
+                    "flank": side.flank_name(Which::Pinion),
+                });
+                format!("{:x}", Sha256::digest(key.to_string().as_bytes()))
+            };
+            let summary_path = odir.join("summary.json");
+            if let Ok(text) = std::fs::read_to_string(&summary_path) {
+                if let Ok(s) = serde_json::from_str::<BlankSummary>(&text) {
+                    if s.input_hash == hash {
+                        eprintln!("reference {name}: inputs unchanged, reusing {}", summary_path.display());
+                        all.push(s);
+                        continue;
+                    }
+                }
+            }
+            if pinion.is_none() {
+                eprintln!("reference: reading and factoring {}", pm.display());
+                let body = preprocess::body_mesh::read(&pm).map_err(anyhow::Error::msg)?;
+                pinion = Some(Member::new(
+                    body,
+                    g.frames[0],
+                    &g.data.member(Which::Pinion).material(),
+                    side.flank_name(Which::Pinion),
+                    &pinion_teeth,
+                    opt.block,
+                )?);
+            }
+            let wheel_teeth = teeth_in_contact(&g, side, cycles(wb), step).1;
+            eprintln!("reference: reading and factoring {}", wm.display());
+            let body = preprocess::body_mesh::read(&wm).map_err(anyhow::Error::msg)?;
+            let mut wheel = Member::new(
+                body,
+                g.frames[1],
+                &g.data.member(Which::Wheel).material(),
+                side.flank_name(Which::Wheel),
+                &wheel_teeth,
+                opt.block,
+            )?;
+            let pin = pinion.as_mut().expect("pinion factored above");
+            let (rhs0, s0) = (pin.compliance.solves, pin.compliance.solve_s);
+            let mut pair = ReferencePair {
+                pinion: pin,
+                wheel: &mut wheel,
+                flanks: fp,
+                direction,
+                settings: opt.settings,
+            };
+            let bar = indicatif::ProgressBar::new(positions.len() as u64);
+            bar.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "reference {msg} [{bar:30}] {pos}/{len} positions, eta {eta}",
+                )?
+                .progress_chars("=> "),
+            );
+            bar.set_message(name.clone());
+            let t_sweep = std::time::Instant::now();
+            let mut res = Vec::with_capacity(positions.len());
+            for (i, &phi) in positions.iter().enumerate() {
+                let r = pair.position(phi, &sc.pinion_torque_nm).with_context(|| {
+                    format!("scene {}: reference LTCA {name} at pinion angle {:.3} deg", sc.name, phi.to_degrees())
+                })?;
+                if bar.is_hidden() {
+                    eprintln!(
+                        "reference {name}: position {}/{}: {} constraints, {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
+                        i + 1,
+                        positions.len(),
+                        r.constraints,
+                        r.new_columns,
+                        r.loads.last().map_or(0.0, |l| l.te * 1e6),
+                        r.loads.last().map_or(0.0, |l| l.torque_nm),
+                        r.cpu_s
+                    );
+                }
+                res.push(r);
+                bar.inc(1);
+            }
+            bar.finish_and_clear();
+            let sweep_s = t_sweep.elapsed().as_secs_f64();
+            std::fs::create_dir_all(&odir)?;
+            write_te_csv(&odir.join("te.csv"), &res, fp.roll_range[0], direction)?;
+            if let Some(last) = res.iter().max_by(|a, b| {
+                let pa = a.loads.last().map_or(0.0, |l| l.max_pressure_pa);
+                let pb = b.loads.last().map_or(0.0, |l| l.max_pressure_pa);
+                pa.total_cmp(&pb)
+            }) {
+                let mut csv = String::from("x_m,y_m,z_m,pressure_mpa\n");
+                for (p, v) in &last.pattern {
+                    writeln!(csv, "{},{},{},{}", p[0], p[1], p[2], v * 1e-6)?;
+                }
+                let t = sc.pinion_torque_nm.last().copied().unwrap_or(0.0);
+                write_atomic(&odir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
+            }
+            let summary = BlankSummary {
+                input_hash: hash,
+                pinion_blank: blank_name(pb),
+                wheel_blank: blank_name(wb),
+                level: opt.level.clone(),
+                positions: res.len(),
+                step_deg: sc.rotation.step_deg * opt.stride.max(1) as f64,
+                mesh_cycles: cycles(wb),
+                dofs: [pair.pinion.compliance.dofs_free, pair.wheel.compliance.dofs_free],
+                factor_s: [pair.pinion.compliance.factor_s, pair.wheel.compliance.factor_s],
+                right_hand_sides: [
+                    pair.pinion.compliance.solves - rhs0,
+                    pair.wheel.compliance.solves,
+                ],
+                solve_s: [
+                    pair.pinion.compliance.solve_s - s0,
+                    pair.wheel.compliance.solve_s,
+                ],
+                constraints_mean: res.iter().map(|r| r.constraints as f64).sum::<f64>()
+                    / res.len().max(1) as f64,
+                wall_s: t0.elapsed().as_secs_f64(),
+                cpu_s_per_position: sweep_s / res.len().max(1) as f64,
+                loads: load_summaries(&res, &sc.pinion_torque_nm),
+            };
+            write_json(&summary_path, &summary)?;
+            for l in &summary.loads {
+                eprintln!(
+                    "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, penalty check {:.3} %, max pressure {:.0} MPa",
+                    l.torque_nm, l.te_mean_urad, l.te_ptp_urad, l.penalty_difference_pct, l.max_pressure_mpa
+                );
+            }
+            all.push(summary);
+        }
+    }
+    write_json(&out.join(&sc.name).join("reference").join("summary.json"), &all)?;
+    Ok(all)
+}
+
+fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
+    let n = res.len().max(1) as f64;
+    torques
+        .iter()
+        .enumerate()
+        .map(|(k, &t)| {
+            let te: Vec<f64> = res.iter().map(|r| r.loads[k].te).collect();
+            let mean = te.iter().sum::<f64>() / n;
+            let (lo, hi) = te
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &v| (a.0.min(v), a.1.max(v)));
+            LoadSummary {
+                torque_nm: t,
+                te_mean_urad: mean * 1e6,
+                te_ptp_urad: (hi - lo) * 1e6,
+                penalty_difference_pct: res
+                    .iter()
+                    .map(|r| ((r.loads[k].te - r.loads[k].te_check) / r.loads[k].te).abs() * 100.0)
+                    .fold(0.0, f64::max),
+                max_pressure_mpa: res
+                    .iter()
+                    .map(|r| r.loads[k].max_pressure_pa)
+                    .fold(0.0, f64::max)
+                    * 1e-6,
+                torque_balance_max: res
+                    .iter()
+                    .map(|r| r.loads[k].torque_balance.abs())
+                    .fold(0.0, f64::max),
+                band_margin_min_um: res
+                    .iter()
+                    .map(|r| r.loads[k].band_margin_m)
+                    .fold(f64::INFINITY, f64::min)
+                    * 1e6,
+                cpu_s_per_position: res.iter().map(|r| r.cpu_s).sum::<f64>() / n,
+            }
+        })
+        .collect()
+}
+
+fn write_te_csv(
+    path: &PathBuf,
+    res: &[PositionResult],
+    start: f64,
+    direction: f64,
+) -> anyhow::Result<()> {
+    let mut s = String::from("pinion_rotation_deg");
+    if let Some(r) = res.first() {
+        for l in &r.loads {
+            write!(s, ",te_{}nm_urad", l.torque_nm)?;
+        }
+    }
+    s.push('\n');
+    for r in res {
+        write!(s, "{}", ((r.phi - start) * direction).to_degrees())?;
+        for l in &r.loads {
+            write!(s, ",{}", l.te * 1e6)?;
+        }
+        s.push('\n');
+    }
+    write_atomic(path, s.as_bytes())?;
+    Ok(())
+}
