@@ -6,6 +6,8 @@ OUT     ?= out
 CARGO   ?= cargo
 RELEASE := --release
 BIN     := target/release
+# The reference LTCA solves every REF_STRIDE-th position of the scene's sweep.
+REF_STRIDE ?= 6
 
 .PHONY: setup build test bench preprocess solve validate clean
 
@@ -37,7 +39,8 @@ solve: preprocess
 	$(BIN)/solver dynamic $(SCENE) --meshes meshes --out $(OUT)
 
 validate: solve
-	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports
+	$(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) --stride $(REF_STRIDE)
+	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
 
 clean:
 	$(CARGO) clean

@@ -29,7 +29,10 @@ pub struct BodyCompliance {
 
 /// The dofs of `nodes`, all three components (a clamped support).
 pub fn clamped(nodes: &[usize]) -> Vec<usize> {
-    nodes.iter().flat_map(|&n| (0..3).map(move |c| 3 * n + c)).collect()
+    nodes
+        .iter()
+        .flat_map(|&n| (0..3).map(move |c| 3 * n + c))
+        .collect()
 }
 
 impl BodyCompliance {
@@ -137,5 +140,40 @@ impl Compliance for BodyCompliance {
             }
         }
         Ok(m)
+    }
+
+    fn slots(&self, nodes: &[usize]) -> Result<Vec<usize>, ContactError> {
+        nodes
+            .iter()
+            .map(|n| {
+                self.slot
+                    .get(n)
+                    .copied()
+                    .ok_or(ContactError::MissingColumn { body: 0, node: *n })
+            })
+            .collect()
+    }
+
+    fn response(
+        &self,
+        j: usize,
+        dir: [f64; 3],
+        slots: &[usize],
+    ) -> Result<Vec<[f64; 3]>, ContactError> {
+        let col = self
+            .columns
+            .get(&j)
+            .ok_or(ContactError::MissingColumn { body: 0, node: j })?;
+        let u3 = 3 * self.universe;
+        Ok(slots
+            .iter()
+            .map(|&s| {
+                [0, 1, 2].map(|a| {
+                    dir[0] * col[3 * s + a]
+                        + dir[1] * col[u3 + 3 * s + a]
+                        + dir[2] * col[2 * u3 + 3 * s + a]
+                })
+            })
+            .collect())
     }
 }

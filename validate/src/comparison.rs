@@ -148,7 +148,8 @@ pub fn compare(
                 v.and_then(|v| {
                     v.iter()
                         .find(|c| {
-                            c.blank == r.wheel_blank && (c.pinion_load_nm - l.torque_nm).abs() < 1e-9
+                            c.blank == r.wheel_blank
+                                && (c.pinion_load_nm - l.torque_nm).abs() < 1e-9
                         })
                         .map(|c| c.cpu_step_s)
                 })
@@ -191,7 +192,10 @@ fn opt(v: Option<f64>, digits: usize) -> String {
 
 fn markdown(rows: &[Row], rf: &[crate::reference_stage::BlankSummary]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "## Loaded TE: reduced model against the reference FE contact (Tables 3 and 4)\n");
+    let _ = writeln!(
+        s,
+        "## Loaded TE: reduced model against the reference FE contact (Tables 3 and 4)\n"
+    );
     let _ = writeln!(
         s,
         "Reduced model: the multibody run with the wheel at 10 rpm and the torque on the pinion (FE-analytical contact element from the stiffness files). Reference: both gear bodies as full tet10 FE bodies in two-pass node-to-surface penalty contact on their own quadratic flank faces, solved statically at every position (`validate reference`). Differences are (reduced − reference) / reference. Published: the white paper's multibody and NLFEA values.\n"

@@ -237,59 +237,6 @@ pub fn project_on_face(x: &[V3; 6], p: V3) -> Option<(V3, [f64; 2], V3)> {
     Some((q, st, nn.map(|c| c / l)))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A flat face in z = 0 projects a point straight down; a quadratic face
-    /// bent into a parabola z = κ x² / 2 gives the exact closest point.
-    #[test]
-    fn projection_onto_flat_and_curved_faces_is_the_closest_point() {
-        let flat: [V3; 6] = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.5, 0.0, 0.0],
-            [0.5, 0.5, 0.0],
-            [0.0, 0.5, 0.0],
-        ];
-        let (q, st, n) = project_on_face(&flat, [0.2, 0.3, 0.7]).unwrap();
-        assert!((q[0] - 0.2).abs() < 1e-14 && (q[1] - 0.3).abs() < 1e-14 && q[2].abs() < 1e-14);
-        assert!((st[0] - 0.2).abs() < 1e-14 && (n[2] - 1.0).abs() < 1e-14);
-        assert!(project_on_face(&flat, [0.8, 0.8, 0.1]).is_none());
-        // z = x²/2 is exactly quadratic: the tri6 reproduces it.
-        let k = 1.0;
-        let z = |x: f64| 0.5 * k * x * x;
-        let curved = flat.map(|p| [p[0], p[1], z(p[0])]);
-        let p = [0.3, 0.2, 0.2];
-        let (q, _, n) = project_on_face(&curved, p).unwrap();
-        // At the closest point, p − q is along the normal (−z'(x), 0, 1).
-        let r = sub(p, q);
-        let t = [1.0, 0.0, k * q[0]];
-        assert!(dot(r, t).abs() < 1e-12, "{}", dot(r, t));
-        assert!((q[2] - z(q[0])).abs() < 1e-14);
-        assert!(n[2] > 0.0);
-    }
-
-    /// The lumped areas of a face sum to its area, vertices get 1/12 and
-    /// mid-edge nodes 1/4 of a straight face.
-    #[test]
-    fn lumped_areas_sum_to_the_face_area() {
-        let nodes: Vec<V3> = vec![
-            [0.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [0.0, 2.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
-        let a = lumped_areas(&nodes, &[[0, 1, 2, 3, 4, 5]]);
-        assert!((a[&0] - 2.0 / 12.0).abs() < 1e-14);
-        assert!((a[&3] - 2.0 / 4.0).abs() < 1e-14);
-        assert!((a.values().sum::<f64>() - 2.0).abs() < 1e-14);
-    }
-}
-
 /// Outward unit normal of a surface at each of its nodes (mean of the
 /// adjacent faces' normals at the node).
 pub fn nodal_normals(nodes: &[V3], faces: &[[usize; 6]]) -> HashMap<usize, V3> {
@@ -349,4 +296,57 @@ pub fn smoothed_pressure(
         }
     }
     sum.into_iter().map(|(i, (fs, a))| (i, fs / a)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flat face in z = 0 projects a point straight down; a quadratic face
+    /// bent into a parabola z = κ x² / 2 gives the exact closest point.
+    #[test]
+    fn projection_onto_flat_and_curved_faces_is_the_closest_point() {
+        let flat: [V3; 6] = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+            [0.5, 0.5, 0.0],
+            [0.0, 0.5, 0.0],
+        ];
+        let (q, st, n) = project_on_face(&flat, [0.2, 0.3, 0.7]).unwrap();
+        assert!((q[0] - 0.2).abs() < 1e-14 && (q[1] - 0.3).abs() < 1e-14 && q[2].abs() < 1e-14);
+        assert!((st[0] - 0.2).abs() < 1e-14 && (n[2] - 1.0).abs() < 1e-14);
+        assert!(project_on_face(&flat, [0.8, 0.8, 0.1]).is_none());
+        // z = x²/2 is exactly quadratic: the tri6 reproduces it.
+        let k = 1.0;
+        let z = |x: f64| 0.5 * k * x * x;
+        let curved = flat.map(|p| [p[0], p[1], z(p[0])]);
+        let p = [0.3, 0.2, 0.2];
+        let (q, _, n) = project_on_face(&curved, p).unwrap();
+        // At the closest point, p − q is along the normal (−z'(x), 0, 1).
+        let r = sub(p, q);
+        let t = [1.0, 0.0, k * q[0]];
+        assert!(dot(r, t).abs() < 1e-12, "{}", dot(r, t));
+        assert!((q[2] - z(q[0])).abs() < 1e-14);
+        assert!(n[2] > 0.0);
+    }
+
+    /// The lumped areas of a face sum to its area, vertices get 1/12 and
+    /// mid-edge nodes 1/4 of a straight face.
+    #[test]
+    fn lumped_areas_sum_to_the_face_area() {
+        let nodes: Vec<V3> = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let a = lumped_areas(&nodes, &[[0, 1, 2, 3, 4, 5]]);
+        assert!((a[&0] - 2.0 / 12.0).abs() < 1e-14);
+        assert!((a[&3] - 2.0 / 4.0).abs() < 1e-14);
+        assert!((a.values().sum::<f64>() - 2.0).abs() < 1e-14);
+    }
 }

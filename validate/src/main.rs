@@ -108,7 +108,11 @@ fn main() -> anyhow::Result<()> {
             if !["reduced", "reference"].contains(&level.as_str()) {
                 anyhow::bail!("--level {level}: must be reduced or reference");
             }
-            for (field, v) in [("--penalty", penalty), ("--penalty-check", penalty_check), ("--max-gap-um", max_gap_um)] {
+            for (field, v) in [
+                ("--penalty", penalty),
+                ("--penalty-check", penalty_check),
+                ("--max-gap-um", max_gap_um),
+            ] {
                 if !(v.is_finite() && v > 0.0) {
                     anyhow::bail!("{field} {v}: must be a positive number");
                 }

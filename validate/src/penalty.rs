@@ -66,11 +66,21 @@ pub struct Constraint {
     pub stiffness: f64,
 }
 
-/// The 3 × 3 compliance blocks of a body between nodes: C_ij = ∂u_i/∂f_j.
+/// A body's compliance between nodes: C_ij = ∂u_i/∂f_j (3 × 3 blocks).
 pub trait Compliance {
     /// C_ij (row: response at i, column: load at j), m/N. Errors if the
-    /// column of `j` is not available.
+    /// column of `j` or the row of `i` is not available.
     fn block(&self, i: usize, j: usize) -> Result<[[f64; 3]; 3], ContactError>;
+    /// Where the responses at `nodes` are stored (for [`Compliance::response`]).
+    fn slots(&self, nodes: &[usize]) -> Result<Vec<usize>, ContactError>;
+    /// Displacements at the nodes behind `slots` under a unit load along
+    /// `dir` at node `j`, m/N.
+    fn response(
+        &self,
+        j: usize,
+        dir: [f64; 3],
+        slots: &[usize],
+    ) -> Result<Vec<[f64; 3]>, ContactError>;
 }
 
 /// The solution of one load.
@@ -88,38 +98,70 @@ pub struct Solution {
 }
 
 /// W = Σ_b B_b C_b B_bᵀ for the listed rows × columns of `constraints`
-/// (row-major rows.len() × cols.len()).
+/// (row-major rows.len() × cols.len()). For each body and column
+/// constraint, its load's displacement field at the row constraints' nodes
+/// is summed from the node columns, then projected on each row.
 pub fn condensed_matrix(
     constraints: &[Constraint],
     rows: &[usize],
     cols: &[usize],
     bodies: &[&(dyn Compliance + Sync)],
 ) -> Result<Vec<f64>, ContactError> {
-    let nc = cols.len();
-    let out: Result<Vec<Vec<f64>>, ContactError> = rows
-        .par_iter()
-        .map(|&r| {
-            let mut row = vec![0.0; nc];
-            for (k, &c) in cols.iter().enumerate() {
-                let mut w = 0.0;
-                for a in &constraints[r].terms {
-                    for b in &constraints[c].terms {
-                        if a.body != b.body {
-                            continue;
-                        }
-                        let m = bodies[a.body].block(a.node, b.node)?;
-                        for i in 0..3 {
-                            w += a.dir[i]
-                                * (m[i][0] * b.dir[0] + m[i][1] * b.dir[1] + m[i][2] * b.dir[2]);
+    let (nr, nc) = (rows.len(), cols.len());
+    let mut w = vec![0.0; nr * nc];
+    for (b, body) in bodies.iter().enumerate() {
+        let mut at: Vec<usize> = rows
+            .iter()
+            .flat_map(|&r| constraints[r].terms.iter())
+            .filter(|t| t.body == b)
+            .map(|t| t.node)
+            .collect();
+        at.sort_unstable();
+        at.dedup();
+        if at.is_empty() {
+            continue;
+        }
+        let slots = body.slots(&at)?;
+        let pos = |n: usize| at.binary_search(&n).expect("row node collected above");
+        let row_terms: Vec<Vec<(usize, [f64; 3])>> = rows
+            .iter()
+            .map(|&r| {
+                constraints[r]
+                    .terms
+                    .iter()
+                    .filter(|t| t.body == b)
+                    .map(|t| (pos(t.node), t.dir))
+                    .collect()
+            })
+            .collect();
+        let columns: Result<Vec<Vec<f64>>, ContactError> = cols
+            .par_iter()
+            .map(|&c| {
+                let mut u = vec![[0.0; 3]; at.len()];
+                for t in constraints[c].terms.iter().filter(|t| t.body == b) {
+                    for (acc, v) in u.iter_mut().zip(body.response(t.node, t.dir, &slots)?) {
+                        for k in 0..3 {
+                            acc[k] += v[k];
                         }
                     }
                 }
-                row[k] = w;
+                Ok(row_terms
+                    .iter()
+                    .map(|rt| {
+                        rt.iter()
+                            .map(|(p, d)| d[0] * u[*p][0] + d[1] * u[*p][1] + d[2] * u[*p][2])
+                            .sum()
+                    })
+                    .collect())
+            })
+            .collect();
+        for (k, col) in columns?.into_iter().enumerate() {
+            for (r, v) in col.into_iter().enumerate() {
+                w[r * nc + k] += v;
             }
-            Ok(row)
-        })
-        .collect();
-    Ok(out?.concat())
+        }
+    }
+    Ok(w)
 }
 
 /// Gaps below −this are penetrations, forces below −this × k are tensile, m.
@@ -181,7 +223,9 @@ pub fn solve(
         }
         if !active.iter().any(|&a| a) {
             // Everything dropped: restart from the deepest penetration.
-            let deepest = (0..m).min_by(|&a, &b| gap[a].total_cmp(&gap[b])).unwrap_or(0);
+            let deepest = (0..m)
+                .min_by(|&a, &b| gap[a].total_cmp(&gap[b]))
+                .unwrap_or(0);
             active[deepest] = true;
         }
         if !changed {
@@ -211,7 +255,12 @@ fn solve_active(
     let n = idx.len();
     let mm = Mat::<f64>::from_fn(n, n, |i, j| {
         let (a, b) = (idx[i], idx[j]);
-        w[a * m + b] + if i == j { 1.0 / constraints[a].stiffness } else { 0.0 }
+        w[a * m + b]
+            + if i == j {
+                1.0 / constraints[a].stiffness
+            } else {
+                0.0
+            }
     });
     let llt = mm
         .llt(Side::Lower)
@@ -264,6 +313,49 @@ impl Compliance for DenseCompliance {
         }
         Ok(m)
     }
+
+    fn slots(&self, nodes: &[usize]) -> Result<Vec<usize>, ContactError> {
+        Ok(nodes.to_vec())
+    }
+
+    fn response(
+        &self,
+        j: usize,
+        dir: [f64; 3],
+        slots: &[usize],
+    ) -> Result<Vec<[f64; 3]>, ContactError> {
+        Ok(slots
+            .iter()
+            .map(|&i| {
+                let m = self.block(i, j).expect("dense compliance has every block");
+                [0, 1, 2].map(|a| m[a][0] * dir[0] + m[a][1] * dir[1] + m[a][2] * dir[2])
+            })
+            .collect())
+    }
+}
+
+/// The normal contact force on each node of `body` (N, positive pressing
+/// into the body): Σ_c λ_c v_ci · ν_i, with ν_i the inward unit normal of the
+/// body at node i (body frame) from `inward`.
+pub fn nodal_normal_forces(
+    constraints: &[Constraint],
+    force: &[f64],
+    body: usize,
+    inward: &std::collections::HashMap<usize, [f64; 3]>,
+) -> std::collections::HashMap<usize, f64> {
+    let mut out = std::collections::HashMap::new();
+    for (c, &f) in constraints.iter().zip(force) {
+        if f == 0.0 {
+            continue;
+        }
+        for t in c.terms.iter().filter(|t| t.body == body) {
+            if let Some(nu) = inward.get(&t.node) {
+                let v = f * (t.dir[0] * nu[0] + t.dir[1] * nu[1] + t.dir[2] * nu[2]);
+                *out.entry(t.node).or_insert(0.0) += v;
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -304,28 +396,4 @@ mod tests {
         assert!((s.psi - (0.1 + 1.0 + 1.0 / k)).abs() < 1e-12);
         assert!((carried_load(&cs, &s.force) - 2.0).abs() < 1e-12);
     }
-}
-
-/// The normal contact force on each node of `body` (N, positive pressing
-/// into the body): Σ_c λ_c v_ci · ν_i, with ν_i the inward unit normal of the
-/// body at node i (body frame) from `inward`.
-pub fn nodal_normal_forces(
-    constraints: &[Constraint],
-    force: &[f64],
-    body: usize,
-    inward: &std::collections::HashMap<usize, [f64; 3]>,
-) -> std::collections::HashMap<usize, f64> {
-    let mut out = std::collections::HashMap::new();
-    for (c, &f) in constraints.iter().zip(force) {
-        if f == 0.0 {
-            continue;
-        }
-        for t in c.terms.iter().filter(|t| t.body == body) {
-            if let Some(nu) = inward.get(&t.node) {
-                let v = f * (t.dir[0] * nu[0] + t.dir[1] * nu[1] + t.dir[2] * nu[2]);
-                *out.entry(t.node).or_insert(0.0) += v;
-            }
-        }
-    }
-    out
 }

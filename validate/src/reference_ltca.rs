@@ -153,6 +153,8 @@ pub struct PositionResult {
     #[serde(skip)]
     pub pattern: Vec<(V3, f64)>,
     pub new_columns: usize,
+    /// Candidate band used, m.
+    pub max_gap_m: f64,
     pub cpu_s: f64,
 }
 
@@ -168,8 +170,41 @@ pub struct ReferencePair<'a> {
 
 impl ReferencePair<'_> {
     /// Solves the position `phi` (pinion angle, rad) for each torque (N·m,
-    /// increasing).
-    pub fn position(&mut self, phi: f64, torques: &[f64]) -> Result<PositionResult, ReferenceError> {
+    /// increasing). The candidate band starts at the settings' gap and is
+    /// doubled (up to 8×) while a candidate from its outer half penetrates
+    /// under load, a sign that nodes beyond the band could touch too.
+    pub fn position(
+        &mut self,
+        phi: f64,
+        torques: &[f64],
+    ) -> Result<PositionResult, ReferenceError> {
+        let t0 = std::time::Instant::now();
+        let mut gap = self.settings.max_gap_m;
+        let mut new_columns = 0;
+        loop {
+            let mut r = self.position_at_gap(phi, torques, gap)?;
+            new_columns += r.new_columns;
+            let margin = r
+                .loads
+                .iter()
+                .map(|l| l.band_margin_m)
+                .fold(f64::INFINITY, f64::min);
+            if margin >= -1e-9 || gap >= 8.0 * self.settings.max_gap_m {
+                r.new_columns = new_columns;
+                r.max_gap_m = gap;
+                r.cpu_s = t0.elapsed().as_secs_f64();
+                return Ok(r);
+            }
+            gap *= 2.0;
+        }
+    }
+
+    fn position_at_gap(
+        &mut self,
+        phi: f64,
+        torques: &[f64],
+        max_gap: f64,
+    ) -> Result<PositionResult, ReferenceError> {
         let t0 = std::time::Instant::now();
         let phi2 = self.flanks.conjugate_wheel_angle(phi);
         let (pn, pr) = self.pinion.placed(phi);
@@ -202,8 +237,8 @@ impl ReferencePair<'_> {
         };
         let set = PenaltySettings {
             factor: self.settings.penalty_factor,
-            max_gap: self.settings.max_gap_m,
-            reach: 4.0 * self.settings.max_gap_m,
+            max_gap,
+            reach: 4.0 * max_gap,
         };
         let pairs: Vec<(Constraint, Origin)> = two_pass(&body_p, &body_w, &set)
             .into_iter()
@@ -212,7 +247,7 @@ impl ReferencePair<'_> {
         if pairs.is_empty() {
             return Err(ReferenceError::NoContact {
                 phi_deg: phi.to_degrees(),
-                max_gap_um: self.settings.max_gap_m * 1e6,
+                max_gap_um: max_gap * 1e6,
             });
         }
         let cs: Vec<Constraint> = pairs.iter().map(|p| p.0.clone()).collect();
@@ -257,7 +292,7 @@ impl ReferencePair<'_> {
             let band_margin_m = cs
                 .iter()
                 .zip(&s.gap)
-                .filter(|(c, _)| c.gap0 > 0.5 * self.settings.max_gap_m)
+                .filter(|(c, _)| c.gap0 > 0.5 * max_gap)
                 .map(|(_, g)| *g)
                 .fold(f64::INFINITY, f64::min);
             let f = nodal_normal_forces(&cs, &s.force, 0, &inward);
@@ -288,6 +323,7 @@ impl ReferencePair<'_> {
             loads,
             pattern,
             new_columns,
+            max_gap_m: max_gap,
             cpu_s: t0.elapsed().as_secs_f64(),
         })
     }

@@ -15,7 +15,7 @@ use preprocess::stiffness_stage::sha256_file;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Version of the summary layout; part of the input hash.
 pub const REFERENCE_SCHEMA: u32 = 1;
@@ -95,7 +95,8 @@ pub fn run(
         Blank::Standard => sc.rotation.mesh_cycles_standard,
         Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
     };
-    let msh = |m: Which, b: Blank| dir.join(format!("{}_{}_{}.msh", m.name(), blank_name(b), opt.level));
+    let msh =
+        |m: Which, b: Blank| dir.join(format!("{}_{}_{}.msh", m.name(), blank_name(b), opt.level));
     let mut pinion_teeth = std::collections::BTreeSet::new();
     for &wb in &sc.blanks.wheel {
         pinion_teeth.extend(teeth_in_contact(&g, side, cycles(wb), step).0);
@@ -141,7 +142,10 @@ pub fn run(
             if let Ok(text) = std::fs::read_to_string(&summary_path) {
                 if let Ok(s) = serde_json::from_str::<BlankSummary>(&text) {
                     if s.input_hash == hash {
-                        eprintln!("reference {name}: inputs unchanged, reusing {}", summary_path.display());
+                        eprintln!(
+                            "reference {name}: inputs unchanged, reusing {}",
+                            summary_path.display()
+                        );
                         all.push(s);
                         continue;
                     }
@@ -191,14 +195,19 @@ pub fn run(
             let mut res = Vec::with_capacity(positions.len());
             for (i, &phi) in positions.iter().enumerate() {
                 let r = pair.position(phi, &sc.pinion_torque_nm).with_context(|| {
-                    format!("scene {}: reference LTCA {name} at pinion angle {:.3} deg", sc.name, phi.to_degrees())
+                    format!(
+                        "scene {}: reference LTCA {name} at pinion angle {:.3} deg",
+                        sc.name,
+                        phi.to_degrees()
+                    )
                 })?;
                 if bar.is_hidden() {
                     eprintln!(
-                        "reference {name}: position {}/{}: {} constraints, {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
+                        "reference {name}: position {}/{}: {} constraints (band {:.0} um), {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
                         i + 1,
                         positions.len(),
                         r.constraints,
+                        r.max_gap_m * 1e6,
                         r.new_columns,
                         r.loads.last().map_or(0.0, |l| l.te * 1e6),
                         r.loads.last().map_or(0.0, |l| l.torque_nm),
@@ -232,8 +241,14 @@ pub fn run(
                 positions: res.len(),
                 step_deg: sc.rotation.step_deg * opt.stride.max(1) as f64,
                 mesh_cycles: cycles(wb),
-                dofs: [pair.pinion.compliance.dofs_free, pair.wheel.compliance.dofs_free],
-                factor_s: [pair.pinion.compliance.factor_s, pair.wheel.compliance.factor_s],
+                dofs: [
+                    pair.pinion.compliance.dofs_free,
+                    pair.wheel.compliance.dofs_free,
+                ],
+                factor_s: [
+                    pair.pinion.compliance.factor_s,
+                    pair.wheel.compliance.factor_s,
+                ],
                 right_hand_sides: [
                     pair.pinion.compliance.solves - rhs0,
                     pair.wheel.compliance.solves,
@@ -258,7 +273,10 @@ pub fn run(
             all.push(summary);
         }
     }
-    write_json(&out.join(&sc.name).join("reference").join("summary.json"), &all)?;
+    write_json(
+        &out.join(&sc.name).join("reference").join("summary.json"),
+        &all,
+    )?;
     Ok(all)
 }
 
@@ -270,9 +288,9 @@ fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
         .map(|(k, &t)| {
             let te: Vec<f64> = res.iter().map(|r| r.loads[k].te).collect();
             let mean = te.iter().sum::<f64>() / n;
-            let (lo, hi) = te
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &v| (a.0.min(v), a.1.max(v)));
+            let (lo, hi) = te.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &v| {
+                (a.0.min(v), a.1.max(v))
+            });
             LoadSummary {
                 torque_nm: t,
                 te_mean_urad: mean * 1e6,
@@ -302,7 +320,7 @@ fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
 }
 
 fn write_te_csv(
-    path: &PathBuf,
+    path: &Path,
     res: &[PositionResult],
     start: f64,
     direction: f64,

@@ -64,7 +64,11 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
         reach: 1e-3,
     };
     let cs: Vec<Constraint> = two_pass(&a, &b, &set).into_iter().map(|c| c.0).collect();
-    assert_eq!(cs.len(), 2 * 49, "every contact node of both faces projects");
+    assert_eq!(
+        cs.len(),
+        2 * 49,
+        "every contact node of both faces projects"
+    );
     let all_up: Vec<usize> = (0..upper.mesh.nodes.len()).collect();
     let all_lo: Vec<usize> = (0..lower.mesh.nodes.len()).collect();
     let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), &all_up, 8).unwrap();
@@ -76,12 +80,17 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
     let q = 4e4;
     let s = solve(&cs, &w, q, None).unwrap();
     let n_active = s.active.iter().filter(|&&x| x).count();
-    assert!(n_active > 4 && n_active < cs.len() - 10, "partial contact: {n_active}");
+    assert!(
+        n_active > 4 && n_active < cs.len() - 10,
+        "partial contact: {n_active}"
+    );
     assert!((carried_load(&cs, &s.force) - q).abs() < 1e-9 * q);
 
     // The assembled system: unknowns [u_upper free, u_lower free, ψ].
     let fixed = |c: &[usize]| -> Vec<(usize, f64)> {
-        c.iter().flat_map(|&n| (0..3).map(move |d| (3 * n + d, 0.0))).collect()
+        c.iter()
+            .flat_map(|&n| (0..3).map(move |d| (3 * n + d, 0.0)))
+            .collect()
     };
     let da = Dofs::new(&upper.mesh, &fixed(&clamp_up)).unwrap();
     let db = Dofs::new(&lower.mesh, &fixed(&clamp_lo)).unwrap();
@@ -144,10 +153,15 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
     }
     assert_eq!(active, s.active, "same active set");
     let psi_err = (x[n - 1] - s.psi).abs() / s.psi.abs();
-    assert!(psi_err < 1e-6, "rigid coordinate: {} vs {} ({psi_err:e})", x[n - 1], s.psi);
+    assert!(
+        psi_err < 1e-6,
+        "rigid coordinate: {} vs {} ({psi_err:e})",
+        x[n - 1],
+        s.psi
+    );
     let fmax = s.force.iter().cloned().fold(0.0, f64::max);
-    for c in 0..cs.len() {
-        let f_asm = cs[c].stiffness * (-gap(&x, c)).max(0.0);
+    for (c, con) in cs.iter().enumerate() {
+        let f_asm = con.stiffness * (-gap(&x, c)).max(0.0);
         assert!(
             (f_asm - s.force[c]).abs() < 1e-6 * fmax,
             "constraint {c}: assembled {f_asm} vs condensed {}",
@@ -171,9 +185,9 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
                     }
                 }
             }
-            for d in 0..3 {
+            for (d, ud) in u.iter().enumerate() {
                 if let Some(f) = dofs.free_index(3 * i + d) {
-                    assert!((u[d] - x[off + f]).abs() < 1e-6 * umax, "node {i} dof {d}");
+                    assert!((ud - x[off + f]).abs() < 1e-6 * umax, "node {i} dof {d}");
                 }
             }
         }
@@ -292,7 +306,10 @@ fn hertz_line_contact_cylinder_on_block() {
             .unwrap()
     };
     let probes_c = [find(&cyl, [0.5, 0.0, 0.5]), find(&cyl, [0.5, vk, 0.5])];
-    let probes_b = [find(&blk, [0.5, 1.0, 0.5]), find(&blk, [0.5, 1.0 - vk, 0.5])];
+    let probes_b = [
+        find(&blk, [0.5, 1.0, 0.5]),
+        find(&blk, [0.5, 1.0 - vk, 0.5]),
+    ];
     let mut uc = contact_nodes(&cs, 0);
     uc.extend(probes_c);
     let mut ub = contact_nodes(&cs, 1);
@@ -319,7 +336,11 @@ fn hertz_line_contact_cylinder_on_block() {
     // Half-width from the second moment of the load: ⟨x²⟩ = b²/4 for Hertz.
     let (mut f0, mut f2) = (0.0, 0.0);
     for (i, (_, o)) in pairs.iter().enumerate() {
-        let x = if o.slave_body == 0 { a.nodes[o.slave_node][0] } else { bb.nodes[o.slave_node][0] };
+        let x = if o.slave_body == 0 {
+            a.nodes[o.slave_node][0]
+        } else {
+            bb.nodes[o.slave_node][0]
+        };
         f0 += s.force[i];
         f2 += s.force[i] * x * x;
     }
