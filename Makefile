@@ -6,7 +6,9 @@ OUT     ?= out
 CARGO   ?= cargo
 RELEASE := --release
 BIN     := target/release
-# The reference LTCA solves every REF_STRIDE-th position of the scene's sweep.
+# REFERENCE=1 adds the reference FE LTCA (every REF_STRIDE-th position of the
+# scene's sweep) to `make validate`; its run time is not yet bounded (issue 6).
+REFERENCE  ?= 0
 REF_STRIDE ?= 6
 
 .PHONY: setup build test bench preprocess solve validate clean
@@ -39,7 +41,8 @@ solve: preprocess
 	$(BIN)/solver dynamic $(SCENE) --meshes meshes --out $(OUT)
 
 validate: solve
-	$(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) --stride $(REF_STRIDE)
+	@if [ "$(REFERENCE)" = 1 ]; then \
+	  $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) --stride $(REF_STRIDE); fi
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
 
 clean:
