@@ -84,7 +84,7 @@ fn markdown(
         None => {
             let _ = writeln!(
                 s,
-                "\n## Loaded TCA\n\nNo comparison: run `solver dynamic` and `validate reference` first (`make validate` does)."
+                "\n## Loaded TCA\n\nNo comparison: run `solver dynamic` and `validate reference` first (`make validate REFERENCE=1` does)."
             );
         }
     }
