@@ -86,10 +86,7 @@ pub fn refined_teeth(
 ) -> Vec<usize> {
     // A standard pinion's loads repeat from tooth to tooth: its range is the
     // loaded sweep's. A lightweight wheel needs every tooth a run-up meets.
-    let cycles_of = |b: Blank| match b {
-        Blank::Standard => sc.rotation.mesh_cycles_standard,
-        Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-    };
+    let cycles_of = |b: Blank| sc.rotation.mesh_cycles(b);
     let cycles = match member {
         Member::Wheel => sc.contact_mesh_cycles(blank, g.data.mesh_cycle()),
         Member::Pinion => sc

@@ -110,10 +110,7 @@ impl Scene {
     /// where it is longer (1 cycle margin). A standard blank's stiffness
     /// repeats from tooth to tooth, so its run-up reuses the sweep's teeth.
     pub fn contact_mesh_cycles(&self, wheel: Blank, mesh_cycle_rad: f64) -> f64 {
-        let sweep = match wheel {
-            Blank::Standard => self.rotation.mesh_cycles_standard,
-            Blank::Lightweight => self.rotation.mesh_cycles_lightweight,
-        };
+        let sweep = self.rotation.mesh_cycles(wheel);
         if wheel == Blank::Lightweight
             && self.analyses.multibody
             && self.multibody.runup_wheel_blanks.contains(&wheel)
@@ -192,6 +189,16 @@ pub struct Rotation {
     pub mesh_cycles_lightweight: f64,
     /// Pinion rotation step, degrees.
     pub step_deg: f64,
+}
+
+impl Rotation {
+    /// Mesh cycles of the loaded sweep for a wheel blank.
+    pub fn mesh_cycles(&self, wheel: Blank) -> f64 {
+        match wheel {
+            Blank::Standard => self.mesh_cycles_standard,
+            Blank::Lightweight => self.mesh_cycles_lightweight,
+        }
+    }
 }
 
 /// Elements along the active profile × along the face width of a loaded flank.

@@ -13,7 +13,7 @@
 
 use crate::compliance::PairCompliance;
 use crate::ltca::mean_ptp;
-use crate::ltca_stage::{member_compliance, mesh_cycles, scene_sweep};
+use crate::ltca_stage::{member_compliance, scene_sweep};
 use crate::mesh_table::{MeshTable, TableSpec};
 use crate::multibody::{
     integrate, interpolate, wheel_driven, Drive, Integrator, Model, Ramp, Scheme, State,
@@ -201,9 +201,9 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
             // The 10 rpm runs go one sweep step past the sweep's end.
             let range = if runs_up {
-                mesh_cycles(sc, wb).max(mb.runup_rotation() / tau) * tau
+                sc.rotation.mesh_cycles(wb).max(mb.runup_rotation() / tau) * tau
             } else {
-                mesh_cycles(sc, wb) * tau
+                sc.rotation.mesh_cycles(wb) * tau
             } + 3.0 * sweep.step;
             let step = tau / per_cycle as f64;
             let positions = if periodic {

@@ -76,19 +76,11 @@ pub fn member_compliance(
     ))
 }
 
-/// Mesh cycles the scene sweeps for a wheel blank.
-pub fn mesh_cycles(sc: &preprocess::scene::Scene, wheel: Blank) -> f64 {
-    match wheel {
-        Blank::Standard => sc.rotation.mesh_cycles_standard,
-        Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-    }
-}
-
 /// The scene's sweep for a wheel blank: from the entry of tooth 0, the
 /// blank's mesh cycles at the scene's step.
 pub fn scene_sweep(scene: &LoadedScene, g: &PairGeometry, wheel: Blank) -> Sweep {
     let sc = &scene.scene;
-    let cycles = mesh_cycles(sc, wheel);
+    let cycles = sc.rotation.mesh_cycles(wheel);
     let step = sc.rotation.step_deg.to_radians();
     Sweep {
         start: g.side(sc.loaded_flank).roll_range[0],
@@ -136,7 +128,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 wheel_blank: wb,
                 positions: res.len(),
                 step_deg: sc.rotation.step_deg,
-                mesh_cycles: mesh_cycles(sc, wb),
+                mesh_cycles: sc.rotation.mesh_cycles(wb),
                 slices_per_pair: sweep.slices,
                 utca_te_mean_urad: um * 1e6,
                 utca_te_ptp_urad: up * 1e6,

@@ -41,7 +41,7 @@ pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
         .wheel
         .iter()
         .map(|&blank| {
-            let cycles = crate::ltca_stage::mesh_cycles(&scene.scene, blank);
+            let cycles = scene.scene.rotation.mesh_cycles(blank);
             let n = (cycles * tau / step).round() as usize + 1;
             let positions: Vec<Position> = (0..n)
                 .map(|k| {

@@ -127,11 +127,11 @@ impl Compliance for BodyCompliance {
         let col = self
             .columns
             .get(&j)
-            .ok_or(ContactError::MissingColumn { body: 0, node: j })?;
+            .ok_or(ContactError::MissingColumn { node: j })?;
         let s = *self
             .slot
             .get(&i)
-            .ok_or(ContactError::MissingColumn { body: 0, node: i })?;
+            .ok_or(ContactError::MissingColumn { node: i })?;
         let u = self.universe;
         let mut m = [[0.0; 3]; 3];
         for (a, row) in m.iter_mut().enumerate() {
@@ -149,7 +149,7 @@ impl Compliance for BodyCompliance {
                 self.slot
                     .get(n)
                     .copied()
-                    .ok_or(ContactError::MissingColumn { body: 0, node: *n })
+                    .ok_or(ContactError::MissingColumn { node: *n })
             })
             .collect()
     }
@@ -163,7 +163,7 @@ impl Compliance for BodyCompliance {
         let col = self
             .columns
             .get(&j)
-            .ok_or(ContactError::MissingColumn { body: 0, node: j })?;
+            .ok_or(ContactError::MissingColumn { node: j })?;
         let u3 = 3 * self.universe;
         Ok(slots
             .iter()

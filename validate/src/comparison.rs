@@ -203,8 +203,8 @@ fn markdown(rows: &[Row], rf: &[crate::reference_stage::BlankSummary]) -> String
     for r in rf {
         let _ = writeln!(
             s,
-            "Reference {} / {}: {} mesh level, {} positions every {:.2}° over {} mesh cycles, {} + {} dofs, penalty check at twice the penalty.\n",
-            r.pinion_blank, r.wheel_blank, r.level, r.positions, r.step_deg, r.mesh_cycles, r.dofs[0], r.dofs[1]
+            "Reference {} / {}: {} mesh level, {} positions every {:.2}° over {} mesh cycles, {} + {} dofs, penalty factor {} (check: {}).\n",
+            r.pinion_blank, r.wheel_blank, r.level, r.positions, r.step_deg, r.mesh_cycles, r.dofs[0], r.dofs[1], r.penalty_factor, r.penalty_factor_check
         );
     }
     let _ = writeln!(s, "| wheel blank | load, N·m | mean TE reduced, µrad | mean TE reference, µrad | diff % | ptp TE reduced, µrad | ptp TE reference, µrad | diff % | penalty check % | published mean MB / NLFEA | published ptp MB / NLFEA |");

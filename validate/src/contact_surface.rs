@@ -66,18 +66,27 @@ pub fn orient_outward(mesh: &TetMesh, faces: &mut [[usize; 6]]) -> usize {
 /// third of its area to each of its corners (so vertex nodes, whose
 /// consistent load under uniform pressure is zero, still carry area), m².
 pub fn lumped_areas(nodes: &[V3], faces: &[[usize; 6]]) -> HashMap<usize, f64> {
-    const SUB: [[usize; 3]; 4] = [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]];
     let mut area: HashMap<usize, f64> = HashMap::new();
     for f in faces {
-        for s in SUB {
-            let [a, b, c] = s.map(|i| nodes[f[i]]);
-            let ar = 0.5 * norm(cross(sub(b, a), sub(c, a)));
-            for i in s {
-                *area.entry(f[i]).or_default() += ar / 3.0;
-            }
+        for (&i, a) in f.iter().zip(face_shares(nodes, f)) {
+            *area.entry(i).or_default() += a;
         }
     }
     area
+}
+
+/// Each node's share of one face's lumped area (see [`lumped_areas`]), m².
+fn face_shares(nodes: &[V3], f: &[usize; 6]) -> [f64; 6] {
+    const SUB: [[usize; 3]; 4] = [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]];
+    let mut share = [0.0; 6];
+    for s in SUB {
+        let [a, b, c] = s.map(|i| nodes[f[i]]);
+        let ar = 0.5 * norm(cross(sub(b, a), sub(c, a)));
+        for i in s {
+            share[i] += ar / 3.0;
+        }
+    }
+    share
 }
 
 /// The closest point of a master face to a slave node.
@@ -283,10 +292,11 @@ pub fn smoothed_pressure(
     let area = lumped_areas(nodes, faces);
     let mut sum: HashMap<usize, (f64, f64)> = HashMap::new();
     for fc in faces {
-        let own = lumped_areas(nodes, std::slice::from_ref(fc));
-        let a_face: f64 = own.values().sum();
-        let force: f64 = own
+        let own = face_shares(nodes, fc);
+        let a_face: f64 = own.iter().sum();
+        let force: f64 = fc
             .iter()
+            .zip(own)
             .map(|(i, a)| f.get(i).copied().unwrap_or(0.0) * a / area[i])
             .sum();
         for &i in fc {

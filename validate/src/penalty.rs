@@ -40,8 +40,8 @@ pub enum ContactError {
     NotConverged(usize),
     #[error("condensed contact matrix is not positive definite ({0} active constraints)")]
     NotPositiveDefinite(usize),
-    #[error("compliance of node {node} of body {body} was not computed")]
-    MissingColumn { body: usize, node: usize },
+    #[error("compliance at node {node} is not available (column not computed, or node outside the kept responses)")]
+    MissingColumn { node: usize },
     #[error("FE: {0}")]
     Fem(#[from] fem::FemError),
 }

@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// Version of the summary layout; part of the input hash.
-pub const REFERENCE_SCHEMA: u32 = 1;
+pub const REFERENCE_SCHEMA: u32 = 2;
 
 /// Options of the stage.
 #[derive(Debug, Clone, Serialize)]
@@ -57,6 +57,8 @@ pub struct BlankSummary {
     pub pinion_blank: String,
     pub wheel_blank: String,
     pub level: String,
+    pub penalty_factor: f64,
+    pub penalty_factor_check: f64,
     pub positions: usize,
     pub step_deg: f64,
     pub mesh_cycles: f64,
@@ -91,10 +93,7 @@ pub fn run(
     let direction = pinion_direction(&g.data, side);
     let step = sc.rotation.step_deg.to_radians();
     let dir = meshes.join(&sc.name);
-    let cycles = |wb: Blank| match wb {
-        Blank::Standard => sc.rotation.mesh_cycles_standard,
-        Blank::Lightweight => sc.rotation.mesh_cycles_lightweight,
-    };
+    let cycles = |wb: Blank| sc.rotation.mesh_cycles(wb);
     let msh =
         |m: Which, b: Blank| dir.join(format!("{}_{}_{}.msh", m.name(), blank_name(b), opt.level));
     let mut pinion_teeth = std::collections::BTreeSet::new();
@@ -238,6 +237,8 @@ pub fn run(
                 pinion_blank: blank_name(pb),
                 wheel_blank: blank_name(wb),
                 level: opt.level.clone(),
+                penalty_factor: opt.settings.penalty_factor,
+                penalty_factor_check: opt.settings.penalty_factor_check,
                 positions: res.len(),
                 step_deg: sc.rotation.step_deg * opt.stride.max(1) as f64,
                 mesh_cycles: cycles(wb),
