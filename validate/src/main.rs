@@ -54,9 +54,14 @@ enum Cmd {
         /// Second penalty factor, whose TE is compared.
         #[arg(long, default_value_t = 200.0)]
         penalty_check: f64,
-        /// Initial gap below which flank nodes are contact candidates, um.
-        #[arg(long, default_value_t = 20.0)]
-        max_gap_um: f64,
+        /// Constraints within this of the smallest initial gap start in the
+        /// solve, um.
+        #[arg(long, default_value_t = 2.0)]
+        start_band_um: f64,
+        /// Constraints are searched up to this initial gap and join the
+        /// solve when they penetrate, um.
+        #[arg(long, default_value_t = 60.0)]
+        search_gap_um: f64,
         /// Solve every n-th position of the scene's sweep.
         #[arg(long, default_value_t = 1)]
         stride: usize,
@@ -101,7 +106,8 @@ fn main() -> anyhow::Result<()> {
             level,
             penalty,
             penalty_check,
-            max_gap_um,
+            start_band_um,
+            search_gap_um,
             stride,
             block,
         } => {
@@ -111,7 +117,8 @@ fn main() -> anyhow::Result<()> {
             for (field, v) in [
                 ("--penalty", penalty),
                 ("--penalty-check", penalty_check),
-                ("--max-gap-um", max_gap_um),
+                ("--start-band-um", start_band_um),
+                ("--search-gap-um", search_gap_um),
             ] {
                 if !(v.is_finite() && v > 0.0) {
                     anyhow::bail!("{field} {v}: must be a positive number");
@@ -123,7 +130,8 @@ fn main() -> anyhow::Result<()> {
                 settings: validate::reference_ltca::ReferenceSettings {
                     penalty_factor: penalty,
                     penalty_factor_check: penalty_check,
-                    max_gap_m: max_gap_um * 1e-6,
+                    start_band_m: start_band_um * 1e-6,
+                    search_gap_m: search_gap_um * 1e-6,
                 },
                 stride,
                 block,

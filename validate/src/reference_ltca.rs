@@ -15,16 +15,18 @@
 //! slices, no influence grid, no Weber–Banaschek term.
 
 use crate::body_compliance::{clamped, BodyCompliance};
-use crate::contact_pairs::{two_pass, ContactBody, Origin, PenaltySettings};
+use crate::contact_pairs::{two_pass, ContactBody, PenaltySettings};
 use crate::contact_surface::{nodal_normals, orient_outward, smoothed_pressure};
 use crate::penalty::{
-    carried_load, condensed_matrix, nodal_normal_forces, solve, Constraint, ContactError,
+    carried_load, condensed_matrix, nodal_normal_forces, solve, Compliance, Constraint,
+    ContactError,
 };
+use rayon::prelude::*;
 use nalgebra::Vector3;
 use preprocess::body_mesh::BodyMesh;
 use preprocess::generation::{rot_z, MemberFrame};
 use preprocess::pair::FlankPair;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
 type V3 = [f64; 3];
@@ -122,18 +124,22 @@ pub enum ReferenceError {
 }
 
 /// Settings of the reference contact.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct ReferenceSettings {
     /// Penalty ε = factor · E / ℓ.
     pub penalty_factor: f64,
     /// The second penalty factor whose result is compared.
     pub penalty_factor_check: f64,
-    /// Initial gap below which a node is a contact candidate, m.
-    pub max_gap_m: f64,
+    /// Constraints whose initial gap is within this of the smallest one
+    /// start in the solve, m.
+    pub start_band_m: f64,
+    /// Constraints are searched up to this initial gap; those outside the
+    /// solve are checked after it and added when they penetrate, m.
+    pub search_gap_m: f64,
 }
 
 /// The result of one position at one torque.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct LoadResult {
     pub torque_nm: f64,
     /// Loaded TE (wheel lag), rad.
@@ -145,23 +151,24 @@ pub struct LoadResult {
     pub max_pressure_pa: f64,
     /// Σ forces × levers − torque, relative.
     pub torque_balance: f64,
-    /// Smallest loaded gap among candidates that start in the outer half of
-    /// the candidate band (must stay open), m.
+    /// Smallest loaded gap of the searched constraints that start in the
+    /// outer half of the search range (must stay open), m.
     pub band_margin_m: f64,
 }
 
 /// All torques of one position.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PositionResult {
     pub phi: f64,
+    /// Constraints searched (initial gap up to the search range).
+    pub searched: usize,
+    /// Constraints in the solve at the end (started + added).
     pub constraints: usize,
     pub loads: Vec<LoadResult>,
     /// Contact pressure at the last torque: pinion node (member frame) → Pa.
-    #[serde(skip)]
     pub pattern: Vec<(V3, f64)>,
+    /// Nodes whose unit-load columns this position computed.
     pub new_columns: usize,
-    /// Candidate band used, m.
-    pub max_gap_m: f64,
     pub cpu_s: f64,
 }
 
@@ -175,43 +182,130 @@ pub struct ReferencePair<'a> {
     pub settings: ReferenceSettings,
 }
 
+/// The constraints in the solve and their condensed matrix.
+struct WorkingSet {
+    idx: Vec<usize>,
+    /// Row-major idx.len()².
+    w: Vec<f64>,
+}
+
 impl ReferencePair<'_> {
     /// Solves the position `phi` (pinion angle, rad) for each torque (N·m,
-    /// increasing). The candidate band starts at the settings' gap and is
-    /// doubled (up to 8×) while a candidate from its outer half penetrates
-    /// under load, a sign that nodes beyond the band could touch too.
+    /// increasing).
+    ///
+    /// All two-pass constraints up to the search gap are built (geometry
+    /// only). The solve starts with those within the start band of the
+    /// smallest gap; after each solve the loaded gap of every constraint
+    /// left out is evaluated from the contact forces (the columns of the
+    /// loaded nodes hold the responses at every flank node), and the ones
+    /// that penetrate join the solve, until none does at either penalty
+    /// factor. Only the nodes that join get unit-load columns.
     pub fn position(
         &mut self,
         phi: f64,
         torques: &[f64],
     ) -> Result<PositionResult, ReferenceError> {
         let t0 = std::time::Instant::now();
-        let mut gap = self.settings.max_gap_m;
-        let mut new_columns = 0;
-        loop {
-            let mut r = self.position_at_gap(phi, torques, gap)?;
-            new_columns += r.new_columns;
-            let margin = r
-                .loads
-                .iter()
-                .map(|l| l.band_margin_m)
+        let cs = self.constraints(phi)?;
+        let before = self.pinion.compliance.computed() + self.wheel.compliance.computed();
+        let g_min = cs.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
+        let start: Vec<usize> = (0..cs.len())
+            .filter(|&c| cs[c].gap0 <= g_min + self.settings.start_band_m)
+            .collect();
+        let mut ws = WorkingSet {
+            idx: Vec::new(),
+            w: Vec::new(),
+        };
+        self.grow(&cs, &mut ws, &start)?;
+        let scale = self.settings.penalty_factor_check / self.settings.penalty_factor;
+        let ratio = self.pinion.frame.teeth as f64 / self.wheel.frame.teeth as f64;
+        let mut loads = Vec::new();
+        let mut pattern = Vec::new();
+        let mut warm: [Option<Vec<usize>>; 2] = [None, None];
+        for (k, &t) in torques.iter().enumerate() {
+            let (s, sc) = loop {
+                let sub: Vec<Constraint> = ws.idx.iter().map(|&c| cs[c].clone()).collect();
+                let check: Vec<Constraint> = sub
+                    .iter()
+                    .map(|c| Constraint {
+                        stiffness: c.stiffness * scale,
+                        ..c.clone()
+                    })
+                    .collect();
+                let warm_of = |a: &Option<Vec<usize>>| {
+                    a.as_ref().map(|on| {
+                        let mut v = vec![false; ws.idx.len()];
+                        for &c in on {
+                            if let Ok(p) = ws.idx.binary_search(&c) {
+                                v[p] = true;
+                            }
+                        }
+                        v
+                    })
+                };
+                let s = solve(&sub, &ws.w, t, warm_of(&warm[0]).as_deref())?;
+                let sc = solve(&check, &ws.w, t, warm_of(&warm[1]).as_deref())?;
+                let mut add = Vec::new();
+                for sol in [&s, &sc] {
+                    let g = self.outside_gaps(&cs, &ws.idx, &sol.force, sol.psi)?;
+                    add.extend(g.into_iter().filter(|&(_, v)| v < 0.0).map(|(c, _)| c));
+                }
+                add.sort_unstable();
+                add.dedup();
+                let on = |sol: &crate::penalty::Solution| -> Vec<usize> {
+                    (0..ws.idx.len())
+                        .filter(|&i| sol.active[i])
+                        .map(|i| ws.idx[i])
+                        .collect()
+                };
+                warm = [Some(on(&s)), Some(on(&sc))];
+                if add.is_empty() {
+                    break (s, sc);
+                }
+                self.grow(&cs, &mut ws, &add)?;
+            };
+            let sub: Vec<Constraint> = ws.idx.iter().map(|&c| cs[c].clone()).collect();
+            let band_margin_m = self
+                .outside_gaps(&cs, &ws.idx, &s.force, s.psi)?
+                .into_iter()
+                .filter(|&(c, _)| cs[c].gap0 > 0.5 * self.settings.search_gap_m)
+                .map(|(_, g)| g)
                 .fold(f64::INFINITY, f64::min);
-            if margin >= -1e-9 || gap >= 8.0 * self.settings.max_gap_m {
-                r.new_columns = new_columns;
-                r.max_gap_m = gap;
-                r.cpu_s = t0.elapsed().as_secs_f64();
-                return Ok(r);
+            let f = nodal_normal_forces(&sub, &s.force, 0, &self.pinion.inward);
+            let p = smoothed_pressure(&self.pinion.mesh.mesh.nodes, &self.pinion.faces, &f);
+            let max_pressure_pa = p.values().copied().fold(0.0, f64::max);
+            if k + 1 == torques.len() {
+                pattern = p
+                    .iter()
+                    .filter(|(_, &v)| v > 0.0)
+                    .map(|(&i, &v)| (self.pinion.mesh.mesh.nodes[i], v))
+                    .collect();
             }
-            gap *= 2.0;
+            loads.push(LoadResult {
+                torque_nm: t,
+                te: ratio * s.psi,
+                te_check: ratio * sc.psi,
+                active: s.active.iter().filter(|&&x| x).count(),
+                max_pressure_pa,
+                torque_balance: (carried_load(&sub, &s.force) - t) / t,
+                band_margin_m,
+            });
         }
+        Ok(PositionResult {
+            phi,
+            searched: cs.len(),
+            constraints: ws.idx.len(),
+            loads,
+            pattern,
+            new_columns: self.pinion.compliance.computed() + self.wheel.compliance.computed()
+                - before,
+            cpu_s: t0.elapsed().as_secs_f64(),
+        })
     }
 
-    fn position_at_gap(
-        &mut self,
-        phi: f64,
-        torques: &[f64],
-        max_gap: f64,
-    ) -> Result<PositionResult, ReferenceError> {
+    /// Every two-pass constraint up to the search gap that closes as the
+    /// pinion turns in its driving sense, at pinion angle `phi`.
+    fn constraints(&self, phi: f64) -> Result<Vec<Constraint>, ReferenceError> {
         let phi2 = self.flanks.conjugate_wheel_angle(phi);
         let (pn, pr) = self.pinion.placed(phi);
         let (wn, wr) = self.wheel.placed(phi2);
@@ -243,90 +337,140 @@ impl ReferencePair<'_> {
         };
         let set = PenaltySettings {
             factor: self.settings.penalty_factor,
-            max_gap,
-            reach: 4.0 * max_gap,
+            max_gap: self.settings.search_gap_m,
+            reach: 2.0 * self.settings.search_gap_m,
         };
-        let pairs: Vec<(Constraint, Origin)> = two_pass(&body_p, &body_w, &set)
+        let cs: Vec<Constraint> = two_pass(&body_p, &body_w, &set)
             .into_iter()
-            .filter(|(c, _)| c.rigid < 0.0)
+            .map(|(c, _)| c)
+            .filter(|c| c.rigid < 0.0)
             .collect();
-        if pairs.is_empty() {
+        if cs.is_empty() {
             return Err(ReferenceError::NoContact {
                 phi_deg: phi.to_degrees(),
-                max_gap_um: max_gap * 1e6,
+                max_gap_um: self.settings.search_gap_m * 1e6,
             });
         }
-        let cs: Vec<Constraint> = pairs.iter().map(|p| p.0.clone()).collect();
-        let before = self.pinion.compliance.computed() + self.wheel.compliance.computed();
+        Ok(cs)
+    }
+
+    /// Adds the constraints `add` (indices into `cs`, not yet in the set)
+    /// to the working set: their nodes' columns, and the new rows and
+    /// columns of the condensed matrix (W is symmetric).
+    fn grow(
+        &mut self,
+        cs: &[Constraint],
+        ws: &mut WorkingSet,
+        add: &[usize],
+    ) -> Result<(), ReferenceError> {
         for (body, m) in [(0, &mut *self.pinion), (1, &mut *self.wheel)] {
-            let nodes: Vec<usize> = cs
+            let nodes: Vec<usize> = add
                 .iter()
-                .flat_map(|c| c.terms.iter().filter(|t| t.body == body).map(|t| t.node))
+                .flat_map(|&c| cs[c].terms.iter().filter(|t| t.body == body).map(|t| t.node))
                 .collect();
             m.compliance.ensure(&nodes)?;
         }
-        let new_columns =
-            self.pinion.compliance.computed() + self.wheel.compliance.computed() - before;
-        let idx: Vec<usize> = (0..cs.len()).collect();
-        let w = condensed_matrix(
-            &cs,
-            &idx,
-            &idx,
-            &[&self.pinion.compliance, &self.wheel.compliance],
-        )?;
-        let ratio = self.pinion.frame.teeth as f64 / self.wheel.frame.teeth as f64;
-        let check: Vec<Constraint> = cs
+        let mut idx = ws.idx.clone();
+        idx.extend_from_slice(add);
+        idx.sort_unstable();
+        idx.dedup();
+        let n = idx.len();
+        // W(all, new): the new columns; the new rows are their transpose.
+        let bodies: [&(dyn Compliance + Sync); 2] =
+            [&self.pinion.compliance, &self.wheel.compliance];
+        let cols = condensed_matrix(cs, &idx, add, &bodies)?;
+        let mut w = vec![0.0; n * n];
+        let old = &ws.idx;
+        let pos_old: Vec<usize> = old
             .iter()
-            .map(|c| Constraint {
-                stiffness: c.stiffness * self.settings.penalty_factor_check
-                    / self.settings.penalty_factor,
-                ..c.clone()
-            })
+            .map(|c| idx.binary_search(c).expect("old constraint kept"))
             .collect();
-        let mut loads = Vec::new();
-        let mut warm: Option<Vec<bool>> = None;
-        let mut warm_check: Option<Vec<bool>> = None;
-        let mut pattern = Vec::new();
-        for (k, &t) in torques.iter().enumerate() {
-            let s = solve(&cs, &w, t, warm.as_deref())?;
-            let sc = solve(&check, &w, t, warm_check.as_deref())?;
-            let band_margin_m = cs
-                .iter()
-                .zip(&s.gap)
-                .filter(|(c, _)| c.gap0 > 0.5 * max_gap)
-                .map(|(_, g)| *g)
-                .fold(f64::INFINITY, f64::min);
-            let f = nodal_normal_forces(&cs, &s.force, 0, &self.pinion.inward);
-            let p = smoothed_pressure(&self.pinion.mesh.mesh.nodes, &self.pinion.faces, &f);
-            let max_pressure_pa = p.values().copied().fold(0.0, f64::max);
-            if k + 1 == torques.len() {
-                pattern = p
-                    .iter()
-                    .filter(|(_, &v)| v > 0.0)
-                    .map(|(&i, &v)| (self.pinion.mesh.mesh.nodes[i], v))
-                    .collect();
+        for (a, &pa) in pos_old.iter().enumerate() {
+            for (b, &pb) in pos_old.iter().enumerate() {
+                w[pa * n + pb] = ws.w[a * old.len() + b];
             }
-            loads.push(LoadResult {
-                torque_nm: t,
-                te: ratio * s.psi,
-                te_check: ratio * sc.psi,
-                active: s.active.iter().filter(|&&x| x).count(),
-                max_pressure_pa,
-                torque_balance: (carried_load(&cs, &s.force) - t) / t,
-                band_margin_m,
-            });
-            warm = Some(s.active);
-            warm_check = Some(sc.active);
         }
-        Ok(PositionResult {
-            phi,
-            constraints: cs.len(),
-            loads,
-            pattern,
-            new_columns,
-            max_gap_m: max_gap,
-            // Set by `position`, which times the band widening too.
-            cpu_s: 0.0,
-        })
+        let pos_new: Vec<usize> = add
+            .iter()
+            .map(|c| idx.binary_search(c).expect("new constraint added"))
+            .collect();
+        for r in 0..n {
+            for (k, &pk) in pos_new.iter().enumerate() {
+                let v = cols[r * add.len() + k];
+                w[r * n + pk] = v;
+                w[pk * n + r] = v;
+            }
+        }
+        ws.idx = idx;
+        ws.w = w;
+        Ok(())
+    }
+
+    /// Loaded gap of every constraint of `cs` outside the working set
+    /// `idx`, under the forces `force` of the working set's constraints and
+    /// the rigid rotation `psi`: (constraint, gap).
+    fn outside_gaps(
+        &self,
+        cs: &[Constraint],
+        idx: &[usize],
+        force: &[f64],
+        psi: f64,
+    ) -> Result<Vec<(usize, f64)>, ReferenceError> {
+        let outside: Vec<usize> = (0..cs.len())
+            .filter(|c| idx.binary_search(c).is_err())
+            .collect();
+        let mut gap: Vec<f64> = outside
+            .iter()
+            .map(|&c| cs[c].gap0 + cs[c].rigid * psi)
+            .collect();
+        let bodies: [&(dyn Compliance + Sync); 2] =
+            [&self.pinion.compliance, &self.wheel.compliance];
+        for (b, body) in bodies.iter().enumerate() {
+            // Nodal loads of the working set on this body.
+            let mut load: HashMap<usize, V3> = HashMap::new();
+            for (k, &c) in idx.iter().enumerate() {
+                if force[k] == 0.0 {
+                    continue;
+                }
+                for t in cs[c].terms.iter().filter(|t| t.body == b) {
+                    let e = load.entry(t.node).or_insert([0.0; 3]);
+                    for i in 0..3 {
+                        e[i] += force[k] * t.dir[i];
+                    }
+                }
+            }
+            let mut at: Vec<usize> = outside
+                .iter()
+                .flat_map(|&c| cs[c].terms.iter().filter(|t| t.body == b).map(|t| t.node))
+                .collect();
+            at.sort_unstable();
+            at.dedup();
+            if at.is_empty() || load.is_empty() {
+                continue;
+            }
+            let slots = body.slots(&at)?;
+            let loads: Vec<(usize, V3)> = load.into_iter().collect();
+            let u = loads
+                .par_iter()
+                .map(|&(j, f)| body.response(j, f, &slots))
+                .try_reduce(
+                    || vec![[0.0; 3]; at.len()],
+                    |mut a, b| {
+                        for (x, y) in a.iter_mut().zip(&b) {
+                            for i in 0..3 {
+                                x[i] += y[i];
+                            }
+                        }
+                        Ok(a)
+                    },
+                )?;
+            for (g, &c) in gap.iter_mut().zip(&outside) {
+                for t in cs[c].terms.iter().filter(|t| t.body == b) {
+                    let p = at.binary_search(&t.node).expect("node collected above");
+                    *g += (0..3).map(|i| t.dir[i] * u[p][i]).sum::<f64>();
+                }
+            }
+        }
+        Ok(outside.into_iter().zip(gap).collect())
     }
 }

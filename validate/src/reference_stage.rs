@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// Version of the summary layout; part of the input hash.
-pub const REFERENCE_SCHEMA: u32 = 2;
+pub const REFERENCE_SCHEMA: u32 = 3;
 
 /// Options of the stage.
 #[derive(Debug, Clone, Serialize)]
@@ -43,8 +43,8 @@ pub struct LoadSummary {
     pub max_pressure_mpa: f64,
     /// Largest |Σ forces × levers − torque| / torque over the positions.
     pub torque_balance_max: f64,
-    /// Smallest loaded gap of the candidates in the outer half of the
-    /// candidate band (> 0: the band was wide enough), µm.
+    /// Smallest loaded gap of the searched constraints in the outer half of
+    /// the search range (> 0: the search reached far enough), µm.
     pub band_margin_min_um: f64,
     /// Contact solves (both penalties) per position, s.
     pub cpu_s_per_position: f64,
@@ -67,10 +67,17 @@ pub struct BlankSummary {
     /// Unit-load right-hand sides solved, and their time, per body.
     pub right_hand_sides: [usize; 2],
     pub solve_s: [f64; 2],
+    /// Positions taken from the per-position cache of an earlier run.
+    pub positions_reused: usize,
+    /// Constraints searched per position (mean), and solved (mean).
+    pub searched_mean: f64,
     pub constraints_mean: f64,
-    /// Wall time of the whole combination (factoring included), s.
+    /// Wall time of this run of the combination (factoring included), s.
     pub wall_s: f64,
-    /// Wall time per position (columns, condensation, all torques), s.
+    /// Wall time of this run's sweep (positions solved or reused), s.
+    pub sweep_s: f64,
+    /// Wall time per position when it was solved (columns, condensation,
+    /// all torques at both penalties; factoring excluded), s.
     pub cpu_s_per_position: f64,
     pub loads: Vec<LoadSummary>,
 }
@@ -125,18 +132,24 @@ pub fn run(
                     );
                 }
             }
-            let hash = {
-                let key = serde_json::json!({
-                    "schema": REFERENCE_SCHEMA,
-                    "pinion_mesh": sha256_file(&pm)?,
-                    "wheel_mesh": sha256_file(&wm)?,
-                    "options": opt,
-                    "positions": positions,
-                    "torques": sc.pinion_torque_nm,
-                    "flank": side.flank_name(Which::Pinion),
-                });
+            let (pm_hash, wm_hash) = (sha256_file(&pm)?, sha256_file(&wm)?);
+            let digest = |key: serde_json::Value| {
                 format!("{:x}", Sha256::digest(key.to_string().as_bytes()))
             };
+            // What determines one position's result (not the stride).
+            let position_key = digest(serde_json::json!({
+                "schema": REFERENCE_SCHEMA,
+                "pinion_mesh": pm_hash,
+                "wheel_mesh": wm_hash,
+                "level": opt.level,
+                "settings": opt.settings,
+                "torques": sc.pinion_torque_nm,
+                "flank": side.flank_name(Which::Pinion),
+            }));
+            let hash = digest(serde_json::json!({
+                "position_key": position_key,
+                "positions": positions,
+            }));
             let summary_path = odir.join("summary.json");
             if let Ok(text) = std::fs::read_to_string(&summary_path) {
                 if let Ok(s) = serde_json::from_str::<BlankSummary>(&text) {
@@ -150,38 +163,11 @@ pub fn run(
                     }
                 }
             }
-            if pinion.is_none() {
-                eprintln!("reference: reading and factoring {}", pm.display());
-                let body = preprocess::body_mesh::read(&pm).map_err(anyhow::Error::msg)?;
-                pinion = Some(Member::new(
-                    body,
-                    g.frames[0],
-                    &g.data.member(Which::Pinion).material(),
-                    side.flank_name(Which::Pinion),
-                    &pinion_teeth,
-                    opt.block,
-                )?);
-            }
+            let cache_dir = odir.join("positions").join(&position_key[..16]);
+            std::fs::create_dir_all(&cache_dir)?;
             let wheel_teeth = teeth_in_contact(&g, side, cycles(wb), step).1;
-            eprintln!("reference: reading and factoring {}", wm.display());
-            let body = preprocess::body_mesh::read(&wm).map_err(anyhow::Error::msg)?;
-            let mut wheel = Member::new(
-                body,
-                g.frames[1],
-                &g.data.member(Which::Wheel).material(),
-                side.flank_name(Which::Wheel),
-                &wheel_teeth,
-                opt.block,
-            )?;
-            let pin = pinion.as_mut().expect("pinion factored above");
-            let (rhs0, s0) = (pin.compliance.solves, pin.compliance.solve_s);
-            let mut pair = ReferencePair {
-                pinion: pin,
-                wheel: &mut wheel,
-                flanks: fp,
-                direction,
-                settings: opt.settings,
-            };
+            let mut wheel: Option<Member> = None;
+            let (mut rhs0, mut s0) = (0, 0.0);
             let bar = indicatif::ProgressBar::new(positions.len() as u64);
             bar.set_style(
                 indicatif::ProgressStyle::with_template(
@@ -192,7 +178,55 @@ pub fn run(
             bar.set_message(name.clone());
             let t_sweep = std::time::Instant::now();
             let mut res = Vec::with_capacity(positions.len());
+            let mut reused = 0;
             for (i, &phi) in positions.iter().enumerate() {
+                let cached = cache_dir.join(format!(
+                    "phi_{}udeg.json",
+                    (phi.to_degrees() * 1e6).round() as i64
+                ));
+                if let Some(r) = std::fs::read_to_string(&cached)
+                    .ok()
+                    .and_then(|t| serde_json::from_str::<PositionResult>(&t).ok())
+                    .filter(|r| r.loads.len() == sc.pinion_torque_nm.len())
+                {
+                    res.push(r);
+                    reused += 1;
+                    bar.inc(1);
+                    continue;
+                }
+                if pinion.is_none() {
+                    eprintln!("reference: reading and factoring {}", pm.display());
+                    let body = preprocess::body_mesh::read(&pm).map_err(anyhow::Error::msg)?;
+                    pinion = Some(Member::new(
+                        body,
+                        g.frames[0],
+                        &g.data.member(Which::Pinion).material(),
+                        side.flank_name(Which::Pinion),
+                        &pinion_teeth,
+                        opt.block,
+                    )?);
+                }
+                if wheel.is_none() {
+                    eprintln!("reference: reading and factoring {}", wm.display());
+                    let body = preprocess::body_mesh::read(&wm).map_err(anyhow::Error::msg)?;
+                    wheel = Some(Member::new(
+                        body,
+                        g.frames[1],
+                        &g.data.member(Which::Wheel).material(),
+                        side.flank_name(Which::Wheel),
+                        &wheel_teeth,
+                        opt.block,
+                    )?);
+                    let pin = pinion.as_ref().expect("pinion factored above");
+                    (rhs0, s0) = (pin.compliance.solves, pin.compliance.solve_s);
+                }
+                let mut pair = ReferencePair {
+                    pinion: pinion.as_mut().expect("pinion factored above"),
+                    wheel: wheel.as_mut().expect("wheel factored above"),
+                    flanks: fp,
+                    direction,
+                    settings: opt.settings,
+                };
                 let r = pair.position(phi, &sc.pinion_torque_nm).with_context(|| {
                     format!(
                         "scene {}: reference LTCA {name} at pinion angle {:.3} deg",
@@ -200,13 +234,14 @@ pub fn run(
                         phi.to_degrees()
                     )
                 })?;
+                write_json(&cached, &r)?;
                 if bar.is_hidden() {
                     eprintln!(
-                        "reference {name}: position {}/{}: {} constraints (band {:.0} um), {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
+                        "reference {name}: position {}/{}: {} of {} constraints solved, {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
                         i + 1,
                         positions.len(),
                         r.constraints,
-                        r.max_gap_m * 1e6,
+                        r.searched,
                         r.new_columns,
                         r.loads.last().map_or(0.0, |l| l.te * 1e6),
                         r.loads.last().map_or(0.0, |l| l.torque_nm),
@@ -243,25 +278,30 @@ pub fn run(
                 step_deg: sc.rotation.step_deg * opt.stride.max(1) as f64,
                 mesh_cycles: cycles(wb),
                 dofs: [
-                    pair.pinion.compliance.dofs_free,
-                    pair.wheel.compliance.dofs_free,
+                    pinion.as_ref().map_or(0, |m| m.compliance.dofs_free),
+                    wheel.as_ref().map_or(0, |m| m.compliance.dofs_free),
                 ],
                 factor_s: [
-                    pair.pinion.compliance.factor_s,
-                    pair.wheel.compliance.factor_s,
+                    pinion.as_ref().map_or(0.0, |m| m.compliance.factor_s),
+                    wheel.as_ref().map_or(0.0, |m| m.compliance.factor_s),
                 ],
                 right_hand_sides: [
-                    pair.pinion.compliance.solves - rhs0,
-                    pair.wheel.compliance.solves,
+                    pinion.as_ref().map_or(0, |m| m.compliance.solves - rhs0),
+                    wheel.as_ref().map_or(0, |m| m.compliance.solves),
                 ],
                 solve_s: [
-                    pair.pinion.compliance.solve_s - s0,
-                    pair.wheel.compliance.solve_s,
+                    pinion.as_ref().map_or(0.0, |m| m.compliance.solve_s - s0),
+                    wheel.as_ref().map_or(0.0, |m| m.compliance.solve_s),
                 ],
+                positions_reused: reused,
+                searched_mean: res.iter().map(|r| r.searched as f64).sum::<f64>()
+                    / res.len().max(1) as f64,
                 constraints_mean: res.iter().map(|r| r.constraints as f64).sum::<f64>()
                     / res.len().max(1) as f64,
                 wall_s: t0.elapsed().as_secs_f64(),
-                cpu_s_per_position: sweep_s / res.len().max(1) as f64,
+                sweep_s,
+                cpu_s_per_position: res.iter().map(|r| r.cpu_s).sum::<f64>()
+                    / res.len().max(1) as f64,
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
             };
             write_json(&summary_path, &summary)?;

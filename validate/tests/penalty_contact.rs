@@ -336,11 +336,7 @@ fn hertz_line_contact_cylinder_on_block() {
     // Half-width from the second moment of the load: ⟨x²⟩ = b²/4 for Hertz.
     let (mut f0, mut f2) = (0.0, 0.0);
     for (i, (_, o)) in pairs.iter().enumerate() {
-        let x = if o.slave_body == 0 {
-            a.nodes[o.slave_node][0]
-        } else {
-            bb.nodes[o.slave_node][0]
-        };
+        let x = o.at[0];
         f0 += s.force[i];
         f2 += s.force[i] * x * x;
     }
@@ -381,4 +377,96 @@ fn hertz_line_contact_cylinder_on_block() {
     assert!(rel(p_max, p0) < 0.03, "peak pressure {p_max} vs {p0}");
     assert!(rel(w_blk, wb) < 0.03, "block approach {w_blk} vs {wb}");
     assert!(rel(w_cyl, wb) < 0.03, "cylinder approach {w_cyl} vs {wb}");
+}
+
+/// The unloaded limit: a cylinder (R = 20 mm) lifted 1 µm above a block,
+/// its lowest line placed midway between two node rows. Under a vanishing
+/// load the rigid approach must equal the lift (the first contact of the
+/// meshed surfaces), which the face minimum points catch; nodes alone would
+/// need the extra d²/(2R) (d: distance to the nearest node row).
+#[test]
+fn first_contact_between_nodes_at_vanishing_load() {
+    let mat = Material::STEEL;
+    let (r, thick, lift) = (0.02, 1e-3, 1e-6);
+    let xs = symmetric(&graded(0.6e-3, 4, 0.01, 6));
+    let ds = graded(0.6e-3, 4, 0.01, 6);
+    let (nx, nd) = (xs.len() - 1, ds.len() - 1);
+    // Vertex spacing near the middle is 0.15 mm, nodes every 0.075 mm; the
+    // lowest line at x = 0.0375 mm is 0.0375 mm from the nearest node row.
+    let h_node = 0.5 * (xs[nx / 2 + 1] - xs[nx / 2]);
+    let shift = 0.5 * h_node;
+    let cyl = mapped_block([nx, nd, 1], |p| {
+        let (s, d) = (along(&xs, p[0]), along(&ds, p[1]));
+        let (rr, th) = (r - d, (s - shift) / r);
+        [shift + rr * th.sin(), lift + r - rr * th.cos(), thick * p[2]]
+    });
+    let blk = mapped_block([nx, nd, 1], |p| {
+        [along(&xs, p[0]), -along(&ds, 1.0 - p[1]), thick * p[2]]
+    });
+    let down = |_: [f64; 3]| [0.0, -1.0, 0.0];
+    let none = |_: [f64; 3]| [0.0, 0.0, 0.0];
+    let a = ContactBody {
+        body: 0,
+        nodes: cyl.mesh.nodes.clone(),
+        to_body: IDENTITY,
+        faces: faces_where(&cyl, |p| p[1] < 1e-12),
+        rigid: &down,
+        youngs_modulus_pa: mat.youngs_modulus_pa,
+    };
+    let bb = ContactBody {
+        body: 1,
+        nodes: blk.mesh.nodes.clone(),
+        to_body: IDENTITY,
+        faces: faces_where(&blk, |p| p[1] > 1.0 - 1e-12),
+        rigid: &none,
+        youngs_modulus_pa: mat.youngs_modulus_pa,
+    };
+    let set = PenaltySettings {
+        factor: 100.0,
+        max_gap: 5e-6,
+        reach: 1e-3,
+    };
+    let all: Vec<Constraint> = two_pass(&a, &bb, &set).into_iter().map(|c| c.0).collect();
+    let fixed = |blk: &Block, top: bool| {
+        let mut f: Vec<usize> = (0..blk.params.len()).map(|i| 3 * i + 2).collect();
+        f.extend(clamped(&nodes_where(blk, |p| {
+            if top {
+                p[1] > 1.0 - 1e-12
+            } else {
+                p[1] < 1e-12
+            }
+        })));
+        f.sort_unstable();
+        f.dedup();
+        f
+    };
+    let (uc, ub) = (contact_nodes(&all, 0), contact_nodes(&all, 1));
+    let mut cc = BodyCompliance::new(&cyl.mesh, &mat, &fixed(&cyl, true), &uc, 16).unwrap();
+    let mut cb = BodyCompliance::new(&blk.mesh, &mat, &fixed(&blk, false), &ub, 16).unwrap();
+    cc.ensure(&uc).unwrap();
+    cb.ensure(&ub).unwrap();
+    let approach = |cs: &[Constraint]| {
+        let idx: Vec<usize> = (0..cs.len()).collect();
+        let w = condensed_matrix(cs, &idx, &idx, &[&cc, &cb]).unwrap();
+        solve(cs, &w, 1e-6, None).unwrap().psi
+    };
+    let exact = approach(&all);
+    // Nodes only: the constraints whose slave terms are a single node.
+    let nodes_only: Vec<Constraint> = all
+        .iter()
+        .filter(|c| c.terms.iter().filter(|t| t.body == 0).count() == 1
+            || c.terms.iter().filter(|t| t.body == 1).count() == 1)
+        .cloned()
+        .collect();
+    let sampled = approach(&nodes_only);
+    let d = shift.min(h_node - shift);
+    eprintln!(
+        "first contact: lift {:.4} um, with face minima {:.5} um, nodes only {:.5} um (d²/2R = {:.5} um)",
+        lift * 1e6,
+        exact * 1e6,
+        sampled * 1e6,
+        d * d / (2.0 * r) * 1e6
+    );
+    assert!((exact - lift).abs() < 1e-10, "approach {exact} vs lift {lift}");
+    assert!(sampled - lift > 0.5 * d * d / (2.0 * r));
 }
