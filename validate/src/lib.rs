@@ -1,14 +1,18 @@
 //! Validation: independent checks of each stage against reference methods,
 //! and the reports that put them side by side.
 //!
-//! Now: the unloaded TCA (surface of roll angles, [`preprocess::utca`])
-//! against the direct geometric contact search ([`preprocess::direct`]),
-//! and the unloaded TE against the white paper's 1 N·m value.
+//! - The unloaded TCA (surface of roll angles, [`preprocess::utca`]) against
+//!   the direct geometric contact search ([`preprocess::direct`]), and the
+//!   unloaded TE against the white paper's 1 N·m value.
+//! - The reference loaded TCA: both FE bodies in penalty contact
+//!   ([`reference_ltca`], [`reference_stage`]), and its comparison with the
+//!   reduced model ([`comparison`], [`figures`], [`report`]).
 
 pub mod body_compliance;
 pub mod comparison;
 pub mod contact_pairs;
 pub mod contact_surface;
+pub mod figures;
 pub mod penalty;
 pub mod published;
 pub mod reference_ltca;

@@ -83,13 +83,36 @@ fn main() -> anyhow::Result<()> {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
             let published = validate::published::te_ptp_1nm(&input.design_path);
-            let loaded = out.as_ref().and_then(|o| {
-                let sc = preprocess::scene::Scene::load(&scene).ok()?;
+            let sc = preprocess::scene::Scene::load(&scene).ok();
+            let loaded = out.as_ref().zip(sc.as_ref()).and_then(|(o, sc)| {
                 let wp = input.design_path.file_stem()? == "white_paper_20x43";
                 let pub_dir = input.design_path.parent()?.join("published");
                 validate::comparison::compare(o, &sc.scene.name, &pub_dir, wp)
             });
-            validate::report::write(&reports, &c, published.as_ref(), &flanks, loaded.as_ref())?;
+            let mut figures = Vec::new();
+            if let (Some(o), Some(sc)) = (&out, &sc) {
+                std::fs::create_dir_all(&reports)?;
+                let s = &sc.scene;
+                figures = validate::figures::te_figures(o, &s.name, &reports, &s.pinion_torque_nm);
+                if let Some(&t) = s.pinion_torque_nm.last() {
+                    for wb in &s.blanks.wheel {
+                        for pb in &s.blanks.pinion {
+                            let blank = format!("{pb:?}_{wb:?}").to_lowercase();
+                            figures.extend(validate::figures::pattern_figure(
+                                o, &s.name, &blank, t, &reports,
+                            ));
+                        }
+                    }
+                }
+            }
+            validate::report::write(
+                &reports,
+                &c,
+                published.as_ref(),
+                &flanks,
+                loaded.as_ref(),
+                &figures,
+            )?;
             println!(
                 "UTCA cross-check: {} positions, max |fast - direct| = {:.4} urad, TE ptp {:.2} urad{}; reports in {}",
                 c.rows.len(),

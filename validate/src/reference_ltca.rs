@@ -164,6 +164,9 @@ pub struct PositionResult {
     pub searched: usize,
     /// Constraints in the solve at the end (started + added).
     pub constraints: usize,
+    /// TE at the vanishing torque [`UNLOADED_TORQUE_NM`]: the meshed
+    /// geometry's unloaded TE, rad.
+    pub unloaded_te: f64,
     pub loads: Vec<LoadResult>,
     /// Contact pressure at the last torque: pinion node (member frame) → Pa.
     pub pattern: Vec<(V3, f64)>,
@@ -182,6 +185,9 @@ pub struct ReferencePair<'a> {
     pub settings: ReferenceSettings,
 }
 
+/// The torque of the unloaded check, solved first at every position, N·m.
+pub const UNLOADED_TORQUE_NM: f64 = 1e-3;
+
 /// The constraints in the solve and their condensed matrix.
 struct WorkingSet {
     idx: Vec<usize>,
@@ -190,8 +196,8 @@ struct WorkingSet {
 }
 
 impl ReferencePair<'_> {
-    /// Solves the position `phi` (pinion angle, rad) for each torque (N·m,
-    /// increasing).
+    /// Solves the position `phi` (pinion angle, rad) at the vanishing torque
+    /// [`UNLOADED_TORQUE_NM`] and then at each torque (N·m, increasing).
     ///
     /// All two-pass constraints up to the search gap are built (geometry
     /// only). The solve starts with those within the start band of the
@@ -222,7 +228,10 @@ impl ReferencePair<'_> {
         let mut loads = Vec::new();
         let mut pattern = Vec::new();
         let mut warm: [Option<Vec<usize>>; 2] = [None, None];
-        for (k, &t) in torques.iter().enumerate() {
+        let all: Vec<f64> = std::iter::once(UNLOADED_TORQUE_NM)
+            .chain(torques.iter().copied())
+            .collect();
+        for (k, &t) in all.iter().enumerate() {
             let (s, sc) = loop {
                 let sub: Vec<Constraint> = ws.idx.iter().map(|&c| cs[c].clone()).collect();
                 let check: Vec<Constraint> = sub
@@ -274,7 +283,7 @@ impl ReferencePair<'_> {
             let f = nodal_normal_forces(&sub, &s.force, 0, &self.pinion.inward);
             let p = smoothed_pressure(&self.pinion.mesh.mesh.nodes, &self.pinion.faces, &f);
             let max_pressure_pa = p.values().copied().fold(0.0, f64::max);
-            if k + 1 == torques.len() {
+            if k + 1 == all.len() {
                 pattern = p
                     .iter()
                     .filter(|(_, &v)| v > 0.0)
@@ -291,10 +300,12 @@ impl ReferencePair<'_> {
                 band_margin_m,
             });
         }
+        let unloaded = loads.remove(0);
         Ok(PositionResult {
             phi,
             searched: cs.len(),
             constraints: ws.idx.len(),
+            unloaded_te: unloaded.te,
             loads,
             pattern,
             new_columns: self.pinion.compliance.computed() + self.wheel.compliance.computed()

@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// Version of the summary layout; part of the input hash.
-pub const REFERENCE_SCHEMA: u32 = 3;
+pub const REFERENCE_SCHEMA: u32 = 4;
 
 /// Options of the stage.
 #[derive(Debug, Clone, Serialize)]
@@ -80,6 +80,47 @@ pub struct BlankSummary {
     /// all torques at both penalties; factoring excluded), s.
     pub cpu_s_per_position: f64,
     pub loads: Vec<LoadSummary>,
+    pub unloaded: UnloadedCheck,
+}
+
+/// The meshed geometry's TE at a vanishing torque against the UTCA of the
+/// generated flanks, at the same positions.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct UnloadedCheck {
+    pub torque_nm: f64,
+    /// Largest |TE(reference) − TE(UTCA)|, µrad.
+    pub max_abs_difference_urad: f64,
+    /// Mean of TE(reference) − TE(UTCA), µrad.
+    pub mean_difference_urad: f64,
+    pub utca_te_mean_urad: f64,
+    pub utca_te_ptp_urad: f64,
+    pub reference_te_mean_urad: f64,
+    pub reference_te_ptp_urad: f64,
+}
+
+fn mean_ptp(v: &[f64]) -> (f64, f64) {
+    let n = v.len().max(1) as f64;
+    let (lo, hi) = v
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| (a.0.min(x), a.1.max(x)));
+    (v.iter().sum::<f64>() / n, hi - lo)
+}
+
+fn unloaded_check(res: &[PositionResult], utca: &[f64]) -> UnloadedCheck {
+    let r: Vec<f64> = res.iter().map(|p| p.unloaded_te * 1e6).collect();
+    let u: Vec<f64> = utca.iter().map(|t| t * 1e6).collect();
+    let d: Vec<f64> = r.iter().zip(&u).map(|(a, b)| a - b).collect();
+    let (rm, rp) = mean_ptp(&r);
+    let (um, up) = mean_ptp(&u);
+    UnloadedCheck {
+        torque_nm: crate::reference_ltca::UNLOADED_TORQUE_NM,
+        max_abs_difference_urad: d.iter().map(|x| x.abs()).fold(0.0, f64::max),
+        mean_difference_urad: d.iter().sum::<f64>() / d.len().max(1) as f64,
+        utca_te_mean_urad: um,
+        utca_te_ptp_urad: up,
+        reference_te_mean_urad: rm,
+        reference_te_ptp_urad: rp,
+    }
 }
 
 fn blank_name(b: Blank) -> String {
@@ -162,6 +203,25 @@ pub fn run(
                         continue;
                     }
                 }
+            }
+            // The UTCA TE at the same positions, for the unloaded check.
+            let input = preprocess::flank_stage::load_input(&scene.path)?;
+            let rs = preprocess::flank_stage::roll_surface(fp, &input.utca)?;
+            let utca = preprocess::utca::run(
+                fp,
+                &rs,
+                fp.roll_range[0],
+                step * opt.stride.max(1) as f64,
+                positions.len(),
+                direction,
+            );
+            if let Some((a, b)) = utca
+                .pinion_angle
+                .iter()
+                .zip(&positions)
+                .find(|(a, b)| (*a - *b).abs() > 1e-12)
+            {
+                anyhow::bail!("internal: UTCA position {a} rad differs from reference position {b} rad");
             }
             let cache_dir = odir.join("positions").join(&position_key[..16]);
             std::fs::create_dir_all(&cache_dir)?;
@@ -254,19 +314,33 @@ pub fn run(
             bar.finish_and_clear();
             let sweep_s = t_sweep.elapsed().as_secs_f64();
             std::fs::create_dir_all(&odir)?;
-            write_te_csv(&odir.join("te.csv"), &res, fp.roll_range[0], direction)?;
-            if let Some(last) = res.iter().max_by(|a, b| {
-                let pa = a.loads.last().map_or(0.0, |l| l.max_pressure_pa);
-                let pb = b.loads.last().map_or(0.0, |l| l.max_pressure_pa);
-                pa.total_cmp(&pb)
-            }) {
-                let mut csv = String::from("x_m,y_m,z_m,pressure_mpa\n");
-                for (p, v) in &last.pattern {
-                    writeln!(csv, "{},{},{},{}", p[0], p[1], p[2], v * 1e-6)?;
+            write_te_csv(
+                &odir.join("te.csv"),
+                &res,
+                &utca.te,
+                fp.roll_range[0],
+                direction,
+            )?;
+            // Contact pattern: the envelope of the pressure at the largest
+            // torque over all positions, on the pinion flank's (ξ, η).
+            let mut envelope: std::collections::HashMap<[u64; 3], ([f64; 3], f64)> =
+                std::collections::HashMap::new();
+            for r in &res {
+                for &(p, v) in &r.pattern {
+                    let e = envelope.entry(p.map(f64::to_bits)).or_insert((p, 0.0));
+                    e.1 = e.1.max(v);
                 }
-                let t = sc.pinion_torque_nm.last().copied().unwrap_or(0.0);
-                write_atomic(&odir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
             }
+            let mut pts: Vec<([f64; 3], f64)> = envelope.into_values().collect();
+            pts.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+            let mut csv = String::from("x_m,y_m,z_m,xi,eta,pressure_mpa\n");
+            for (p, v) in &pts {
+                let (l, d) = fp.pinion.gen.frame.axial(p);
+                let (xi, eta) = fp.pinion.bounds.to_unit(l, d);
+                writeln!(csv, "{},{},{},{xi},{eta},{}", p[0], p[1], p[2], v * 1e-6)?;
+            }
+            let t = sc.pinion_torque_nm.last().copied().unwrap_or(0.0);
+            write_atomic(&odir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
             let summary = BlankSummary {
                 input_hash: hash,
                 pinion_blank: blank_name(pb),
@@ -303,8 +377,15 @@ pub fn run(
                 cpu_s_per_position: res.iter().map(|r| r.cpu_s).sum::<f64>()
                     / res.len().max(1) as f64,
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
+                unloaded: unloaded_check(&res, &utca.te),
             };
             write_json(&summary_path, &summary)?;
+            let u = &summary.unloaded;
+            eprintln!(
+                "  unloaded ({} N·m): TE mean {:.2} µrad (UTCA {:.2}), ptp {:.2} µrad (UTCA {:.2}), largest difference {:.3} µrad",
+                u.torque_nm, u.reference_te_mean_urad, u.utca_te_mean_urad, u.reference_te_ptp_urad,
+                u.utca_te_ptp_urad, u.max_abs_difference_urad
+            );
             for l in &summary.loads {
                 eprintln!(
                     "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, penalty check {:.3} %, max pressure {:.0} MPa",
@@ -363,18 +444,25 @@ fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
 fn write_te_csv(
     path: &Path,
     res: &[PositionResult],
+    utca: &[f64],
     start: f64,
     direction: f64,
 ) -> anyhow::Result<()> {
-    let mut s = String::from("pinion_rotation_deg");
+    let mut s = String::from("pinion_rotation_deg,utca_te_urad,te_unloaded_urad");
     if let Some(r) = res.first() {
         for l in &r.loads {
             write!(s, ",te_{}nm_urad", l.torque_nm)?;
         }
     }
     s.push('\n');
-    for r in res {
-        write!(s, "{}", ((r.phi - start) * direction).to_degrees())?;
+    for (r, u) in res.iter().zip(utca) {
+        write!(
+            s,
+            "{},{},{}",
+            ((r.phi - start) * direction).to_degrees(),
+            u * 1e6,
+            r.unloaded_te * 1e6
+        )?;
         for l in &r.loads {
             write!(s, ",{}", l.te * 1e6)?;
         }

@@ -139,10 +139,17 @@ pub fn write(
     published: Option<&Published>,
     plots_dir: &Path,
     loaded: Option<&crate::comparison::Comparison>,
+    figures: &[crate::figures::Figure],
 ) -> Result<(), GeometryError> {
-    let md = markdown(c, published, loaded);
+    let mut md = markdown(c, published, loaded);
+    if !figures.is_empty() {
+        md.push_str("\n## Loaded TE and contact pattern figures\n\n");
+        for (t, _) in figures {
+            let _ = writeln!(md, "- {t} (SVG in report.html)");
+        }
+    }
     write_atomic(&dir.join("report.md"), md.as_bytes())?;
-    let svgs: Vec<(String, String)> = [
+    let mut svgs: Vec<(String, String)> = [
         ("Unloaded transmission error", "te.svg"),
         ("Path of contact", "contact_path.svg"),
         ("Ease-off", "ease_off.svg"),
@@ -154,6 +161,7 @@ pub fn write(
             .map(|s| (t.to_string(), s))
     })
     .collect();
+    svgs.extend(figures.iter().cloned());
     write_atomic(&dir.join("report.html"), html(&md, &svgs).as_bytes())?;
     let summary = Summary {
         utca: c,

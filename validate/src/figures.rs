@@ -1,0 +1,195 @@
+//! The report's loaded-contact figures: TE against pinion rotation per blank
+//! and load, the multibody run (reduced model) against the reference FE
+//! contact (the white paper's Figures 10 and 11), and the contact pattern at
+//! the largest torque of both methods on the pinion flank (its Figure 12).
+//!
+//! Inputs are the stages' CSV files under `<out>/<scene>/`; a missing file
+//! leaves its figure out.
+
+use plotters::prelude::*;
+use preprocess::plots::{te_curve, Series};
+use std::path::Path;
+
+/// A figure for the report: title and SVG text.
+pub type Figure = (String, String);
+
+/// Columns of a CSV file by header name (non-numeric cells become NaN).
+fn read_csv(path: &Path) -> Option<(Vec<String>, Vec<Vec<f64>>)> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next()?.split(',').map(str::to_string).collect();
+    let mut cols = vec![Vec::new(); header.len()];
+    for l in lines.filter(|l| !l.trim().is_empty()) {
+        for (c, v) in cols.iter_mut().zip(l.split(',')) {
+            c.push(v.trim().parse().unwrap_or(f64::NAN));
+        }
+    }
+    Some((header, cols))
+}
+
+fn column<'a>(csv: &'a (Vec<String>, Vec<Vec<f64>>), name: &str) -> Option<&'a [f64]> {
+    let i = csv.0.iter().position(|h| h == name)?;
+    Some(&csv.1[i])
+}
+
+/// TE against rotation for every blank combination with a reference run and
+/// every torque: one SVG per blank and torque, written to `reports` as
+/// `te_loaded_<blanks>_<T>nm.svg`.
+pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> Vec<Figure> {
+    let mut figs = Vec::new();
+    let Ok(dirs) = std::fs::read_dir(out.join(scene).join("reference")) else {
+        return figs;
+    };
+    let mut blanks: Vec<String> = dirs
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().join("te.csv").exists())
+        .filter_map(|e| e.file_name().into_string().ok())
+        .collect();
+    blanks.sort();
+    for blank in blanks {
+        let Some(reference) = read_csv(&out.join(scene).join("reference").join(&blank).join("te.csv"))
+        else {
+            continue;
+        };
+        for &t in torques {
+            let mb_path = out
+                .join(scene)
+                .join("multibody")
+                .join(&blank)
+                .join(format!("quasi_static_{t}nm.csv"));
+            let mut series = Vec::new();
+            if let Some(mb) = read_csv(&mb_path) {
+                if let (Some(x), Some(y)) = (
+                    column(&mb, "pinion_rotation_deg"),
+                    column(&mb, "te_urad"),
+                ) {
+                    series.push(Series {
+                        name: "multibody 10 rpm (reduced model)".into(),
+                        x: x.to_vec(),
+                        y: y.to_vec(),
+                        dashed: false,
+                    });
+                }
+            }
+            if let (Some(x), Some(y)) = (
+                column(&reference, "pinion_rotation_deg"),
+                column(&reference, &format!("te_{t}nm_urad")),
+            ) {
+                series.push(Series {
+                    name: "reference FE contact".into(),
+                    x: x.to_vec(),
+                    y: y.to_vec(),
+                    dashed: true,
+                });
+            }
+            if series.len() < 2 {
+                continue;
+            }
+            let file = reports.join(format!("te_loaded_{blank}_{t}nm.svg"));
+            let title = format!("Loaded TE, {} blanks, {t} N·m", blank.replace('_', " / "));
+            if te_curve(
+                &file,
+                &title,
+                "pinion rotation (deg)",
+                "TE (µrad)",
+                &series,
+            )
+            .is_ok()
+            {
+                if let Ok(svg) = std::fs::read_to_string(&file) {
+                    figs.push((title, svg));
+                }
+            }
+        }
+    }
+    figs
+}
+
+/// Colour of `v` in [0, 1]: dark blue → green → yellow.
+fn ramp(v: f64) -> RGBColor {
+    let stops = [
+        (0.0, (68.0, 1.0, 84.0)),
+        (0.33, (49.0, 104.0, 142.0)),
+        (0.66, (53.0, 183.0, 121.0)),
+        (1.0, (253.0, 231.0, 37.0)),
+    ];
+    let v = v.clamp(0.0, 1.0);
+    let k = stops.iter().rposition(|s| s.0 <= v).unwrap_or(0).min(2);
+    let (a, b) = (stops[k], stops[k + 1]);
+    let f = (v - a.0) / (b.0 - a.0);
+    let c = |x: f64, y: f64| (x + f * (y - x)).round() as u8;
+    RGBColor(c(a.1 .0, b.1 .0), c(a.1 .1, b.1 .1), c(a.1 .2, b.1 .2))
+}
+
+/// Contact pattern at torque `t` of one blank combination: the reduced
+/// model's slices (quasi-static LTCA, all positions) and the reference's
+/// pressure envelope, on the pinion flank's unit coordinates (ξ along the
+/// face, toe → heel; η up the profile, root → tip), one colour scale.
+pub fn pattern_figure(out: &Path, scene: &str, blank: &str, t: f64, reports: &Path) -> Option<Figure> {
+    let reduced = read_csv(&out.join(scene).join("ltca").join(blank).join("slices.csv"))?;
+    let reference = read_csv(
+        &out.join(scene)
+            .join("reference")
+            .join(blank)
+            .join(format!("pattern_{t}nm.csv")),
+    )?;
+    let pick = |csv: &(Vec<String>, Vec<Vec<f64>>), at: Option<f64>| -> Vec<(f64, f64, f64)> {
+        let (Some(xi), Some(eta), Some(p)) = (
+            column(csv, "xi"),
+            column(csv, "eta"),
+            column(csv, "pressure_mpa"),
+        ) else {
+            return Vec::new();
+        };
+        let tq = column(csv, "torque_nm");
+        (0..xi.len())
+            .filter(|&i| match (at, tq) {
+                (Some(t), Some(tq)) => (tq[i] - t).abs() < 1e-9 * t.max(1.0),
+                _ => true,
+            })
+            .filter(|&i| p[i] > 0.0)
+            .map(|i| (xi[i], eta[i], p[i]))
+            .collect()
+    };
+    let a = pick(&reduced, Some(t));
+    let b = pick(&reference, None);
+    if a.is_empty() || b.is_empty() {
+        return None;
+    }
+    let p_max = a.iter().chain(&b).map(|p| p.2).fold(0.0, f64::max);
+    let file = reports.join(format!("pattern_{blank}_{t}nm.svg"));
+    let title = format!(
+        "Contact pattern at {t} N·m, {} blanks (colour: pressure, 0 – {p_max:.0} MPa)",
+        blank.replace('_', " / ")
+    );
+    let draw = || -> Result<(), Box<dyn std::error::Error>> {
+        let root = SVGBackend::new(&file, (1100, 480)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let root = root.titled(&title, ("sans-serif", 20))?;
+        let panels = root.split_evenly((1, 2));
+        for (area, (name, pts)) in panels
+            .iter()
+            .zip([("reduced model (LTCA slices)", &a), ("reference FE (nodes)", &b)])
+        {
+            let mut chart = ChartBuilder::on(area)
+                .caption(name, ("sans-serif", 16))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(50)
+                .build_cartesian_2d(-0.05..1.05, -0.05..1.05)?;
+            chart
+                .configure_mesh()
+                .x_desc("ξ (face, toe → heel)")
+                .y_desc("η (profile, root → tip)")
+                .draw()?;
+            chart.draw_series(
+                pts.iter()
+                    .map(|&(x, y, p)| Circle::new((x, y), 3, ramp(p / p_max).filled())),
+            )?;
+        }
+        root.present()?;
+        Ok(())
+    };
+    draw().ok()?;
+    Some((title, std::fs::read_to_string(&file).ok()?))
+}
