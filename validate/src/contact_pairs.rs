@@ -9,9 +9,10 @@
 //! the light-load TE too large by about d²/(2ρ) (d: distance to the nearest
 //! node, ρ: relative radius of curvature). Each pass therefore also places a
 //! point at the minimum of the closing angle over every slave face near
-//! contact ([`face_minima`]); it carries a small share of the face's penalty
-//! (1% of its area), enough to hold a vanishing load, too little to change
-//! the loaded stiffness.
+//! contact ([`face_minima`]); it carries the penalty of a sixth of the face's
+//! area (about one node's share), enough to hold light loads with a small
+//! penetration, while it stiffens the penalty of a loaded face by about 17%,
+//! which changes the TE by a fraction of the penalty check's difference.
 
 use crate::contact_surface::{lumped_areas, MasterSurface};
 use crate::penalty::{Constraint, Term};
@@ -148,7 +149,7 @@ pub fn two_pass(
 }
 
 /// Share of a slave face's area given to its minimum point.
-pub const MINIMUM_POINT_AREA: f64 = 0.01;
+pub const MINIMUM_POINT_AREA: f64 = 1.0 / 6.0;
 
 /// A point of a slave face against the master surface.
 struct FacePoint {
@@ -220,7 +221,9 @@ pub fn face_minima(
             .iter()
             .filter_map(|&st| at(st))
             .map(|q| (q.closing, q.p.gap))
-            .fold((f64::INFINITY, f64::INFINITY), |a, b| (a.0.min(b.0), a.1.min(b.1)));
+            .fold((f64::INFINITY, f64::INFINITY), |a, b| {
+                (a.0.min(b.0), a.1.min(b.1))
+            });
         if node_best.1 > set.max_gap {
             continue;
         }
@@ -240,7 +243,14 @@ pub fn face_minima(
         let mut h = 0.5 / ORDER as f64;
         while h > 1e-6 {
             let mut moved = false;
-            for d in [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0], [1.0, -1.0], [-1.0, 1.0]] {
+            for d in [
+                [1.0, 0.0],
+                [-1.0, 0.0],
+                [0.0, 1.0],
+                [0.0, -1.0],
+                [1.0, -1.0],
+                [-1.0, 1.0],
+            ] {
                 let st = [best.st[0] + h * d[0], best.st[1] + h * d[1]];
                 if !inside(st) {
                     continue;

@@ -47,8 +47,12 @@ pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> V
         .collect();
     blanks.sort();
     for blank in blanks {
-        let Some(reference) = read_csv(&out.join(scene).join("reference").join(&blank).join("te.csv"))
-        else {
+        let Some(reference) = read_csv(
+            &out.join(scene)
+                .join("reference")
+                .join(&blank)
+                .join("te.csv"),
+        ) else {
             continue;
         };
         for &t in torques {
@@ -59,10 +63,9 @@ pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> V
                 .join(format!("quasi_static_{t}nm.csv"));
             let mut series = Vec::new();
             if let Some(mb) = read_csv(&mb_path) {
-                if let (Some(x), Some(y)) = (
-                    column(&mb, "pinion_rotation_deg"),
-                    column(&mb, "te_urad"),
-                ) {
+                if let (Some(x), Some(y)) =
+                    (column(&mb, "pinion_rotation_deg"), column(&mb, "te_urad"))
+                {
                     series.push(Series {
                         name: "multibody 10 rpm (reduced model)".into(),
                         x: x.to_vec(),
@@ -87,15 +90,7 @@ pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> V
             }
             let file = reports.join(format!("te_loaded_{blank}_{t}nm.svg"));
             let title = format!("Loaded TE, {} blanks, {t} N·m", blank.replace('_', " / "));
-            if te_curve(
-                &file,
-                &title,
-                "pinion rotation (deg)",
-                "TE (µrad)",
-                &series,
-            )
-            .is_ok()
-            {
+            if te_curve(&file, &title, "pinion rotation (deg)", "TE (µrad)", &series).is_ok() {
                 if let Ok(svg) = std::fs::read_to_string(&file) {
                     figs.push((title, svg));
                 }
@@ -125,7 +120,13 @@ fn ramp(v: f64) -> RGBColor {
 /// model's slices (quasi-static LTCA, all positions) and the reference's
 /// pressure envelope, on the pinion flank's unit coordinates (ξ along the
 /// face, toe → heel; η up the profile, root → tip), one colour scale.
-pub fn pattern_figure(out: &Path, scene: &str, blank: &str, t: f64, reports: &Path) -> Option<Figure> {
+pub fn pattern_figure(
+    out: &Path,
+    scene: &str,
+    blank: &str,
+    t: f64,
+    reports: &Path,
+) -> Option<Figure> {
     let reduced = read_csv(&out.join(scene).join("ltca").join(blank).join("slices.csv"))?;
     let reference = read_csv(
         &out.join(scene)
@@ -167,10 +168,10 @@ pub fn pattern_figure(out: &Path, scene: &str, blank: &str, t: f64, reports: &Pa
         root.fill(&WHITE)?;
         let root = root.titled(&title, ("sans-serif", 20))?;
         let panels = root.split_evenly((1, 2));
-        for (area, (name, pts)) in panels
-            .iter()
-            .zip([("reduced model (LTCA slices)", &a), ("reference FE (nodes)", &b)])
-        {
+        for (area, (name, pts)) in panels.iter().zip([
+            ("reduced model (LTCA slices)", &a),
+            ("reference FE (nodes)", &b),
+        ]) {
             let mut chart = ChartBuilder::on(area)
                 .caption(name, ("sans-serif", 16))
                 .margin(12)

@@ -21,11 +21,11 @@ use crate::penalty::{
     carried_load, condensed_matrix, nodal_normal_forces, solve, Compliance, Constraint,
     ContactError,
 };
-use rayon::prelude::*;
 use nalgebra::Vector3;
 use preprocess::body_mesh::BodyMesh;
 use preprocess::generation::{rot_z, MemberFrame};
 use preprocess::pair::FlankPair;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -167,6 +167,9 @@ pub struct PositionResult {
     /// TE at the vanishing torque [`UNLOADED_TORQUE_NM`]: the meshed
     /// geometry's unloaded TE, rad.
     pub unloaded_te: f64,
+    /// Where the largest force acts at that torque: the slave point, in the
+    /// pinion's member frame, m.
+    pub unloaded_point: V3,
     pub loads: Vec<LoadResult>,
     /// Contact pressure at the last torque: pinion node (member frame) → Pa.
     pub pattern: Vec<(V3, f64)>,
@@ -212,7 +215,7 @@ impl ReferencePair<'_> {
         torques: &[f64],
     ) -> Result<PositionResult, ReferenceError> {
         let t0 = std::time::Instant::now();
-        let cs = self.constraints(phi)?;
+        let (cs, at) = self.constraints(phi)?;
         let before = self.pinion.compliance.computed() + self.wheel.compliance.computed();
         let g_min = cs.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
         let start: Vec<usize> = (0..cs.len())
@@ -226,6 +229,7 @@ impl ReferencePair<'_> {
         let scale = self.settings.penalty_factor_check / self.settings.penalty_factor;
         let ratio = self.pinion.frame.teeth as f64 / self.wheel.frame.teeth as f64;
         let mut loads = Vec::new();
+        let (mut first_force, mut first_idx) = (Vec::new(), Vec::new());
         let mut pattern = Vec::new();
         let mut warm: [Option<Vec<usize>>; 2] = [None, None];
         let all: Vec<f64> = std::iter::once(UNLOADED_TORQUE_NM)
@@ -274,6 +278,10 @@ impl ReferencePair<'_> {
                 self.grow(&cs, &mut ws, &add)?;
             };
             let sub: Vec<Constraint> = ws.idx.iter().map(|&c| cs[c].clone()).collect();
+            if k == 0 {
+                first_force = s.force.clone();
+                first_idx = ws.idx.clone();
+            }
             let band_margin_m = self
                 .outside_gaps(&cs, &ws.idx, &s.force, s.psi)?
                 .into_iter()
@@ -301,11 +309,17 @@ impl ReferencePair<'_> {
             });
         }
         let unloaded = loads.remove(0);
+        let unloaded_point = first_force
+            .iter()
+            .zip(&first_idx)
+            .max_by(|a, b| a.0.total_cmp(b.0))
+            .map_or([f64::NAN; 3], |(_, &c)| at[c]);
         Ok(PositionResult {
             phi,
             searched: cs.len(),
             constraints: ws.idx.len(),
             unloaded_te: unloaded.te,
+            unloaded_point,
             loads,
             pattern,
             new_columns: self.pinion.compliance.computed() + self.wheel.compliance.computed()
@@ -316,7 +330,8 @@ impl ReferencePair<'_> {
 
     /// Every two-pass constraint up to the search gap that closes as the
     /// pinion turns in its driving sense, at pinion angle `phi`.
-    fn constraints(&self, phi: f64) -> Result<Vec<Constraint>, ReferenceError> {
+    /// With each constraint: its slave point in the pinion's member frame.
+    fn constraints(&self, phi: f64) -> Result<(Vec<Constraint>, Vec<V3>), ReferenceError> {
         let phi2 = self.flanks.conjugate_wheel_angle(phi);
         let (pn, pr) = self.pinion.placed(phi);
         let (wn, wr) = self.wheel.placed(phi2);
@@ -351,18 +366,18 @@ impl ReferencePair<'_> {
             max_gap: self.settings.search_gap_m,
             reach: 2.0 * self.settings.search_gap_m,
         };
-        let cs: Vec<Constraint> = two_pass(&body_p, &body_w, &set)
+        let (cs, at): (Vec<Constraint>, Vec<V3>) = two_pass(&body_p, &body_w, &set)
             .into_iter()
-            .map(|(c, _)| c)
-            .filter(|c| c.rigid < 0.0)
-            .collect();
+            .filter(|(c, _)| c.rigid < 0.0)
+            .map(|(c, o)| (c, rot(&pr, o.at)))
+            .unzip();
         if cs.is_empty() {
             return Err(ReferenceError::NoContact {
                 phi_deg: phi.to_degrees(),
                 max_gap_um: self.settings.search_gap_m * 1e6,
             });
         }
-        Ok(cs)
+        Ok((cs, at))
     }
 
     /// Adds the constraints `add` (indices into `cs`, not yet in the set)
@@ -377,7 +392,13 @@ impl ReferencePair<'_> {
         for (body, m) in [(0, &mut *self.pinion), (1, &mut *self.wheel)] {
             let nodes: Vec<usize> = add
                 .iter()
-                .flat_map(|&c| cs[c].terms.iter().filter(|t| t.body == body).map(|t| t.node))
+                .flat_map(|&c| {
+                    cs[c]
+                        .terms
+                        .iter()
+                        .filter(|t| t.body == body)
+                        .map(|t| t.node)
+                })
                 .collect();
             m.compliance.ensure(&nodes)?;
         }
@@ -484,4 +505,8 @@ impl ReferencePair<'_> {
         }
         Ok(outside.into_iter().zip(gap).collect())
     }
+}
+
+fn rot(r: &[[f64; 3]; 3], v: V3) -> V3 {
+    [0, 1, 2].map(|i| r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2])
 }

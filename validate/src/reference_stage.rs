@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// Version of the summary layout; part of the input hash.
-pub const REFERENCE_SCHEMA: u32 = 4;
+pub const REFERENCE_SCHEMA: u32 = 5;
 
 /// Options of the stage.
 #[derive(Debug, Clone, Serialize)]
@@ -100,9 +100,9 @@ pub struct UnloadedCheck {
 
 fn mean_ptp(v: &[f64]) -> (f64, f64) {
     let n = v.len().max(1) as f64;
-    let (lo, hi) = v
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| (a.0.min(x), a.1.max(x)));
+    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| {
+        (a.0.min(x), a.1.max(x))
+    });
     (v.iter().sum::<f64>() / n, hi - lo)
 }
 
@@ -221,7 +221,9 @@ pub fn run(
                 .zip(&positions)
                 .find(|(a, b)| (*a - *b).abs() > 1e-12)
             {
-                anyhow::bail!("internal: UTCA position {a} rad differs from reference position {b} rad");
+                anyhow::bail!(
+                    "internal: UTCA position {a} rad differs from reference position {b} rad"
+                );
             }
             let cache_dir = odir.join("positions").join(&position_key[..16]);
             std::fs::create_dir_all(&cache_dir)?;
@@ -318,6 +320,7 @@ pub fn run(
                 &odir.join("te.csv"),
                 &res,
                 &utca.te,
+                &fp.pinion,
                 fp.roll_range[0],
                 direction,
             )?;
@@ -445,10 +448,12 @@ fn write_te_csv(
     path: &Path,
     res: &[PositionResult],
     utca: &[f64],
+    flank: &preprocess::flank::Flank,
     start: f64,
     direction: f64,
 ) -> anyhow::Result<()> {
-    let mut s = String::from("pinion_rotation_deg,utca_te_urad,te_unloaded_urad");
+    let mut s =
+        String::from("pinion_rotation_deg,utca_te_urad,te_unloaded_urad,unloaded_xi,unloaded_eta");
     if let Some(r) = res.first() {
         for l in &r.loads {
             write!(s, ",te_{}nm_urad", l.torque_nm)?;
@@ -456,9 +461,11 @@ fn write_te_csv(
     }
     s.push('\n');
     for (r, u) in res.iter().zip(utca) {
+        let (l, d) = flank.gen.frame.axial(&r.unloaded_point);
+        let (xi, eta) = flank.bounds.to_unit(l, d);
         write!(
             s,
-            "{},{},{}",
+            "{},{},{},{xi},{eta}",
             ((r.phi - start) * direction).to_degrees(),
             u * 1e6,
             r.unloaded_te * 1e6

@@ -398,7 +398,11 @@ fn first_contact_between_nodes_at_vanishing_load() {
     let cyl = mapped_block([nx, nd, 1], |p| {
         let (s, d) = (along(&xs, p[0]), along(&ds, p[1]));
         let (rr, th) = (r - d, (s - shift) / r);
-        [shift + rr * th.sin(), lift + r - rr * th.cos(), thick * p[2]]
+        [
+            shift + rr * th.sin(),
+            lift + r - rr * th.cos(),
+            thick * p[2],
+        ]
     });
     let blk = mapped_block([nx, nd, 1], |p| {
         [along(&xs, p[0]), -along(&ds, 1.0 - p[1]), thick * p[2]]
@@ -454,8 +458,10 @@ fn first_contact_between_nodes_at_vanishing_load() {
     // Nodes only: the constraints whose slave terms are a single node.
     let nodes_only: Vec<Constraint> = all
         .iter()
-        .filter(|c| c.terms.iter().filter(|t| t.body == 0).count() == 1
-            || c.terms.iter().filter(|t| t.body == 1).count() == 1)
+        .filter(|c| {
+            c.terms.iter().filter(|t| t.body == 0).count() == 1
+                || c.terms.iter().filter(|t| t.body == 1).count() == 1
+        })
         .cloned()
         .collect();
     let sampled = approach(&nodes_only);
@@ -467,6 +473,9 @@ fn first_contact_between_nodes_at_vanishing_load() {
         sampled * 1e6,
         d * d / (2.0 * r) * 1e6
     );
-    assert!((exact - lift).abs() < 1e-10, "approach {exact} vs lift {lift}");
+    assert!(
+        (exact - lift).abs() < 1e-10,
+        "approach {exact} vs lift {lift}"
+    );
     assert!(sampled - lift > 0.5 * d * d / (2.0 * r));
 }
