@@ -232,10 +232,10 @@ pub fn face_minima(
         for i in 0..=ORDER {
             for j in 0..=ORDER - i {
                 let st = [i as f64 / ORDER as f64, j as f64 / ORDER as f64];
-                if let Some(q) = at(st) {
-                    if best.as_ref().map_or(true, |b| q.closing < b.closing) {
-                        best = Some(q);
-                    }
+                match (at(st), &best) {
+                    (Some(q), Some(b)) if q.closing >= b.closing => {}
+                    (Some(q), _) => best = Some(q),
+                    (None, _) => {}
                 }
             }
         }

@@ -466,8 +466,8 @@ impl ReferencePair<'_> {
                 }
                 for t in cs[c].terms.iter().filter(|t| t.body == b) {
                     let e = load.entry(t.node).or_insert([0.0; 3]);
-                    for i in 0..3 {
-                        e[i] += force[k] * t.dir[i];
+                    for (x, d) in e.iter_mut().zip(t.dir) {
+                        *x += force[k] * d;
                     }
                 }
             }
