@@ -17,6 +17,7 @@
 use crate::contact_surface::{lumped_areas, MasterSurface};
 use crate::penalty::{Constraint, Term};
 use fem::tri6;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 type V3 = [f64; 3];
@@ -46,6 +47,9 @@ pub struct PenaltySettings {
     pub max_gap: f64,
     /// Search reach of the projection, m.
     pub reach: f64,
+    /// Faces with a node gap within this of the smallest node gap get a
+    /// minimum point ([`face_minima`]), m.
+    pub minima_band: f64,
 }
 
 /// Which pass a constraint belongs to and its slave point.
@@ -85,51 +89,50 @@ pub fn one_pass(
     let e_min = s.youngs_modulus_pa.min(m.youngs_modulus_pa);
     let mut slaves: Vec<usize> = area.keys().copied().collect();
     slaves.sort_unstable();
-    let mut out = Vec::new();
-    for node in slaves {
-        let x = s.nodes[node];
-        let Some(p) = master.project(x, set.reach) else {
-            continue;
-        };
-        if p.gap > set.max_gap {
-            continue;
-        }
-        let (sum, cnt) = face_area[&node];
-        let ell = (2.0 * sum / cnt as f64).sqrt();
-        let eps = set.factor * e_min / ell;
-        let n = p.normal;
-        let mut terms = vec![Term {
-            body: s.body,
-            node,
-            dir: rot(&s.to_body, n),
-        }];
-        let nm = rot(&m.to_body, n);
-        let sh = tri6::shape(p.st);
-        for (k, &mn) in master.faces[p.face].iter().enumerate() {
-            terms.push(Term {
-                body: m.body,
-                node: mn,
-                dir: nm.map(|c| -sh[k] * c),
-            });
-        }
-        let rs = (s.rigid)(x);
-        let rm = (m.rigid)(p.point);
-        let rigid = (0..3).map(|i| (rs[i] - rm[i]) * n[i]).sum();
-        out.push((
-            Constraint {
-                terms,
-                gap0: p.gap,
-                rigid,
-                stiffness: share * eps * area[&node],
-            },
-            Origin {
-                slave_body: s.body,
-                slave_node: node,
-                at: x,
-            },
-        ));
-    }
-    out
+    slaves
+        .par_iter()
+        .filter_map(|&node| {
+            let x = s.nodes[node];
+            let p = master.project(x, set.reach)?;
+            if p.gap > set.max_gap {
+                return None;
+            }
+            let (sum, cnt) = face_area[&node];
+            let ell = (2.0 * sum / cnt as f64).sqrt();
+            let eps = set.factor * e_min / ell;
+            let n = p.normal;
+            let mut terms = vec![Term {
+                body: s.body,
+                node,
+                dir: rot(&s.to_body, n),
+            }];
+            let nm = rot(&m.to_body, n);
+            let sh = tri6::shape(p.st);
+            for (k, &mn) in master.faces[p.face].iter().enumerate() {
+                terms.push(Term {
+                    body: m.body,
+                    node: mn,
+                    dir: nm.map(|c| -sh[k] * c),
+                });
+            }
+            let rs = (s.rigid)(x);
+            let rm = (m.rigid)(p.point);
+            let rigid = (0..3).map(|i| (rs[i] - rm[i]) * n[i]).sum();
+            Some((
+                Constraint {
+                    terms,
+                    gap0: p.gap,
+                    rigid,
+                    stiffness: share * eps * area[&node],
+                },
+                Origin {
+                    slave_body: s.body,
+                    slave_node: node,
+                    at: x,
+                },
+            ))
+        })
+        .collect()
 }
 
 /// Both passes between `a` and `b`, each with half the penalty, with the
@@ -142,9 +145,10 @@ pub fn two_pass(
     let ma = MasterSurface::new(a.nodes.clone(), a.faces.clone());
     let mb = MasterSurface::new(b.nodes.clone(), b.faces.clone());
     let mut v = one_pass(a, b, &mb, set, 0.5);
-    v.extend(face_minima(a, b, &mb, set, 0.5, MINIMUM_POINT_AREA));
     v.extend(one_pass(b, a, &ma, set, 0.5));
-    v.extend(face_minima(b, a, &ma, set, 0.5, MINIMUM_POINT_AREA));
+    let below = v.iter().map(|c| c.0.gap0).fold(f64::INFINITY, f64::min) + set.minima_band;
+    v.extend(face_minima(a, b, &mb, set, below, 0.5, MINIMUM_POINT_AREA));
+    v.extend(face_minima(b, a, &ma, set, below, 0.5, MINIMUM_POINT_AREA));
     v
 }
 
@@ -188,125 +192,129 @@ fn face_point(
 }
 
 /// Constraints at the minimum of the closing angle g/(−ρ) over each slave
-/// face of `s` that has a node within the search gap, where that minimum
+/// face of `s` that has a node gap below `below`, where that minimum
 /// lies inside the face (not at a node, which [`one_pass`] already holds).
 /// Slave terms are the face's shape functions at the point; the penalty
 /// stiffness is `share` · ε · `area_share` · (face area).
 ///
-/// The minimum is found on a lattice of the face (order 6), then refined by
-/// a compass search down to 1e-6 of the face's parameter range.
+/// The minimum is found on a lattice of the face (order 4), then refined by
+/// a compass search down to 1e-4 of the face's parameter range (a position
+/// error of ~0.1 µm, whose gap error is second order).
+#[allow(clippy::too_many_arguments)]
 pub fn face_minima(
     s: &ContactBody,
     m: &ContactBody,
     master: &MasterSurface,
     set: &PenaltySettings,
+    below: f64,
     share: f64,
     area_share: f64,
 ) -> Vec<(Constraint, Origin)> {
     let e_min = s.youngs_modulus_pa.min(m.youngs_modulus_pa);
     let inside = |st: [f64; 2]| st[0] >= 0.0 && st[1] >= 0.0 && st[0] + st[1] <= 1.0;
-    let mut out = Vec::new();
-    for f in &s.faces {
-        let xs = f.map(|i| s.nodes[i]);
-        let at = |st| face_point(s, m, master, &xs, st, set.reach);
-        let nodes_st = [
-            [0.0, 0.0],
-            [1.0, 0.0],
-            [0.0, 1.0],
-            [0.5, 0.0],
-            [0.5, 0.5],
-            [0.0, 0.5],
-        ];
-        let node_best = nodes_st
-            .iter()
-            .filter_map(|&st| at(st))
-            .map(|q| (q.closing, q.p.gap))
-            .fold((f64::INFINITY, f64::INFINITY), |a, b| {
-                (a.0.min(b.0), a.1.min(b.1))
-            });
-        if node_best.1 > set.max_gap {
-            continue;
-        }
-        const ORDER: usize = 6;
-        let mut best: Option<FacePoint> = None;
-        for i in 0..=ORDER {
-            for j in 0..=ORDER - i {
-                let st = [i as f64 / ORDER as f64, j as f64 / ORDER as f64];
-                match (at(st), &best) {
-                    (Some(q), Some(b)) if q.closing >= b.closing => {}
-                    (Some(q), _) => best = Some(q),
-                    (None, _) => {}
-                }
-            }
-        }
-        let Some(mut best) = best else { continue };
-        let mut h = 0.5 / ORDER as f64;
-        while h > 1e-6 {
-            let mut moved = false;
-            for d in [
+    s.faces
+        .par_iter()
+        .filter_map(|f| {
+            let xs = f.map(|i| s.nodes[i]);
+            let at = |st| face_point(s, m, master, &xs, st, set.reach);
+            let nodes_st = [
+                [0.0, 0.0],
                 [1.0, 0.0],
-                [-1.0, 0.0],
                 [0.0, 1.0],
-                [0.0, -1.0],
-                [1.0, -1.0],
-                [-1.0, 1.0],
-            ] {
-                let st = [best.st[0] + h * d[0], best.st[1] + h * d[1]];
-                if !inside(st) {
-                    continue;
-                }
-                if let Some(q) = at(st) {
-                    if q.closing < best.closing {
-                        best = q;
-                        moved = true;
+                [0.5, 0.0],
+                [0.5, 0.5],
+                [0.0, 0.5],
+            ];
+            let node_best = nodes_st
+                .iter()
+                .filter_map(|&st| at(st))
+                .map(|q| (q.closing, q.p.gap))
+                .fold((f64::INFINITY, f64::INFINITY), |a, b| {
+                    (a.0.min(b.0), a.1.min(b.1))
+                });
+            if node_best.1 > below.min(set.max_gap) {
+                return None;
+            }
+            const ORDER: usize = 4;
+            let mut best: Option<FacePoint> = None;
+            for i in 0..=ORDER {
+                for j in 0..=ORDER - i {
+                    let st = [i as f64 / ORDER as f64, j as f64 / ORDER as f64];
+                    match (at(st), &best) {
+                        (Some(q), Some(b)) if q.closing >= b.closing => {}
+                        (Some(q), _) => best = Some(q),
+                        (None, _) => {}
                     }
                 }
             }
-            if !moved {
-                h *= 0.5;
+            let mut best = best?;
+            let mut h = 0.5 / ORDER as f64;
+            while h > 1e-4 {
+                let mut moved = false;
+                for d in [
+                    [1.0, 0.0],
+                    [-1.0, 0.0],
+                    [0.0, 1.0],
+                    [0.0, -1.0],
+                    [1.0, -1.0],
+                    [-1.0, 1.0],
+                ] {
+                    let st = [best.st[0] + h * d[0], best.st[1] + h * d[1]];
+                    if !inside(st) {
+                        continue;
+                    }
+                    if let Some(q) = at(st) {
+                        if q.closing < best.closing {
+                            best = q;
+                            moved = true;
+                        }
+                    }
+                }
+                if !moved {
+                    h *= 0.5;
+                }
             }
-        }
-        // Nothing to add where a node is (to rounding) the face's minimum.
-        if best.closing >= node_best.0 - 1e-12 * node_best.0.abs().max(1e-9) {
-            continue;
-        }
-        let a = tri6::area(&xs);
-        let ell = (2.0 * a).sqrt();
-        let eps = set.factor * e_min / ell;
-        let n = best.p.normal;
-        let ns = rot(&s.to_body, n);
-        let nm = rot(&m.to_body, n);
-        let shs = tri6::shape(best.st);
-        let shm = tri6::shape(best.p.st);
-        let mut terms: Vec<Term> = f
-            .iter()
-            .enumerate()
-            .map(|(k, &node)| Term {
-                body: s.body,
-                node,
-                dir: ns.map(|c| shs[k] * c),
-            })
-            .collect();
-        for (k, &mn) in master.faces[best.p.face].iter().enumerate() {
-            terms.push(Term {
-                body: m.body,
-                node: mn,
-                dir: nm.map(|c| -shm[k] * c),
-            });
-        }
-        out.push((
-            Constraint {
-                terms,
-                gap0: best.p.gap,
-                rigid: best.rigid,
-                stiffness: share * eps * area_share * a,
-            },
-            Origin {
-                slave_body: s.body,
-                slave_node: f[0],
-                at: best.x,
-            },
-        ));
-    }
-    out
+            // Nothing to add where a node is (to rounding) the face's minimum.
+            if best.closing >= node_best.0 - 1e-12 * node_best.0.abs().max(1e-9) {
+                return None;
+            }
+            let a = tri6::area(&xs);
+            let ell = (2.0 * a).sqrt();
+            let eps = set.factor * e_min / ell;
+            let n = best.p.normal;
+            let ns = rot(&s.to_body, n);
+            let nm = rot(&m.to_body, n);
+            let shs = tri6::shape(best.st);
+            let shm = tri6::shape(best.p.st);
+            let mut terms: Vec<Term> = f
+                .iter()
+                .enumerate()
+                .map(|(k, &node)| Term {
+                    body: s.body,
+                    node,
+                    dir: ns.map(|c| shs[k] * c),
+                })
+                .collect();
+            for (k, &mn) in master.faces[best.p.face].iter().enumerate() {
+                terms.push(Term {
+                    body: m.body,
+                    node: mn,
+                    dir: nm.map(|c| -shm[k] * c),
+                });
+            }
+            Some((
+                Constraint {
+                    terms,
+                    gap0: best.p.gap,
+                    rigid: best.rigid,
+                    stiffness: share * eps * area_share * a,
+                },
+                Origin {
+                    slave_body: s.body,
+                    slave_node: f[0],
+                    at: best.x,
+                },
+            ))
+        })
+        .collect()
 }

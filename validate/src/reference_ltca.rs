@@ -188,6 +188,11 @@ pub struct ReferencePair<'a> {
     pub settings: ReferenceSettings,
 }
 
+/// Faces whose nodes come within this of the smallest gap get face minimum
+/// points: where light loads touch, m. (Under heavy loads the contact spans
+/// many elements and the nodes sample it.)
+pub const MINIMA_BAND_M: f64 = 10e-6;
+
 /// The torque of the unloaded check, solved first at every position, N·m.
 pub const UNLOADED_TORQUE_NM: f64 = 1e-3;
 
@@ -365,6 +370,7 @@ impl ReferencePair<'_> {
             factor: self.settings.penalty_factor,
             max_gap: self.settings.search_gap_m,
             reach: 2.0 * self.settings.search_gap_m,
+            minima_band: MINIMA_BAND_M,
         };
         let (cs, at): (Vec<Constraint>, Vec<V3>) = two_pass(&body_p, &body_w, &set)
             .into_iter()

@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// Version of the summary layout; part of the input hash.
-pub const REFERENCE_SCHEMA: u32 = 5;
+pub const REFERENCE_SCHEMA: u32 = 6;
 
 /// Options of the stage.
 #[derive(Debug, Clone, Serialize)]

@@ -62,6 +62,7 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
         factor: 100.0,
         max_gap: 1.0,
         reach: 1e-3,
+        minima_band: 1.0,
     };
     let cs: Vec<Constraint> = two_pass(&a, &b, &set).into_iter().map(|c| c.0).collect();
     assert_eq!(
@@ -291,6 +292,7 @@ fn hertz_line_contact_cylinder_on_block() {
         factor: 100.0,
         max_gap: 30e-6,
         reach: 1e-3,
+        minima_band: 1.0,
     };
     let pairs = two_pass(&a, &bb, &set);
     let cs: Vec<Constraint> = pairs.iter().map(|c| c.0.clone()).collect();
@@ -429,6 +431,7 @@ fn first_contact_between_nodes_at_vanishing_load() {
         factor: 100.0,
         max_gap: 5e-6,
         reach: 1e-3,
+        minima_band: 1.0,
     };
     let all: Vec<Constraint> = two_pass(&a, &bb, &set).into_iter().map(|c| c.0).collect();
     let fixed = |blk: &Block, top: bool| {
