@@ -65,6 +65,9 @@ enum Cmd {
         /// Solve every n-th position of the scene's sweep.
         #[arg(long, default_value_t = 1)]
         stride: usize,
+        /// Stride for the lightweight wheel blank (default: --stride).
+        #[arg(long)]
+        stride_lightweight: Option<usize>,
         /// Right-hand sides per solve block.
         #[arg(long, default_value_t = 16)]
         block: usize,
@@ -132,6 +135,7 @@ fn main() -> anyhow::Result<()> {
             start_band_um,
             search_gap_um,
             stride,
+            stride_lightweight,
             block,
         } => {
             if !["reduced", "reference"].contains(&level.as_str()) {
@@ -157,6 +161,7 @@ fn main() -> anyhow::Result<()> {
                     search_gap_m: search_gap_um * 1e-6,
                 },
                 stride,
+                stride_lightweight,
                 block,
             };
             validate::reference_stage::run(&sc, &meshes, &out, &opt)?;

@@ -28,6 +28,9 @@ pub struct StageOptions {
     pub settings: ReferenceSettings,
     /// Solve every n-th position of the scene's sweep.
     pub stride: usize,
+    /// Stride for the lightweight wheel blank (its sweep is 2.5 times
+    /// longer), when given.
+    pub stride_lightweight: Option<usize>,
     /// Right-hand sides per solve block.
     pub block: usize,
 }
@@ -76,6 +79,9 @@ pub struct BlankSummary {
     pub wall_s: f64,
     /// Wall time of this run's sweep (positions solved or reused), s.
     pub sweep_s: f64,
+    /// Cost of the sweep from scratch: the positions' own times (when they
+    /// were solved) plus factoring both bodies, s.
+    pub total_cpu_s: f64,
     /// Wall time per position when it was solved (columns, condensation,
     /// all torques at both penalties; factoring excluded), s.
     pub cpu_s_per_position: f64,
@@ -156,9 +162,14 @@ pub fn run(
             let t0 = std::time::Instant::now();
             let name = format!("{}_{}", blank_name(pb), blank_name(wb));
             let odir = out.join(&sc.name).join("reference").join(&name);
+            let stride = match wb {
+                Blank::Lightweight => opt.stride_lightweight.unwrap_or(opt.stride),
+                _ => opt.stride,
+            }
+            .max(1);
             let n_pos = (cycles(wb) * g.data.mesh_cycle() / step).round() as usize + 1;
             let positions: Vec<f64> = (0..n_pos)
-                .step_by(opt.stride.max(1))
+                .step_by(stride)
                 .map(|i| fp.roll_range[0] + direction * step * i as f64)
                 .collect();
             let (pm, wm) = (msh(Which::Pinion, pb), msh(Which::Wheel, wb));
@@ -211,7 +222,7 @@ pub fn run(
                 fp,
                 &rs,
                 fp.roll_range[0],
-                step * opt.stride.max(1) as f64,
+                step * stride as f64,
                 positions.len(),
                 direction,
             );
@@ -344,6 +355,23 @@ pub fn run(
             }
             let t = sc.pinion_torque_nm.last().copied().unwrap_or(0.0);
             write_atomic(&odir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
+            // Sizes and factoring times of this run's bodies, or of the run
+            // that solved the positions (kept beside the position cache).
+            let bodies_path = cache_dir.join("bodies.json");
+            let (dofs, factor_s): ([usize; 2], [f64; 2]) = match (&pinion, &wheel) {
+                (Some(p), Some(w)) => {
+                    let b = (
+                        [p.compliance.dofs_free, w.compliance.dofs_free],
+                        [p.compliance.factor_s, w.compliance.factor_s],
+                    );
+                    write_json(&bodies_path, &b)?;
+                    b
+                }
+                _ => std::fs::read_to_string(&bodies_path)
+                    .ok()
+                    .and_then(|t| serde_json::from_str(&t).ok())
+                    .unwrap_or(([0; 2], [0.0; 2])),
+            };
             let summary = BlankSummary {
                 input_hash: hash,
                 pinion_blank: blank_name(pb),
@@ -352,16 +380,10 @@ pub fn run(
                 penalty_factor: opt.settings.penalty_factor,
                 penalty_factor_check: opt.settings.penalty_factor_check,
                 positions: res.len(),
-                step_deg: sc.rotation.step_deg * opt.stride.max(1) as f64,
+                step_deg: sc.rotation.step_deg * stride as f64,
                 mesh_cycles: cycles(wb),
-                dofs: [
-                    pinion.as_ref().map_or(0, |m| m.compliance.dofs_free),
-                    wheel.as_ref().map_or(0, |m| m.compliance.dofs_free),
-                ],
-                factor_s: [
-                    pinion.as_ref().map_or(0.0, |m| m.compliance.factor_s),
-                    wheel.as_ref().map_or(0.0, |m| m.compliance.factor_s),
-                ],
+                dofs,
+                factor_s,
                 right_hand_sides: [
                     pinion.as_ref().map_or(0, |m| m.compliance.solves - rhs0),
                     wheel.as_ref().map_or(0, |m| m.compliance.solves),
@@ -377,6 +399,8 @@ pub fn run(
                     / res.len().max(1) as f64,
                 wall_s: t0.elapsed().as_secs_f64(),
                 sweep_s,
+                total_cpu_s: res.iter().map(|r| r.cpu_s).sum::<f64>()
+                    + factor_s.iter().sum::<f64>(),
                 cpu_s_per_position: res.iter().map(|r| r.cpu_s).sum::<f64>()
                     / res.len().max(1) as f64,
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
