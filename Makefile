@@ -6,10 +6,13 @@ OUT     ?= out
 CARGO   ?= cargo
 RELEASE := --release
 BIN     := target/release
-# REFERENCE=1 adds the reference FE LTCA (every REF_STRIDE-th position of the
-# scene's sweep) to `make validate`; its run time is not yet bounded (issue 6).
-REFERENCE  ?= 0
-REF_STRIDE ?= 6
+# The reference FE LTCA solves every REF_STRIDE-th position of the scene's
+# sweep (REF_STRIDE_LW for the lightweight wheel), reduced-level meshes;
+# solved positions are cached, so a finer stride later reuses them.
+# REFERENCE=0 leaves it out of `make validate`.
+REFERENCE     ?= 1
+REF_STRIDE    ?= 6
+REF_STRIDE_LW ?= $(REF_STRIDE)
 
 .PHONY: setup build test bench preprocess solve validate clean
 
@@ -42,7 +45,8 @@ solve: preprocess
 
 validate: solve
 	@if [ "$(REFERENCE)" = 1 ]; then \
-	  $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) --stride $(REF_STRIDE); fi
+	  $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) \
+	    --stride $(REF_STRIDE) --stride-lightweight $(REF_STRIDE_LW); fi
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
 
 clean:

@@ -42,6 +42,8 @@ pub enum Level {
     Reduced,
     Reference,
     Both,
+    /// Between reduced and reference (mesh-convergence studies).
+    Medium,
 }
 
 /// The project's Python (venv with meshio; override with `PROJECT_PYTHON`)
@@ -121,6 +123,7 @@ pub fn run(
     let levels: Vec<(&str, FlankElements)> = match level {
         Level::Reduced => vec![("reduced", sc.mesh.reduced_order)],
         Level::Reference => vec![("reference", sc.mesh.reference)],
+        Level::Medium => vec![("medium", sc.mesh.medium())],
         Level::Both => vec![
             ("reduced", sc.mesh.reduced_order),
             ("reference", sc.mesh.reference),

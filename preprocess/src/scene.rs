@@ -214,6 +214,24 @@ pub struct FlankElements {
 pub struct MeshLevels {
     pub reduced_order: FlankElements,
     pub reference: FlankElements,
+    /// The level between them for mesh-convergence studies; default: the
+    /// geometric mean of the two, per direction (the same refinement ratio
+    /// from reduced to medium as from medium to reference).
+    #[serde(default)]
+    pub medium: Option<FlankElements>,
+}
+
+impl MeshLevels {
+    /// The medium level, given or the geometric mean.
+    pub fn medium(&self) -> FlankElements {
+        self.medium.unwrap_or_else(|| {
+            let g = |a: u32, b: u32| ((a as f64 * b as f64).sqrt().round() as u32).max(1);
+            FlankElements {
+                profile: g(self.reduced_order.profile, self.reference.profile),
+                face: g(self.reduced_order.face, self.reference.face),
+            }
+        })
+    }
 }
 
 /// Unloaded TCA settings.
@@ -315,6 +333,7 @@ impl Scene {
         for (f, e) in [
             ("mesh.reduced_order", self.mesh.reduced_order),
             ("mesh.reference", self.mesh.reference),
+            ("mesh.medium", self.mesh.medium()),
         ] {
             for (k, v) in [("profile", e.profile), ("face", e.face)] {
                 if !(1..=500).contains(&v) {

@@ -12,6 +12,7 @@ pub mod body_compliance;
 pub mod comparison;
 pub mod contact_pairs;
 pub mod contact_surface;
+pub mod convergence;
 pub mod figures;
 pub mod penalty;
 pub mod published;

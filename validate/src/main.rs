@@ -72,6 +72,60 @@ enum Cmd {
         #[arg(long, default_value_t = 16)]
         block: usize,
     },
+    /// Mesh convergence of the reference LTCA: TE at one position and torque
+    /// on three mesh levels (standard blanks), observed order, extrapolation.
+    Convergence {
+        /// Scene file.
+        scene: PathBuf,
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Mesh levels, coarse to fine.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "reduced,medium,reference"
+        )]
+        levels: Vec<String>,
+        /// Position index in the scene's sweep (its rotation steps).
+        #[arg(long, default_value_t = 0)]
+        position: usize,
+        /// Pinion torque, N·m.
+        #[arg(long, default_value_t = 300.0)]
+        torque_nm: f64,
+        #[arg(long, default_value_t = 100.0)]
+        penalty: f64,
+        #[arg(long, default_value_t = 200.0)]
+        penalty_check: f64,
+        #[arg(long, default_value_t = 16)]
+        block: usize,
+    },
+}
+
+/// Checks the penalty factors (positive, finite).
+fn penalty_settings(
+    penalty: f64,
+    penalty_check: f64,
+    start_band_um: f64,
+    search_gap_um: f64,
+) -> anyhow::Result<validate::reference_ltca::ReferenceSettings> {
+    for (field, v) in [
+        ("--penalty", penalty),
+        ("--penalty-check", penalty_check),
+        ("--start-band-um", start_band_um),
+        ("--search-gap-um", search_gap_um),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            anyhow::bail!("{field} {v}: must be a positive number");
+        }
+    }
+    Ok(validate::reference_ltca::ReferenceSettings {
+        penalty_factor: penalty,
+        penalty_factor_check: penalty_check,
+        start_band_m: start_band_um * 1e-6,
+        search_gap_m: search_gap_um * 1e-6,
+    })
 }
 
 fn main() -> anyhow::Result<()> {
@@ -138,33 +192,55 @@ fn main() -> anyhow::Result<()> {
             stride_lightweight,
             block,
         } => {
-            if !["reduced", "reference"].contains(&level.as_str()) {
-                anyhow::bail!("--level {level}: must be reduced or reference");
+            if !["reduced", "medium", "reference"].contains(&level.as_str()) {
+                anyhow::bail!("--level {level}: must be reduced, medium or reference");
             }
-            for (field, v) in [
-                ("--penalty", penalty),
-                ("--penalty-check", penalty_check),
-                ("--start-band-um", start_band_um),
-                ("--search-gap-um", search_gap_um),
-            ] {
-                if !(v.is_finite() && v > 0.0) {
-                    anyhow::bail!("{field} {v}: must be a positive number");
-                }
-            }
+            let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
             let sc = preprocess::scene::Scene::load(&scene)?;
             let opt = validate::reference_stage::StageOptions {
                 level,
-                settings: validate::reference_ltca::ReferenceSettings {
-                    penalty_factor: penalty,
-                    penalty_factor_check: penalty_check,
-                    start_band_m: start_band_um * 1e-6,
-                    search_gap_m: search_gap_um * 1e-6,
-                },
+                settings,
                 stride,
                 stride_lightweight,
                 block,
             };
             validate::reference_stage::run(&sc, &meshes, &out, &opt)?;
+        }
+        Cmd::Convergence {
+            scene,
+            meshes,
+            out,
+            levels,
+            position,
+            torque_nm,
+            penalty,
+            penalty_check,
+            block,
+        } => {
+            if !(torque_nm.is_finite() && torque_nm > 0.0) {
+                anyhow::bail!("--torque-nm {torque_nm}: must be a positive number");
+            }
+            let settings = penalty_settings(penalty, penalty_check, 2.0, 60.0)?;
+            let sc = preprocess::scene::Scene::load(&scene)?;
+            let c = validate::convergence::run(
+                &sc, &meshes, &out, &levels, position, torque_nm, settings, block,
+            )?;
+            for (l, e) in c.levels.iter().zip(&c.error_to_extrapolation_pct) {
+                println!(
+                    "{:9} {:3} x {:3}: TE {:.3} urad, {} vs extrapolation",
+                    l.level,
+                    l.profile_elements,
+                    l.face_elements,
+                    l.te_urad,
+                    e.map_or("-".into(), |e| format!("{e:+.3} %"))
+                );
+            }
+            match (c.observed_order, c.extrapolated_te_urad) {
+                (Some(p), Some(t)) => {
+                    println!("observed order {p:.2}, extrapolated TE {t:.3} urad")
+                }
+                _ => println!("no monotone convergence over these levels: no extrapolation"),
+            }
         }
     }
     Ok(())

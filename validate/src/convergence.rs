@@ -1,0 +1,248 @@
+//! `validate convergence <scene>`: mesh convergence of the reference LTCA.
+//! The TE at one position and torque on three mesh levels (standard
+//! blanks), the observed order of convergence and the Richardson
+//! extrapolation, and how far each level lies from it. Written to
+//! `<out>/<scene>/reference/convergence.json`; each level's result is kept
+//! under `convergence/` with the hash of its meshes and settings and reused.
+
+use crate::reference_ltca::{Member, ReferencePair, ReferenceSettings};
+use crate::reference_stage::REFERENCE_SCHEMA;
+use anyhow::Context;
+use preprocess::design::Member as Which;
+use preprocess::output::write_json;
+use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
+use preprocess::scene::{Blank, LoadedScene};
+use preprocess::stiffness_stage::sha256_file;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::path::Path;
+
+/// One mesh level's result.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct LevelResult {
+    pub level: String,
+    /// Elements along the active profile × face width requested.
+    pub profile_elements: u32,
+    pub face_elements: u32,
+    /// Relative element size 1/√(profile · face).
+    pub h: f64,
+    pub dofs: [usize; 2],
+    pub constraints: usize,
+    pub te_urad: f64,
+    pub penalty_difference_pct: f64,
+    pub factor_s: [f64; 2],
+    pub position_s: f64,
+    pub input_hash: String,
+}
+
+/// The study.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Convergence {
+    pub torque_nm: f64,
+    pub pinion_rotation_deg: f64,
+    pub levels: Vec<LevelResult>,
+    /// Observed order p of TE(h) = TE∞ + c hᵖ from the three levels (None
+    /// when the differences change sign: no monotone convergence).
+    pub observed_order: Option<f64>,
+    pub extrapolated_te_urad: Option<f64>,
+    /// (TE(level) − TE∞) / TE∞ per level, %.
+    pub error_to_extrapolation_pct: Vec<Option<f64>>,
+}
+
+/// Observed order and extrapolated value from three levels, coarse to fine
+/// (h₁ > h₂ > h₃), for f(h) = f∞ + c hᵖ:
+/// (f₁ − f₂)/(f₂ − f₃) = (h₁ᵖ − h₂ᵖ)/(h₂ᵖ − h₃ᵖ) is solved for p in
+/// [0.05, 20] by bisection (the right side grows monotonically with p), and
+/// f∞ = f₃ − (f₂ − f₃) h₃ᵖ/(h₂ᵖ − h₃ᵖ). None when the differences change
+/// sign or no p in the range fits.
+pub fn richardson(h: [f64; 3], f: [f64; 3]) -> Option<(f64, f64)> {
+    let (d1, d2) = (f[0] - f[1], f[1] - f[2]);
+    if d1 == 0.0 || d2 == 0.0 || d1.signum() != d2.signum() {
+        return None;
+    }
+    let target = d1 / d2;
+    let ratio = |p: f64| (h[0].powf(p) - h[1].powf(p)) / (h[1].powf(p) - h[2].powf(p));
+    let (mut lo, mut hi) = (0.05, 20.0);
+    if !(ratio(lo) <= target && target <= ratio(hi)) {
+        return None;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if ratio(mid) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let p = 0.5 * (lo + hi);
+    let inf = f[2] - d2 * h[2].powf(p) / (h[1].powf(p) - h[2].powf(p));
+    Some((p, inf))
+}
+
+/// Runs the study at sweep position `index` (0.5° steps of the scene) and
+/// torque `torque_nm` on `levels`, standard blanks.
+pub fn run(
+    scene: &LoadedScene,
+    meshes: &Path,
+    out: &Path,
+    levels: &[String],
+    index: usize,
+    torque_nm: f64,
+    settings: ReferenceSettings,
+    block: usize,
+) -> anyhow::Result<Convergence> {
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let side = sc.loaded_flank;
+    let fp = g.side(side);
+    let direction = pinion_direction(&g.data, side);
+    let step = sc.rotation.step_deg.to_radians();
+    let phi = fp.roll_range[0] + direction * step * index as f64;
+    let cycles = sc.rotation.mesh_cycles(Blank::Standard);
+    let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
+    let dir = out.join(&sc.name).join("reference");
+    let cache = dir.join("convergence");
+    std::fs::create_dir_all(&cache)?;
+    let mut results = Vec::new();
+    for level in levels {
+        let elements = match level.as_str() {
+            "reduced" => sc.mesh.reduced_order,
+            "medium" => sc.mesh.medium(),
+            "reference" => sc.mesh.reference,
+            other => anyhow::bail!("--levels: unknown level {other} (reduced, medium, reference)"),
+        };
+        let msh = |m: Which| {
+            meshes
+                .join(&sc.name)
+                .join(format!("{}_standard_{level}.msh", m.name()))
+        };
+        let (pm, wm) = (msh(Which::Pinion), msh(Which::Wheel));
+        for p in [&pm, &wm] {
+            if !p.exists() {
+                anyhow::bail!(
+                    "scene {}: no mesh {}; run `preprocess mesh {} --level {level}`",
+                    sc.name,
+                    p.display(),
+                    scene.path.display()
+                );
+            }
+        }
+        let key = serde_json::json!({
+            "schema": REFERENCE_SCHEMA,
+            "pinion_mesh": sha256_file(&pm)?,
+            "wheel_mesh": sha256_file(&wm)?,
+            "settings": settings,
+            "phi": phi,
+            "torque_nm": torque_nm,
+            "flank": side.flank_name(Which::Pinion),
+        });
+        let hash = format!("{:x}", Sha256::digest(key.to_string().as_bytes()));
+        let path = cache.join(format!("{level}.json"));
+        if let Some(r) = std::fs::read_to_string(&path)
+            .ok()
+            .and_then(|t| serde_json::from_str::<LevelResult>(&t).ok())
+            .filter(|r| r.input_hash == hash)
+        {
+            eprintln!(
+                "convergence {level}: inputs unchanged, reusing {}",
+                path.display()
+            );
+            results.push(r);
+            continue;
+        }
+        eprintln!(
+            "convergence {level}: reading and factoring {} and {}",
+            pm.display(),
+            wm.display()
+        );
+        let mut pinion = Member::new(
+            preprocess::body_mesh::read(&pm).map_err(anyhow::Error::msg)?,
+            g.frames[0],
+            &g.data.member(Which::Pinion).material(),
+            side.flank_name(Which::Pinion),
+            &pinion_teeth,
+            block,
+        )?;
+        let mut wheel = Member::new(
+            preprocess::body_mesh::read(&wm).map_err(anyhow::Error::msg)?,
+            g.frames[1],
+            &g.data.member(Which::Wheel).material(),
+            side.flank_name(Which::Wheel),
+            &wheel_teeth,
+            block,
+        )?;
+        let mut pair = ReferencePair {
+            pinion: &mut pinion,
+            wheel: &mut wheel,
+            flanks: fp,
+            direction,
+            settings,
+        };
+        let r = pair
+            .position(phi, &[torque_nm])
+            .with_context(|| format!("scene {}: convergence at level {level}", sc.name))?;
+        let l = &r.loads[0];
+        let res = LevelResult {
+            level: level.clone(),
+            profile_elements: elements.profile,
+            face_elements: elements.face,
+            h: 1.0 / (elements.profile as f64 * elements.face as f64).sqrt(),
+            dofs: [pinion.compliance.dofs_free, wheel.compliance.dofs_free],
+            constraints: r.constraints,
+            te_urad: l.te * 1e6,
+            penalty_difference_pct: ((l.te - l.te_check) / l.te).abs() * 100.0,
+            factor_s: [pinion.compliance.factor_s, wheel.compliance.factor_s],
+            position_s: r.cpu_s,
+            input_hash: hash,
+        };
+        eprintln!(
+            "convergence {level}: TE {:.3} µrad at {torque_nm} N·m ({} + {} dofs, {} constraints, {:.0} s)",
+            res.te_urad, res.dofs[0], res.dofs[1], res.constraints, res.position_s
+        );
+        write_json(&path, &res)?;
+        results.push(res);
+    }
+    results.sort_by(|a, b| b.h.total_cmp(&a.h));
+    let fit = (results.len() == 3)
+        .then(|| {
+            richardson(
+                [results[0].h, results[1].h, results[2].h],
+                [results[0].te_urad, results[1].te_urad, results[2].te_urad],
+            )
+        })
+        .flatten();
+    let c = Convergence {
+        torque_nm,
+        pinion_rotation_deg: (step * index as f64).to_degrees(),
+        error_to_extrapolation_pct: results
+            .iter()
+            .map(|r| fit.map(|(_, inf)| (r.te_urad - inf) / inf * 100.0))
+            .collect(),
+        levels: results,
+        observed_order: fit.map(|f| f.0),
+        extrapolated_te_urad: fit.map(|f| f.1),
+    };
+    write_json(&dir.join("convergence.json"), &c)?;
+    Ok(c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::richardson;
+
+    /// f = 1 + 0.5 h² on unequal refinement ratios: order 2 and f∞ = 1.
+    #[test]
+    fn richardson_recovers_a_known_quadratic() {
+        let h = [0.0645, 0.0358, 0.0195];
+        let f = h.map(|x| 1.0 + 0.5 * x * x);
+        let (p, inf) = richardson(h, f).unwrap();
+        assert!((p - 2.0).abs() < 1e-9, "order {p}");
+        assert!((inf - 1.0).abs() < 1e-12, "limit {inf}");
+    }
+
+    /// Differences of opposite sign: no monotone convergence, no estimate.
+    #[test]
+    fn richardson_refuses_oscillating_values() {
+        assert!(richardson([0.3, 0.2, 0.1], [1.0, 1.2, 1.1]).is_none());
+    }
+}
