@@ -14,7 +14,7 @@ REFERENCE     ?= 1
 REF_STRIDE    ?= 6
 REF_STRIDE_LW ?= $(REF_STRIDE)
 
-.PHONY: setup build test bench preprocess solve validate clean
+.PHONY: setup build test bench preprocess solve validate convergence clean
 
 setup:
 	@bash scripts/setup.sh
@@ -48,6 +48,13 @@ validate: solve
 	  $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) \
 	    --stride $(REF_STRIDE) --stride-lightweight $(REF_STRIDE_LW); fi
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
+
+# Mesh convergence of the reference (three mesh levels at one position and
+# torque; the reference level needs ~10 GB and about half an hour).
+convergence: build
+	$(BIN)/preprocess mesh $(SCENE) --level medium --out meshes
+	$(BIN)/preprocess mesh $(SCENE) --level reference --out meshes
+	$(BIN)/validate convergence $(SCENE) --meshes meshes --out $(OUT)
 
 clean:
 	$(CARGO) clean

@@ -193,7 +193,12 @@ pub fn compare(
             });
         }
     }
-    let markdown = markdown(&rows, &rf);
+    let mut markdown = markdown(&rows, &rf);
+    if let Some(c) = read::<crate::convergence::Convergence>(
+        &out.join(scene).join("reference/convergence.json"),
+    ) {
+        convergence_markdown(&mut markdown, &c);
+    }
     Some(Comparison { rows, markdown })
 }
 
@@ -266,4 +271,38 @@ fn markdown(rows: &[Row], rf: &[crate::reference_stage::BlankSummary]) -> String
         );
     }
     s
+}
+
+fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
+    let _ = writeln!(s, "\n## Mesh convergence of the reference\n");
+    let _ = writeln!(
+        s,
+        "TE at {} N·m, pinion rotation {:.1}° of the sweep, standard blanks, on three mesh levels (`validate convergence`). h = 1/√(profile × face elements). Observed order: {}; extrapolated TE: {}.\n",
+        c.torque_nm,
+        c.pinion_rotation_deg,
+        opt(c.observed_order, 2),
+        c.extrapolated_te_urad
+            .map_or("– (no monotone convergence)".into(), |t| format!("{t:.3} µrad"))
+    );
+    let _ = writeln!(s, "| level | elements profile × face | h | dofs pinion + wheel | constraints | TE, µrad | vs extrapolation % | penalty check % | factor s | position s |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    for (l, e) in c.levels.iter().zip(&c.error_to_extrapolation_pct) {
+        let _ = writeln!(
+            s,
+            "| {} | {} × {} | {:.4} | {} + {} | {} | {:.3} | {} | {:.3} | {:.0} + {:.0} | {:.0} |",
+            l.level,
+            l.profile_elements,
+            l.face_elements,
+            l.h,
+            l.dofs[0],
+            l.dofs[1],
+            l.constraints,
+            l.te_urad,
+            e.map_or("–".into(), |e| format!("{e:+.3}")),
+            l.penalty_difference_pct,
+            l.factor_s[0],
+            l.factor_s[1],
+            l.position_s
+        );
+    }
 }
