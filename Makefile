@@ -46,7 +46,8 @@ solve: preprocess
 validate: solve
 	@if [ "$(REFERENCE)" = 1 ]; then \
 	  $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) \
-	    --stride $(REF_STRIDE) --stride-lightweight $(REF_STRIDE_LW); fi
+	    --stride $(REF_STRIDE) --stride-lightweight $(REF_STRIDE_LW) && \
+	  $(BIN)/validate tradeoff $(SCENE) --meshes meshes --out $(OUT); fi
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
 
 # Mesh convergence of the reference (three mesh levels at one position and

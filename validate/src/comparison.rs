@@ -194,10 +194,15 @@ pub fn compare(
         }
     }
     let mut markdown = markdown(&rows, &rf);
-    if let Some(c) = read::<crate::convergence::Convergence>(
-        &out.join(scene).join("reference/convergence.json"),
-    ) {
+    if let Some(c) =
+        read::<crate::convergence::Convergence>(&out.join(scene).join("reference/convergence.json"))
+    {
         convergence_markdown(&mut markdown, &c);
+    }
+    if let Some(t) =
+        read::<Vec<crate::tradeoff::Point>>(&out.join(scene).join("reference/tradeoff.json"))
+    {
+        tradeoff_markdown(&mut markdown, &t);
     }
     Some(Comparison { rows, markdown })
 }
@@ -303,6 +308,30 @@ fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
             l.factor_s[0],
             l.factor_s[1],
             l.position_s
+        );
+    }
+}
+
+fn tradeoff_markdown(s: &mut String, pts: &[crate::tradeoff::Point]) {
+    let _ = writeln!(
+        s,
+        "\n## Reduced model: run time against error (slices per tooth pair)\n"
+    );
+    let _ = writeln!(s, "Quasi-static LTCA at the reference's positions (`validate tradeoff`), against the reference. The stiffness grid is the scene's; its density is not varied here.\n");
+    let _ = writeln!(s, "| wheel blank | slices | load, N·m | mean TE, µrad | diff % | ptp TE, µrad | diff % | ms/position |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    for p in pts {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.2} | {:+.2} | {:.2} | {:+.1} | {:.2} |",
+            p.wheel_blank,
+            p.slices,
+            p.torque_nm,
+            p.te_mean_urad,
+            p.mean_error_pct,
+            p.te_ptp_urad,
+            p.ptp_error_pct,
+            p.s_per_position * 1e3
         );
     }
 }

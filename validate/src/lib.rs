@@ -19,4 +19,5 @@ pub mod published;
 pub mod reference_ltca;
 pub mod reference_stage;
 pub mod report;
+pub mod tradeoff;
 pub mod utca_check;

@@ -72,6 +72,19 @@ enum Cmd {
         #[arg(long, default_value_t = 16)]
         block: usize,
     },
+    /// The reduced model's run time against its error to the reference, over
+    /// the slices per tooth pair (needs `validate reference` results).
+    Tradeoff {
+        /// Scene file.
+        scene: PathBuf,
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Slice counts per tooth pair.
+        #[arg(long, value_delimiter = ',', default_value = "8,12,20,30,45,60")]
+        slices: Vec<usize>,
+    },
     /// Mesh convergence of the reference LTCA: TE at one position and torque
     /// on three mesh levels (standard blanks), observed order, extrapolation.
     Convergence {
@@ -151,6 +164,13 @@ fn main() -> anyhow::Result<()> {
                 std::fs::create_dir_all(&reports)?;
                 let s = &sc.scene;
                 figures = validate::figures::te_figures(o, &s.name, &reports, &s.pinion_torque_nm);
+                let tr = o.join(&s.name).join("reference/tradeoff.svg");
+                if let Ok(svg) = std::fs::read_to_string(&tr) {
+                    figures.push((
+                        "Reduced model: error to the reference against run time".into(),
+                        svg,
+                    ));
+                }
                 if let Some(&t) = s.pinion_torque_nm.last() {
                     for wb in &s.blanks.wheel {
                         for pb in &s.blanks.pinion {
@@ -205,6 +225,29 @@ fn main() -> anyhow::Result<()> {
                 block,
             };
             validate::reference_stage::run(&sc, &meshes, &out, &opt)?;
+        }
+        Cmd::Tradeoff {
+            scene,
+            meshes,
+            out,
+            slices,
+        } => {
+            if let Some(n) = slices.iter().find(|n| !(4..=400).contains(*n)) {
+                anyhow::bail!("--slices {n}: must lie in [4, 400] (as ltca.slices)");
+            }
+            let sc = preprocess::scene::Scene::load(&scene)?;
+            let pts = validate::tradeoff::run(&sc, &meshes, &out, &slices)?;
+            for p in &pts {
+                println!(
+                    "{:11} {:3} slices {:5} N m: mean {:+.3} %, ptp {:+.2} %, {:.2} ms/position",
+                    p.wheel_blank,
+                    p.slices,
+                    p.torque_nm,
+                    p.mean_error_pct,
+                    p.ptp_error_pct,
+                    p.s_per_position * 1e3
+                );
+            }
         }
         Cmd::Convergence {
             scene,
