@@ -17,7 +17,9 @@ use sha2::{Digest, Sha256};
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// Version of the summary layout; part of the input hash.
+/// Version of the reference computation (constraints, solve, position
+/// results); part of every cache key. A summary of another layout fails to
+/// parse and is rebuilt from the cached positions.
 pub const REFERENCE_SCHEMA: u32 = 6;
 
 /// Options of the stage.
@@ -41,8 +43,12 @@ pub struct LoadSummary {
     pub torque_nm: f64,
     pub te_mean_urad: f64,
     pub te_ptp_urad: f64,
-    /// Largest |TE(penalty) − TE(check penalty)| over the positions, % of TE.
+    /// Largest |TE(penalty) − TE(check penalty)| over the positions, % of
+    /// the mean TE at this torque (at light loads the TE itself passes near
+    /// zero, where a per-position percentage means nothing).
     pub penalty_difference_pct: f64,
+    /// The same difference, µrad.
+    pub penalty_difference_max_urad: f64,
     pub max_pressure_mpa: f64,
     /// Largest |Σ forces × levers − torque| / torque over the positions.
     pub torque_balance_max: f64,
@@ -440,14 +446,16 @@ fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
             let (lo, hi) = te.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &v| {
                 (a.0.min(v), a.1.max(v))
             });
+            let penalty_max = res
+                .iter()
+                .map(|r| (r.loads[k].te - r.loads[k].te_check).abs())
+                .fold(0.0, f64::max);
             LoadSummary {
                 torque_nm: t,
                 te_mean_urad: mean * 1e6,
                 te_ptp_urad: (hi - lo) * 1e6,
-                penalty_difference_pct: res
-                    .iter()
-                    .map(|r| ((r.loads[k].te - r.loads[k].te_check) / r.loads[k].te).abs() * 100.0)
-                    .fold(0.0, f64::max),
+                penalty_difference_pct: penalty_max / mean.abs() * 100.0,
+                penalty_difference_max_urad: penalty_max * 1e6,
                 max_pressure_mpa: res
                     .iter()
                     .map(|r| r.loads[k].max_pressure_pa)
