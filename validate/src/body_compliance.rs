@@ -65,6 +65,16 @@ impl BodyCompliance {
         })
     }
 
+    /// Keeps the responses at `universe` from now on, dropping the columns
+    /// computed so far (they were kept elsewhere). For a single position on
+    /// a fine mesh, where the responses at every flank node of the teeth
+    /// would not fit in memory.
+    pub fn set_universe(&mut self, universe: &[usize]) {
+        self.slot = universe.iter().enumerate().map(|(i, &n)| (n, i)).collect();
+        self.universe = universe.len();
+        self.columns.clear();
+    }
+
     /// Whether `node`'s columns are available.
     pub fn has(&self, node: usize) -> bool {
         self.columns.contains_key(&node)

@@ -335,6 +335,21 @@ impl ReferencePair<'_> {
 
     /// Every two-pass constraint up to the search gap that closes as the
     /// pinion turns in its driving sense, at pinion angle `phi`.
+    /// The nodes of every constraint up to the search gap at `phi`, per body
+    /// (pinion, wheel): all that position can load or check.
+    pub fn potential_nodes(&self, phi: f64) -> Result<[Vec<usize>; 2], ReferenceError> {
+        let (cs, _) = self.constraints(phi)?;
+        let mut out = [Vec::new(), Vec::new()];
+        for t in cs.iter().flat_map(|c| c.terms.iter()) {
+            out[t.body].push(t.node);
+        }
+        for v in &mut out {
+            v.sort_unstable();
+            v.dedup();
+        }
+        Ok(out)
+    }
+
     /// With each constraint: its slave point in the pinion's member frame.
     fn constraints(&self, phi: f64) -> Result<(Vec<Constraint>, Vec<V3>), ReferenceError> {
         let phi2 = self.flanks.conjugate_wheel_angle(phi);
