@@ -151,9 +151,18 @@ pub struct LoadResult {
     pub max_pressure_pa: f64,
     /// Σ forces × levers − torque, relative.
     pub torque_balance: f64,
-    /// Smallest loaded gap of the searched constraints that start in the
-    /// outer half of the search range (must stay open), m.
+    /// Smallest loaded gap of the searched constraints left out of the
+    /// solve that start in the outer half of the search range, m. Never
+    /// negative once the working set has settled (a penetrating one would
+    /// have joined): the closest call among the far constraints.
     pub band_margin_m: f64,
+    /// Search gap − the largest closure (initial − loaded gap) of any
+    /// searched constraint, m: how much more closure a constraint at the
+    /// edge of the search range would need to touch. Positive: nothing
+    /// beyond the range can have touched. (None in results cached before
+    /// it was recorded.)
+    #[serde(default)]
+    pub search_margin_m: Option<f64>,
 }
 
 /// All torques of one position.
@@ -287,12 +296,18 @@ impl ReferencePair<'_> {
                 first_force = s.force.clone();
                 first_idx = ws.idx.clone();
             }
-            let band_margin_m = self
-                .outside_gaps(&cs, &ws.idx, &s.force, s.psi)?
-                .into_iter()
-                .filter(|&(c, _)| cs[c].gap0 > 0.5 * self.settings.search_gap_m)
-                .map(|(_, g)| g)
+            let outside = self.outside_gaps(&cs, &ws.idx, &s.force, s.psi)?;
+            let band_margin_m = outside
+                .iter()
+                .filter(|&&(c, _)| cs[c].gap0 > 0.5 * self.settings.search_gap_m)
+                .map(|&(_, g)| g)
                 .fold(f64::INFINITY, f64::min);
+            let closure = outside
+                .iter()
+                .map(|&(c, g)| cs[c].gap0 - g)
+                .chain(ws.idx.iter().zip(&s.gap).map(|(&c, &g)| cs[c].gap0 - g))
+                .fold(f64::NEG_INFINITY, f64::max);
+            let search_margin_m = Some(self.settings.search_gap_m - closure);
             let f = nodal_normal_forces(&sub, &s.force, 0, &self.pinion.inward);
             let p = smoothed_pressure(&self.pinion.mesh.mesh.nodes, &self.pinion.faces, &f);
             let max_pressure_pa = p.values().copied().fold(0.0, f64::max);
@@ -311,6 +326,7 @@ impl ReferencePair<'_> {
                 max_pressure_pa,
                 torque_balance: (carried_load(&sub, &s.force) - t) / t,
                 band_margin_m,
+                search_margin_m,
             });
         }
         let unloaded = loads.remove(0);

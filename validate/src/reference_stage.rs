@@ -52,9 +52,13 @@ pub struct LoadSummary {
     pub max_pressure_mpa: f64,
     /// Largest |Σ forces × levers − torque| / torque over the positions.
     pub torque_balance_max: f64,
-    /// Smallest loaded gap of the searched constraints in the outer half of
-    /// the search range (> 0: the search reached far enough), µm.
+    /// Smallest loaded gap of the searched constraints left out of the
+    /// solve in the outer half of the search range, µm (≥ 0 once settled).
     pub band_margin_min_um: f64,
+    /// Smallest search margin over the positions (search gap − largest
+    /// closure), µm; positive: nothing beyond the search range can have
+    /// touched. None when a cached position predates it.
+    pub search_margin_min_um: Option<f64>,
     /// Contact solves (both penalties) per position, s.
     pub cpu_s_per_position: f64,
 }
@@ -470,6 +474,11 @@ fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
                     .map(|r| r.loads[k].band_margin_m)
                     .fold(f64::INFINITY, f64::min)
                     * 1e6,
+                search_margin_min_um: res
+                    .iter()
+                    .map(|r| r.loads[k].search_margin_m)
+                    .collect::<Option<Vec<f64>>>()
+                    .map(|v| v.into_iter().fold(f64::INFINITY, f64::min) * 1e6),
                 cpu_s_per_position: res.iter().map(|r| r.cpu_s).sum::<f64>() / n,
             }
         })
