@@ -79,18 +79,33 @@ pub fn richardson(h: [f64; 3], f: [f64; 3]) -> Option<(f64, f64)> {
     Some((p, inf))
 }
 
-/// Runs the study at sweep position `index` (0.5° steps of the scene) and
-/// torque `torque_nm` on `levels`, standard blanks.
+/// What the study solves.
+#[derive(Debug, Clone)]
+pub struct Study {
+    /// Mesh levels: reduced, medium, reference.
+    pub levels: Vec<String>,
+    /// Position index in the scene's sweep (its rotation steps).
+    pub position: usize,
+    pub torque_nm: f64,
+    pub settings: ReferenceSettings,
+    /// Right-hand sides per solve block.
+    pub block: usize,
+}
+
+/// Runs the study (standard blanks).
 pub fn run(
     scene: &LoadedScene,
     meshes: &Path,
     out: &Path,
-    levels: &[String],
-    index: usize,
-    torque_nm: f64,
-    settings: ReferenceSettings,
-    block: usize,
+    study: &Study,
 ) -> anyhow::Result<Convergence> {
+    let Study {
+        levels,
+        position: index,
+        torque_nm,
+        settings,
+        block,
+    } = study.clone();
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;
@@ -104,7 +119,7 @@ pub fn run(
     let cache = dir.join("convergence");
     std::fs::create_dir_all(&cache)?;
     let mut results = Vec::new();
-    for level in levels {
+    for level in &levels {
         let elements = match level.as_str() {
             "reduced" => sc.mesh.reduced_order,
             "medium" => sc.mesh.medium(),

@@ -265,9 +265,14 @@ fn main() -> anyhow::Result<()> {
             }
             let settings = penalty_settings(penalty, penalty_check, 2.0, 60.0)?;
             let sc = preprocess::scene::Scene::load(&scene)?;
-            let c = validate::convergence::run(
-                &sc, &meshes, &out, &levels, position, torque_nm, settings, block,
-            )?;
+            let study = validate::convergence::Study {
+                levels,
+                position,
+                torque_nm,
+                settings,
+                block,
+            };
+            let c = validate::convergence::run(&sc, &meshes, &out, &study)?;
             for (l, e) in c.levels.iter().zip(&c.error_to_extrapolation_pct) {
                 println!(
                     "{:9} {:3} x {:3}: TE {:.3} urad, {} vs extrapolation",
