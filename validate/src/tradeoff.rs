@@ -159,13 +159,13 @@ fn plot(path: &Path, points: &[Point]) -> anyhow::Result<()> {
             );
         }
         series.push(Series {
-            name: format!("{b} wheel: largest |mean TE error| %"),
+            name: format!("{b}: mean TE"),
             x: x.clone(),
             y: ym,
             dashed: false,
         });
         series.push(Series {
-            name: format!("{b} wheel: largest |ptp TE error| %"),
+            name: format!("{b}: ptp TE"),
             x,
             y: yp,
             dashed: true,
@@ -175,7 +175,7 @@ fn plot(path: &Path, points: &[Point]) -> anyhow::Result<()> {
         path,
         "Reduced model against the reference (100-700 N·m): error vs LTCA time, over slices per pair",
         "LTCA wall time per position, all torques (ms)",
-        "error to the reference (%)",
+        "largest |error| to the reference (%)",
         &series,
     )?;
     Ok(())
