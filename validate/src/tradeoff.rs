@@ -74,12 +74,18 @@ pub fn run(
         let Ok(text) = std::fs::read_to_string(&path) else {
             continue;
         };
-        let r: Reference = serde_json::from_str(&text).with_context(|| {
-            format!(
-                "{}: not a reference summary of this version",
-                path.display()
-            )
-        })?;
+        let r: Reference = match serde_json::from_str(&text) {
+            Ok(r) => r,
+            Err(e) => {
+                // A stale summary (older layout, or a blank the scene no
+                // longer has) is named and left out, not used.
+                eprintln!(
+                    "tradeoff: skipping {}: not a reference summary of this version ({e}); rerun `validate reference`",
+                    path.display()
+                );
+                continue;
+            }
+        };
         let (Some(pb), Some(wb)) = (blank_of(&r.pinion_blank), blank_of(&r.wheel_blank)) else {
             continue;
         };
