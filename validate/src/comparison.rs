@@ -62,7 +62,14 @@ pub struct Row {
     pub multibody_te_ptp_urad: f64,
     pub reference_te_mean_urad: f64,
     pub reference_te_ptp_urad: f64,
-    /// (multibody − reference) / reference, %.
+    /// The multibody TE sampled at the reference's positions (linear
+    /// interpolation in pinion rotation): its mean and peak-to-peak, µrad.
+    /// None when a file is missing.
+    pub multibody_at_reference_mean_urad: Option<f64>,
+    pub multibody_at_reference_ptp_urad: Option<f64>,
+    /// (multibody − reference) / reference, %: from the samples at the
+    /// reference's positions when available (a sparse reference would
+    /// otherwise miss peaks the full run has), else from the full run.
     pub te_mean_difference_pct: f64,
     pub te_ptp_difference_pct: f64,
     pub reference_penalty_difference_pct: f64,
@@ -165,6 +172,8 @@ pub fn compare(
                         .map(|c| c.cpu_step_s)
                 })
             };
+            let blank = format!("{}_{}", r.pinion_blank, r.wheel_blank);
+            let sampled = multibody_at_reference(out, scene, &blank, l.torque_nm);
             rows.push(Row {
                 pinion_blank: r.pinion_blank.clone(),
                 wheel_blank: r.wheel_blank.clone(),
@@ -173,8 +182,14 @@ pub fn compare(
                 multibody_te_ptp_urad: q.te_ptp_urad,
                 reference_te_mean_urad: l.te_mean_urad,
                 reference_te_ptp_urad: l.te_ptp_urad,
-                te_mean_difference_pct: (q.te_mean_urad - l.te_mean_urad) / l.te_mean_urad * 100.0,
-                te_ptp_difference_pct: (q.te_ptp_urad - l.te_ptp_urad) / l.te_ptp_urad * 100.0,
+                multibody_at_reference_mean_urad: sampled.map(|v| v.0),
+                multibody_at_reference_ptp_urad: sampled.map(|v| v.1),
+                te_mean_difference_pct: (sampled.map_or(q.te_mean_urad, |v| v.0) - l.te_mean_urad)
+                    / l.te_mean_urad
+                    * 100.0,
+                te_ptp_difference_pct: (sampled.map_or(q.te_ptp_urad, |v| v.1) - l.te_ptp_urad)
+                    / l.te_ptp_urad
+                    * 100.0,
                 reference_penalty_difference_pct: l.penalty_difference_pct,
                 reference_max_pressure_mpa: l.max_pressure_mpa,
                 multibody_steps: q.steps,
@@ -207,6 +222,62 @@ pub fn compare(
     Some(Comparison { rows, markdown })
 }
 
+/// Columns of a CSV file by header name.
+fn csv_columns(path: &Path, names: &[&str]) -> Option<Vec<Vec<f64>>> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next()?.split(',').collect();
+    let idx: Vec<usize> = names
+        .iter()
+        .map(|n| header.iter().position(|h| h == n))
+        .collect::<Option<_>>()?;
+    let mut cols = vec![Vec::new(); names.len()];
+    for l in lines.filter(|l| !l.trim().is_empty()) {
+        let cells: Vec<&str> = l.split(',').collect();
+        for (c, &i) in cols.iter_mut().zip(&idx) {
+            c.push(cells.get(i)?.trim().parse().ok()?);
+        }
+    }
+    Some(cols)
+}
+
+/// Linear interpolation of (x, y) (x increasing) at `at`; None outside.
+pub fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
+    let k = x.partition_point(|&v| v <= at);
+    if k == 0 || k > x.len() {
+        return None;
+    }
+    if k == x.len() {
+        return ((at - x[k - 1]).abs() < 1e-9).then_some(y[k - 1]);
+    }
+    let t = (at - x[k - 1]) / (x[k] - x[k - 1]);
+    Some(y[k - 1] + t * (y[k] - y[k - 1]))
+}
+
+/// Mean and peak-to-peak of the multibody TE at the reference's positions.
+fn multibody_at_reference(out: &Path, scene: &str, blank: &str, t: f64) -> Option<(f64, f64)> {
+    let mb = csv_columns(
+        &out.join(scene)
+            .join("multibody")
+            .join(blank)
+            .join(format!("quasi_static_{t}nm.csv")),
+        &["pinion_rotation_deg", "te_urad"],
+    )?;
+    let rf = csv_columns(
+        &out.join(scene).join("reference").join(blank).join("te.csv"),
+        &["pinion_rotation_deg"],
+    )?;
+    let v: Vec<f64> = rf[0]
+        .iter()
+        .map(|&a| interpolate(&mb[0], &mb[1], a))
+        .collect::<Option<_>>()?;
+    let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| {
+        (a.0.min(x), a.1.max(x))
+    });
+    Some((mean, hi - lo))
+}
+
 fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or("–".into(), |x| format!("{x:.digits$}"))
 }
@@ -234,18 +305,21 @@ fn markdown(rows: &[Row], rf: &[crate::reference_stage::BlankSummary]) -> String
             u.torque_nm, u.reference_te_mean_urad, u.reference_te_ptp_urad, u.utca_te_mean_urad, u.utca_te_ptp_urad, u.max_abs_difference_urad, u.mean_difference_urad
         );
     }
+    let _ = writeln!(s, "Reduced-model values are the full 10 rpm run, with the same run sampled at the reference's positions in brackets; the differences use the sampled values (a sparse reference misses peaks that the full run has).\n");
     let _ = writeln!(s, "| wheel blank | load, N·m | mean TE reduced, µrad | mean TE reference, µrad | diff % | ptp TE reduced, µrad | ptp TE reference, µrad | diff % | penalty check % | published mean MB / NLFEA | published ptp MB / NLFEA |");
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
     for r in rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.2} | {:.2} | {:+.2} | {:.2} | {:.2} | {:+.1} | {:.3} | {} / {} | {} / {} |",
+            "| {} | {} | {:.2} ({}) | {:.2} | {:+.2} | {:.2} ({}) | {:.2} | {:+.1} | {:.3} | {} / {} | {} / {} |",
             r.wheel_blank,
             r.torque_nm,
             r.multibody_te_mean_urad,
+            opt(r.multibody_at_reference_mean_urad, 2),
             r.reference_te_mean_urad,
             r.te_mean_difference_pct,
             r.multibody_te_ptp_urad,
+            opt(r.multibody_at_reference_ptp_urad, 2),
             r.reference_te_ptp_urad,
             r.te_ptp_difference_pct,
             r.reference_penalty_difference_pct,
@@ -333,5 +407,23 @@ fn tradeoff_markdown(s: &mut String, pts: &[crate::tradeoff::Point]) {
             p.ptp_error_pct,
             p.s_per_position * 1e3
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::interpolate;
+
+    /// A straight line is reproduced between samples; outside the samples
+    /// there is no value.
+    #[test]
+    fn interpolation_of_a_line_and_its_ends() {
+        let x = [0.0, 1.0, 3.0];
+        let y = [1.0, 3.0, 7.0];
+        assert_eq!(interpolate(&x, &y, 2.0), Some(5.0));
+        assert_eq!(interpolate(&x, &y, 0.0), Some(1.0));
+        assert_eq!(interpolate(&x, &y, 3.0), Some(7.0));
+        assert_eq!(interpolate(&x, &y, 3.5), None);
+        assert_eq!(interpolate(&x, &y, -0.1), None);
     }
 }
