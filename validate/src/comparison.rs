@@ -222,25 +222,6 @@ pub fn compare(
     Some(Comparison { rows, markdown })
 }
 
-/// Columns of a CSV file by header name.
-fn csv_columns(path: &Path, names: &[&str]) -> Option<Vec<Vec<f64>>> {
-    let text = std::fs::read_to_string(path).ok()?;
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next()?.split(',').collect();
-    let idx: Vec<usize> = names
-        .iter()
-        .map(|n| header.iter().position(|h| h == n))
-        .collect::<Option<_>>()?;
-    let mut cols = vec![Vec::new(); names.len()];
-    for l in lines.filter(|l| !l.trim().is_empty()) {
-        let cells: Vec<&str> = l.split(',').collect();
-        for (c, &i) in cols.iter_mut().zip(&idx) {
-            c.push(cells.get(i)?.trim().parse().ok()?);
-        }
-    }
-    Some(cols)
-}
-
 /// Linear interpolation of (x, y) (x increasing) at `at`; None outside.
 pub fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
     let k = x.partition_point(|&v| v <= at);
@@ -256,26 +237,20 @@ pub fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
 
 /// Mean and peak-to-peak of the multibody TE at the reference's positions.
 fn multibody_at_reference(out: &Path, scene: &str, blank: &str, t: f64) -> Option<(f64, f64)> {
-    let mb = csv_columns(
+    use crate::figures::{column, read_csv};
+    let mb = read_csv(
         &out.join(scene)
             .join("multibody")
             .join(blank)
             .join(format!("quasi_static_{t}nm.csv")),
-        &["pinion_rotation_deg", "te_urad"],
     )?;
-    let rf = csv_columns(
-        &out.join(scene).join("reference").join(blank).join("te.csv"),
-        &["pinion_rotation_deg"],
-    )?;
-    let v: Vec<f64> = rf[0]
+    let rf = read_csv(&out.join(scene).join("reference").join(blank).join("te.csv"))?;
+    let (x, y) = (column(&mb, "pinion_rotation_deg")?, column(&mb, "te_urad")?);
+    let v: Vec<f64> = column(&rf, "pinion_rotation_deg")?
         .iter()
-        .map(|&a| interpolate(&mb[0], &mb[1], a))
+        .map(|&a| interpolate(x, y, a))
         .collect::<Option<_>>()?;
-    let mean = v.iter().sum::<f64>() / v.len().max(1) as f64;
-    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| {
-        (a.0.min(x), a.1.max(x))
-    });
-    Some((mean, hi - lo))
+    Some(solver::ltca::mean_ptp(&v))
 }
 
 fn opt(v: Option<f64>, digits: usize) -> String {

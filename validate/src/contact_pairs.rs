@@ -63,7 +63,8 @@ pub struct Origin {
     pub at: V3,
 }
 
-fn rot(r: &[[f64; 3]; 3], v: V3) -> V3 {
+/// r · v for a row-major rotation r.
+pub fn rot(r: &[[f64; 3]; 3], v: V3) -> V3 {
     [0, 1, 2].map(|i| r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2])
 }
 
@@ -217,15 +218,7 @@ pub fn face_minima(
         .filter_map(|f| {
             let xs = f.map(|i| s.nodes[i]);
             let at = |st| face_point(s, m, master, &xs, st, set.reach);
-            let nodes_st = [
-                [0.0, 0.0],
-                [1.0, 0.0],
-                [0.0, 1.0],
-                [0.5, 0.0],
-                [0.5, 0.5],
-                [0.0, 0.5],
-            ];
-            let node_best = nodes_st
+            let node_best = crate::contact_surface::TRI6_NODES
                 .iter()
                 .filter_map(|&st| at(st))
                 .map(|q| (q.closing, q.p.gap))

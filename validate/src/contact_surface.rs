@@ -246,22 +246,24 @@ pub fn project_on_face(x: &[V3; 6], p: V3) -> Option<(V3, [f64; 2], V3)> {
     Some((q, st, nn.map(|c| c / l)))
 }
 
+/// Parameters (s, t) of the tri6 nodes: vertices, then mid-edge nodes.
+pub const TRI6_NODES: [[f64; 2]; 6] = [
+    [0.0, 0.0],
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [0.5, 0.0],
+    [0.5, 0.5],
+    [0.0, 0.5],
+];
+
 /// Outward unit normal of a surface at each of its nodes (mean of the
 /// adjacent faces' normals at the node).
 pub fn nodal_normals(nodes: &[V3], faces: &[[usize; 6]]) -> HashMap<usize, V3> {
-    const AT: [[f64; 2]; 6] = [
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [0.0, 1.0],
-        [0.5, 0.0],
-        [0.5, 0.5],
-        [0.0, 0.5],
-    ];
     let mut out: HashMap<usize, V3> = HashMap::new();
     for f in faces {
         let x = f.map(|i| nodes[i]);
         for (k, &i) in f.iter().enumerate() {
-            let (_, nn) = tri6::point_and_normal(&x, AT[k]);
+            let (_, nn) = tri6::point_and_normal(&x, TRI6_NODES[k]);
             let l = norm(nn);
             let e = out.entry(i).or_default();
             for c in 0..3 {

@@ -170,22 +170,8 @@ pub fn run(
             pm.display(),
             wm.display()
         );
-        let mut pinion = Member::new(
-            preprocess::body_mesh::read(&pm).map_err(anyhow::Error::msg)?,
-            g.frames[0],
-            &g.data.member(Which::Pinion).material(),
-            side.flank_name(Which::Pinion),
-            &pinion_teeth,
-            block,
-        )?;
-        let mut wheel = Member::new(
-            preprocess::body_mesh::read(&wm).map_err(anyhow::Error::msg)?,
-            g.frames[1],
-            &g.data.member(Which::Wheel).material(),
-            side.flank_name(Which::Wheel),
-            &wheel_teeth,
-            block,
-        )?;
+        let mut pinion = Member::load(&pm, &g, Which::Pinion, side, &pinion_teeth, block)?;
+        let mut wheel = Member::load(&wm, &g, Which::Wheel, side, &wheel_teeth, block)?;
         let mut pair = ReferencePair {
             pinion: &mut pinion,
             wheel: &mut wheel,

@@ -13,8 +13,11 @@ use std::path::Path;
 /// A figure for the report: title and SVG text.
 pub type Figure = (String, String);
 
+/// A CSV file's header and columns (non-numeric cells become NaN).
+pub type Csv = (Vec<String>, Vec<Vec<f64>>);
+
 /// Columns of a CSV file by header name (non-numeric cells become NaN).
-fn read_csv(path: &Path) -> Option<(Vec<String>, Vec<Vec<f64>>)> {
+pub fn read_csv(path: &Path) -> Option<Csv> {
     let text = std::fs::read_to_string(path).ok()?;
     let mut lines = text.lines();
     let header: Vec<String> = lines.next()?.split(',').map(str::to_string).collect();
@@ -27,7 +30,8 @@ fn read_csv(path: &Path) -> Option<(Vec<String>, Vec<Vec<f64>>)> {
     Some((header, cols))
 }
 
-fn column<'a>(csv: &'a (Vec<String>, Vec<Vec<f64>>), name: &str) -> Option<&'a [f64]> {
+/// The column named `name`.
+pub fn column<'a>(csv: &'a Csv, name: &str) -> Option<&'a [f64]> {
     let i = csv.0.iter().position(|h| h == name)?;
     Some(&csv.1[i])
 }
@@ -134,7 +138,7 @@ pub fn pattern_figure(
             .join(blank)
             .join(format!("pattern_{t}nm.csv")),
     )?;
-    let pick = |csv: &(Vec<String>, Vec<Vec<f64>>), at: Option<f64>| -> Vec<(f64, f64, f64)> {
+    let pick = |csv: &Csv, at: Option<f64>| -> Vec<(f64, f64, f64)> {
         let (Some(xi), Some(eta), Some(p)) = (
             column(csv, "xi"),
             column(csv, "eta"),

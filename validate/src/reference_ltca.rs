@@ -15,7 +15,7 @@
 //! slices, no influence grid, no Weber–Banaschek term.
 
 use crate::body_compliance::{clamped, BodyCompliance};
-use crate::contact_pairs::{two_pass, ContactBody, PenaltySettings};
+use crate::contact_pairs::{rot, two_pass, ContactBody, PenaltySettings};
 use crate::contact_surface::{nodal_normals, orient_outward, smoothed_pressure};
 use crate::penalty::{
     carried_load, condensed_matrix, nodal_normal_forces, solve, Compliance, Constraint,
@@ -90,6 +90,34 @@ impl Member {
         })
     }
 
+    /// Reads member `which`'s mesh from `path` and builds it with its frame,
+    /// material and loaded flank (`side`) from the pair geometry.
+    pub fn load(
+        path: &std::path::Path,
+        g: &preprocess::pair::PairGeometry,
+        which: preprocess::design::Member,
+        side: preprocess::generation::Side,
+        teeth: &[usize],
+        block: usize,
+    ) -> Result<Member, ReferenceError> {
+        let mesh = preprocess::body_mesh::read(path).map_err(|message| ReferenceError::Mesh {
+            path: path.to_path_buf(),
+            message,
+        })?;
+        let frame = match which {
+            preprocess::design::Member::Pinion => g.frames[0],
+            preprocess::design::Member::Wheel => g.frames[1],
+        };
+        Member::new(
+            mesh,
+            frame,
+            &g.data.member(which).material(),
+            side.flank_name(which),
+            teeth,
+            block,
+        )
+    }
+
     /// Node coordinates in the fixed frame at rotation `phi`, and the
     /// fixed → member rotation.
     fn placed(&self, phi: f64) -> (Vec<V3>, [[f64; 3]; 3]) {
@@ -113,6 +141,11 @@ impl Member {
 /// Errors of the reference model.
 #[derive(Debug, thiserror::Error)]
 pub enum ReferenceError {
+    #[error("mesh {path}: {message}")]
+    Mesh {
+        path: std::path::PathBuf,
+        message: String,
+    },
     #[error("mesh has no physical group {0}")]
     MissingGroup(String),
     #[error("{0} flank faces belong to no tetrahedron")]
@@ -542,8 +575,4 @@ impl ReferencePair<'_> {
         }
         Ok(outside.into_iter().zip(gap).collect())
     }
-}
-
-fn rot(r: &[[f64; 3]; 3], v: V3) -> V3 {
-    [0, 1, 2].map(|i| r[i][0] * v[0] + r[i][1] * v[1] + r[i][2] * v[2])
 }

@@ -14,6 +14,7 @@ use preprocess::scene::{Blank, LoadedScene};
 use preprocess::stiffness_stage::sha256_file;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
+use solver::ltca::mean_ptp;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -112,14 +113,6 @@ pub struct UnloadedCheck {
     pub utca_te_ptp_urad: f64,
     pub reference_te_mean_urad: f64,
     pub reference_te_ptp_urad: f64,
-}
-
-fn mean_ptp(v: &[f64]) -> (f64, f64) {
-    let n = v.len().max(1) as f64;
-    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| {
-        (a.0.min(x), a.1.max(x))
-    });
-    (v.iter().sum::<f64>() / n, hi - lo)
 }
 
 fn unloaded_check(res: &[PositionResult], utca: &[f64]) -> UnloadedCheck {
@@ -279,24 +272,22 @@ pub fn run(
                 }
                 if pinion.is_none() {
                     eprintln!("reference: reading and factoring {}", pm.display());
-                    let body = preprocess::body_mesh::read(&pm).map_err(anyhow::Error::msg)?;
-                    pinion = Some(Member::new(
-                        body,
-                        g.frames[0],
-                        &g.data.member(Which::Pinion).material(),
-                        side.flank_name(Which::Pinion),
+                    pinion = Some(Member::load(
+                        &pm,
+                        &g,
+                        Which::Pinion,
+                        side,
                         &pinion_teeth,
                         opt.block,
                     )?);
                 }
                 if wheel.is_none() {
                     eprintln!("reference: reading and factoring {}", wm.display());
-                    let body = preprocess::body_mesh::read(&wm).map_err(anyhow::Error::msg)?;
-                    wheel = Some(Member::new(
-                        body,
-                        g.frames[1],
-                        &g.data.member(Which::Wheel).material(),
-                        side.flank_name(Which::Wheel),
+                    wheel = Some(Member::load(
+                        &wm,
+                        &g,
+                        Which::Wheel,
+                        side,
                         &wheel_teeth,
                         opt.block,
                     )?);
@@ -446,10 +437,7 @@ fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
         .enumerate()
         .map(|(k, &t)| {
             let te: Vec<f64> = res.iter().map(|r| r.loads[k].te).collect();
-            let mean = te.iter().sum::<f64>() / n;
-            let (lo, hi) = te.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, &v| {
-                (a.0.min(v), a.1.max(v))
-            });
+            let (mean, ptp) = mean_ptp(&te);
             let penalty_max = res
                 .iter()
                 .map(|r| (r.loads[k].te - r.loads[k].te_check).abs())
@@ -457,7 +445,7 @@ fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
             LoadSummary {
                 torque_nm: t,
                 te_mean_urad: mean * 1e6,
-                te_ptp_urad: (hi - lo) * 1e6,
+                te_ptp_urad: ptp * 1e6,
                 penalty_difference_pct: penalty_max / mean.abs() * 100.0,
                 penalty_difference_max_urad: penalty_max * 1e6,
                 max_pressure_mpa: res
