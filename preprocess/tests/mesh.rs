@@ -141,20 +141,13 @@ fn refined_flanks_have_the_requested_element_counts() {
     }
 }
 
-/// What the five-section slot loft achieves today. The issue asks for 0.5 µm
-/// at every node; the loft reaches it at about four nodes in five, the rest
-/// lie near the flank–fillet junction (see the issue note). These bounds
-/// guard against regressions until the flanks are fitted B-spline surfaces.
-const LOFT_WORST: f64 = 25e-6;
-const LOFT_P99: f64 = 3e-6;
-const LOFT_MEDIAN: f64 = 0.5e-6;
+/// The issue's flank fidelity: every node of a flank group within 0.5 µm of
+/// the generated flank along its normal.
+const FLANK_TOLERANCE: f64 = 0.5e-6;
 
 #[test]
-fn refined_flank_nodes_lie_on_the_generated_flank_within_the_loft_tolerance() {
+fn flank_group_nodes_lie_on_the_generated_flank_within_half_a_micrometre() {
     let (report, path) = pinion();
-    // Only the loaded flanks of the refined teeth carry contact. Flanks of
-    // teeth that never touch are meshed coarsely and may have straightened
-    // (uncurved) mid-edge nodes, so they are not held to this tolerance.
     let refined: Vec<String> = report
         .refined_flanks
         .iter()
@@ -165,16 +158,14 @@ fn refined_flank_nodes_lie_on_the_generated_flank_within_the_loft_tolerance() {
     let s = gmsh::Session::new().unwrap();
     s.open(path).unwrap();
     let pitch = 2.0 * std::f64::consts::PI / 20.0;
-    let mut worst: f64 = 0.0;
-    let mut at = (0, String::new(), 0.0, 0.0);
+    // (normal distance, on a refined flank), every flank-group node once.
+    let mut seen = std::collections::BTreeSet::new();
     let mut all = Vec::new();
-    let mut count = 0;
     for (dim, tag) in s.get_physical_groups(2).unwrap() {
         let name = s_name(&s, dim, tag);
-        if !refined.contains(&name) {
+        let Some(rest) = name.strip_prefix("tooth") else {
             continue;
-        }
-        let rest = name.strip_prefix("tooth").unwrap();
+        };
         let (k, flank) = rest.split_once('_').unwrap();
         let k: usize = k.parse().unwrap();
         let side = if flank == "concave" {
@@ -184,44 +175,50 @@ fn refined_flank_nodes_lie_on_the_generated_flank_within_the_loft_tolerance() {
         };
         let f = g.flank(Member::Pinion, side);
         for e in s.get_entities_for_physical_group(dim, tag).unwrap() {
-            let (_, xyz, _) = s.mesh_get_nodes(2, e, true, false).unwrap();
-            for p in xyz.chunks(3) {
+            let (tags, xyz, _) = s.mesh_get_nodes(2, e, true, false).unwrap();
+            for (t, p) in tags.iter().zip(xyz.chunks(3)) {
+                if !seen.insert(*t) {
+                    continue;
+                }
                 let a = -(k as f64) * pitch;
                 let (sa, ca) = a.sin_cos();
                 let q = [ca * p[0] - sa * p[1], sa * p[0] + ca * p[1], p[2]];
                 let (l, d) = f.gen.frame.axial(&q);
                 let fp = f.at(l, d).unwrap();
                 let dist: f64 = (0..3).map(|i| (q[i] - fp.pos[i]) * fp.normal[i]).sum();
-                all.push(dist.abs());
-                if dist.abs() > worst {
-                    worst = dist.abs();
-                    at = (k, flank.to_string(), l * 1e3, d * 1e3);
-                }
-                count += 1;
+                all.push((dist.abs(), refined.contains(&name)));
             }
         }
     }
-    println!("{count} flank nodes, largest normal distance {:.3} um at tooth {} {} L {:.2} mm d {:.2} mm", worst * 1e6, at.0, at.1, at.2, at.3);
-    all.sort_by(f64::total_cmp);
-    let over = all.iter().filter(|&&d| d > 0.5e-6).count();
+    let worst = |on_refined: bool| {
+        all.iter()
+            .filter(|a| a.1 == on_refined)
+            .map(|a| a.0)
+            .fold(0.0, f64::max)
+    };
+    let over = all.iter().filter(|a| a.0 > FLANK_TOLERANCE).count();
     println!(
-        "nodes over 0.5 um: {over}; median {:.3} um, 99% {:.3} um",
-        all[all.len() / 2] * 1e6,
-        all[all.len() * 99 / 100] * 1e6
+        "{} flank nodes ({} refined), largest normal distance {:.4} um refined, {:.4} um other; {over} over 0.5 um; report: {} snapped (largest move {:.3} um), {} kept",
+        all.len(),
+        all.iter().filter(|a| a.1).count(),
+        worst(true) * 1e6,
+        worst(false) * 1e6,
+        report.snapped_nodes,
+        report.snap_max_move_um,
+        report.unsnapped_nodes
     );
-    assert!(count > 1000);
+    assert!(all.iter().filter(|a| a.1).count() > 1000);
     assert!(
-        worst < LOFT_WORST,
-        "flank node {:.3} um off the generated flank",
-        worst * 1e6
+        worst(true) < FLANK_TOLERANCE,
+        "refined flank node {:.3} um off the generated flank",
+        worst(true) * 1e6
     );
-    assert!(
-        all[all.len() / 2] < LOFT_MEDIAN,
-        "median {:.3} um",
-        all[all.len() / 2] * 1e6
-    );
-    let p99 = all[all.len() * 99 / 100];
-    assert!(p99 < LOFT_P99, "99th percentile {:.3} um", p99 * 1e6);
+    // Elsewhere only the nodes the report names as kept may stay off.
+    assert!(over <= report.unsnapped_nodes, "{over} nodes over 0.5 um");
+    // Without snapping the loft is off by about 0.5 µm at the median: the
+    // snap must have moved the flank nodes.
+    assert!(report.snapped_nodes + report.unsnapped_nodes >= all.len());
+    assert!(report.snap_max_move_um > 0.5);
 }
 
 fn s_name(s: &gmsh::Session, dim: i32, tag: i32) -> String {
