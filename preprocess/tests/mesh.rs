@@ -228,18 +228,60 @@ fn s_name(s: &gmsh::Session, dim: i32, tag: i32) -> String {
 #[test]
 fn lightweight_wheel_has_three_holes_120_degrees_apart_and_standard_none() {
     let dir = tempfile::tempdir().unwrap();
-    let r = mesh_member(
-        &request(Member::Wheel, Blank::Lightweight, dims()),
-        &dir.path().join("w.msh"),
-    )
-    .unwrap();
-    let mut a = r.hole_angles_deg.clone();
-    a.sort_by(f64::total_cmp);
-    // Each hole is one cylindrical face (or split in two halves): group by angle.
-    a.dedup_by(|x, y| (*x - *y).abs() < 5.0);
-    assert_eq!(a.len(), 3, "{:?}", r.hole_angles_deg);
-    for w in a.windows(2) {
-        assert!((w[1] - w[0] - 120.0).abs() < 1.0, "{a:?}");
+    let path = dir.path().join("w.msh");
+    let r = mesh_member(&request(Member::Wheel, Blank::Lightweight, dims()), &path).unwrap();
+    // The nodes of the "holes" group, clustered by angle about the axis (the
+    // blank's seam may split a hole's face), and a least-squares circle
+    // through each cluster: x² + y² = 2 a x + 2 b y + c, centre (a, b).
+    let s = gmsh::Session::new().unwrap();
+    s.open(&path).unwrap();
+    let mut pts = Vec::new();
+    for (dim, tag) in s.get_physical_groups(2).unwrap() {
+        if s_name(&s, dim, tag) == "holes" {
+            for e in s.get_entities_for_physical_group(dim, tag).unwrap() {
+                let (_, xyz, _) = s.mesh_get_nodes(2, e, true, false).unwrap();
+                pts.extend(xyz.chunks(3).map(|p| (p[1].atan2(p[0]).to_degrees(), p[0], p[1])));
+            }
+        }
+    }
+    drop(s);
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let n = pts.len();
+    assert!(n > 30, "{n} hole nodes");
+    // Start after the largest angular gap, split at gaps over 10°.
+    let gap = |i: usize| (pts[(i + 1) % n].0 - pts[i].0).rem_euclid(360.0);
+    let start = (0..n).max_by(|&i, &j| gap(i).total_cmp(&gap(j))).unwrap() + 1;
+    let mut clusters: Vec<Vec<(f64, f64, f64)>> = vec![Vec::new()];
+    for k in 0..n {
+        let i = (start + k) % n;
+        clusters.last_mut().unwrap().push(pts[i]);
+        if k + 1 < n && gap(i) > 10.0 {
+            clusters.push(Vec::new());
+        }
+    }
+    assert_eq!(clusters.len(), 3, "hole node clusters");
+    let mut centres = Vec::new();
+    for c in &clusters {
+        let mut ata = nalgebra::Matrix3::<f64>::zeros();
+        let mut atb = nalgebra::Vector3::<f64>::zeros();
+        for &(_, x, y) in c {
+            let row = nalgebra::Vector3::new(2.0 * x, 2.0 * y, 1.0);
+            ata += row * row.transpose();
+            atb += row * (x * x + y * y);
+        }
+        let sol = ata.lu().solve(&atb).unwrap();
+        let radius = (sol[2] + sol[0] * sol[0] + sol[1] * sol[1]).sqrt();
+        assert!(
+            (2.0 * radius - dims().wheel_hole_diameter).abs() < 1e-4,
+            "hole diameter {:.3} mm",
+            2e3 * radius
+        );
+        centres.push(sol[1].atan2(sol[0]).to_degrees().rem_euclid(360.0));
+    }
+    centres.sort_by(f64::total_cmp);
+    for k in 0..3 {
+        let d = (centres[(k + 1) % 3] - centres[k]).rem_euclid(360.0);
+        assert!((d - 120.0).abs() < 0.01, "hole centres {centres:?}");
     }
     assert!(r.mesh_volume_m3 > 0.0 && r.quality_min_sicn > 0.0);
     let (p, _) = pinion();
