@@ -25,7 +25,7 @@
 
 use crate::compliance::PairCompliance;
 use crate::contact_problem::ContactProblem;
-use crate::ltca::{assemble, geometry};
+use crate::ltca::{assemble, geometry, Assembled, Geometry};
 use crate::SolverError;
 use preprocess::generation::MemberFrame;
 use preprocess::pair::FlankPair;
@@ -54,6 +54,9 @@ pub struct TableSpec {
 #[derive(Debug, Clone)]
 pub struct MeshTable {
     pub spec: TableSpec,
+    /// Nodes before q₁ = 0 (non-periodic tables): the potential's path
+    /// integral starts at first contact, up to (θ_max − θ_lo)/r before q₁.
+    pub lead: usize,
     /// r = z₁/z₂.
     pub ratio: f64,
     /// First lag node θ_lo (below every unloaded TE) and the lag step du, rad.
@@ -161,31 +164,48 @@ impl MeshTable {
             )));
         }
         let tau = fp.pinion.gen.frame.pitch();
-        let phi = |i: usize| spec.start + spec.direction * spec.step * i as f64;
+        let phi = |i: i64| spec.start + spec.direction * spec.step * i as f64;
         // Pass 1: geometry, compliance and the lag at the largest torque.
-        let pass1: Vec<_> = (0..spec.positions)
-            .into_par_iter()
-            .map(|i| {
-                let t = std::time::Instant::now();
-                let g = geometry(fp, rs, phi(i), tau, spec.slices);
-                if g.slices.is_empty() {
-                    return Err(SolverError::NoContact);
-                }
-                let a = assemble(&g, pc)?;
-                let s = crate::ltca::solve(&a, spec.torque_max_nm, None)?;
-                Ok((g, a, s.theta, t.elapsed().as_secs_f64()))
-            })
-            .collect::<Result<_, _>>()?;
-        let hi = pass1.iter().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
-        let lo = pass1
-            .iter()
-            .map(|p| p.0.utca_te)
-            .fold(f64::INFINITY, f64::min);
+        let pass1 = |range: std::ops::Range<i64>| -> Result<Vec<_>, SolverError> {
+            range
+                .into_par_iter()
+                .map(|i| {
+                    let t = std::time::Instant::now();
+                    let g = geometry(fp, rs, phi(i), tau, spec.slices);
+                    if g.slices.is_empty() {
+                        return Err(SolverError::NoContact);
+                    }
+                    let a = assemble(&g, pc)?;
+                    let s = crate::ltca::solve(&a, spec.torque_max_nm, None)?;
+                    Ok((g, a, s.theta, t.elapsed().as_secs_f64()))
+                })
+                .collect()
+        };
+        let lag_range = |p: &[(Geometry, Assembled, f64, f64)]| {
+            let hi = p.iter().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
+            let lo = p.iter().map(|p| p.0.utca_te).fold(f64::INFINITY, f64::min);
+            (lo, hi)
+        };
+        let mut columns = pass1(0..spec.positions as i64)?;
+        // V at q₁ integrates T₁ from first contact, q₁ − (θ − θ_lo)/r: a
+        // non-periodic table starts that far (plus two steps) before q₁ = 0.
+        let lead = if spec.periodic {
+            0
+        } else {
+            let (lo, hi) = lag_range(&columns);
+            ((hi - lo) / ratio / spec.step).ceil() as usize + 2
+        };
+        if lead > 0 {
+            let mut before = pass1(-(lead as i64)..0)?;
+            before.append(&mut columns);
+            columns = before;
+        }
+        let (lo, hi) = lag_range(&columns);
         // One node below the first contact, so that V and T₁ start from zero rows.
         let du = (hi - lo) / (spec.lag_nodes - 2) as f64;
         let theta_lo = lo - du;
         // Pass 2: the lag-controlled solves.
-        let cols: Vec<Column> = pass1
+        let cols: Vec<Column> = columns
             .into_par_iter()
             .map(|(g, a, _, cpu0)| {
                 let t = std::time::Instant::now();
@@ -230,9 +250,10 @@ impl MeshTable {
                 })
             })
             .collect::<Result<_, SolverError>>()?;
-        let n = spec.positions;
+        let n = cols.len();
         Ok(MeshTable {
             spec,
+            lead,
             ratio,
             theta_lo,
             du,
@@ -243,7 +264,12 @@ impl MeshTable {
         })
     }
 
-    /// Table period in q₁ (periodic tables) or range, rad.
+    /// Table nodes in q₁, lead-in included.
+    pub fn nodes(&self) -> usize {
+        self.lead + self.spec.positions
+    }
+
+    /// Table period in q₁ (periodic tables) or range from q₁ = 0, rad.
     pub fn span(&self) -> f64 {
         let n = self.spec.positions;
         if self.spec.periodic {
@@ -254,17 +280,18 @@ impl MeshTable {
     }
 
     fn cell(&self, q1: f64) -> Result<(i64, f64), SolverError> {
-        let x = if self.spec.periodic {
-            q1.rem_euclid(self.span())
+        // Table node index: node `lead` is q₁ = 0.
+        let s = if self.spec.periodic {
+            q1.rem_euclid(self.span()) / self.spec.step
         } else {
-            q1
+            q1 / self.spec.step + self.lead as f64
         };
-        let s = x / self.spec.step;
         // Non-periodic tables extrapolate linearly up to one step outside.
-        if !self.spec.periodic && !(-1.0..=self.spec.positions as f64).contains(&s) {
+        if !self.spec.periodic && !(-1.0..=self.nodes() as f64).contains(&s) {
             return Err(SolverError::Table(format!(
-                "pinion rotation {:.4} deg outside the table's 0..{:.4} deg",
+                "pinion rotation {:.4} deg outside the table's {:.4}..{:.4} deg",
                 q1.to_degrees(),
+                -(self.lead as f64 * self.spec.step).to_degrees(),
                 self.span().to_degrees()
             )));
         }
@@ -275,7 +302,7 @@ impl MeshTable {
     /// Unloaded TE θ₀(q₁) and its first two derivatives.
     pub fn unloaded(&self, q1: f64) -> Result<[f64; 3], SolverError> {
         let (i, t) = self.cell(q1)?;
-        let v = stencil(self.spec.positions, self.spec.periodic, i, |k| self.te0[k]);
+        let v = stencil(self.nodes(), self.spec.periodic, i, |k| self.te0[k]);
         let w = catmull_rom(t);
         let h = self.spec.step;
         let d = |r: usize| (0..4).map(|o| w[r][o] * v[o]).sum::<f64>();
@@ -310,7 +337,7 @@ impl MeshTable {
         let lag_weights = (0..4).map(|b| [wu[0][b], wu[1][b], wu[2][b]]);
         for (b, wb) in lag_weights.enumerate() {
             let k = m - 1 + b as i64;
-            let col = stencil(self.spec.positions, self.spec.periodic, i, |p| {
+            let col = stencil(self.nodes(), self.spec.periodic, i, |p| {
                 if k < 0 {
                     0.0
                 } else if k >= nu as i64 {

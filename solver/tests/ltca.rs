@@ -370,6 +370,46 @@ fn wheel_torque_of_the_potential_is_the_pinion_torque_over_the_ratio() {
     }
 }
 
+#[test]
+fn non_periodic_table_holds_the_potential_path_back_to_first_contact() {
+    // A lightweight wheel's table is not periodic. At q₁ = 0 under a large
+    // torque the potential's path starts (θ − θ_lo)/r before q₁, here many
+    // steps: the table's lead-in must hold it, and ∂V/∂q₁ must still be the
+    // contact element's pinion torque there.
+    let f = fixture();
+    let fp = f.g.side(Side::Drive);
+    let tau = f.g.data.mesh_cycle();
+    let ratio = f.g.data.members[0].teeth as f64 / f.g.data.members[1].teeth as f64;
+    let spec = TableSpec {
+        start: fp.roll_range[0] + 0.3 * tau,
+        direction: pinion_direction(&f.g.data, Side::Drive),
+        step: tau / 600.0,
+        positions: 12,
+        periodic: false,
+        slices: TABLE_SLICES,
+        lag_nodes: 48,
+        torque_max_nm: 1000.0,
+    };
+    let t = MeshTable::build(fp, &f.rs, &f.pc, &f.g.frames[0], ratio, spec).unwrap();
+    let reach = t.du * (t.spec.lag_nodes - 1) as f64 / ratio / t.spec.step;
+    eprintln!("lead-in {} steps for a lag reach of {reach:.1} steps", t.lead);
+    assert!(reach > 2.0 && t.lead as f64 >= reach, "{} < {reach}", t.lead);
+    let (m, s) = wheel_driven(&t, INERTIA, 1.0, 900.0, 0.1).unwrap();
+    let g = geometry(fp, &f.rs, spec.start, tau, TABLE_SLICES);
+    let a = assemble(&g, &f.pc).unwrap();
+    let theta = t.ratio * s.q[0] - s.q[1];
+    let direct = solve(&a, 900.0, None).unwrap().theta;
+    let ms = m.table.state(s.q[0], s.q[1]).unwrap();
+    eprintln!(
+        "q1 = 0 at 900 N m: lag {:.3} µrad (direct {:.3}), dV/dq1 {:.3} N m",
+        theta * 1e6,
+        direct * 1e6,
+        ms.grad[0]
+    );
+    assert!((ms.grad[0] - 900.0).abs() < 1e-6 * 900.0);
+    assert!((theta - direct).abs() < 3e-3 * direct, "{theta} vs {direct}");
+}
+
 /// TE (rad) against pinion rotation of a quasi-static run.
 /// Pinion rotations and TE (rad) of a quasi-static run.
 fn quasi_static_run(t: &MeshTable, torque: f64, cycles: f64, scheme: Scheme) -> [Vec<f64>; 2] {
