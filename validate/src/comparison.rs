@@ -102,13 +102,15 @@ fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Option<T> {
 }
 
 /// Builds the comparison from `<out>/<scene>/{multibody,reference}/summary.json`;
-/// `published_dir` holds the white paper's tables (used when `white_paper`).
-/// None when either stage has not run.
+/// `published_dir` holds the white paper's tables (used when `white_paper`);
+/// `meshes` is the mesh root, to tell whether the convergence study was
+/// computed on today's meshes. None when either stage has not run.
 pub fn compare(
     out: &Path,
     scene: &str,
     published_dir: &Path,
     white_paper: bool,
+    meshes: &Path,
 ) -> Option<Comparison> {
     let mb: Vec<MbBlank> = read(&out.join(scene).join("multibody/summary.json"))?;
     // Every blank combination's own summary (runs of different scenes or
@@ -212,7 +214,16 @@ pub fn compare(
     if let Some(c) =
         read::<crate::convergence::Convergence>(&out.join(scene).join("reference/convergence.json"))
     {
-        convergence_markdown(&mut markdown, &c);
+        let stale = c.stale_levels(&meshes.join(scene));
+        if stale.is_empty() {
+            convergence_markdown(&mut markdown, &c);
+        } else {
+            let _ = writeln!(
+                markdown,
+                "\n## Mesh convergence of the reference\n\nNot shown: the meshes of level(s) {} changed since the study ran; `make convergence` recomputes it.",
+                stale.join(", ")
+            );
+        }
     }
     if let Some(t) =
         read::<Vec<crate::tradeoff::Point>>(&out.join(scene).join("reference/tradeoff.json"))

@@ -33,6 +33,10 @@ pub struct LevelResult {
     pub factor_s: [f64; 2],
     pub position_s: f64,
     pub input_hash: String,
+    /// SHA-256 of the pinion and wheel meshes it was computed on (empty in
+    /// files written before they were recorded: treated as stale).
+    #[serde(default)]
+    pub mesh_sha256: [String; 2],
 }
 
 /// The study.
@@ -47,6 +51,24 @@ pub struct Convergence {
     pub extrapolated_te_urad: Option<f64>,
     /// (TE(level) − TE∞) / TE∞ per level, %.
     pub error_to_extrapolation_pct: Vec<Option<f64>>,
+}
+
+impl Convergence {
+    /// Levels whose meshes under `scene_meshes` (`meshes/<scene>/`) are not
+    /// the ones the study was computed on (changed, missing, or not recorded).
+    pub fn stale_levels(&self, scene_meshes: &Path) -> Vec<String> {
+        self.levels
+            .iter()
+            .filter(|l| {
+                let now = ["pinion", "wheel"].map(|m| {
+                    sha256_file(&scene_meshes.join(format!("{m}_standard_{}.msh", l.level)))
+                        .unwrap_or_default()
+                });
+                now != l.mesh_sha256 || now.iter().any(|h| h.is_empty())
+            })
+            .map(|l| l.level.clone())
+            .collect()
+    }
 }
 
 /// Observed order and extrapolated value from three levels, coarse to fine
@@ -142,10 +164,11 @@ pub fn run(
                 );
             }
         }
+        let mesh_sha256 = [sha256_file(&pm)?, sha256_file(&wm)?];
         let key = serde_json::json!({
             "schema": REFERENCE_SCHEMA,
-            "pinion_mesh": sha256_file(&pm)?,
-            "wheel_mesh": sha256_file(&wm)?,
+            "pinion_mesh": mesh_sha256[0],
+            "wheel_mesh": mesh_sha256[1],
             "settings": settings,
             "phi": phi,
             "torque_nm": torque_nm,
@@ -156,7 +179,7 @@ pub fn run(
         if let Some(r) = std::fs::read_to_string(&path)
             .ok()
             .and_then(|t| serde_json::from_str::<LevelResult>(&t).ok())
-            .filter(|r| r.input_hash == hash)
+            .filter(|r| r.input_hash == hash && r.mesh_sha256 == mesh_sha256)
         {
             eprintln!(
                 "convergence {level}: inputs unchanged, reusing {}",
@@ -199,6 +222,7 @@ pub fn run(
             factor_s: [pinion.compliance.factor_s, wheel.compliance.factor_s],
             position_s: r.cpu_s,
             input_hash: hash,
+            mesh_sha256,
         };
         eprintln!(
             "convergence {level}: TE {:.3} µrad at {torque_nm} N·m ({} + {} dofs, {} constraints, {:.0} s)",
@@ -249,5 +273,54 @@ mod tests {
     #[test]
     fn richardson_refuses_oscillating_values() {
         assert!(richardson([0.3, 0.2, 0.1], [1.0, 1.2, 1.1]).is_none());
+    }
+
+    /// A study is shown only on the meshes it was computed on.
+    #[test]
+    fn convergence_on_changed_or_missing_meshes_is_stale() {
+        use super::{Convergence, LevelResult};
+        let dir = std::env::temp_dir().join(format!("conv-stale-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let write = |m: &str, text: &str| {
+            std::fs::write(dir.join(format!("{m}_standard_reduced.msh")), text).unwrap()
+        };
+        write("pinion", "p");
+        write("wheel", "w");
+        let sha = |m: &str| {
+            preprocess::stiffness_stage::sha256_file(&dir.join(format!("{m}_standard_reduced.msh")))
+                .unwrap()
+        };
+        let level = LevelResult {
+            level: "reduced".into(),
+            profile_elements: 12,
+            face_elements: 20,
+            h: 0.06,
+            dofs: [1, 1],
+            constraints: 1,
+            te_urad: 1.0,
+            penalty_difference_pct: 0.0,
+            factor_s: [0.0; 2],
+            position_s: 0.0,
+            input_hash: String::new(),
+            mesh_sha256: [sha("pinion"), sha("wheel")],
+        };
+        let mut c = Convergence {
+            torque_nm: 300.0,
+            pinion_rotation_deg: 0.0,
+            levels: vec![level],
+            observed_order: None,
+            extrapolated_te_urad: None,
+            error_to_extrapolation_pct: vec![None],
+        };
+        assert!(c.stale_levels(&dir).is_empty());
+        write("wheel", "w2");
+        assert_eq!(c.stale_levels(&dir), vec!["reduced".to_string()]);
+        c.levels[0].mesh_sha256[1] = sha("wheel");
+        assert!(c.stale_levels(&dir).is_empty());
+        std::fs::remove_file(dir.join("pinion_standard_reduced.msh")).unwrap();
+        assert_eq!(c.stale_levels(&dir).len(), 1);
+        c.levels[0].mesh_sha256 = Default::default();
+        assert_eq!(c.stale_levels(&dir).len(), 1, "unrecorded hashes are stale");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

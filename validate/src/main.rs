@@ -34,6 +34,9 @@ enum Cmd {
         /// report also compares their loaded TE (Tables 3-5).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Mesh root (for the convergence study's mesh check).
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
     },
     /// Reference loaded TCA: fine FE bodies in penalty contact.
     Reference {
@@ -149,6 +152,7 @@ fn main() -> anyhow::Result<()> {
             reports,
             positions,
             out,
+            meshes,
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
@@ -157,7 +161,7 @@ fn main() -> anyhow::Result<()> {
             let loaded = out.as_ref().zip(sc.as_ref()).and_then(|(o, sc)| {
                 let wp = input.design_path.file_stem()? == "white_paper_20x43";
                 let pub_dir = input.design_path.parent()?.join("published");
-                validate::comparison::compare(o, &sc.scene.name, &pub_dir, wp)
+                validate::comparison::compare(o, &sc.scene.name, &pub_dir, wp, &meshes)
             });
             let mut figures = Vec::new();
             if let (Some(o), Some(sc)) = (&out, &sc) {
