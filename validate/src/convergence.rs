@@ -29,6 +29,12 @@ pub struct LevelResult {
     pub dofs: [usize; 2],
     pub constraints: usize,
     pub te_urad: f64,
+    /// The unloaded check at this level: TE at the vanishing torque against
+    /// the UTCA of the generated flanks at the same position, µrad.
+    #[serde(default)]
+    pub unloaded_te_urad: f64,
+    #[serde(default)]
+    pub utca_te_urad: f64,
     pub penalty_difference_pct: f64,
     pub factor_s: [f64; 2],
     pub position_s: f64,
@@ -137,6 +143,11 @@ pub fn run(
     let phi = fp.roll_range[0] + direction * step * index as f64;
     let cycles = sc.rotation.mesh_cycles(Blank::Standard);
     let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
+    // The UTCA TE of the generated flanks at this position (unloaded check).
+    let input = preprocess::flank_stage::load_input(&scene.path)?;
+    let rs = preprocess::flank_stage::roll_surface(fp, &input.utca)?;
+    let utca = preprocess::utca::run(fp, &rs, phi, step, 1, direction);
+    let utca_te_urad = utca.te[0] * 1e6;
     let dir = out.join(&sc.name).join("reference");
     let cache = dir.join("convergence");
     std::fs::create_dir_all(&cache)?;
@@ -218,6 +229,8 @@ pub fn run(
             dofs: [pinion.compliance.dofs_free, wheel.compliance.dofs_free],
             constraints: r.constraints,
             te_urad: l.te * 1e6,
+            unloaded_te_urad: r.unloaded_te * 1e6,
+            utca_te_urad,
             penalty_difference_pct: ((l.te - l.te_check) / l.te).abs() * 100.0,
             factor_s: [pinion.compliance.factor_s, wheel.compliance.factor_s],
             position_s: r.cpu_s,
@@ -225,8 +238,8 @@ pub fn run(
             mesh_sha256,
         };
         eprintln!(
-            "convergence {level}: TE {:.3} µrad at {torque_nm} N·m ({} + {} dofs, {} constraints, {:.0} s)",
-            res.te_urad, res.dofs[0], res.dofs[1], res.constraints, res.position_s
+            "convergence {level}: TE {:.3} µrad at {torque_nm} N·m, unloaded {:.4} µrad (UTCA {:.4}) ({} + {} dofs, {} constraints, {:.0} s)",
+            res.te_urad, res.unloaded_te_urad, res.utca_te_urad, res.dofs[0], res.dofs[1], res.constraints, res.position_s
         );
         write_json(&path, &res)?;
         results.push(res);
@@ -298,6 +311,8 @@ mod tests {
             dofs: [1, 1],
             constraints: 1,
             te_urad: 1.0,
+            unloaded_te_urad: 0.0,
+            utca_te_urad: 0.0,
             penalty_difference_pct: 0.0,
             factor_s: [0.0; 2],
             position_s: 0.0,
