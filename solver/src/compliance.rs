@@ -101,17 +101,26 @@ impl MemberCompliance {
             return;
         };
         let np = self.np;
-        // t[a][l] = Σ_b G[a][b] W_l[b], then C[k][l] += Σ_a W_k[a] t[a][l].
-        let mut t = vec![0.0; np * w_cols.len()];
-        for (l, wl) in w_cols.iter().enumerate() {
-            for a in 0..np {
-                let row = &g[a * np..(a + 1) * np];
-                t[a * w_cols.len() + l] = wl.iter().map(|&(b, v)| v * row[b]).sum();
+        // t[a][l] = Σ_b G[a][b] W_l[b], then C[k][l] += Σ_a W_k[a] t[a][l];
+        // t only on the grid points a that some row's weights touch (the
+        // contact line's band, a fraction of the grid).
+        let mut needed = vec![false; np];
+        for wk in w_rows {
+            for &(a, _) in wk.iter() {
+                needed[a] = true;
+            }
+        }
+        let nc = w_cols.len();
+        let mut t = vec![0.0; np * nc];
+        for a in (0..np).filter(|&a| needed[a]) {
+            let row = &g[a * np..(a + 1) * np];
+            for (l, wl) in w_cols.iter().enumerate() {
+                t[a * nc + l] = wl.iter().map(|&(b, v)| v * row[b]).sum();
             }
         }
         for (kk, wk) in w_rows.iter().enumerate() {
-            for l in 0..w_cols.len() {
-                let v: f64 = wk.iter().map(|&(a, x)| x * t[a * w_cols.len() + l]).sum();
+            for l in 0..nc {
+                let v: f64 = wk.iter().map(|&(a, x)| x * t[a * nc + l]).sum();
                 c[rows[kk] * n + cols[l]] += v;
             }
         }
