@@ -456,8 +456,8 @@ fn snap_to_flanks(
                     break;
                 };
                 let dist: f64 = (0..3).map(|i| (r[i] - q.pos[i]) * q.normal[i]).sum();
-                for i in 0..3 {
-                    r[i] -= dist * q.normal[i];
+                for (ri, ni) in r.iter_mut().zip(q.normal) {
+                    *ri -= dist * ni;
                 }
             }
             if !ok {

@@ -240,7 +240,10 @@ fn lightweight_wheel_has_three_holes_120_degrees_apart_and_standard_none() {
         if s_name(&s, dim, tag) == "holes" {
             for e in s.get_entities_for_physical_group(dim, tag).unwrap() {
                 let (_, xyz, _) = s.mesh_get_nodes(2, e, true, false).unwrap();
-                pts.extend(xyz.chunks(3).map(|p| (p[1].atan2(p[0]).to_degrees(), p[0], p[1])));
+                pts.extend(
+                    xyz.chunks(3)
+                        .map(|p| (p[1].atan2(p[0]).to_degrees(), p[0], p[1])),
+                );
             }
         }
     }

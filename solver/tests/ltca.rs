@@ -392,8 +392,15 @@ fn non_periodic_table_holds_the_potential_path_back_to_first_contact() {
     };
     let t = MeshTable::build(fp, &f.rs, &f.pc, &f.g.frames[0], ratio, spec).unwrap();
     let reach = t.du * (t.spec.lag_nodes - 1) as f64 / ratio / t.spec.step;
-    eprintln!("lead-in {} steps for a lag reach of {reach:.1} steps", t.lead);
-    assert!(reach > 2.0 && t.lead as f64 >= reach, "{} < {reach}", t.lead);
+    eprintln!(
+        "lead-in {} steps for a lag reach of {reach:.1} steps",
+        t.lead
+    );
+    assert!(
+        reach > 2.0 && t.lead as f64 >= reach,
+        "{} < {reach}",
+        t.lead
+    );
     let (m, s) = wheel_driven(&t, INERTIA, 1.0, 900.0, 0.1).unwrap();
     let g = geometry(fp, &f.rs, spec.start, tau, TABLE_SLICES);
     let a = assemble(&g, &f.pc).unwrap();
@@ -407,7 +414,10 @@ fn non_periodic_table_holds_the_potential_path_back_to_first_contact() {
         ms.grad[0]
     );
     assert!((ms.grad[0] - 900.0).abs() < 1e-6 * 900.0);
-    assert!((theta - direct).abs() < 3e-3 * direct, "{theta} vs {direct}");
+    assert!(
+        (theta - direct).abs() < 3e-3 * direct,
+        "{theta} vs {direct}"
+    );
 }
 
 /// TE (rad) against pinion rotation of a quasi-static run.
