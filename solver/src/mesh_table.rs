@@ -13,8 +13,10 @@
 //!
 //! so that ∂V/∂q₁ = T₁ (the quasi-static pinion balance is the LTCA's) and
 //! ∂V/∂q₂ = −∫ ∂T₁/∂θ ds (the wheel torque, ≈ T₁/r). T₁ is tabulated on a
-//! grid of q₁ × θ and interpolated by Catmull–Rom cubics in both
-//! directions. Along the integration path (a straight line in q₁, θ) that
+//! grid of q₁ × θ and interpolated by cubics in both directions:
+//! Catmull–Rom in q₁ (uniform), cubic Hermite with central-difference
+//! slopes in θ, whose nodes are fine over the band of unloaded TEs (light
+//! loads) and grow geometrically above it ([`lag_grid`]). Along the integration path (a straight line in q₁, θ) that
 //! interpolant is a polynomial of degree 6 between grid lines, so 4-point
 //! Gauss–Legendre between the crossings integrates it exactly: V, its
 //! gradient and its Hessian are exact for the interpolated T₁, and the
@@ -59,9 +61,13 @@ pub struct MeshTable {
     pub lead: usize,
     /// r = z₁/z₂.
     pub ratio: f64,
-    /// First lag node θ_lo (below every unloaded TE) and the lag step du, rad.
+    /// First lag node θ_lo (below every unloaded TE) and the smallest lag
+    /// step du, rad.
     pub theta_lo: f64,
     pub du: f64,
+    /// Lag nodes θ_m, rad ([`lag_grid`]: fine over the band of unloaded TEs
+    /// where light loads act, growing geometrically above it).
+    pub lags: Vec<f64>,
     /// Unloaded TE θ₀ per position, rad.
     pub te0: Vec<f64>,
     /// Pinion torque T₁ (N·m) and the contact force on the wheel in the
@@ -105,6 +111,95 @@ fn catmull_rom(t: f64) -> [[f64; 4]; 3] {
         ],
         [-3.0 * t + 2.0, 9.0 * t - 5.0, -9.0 * t + 4.0, 3.0 * t - 1.0],
     ]
+}
+
+/// Lag nodes for a table whose unloaded TEs lie in [lo, te0_max] and whose
+/// largest lag is hi: a third of the n nodes uniform from one step below lo
+/// over twice the unloaded band (where light loads act: T₁ rises from zero
+/// at θ₀(q₁), which moves across that band), the rest growing
+/// geometrically up to hi (T₁ nearly linear in θ there).
+pub fn lag_grid(lo: f64, te0_max: f64, hi: f64, n: usize) -> Vec<f64> {
+    let band = (2.0 * (te0_max - lo))
+        .max(1e-3 * (hi - lo))
+        .min(0.5 * (hi - lo));
+    let n_band = n / 3;
+    let d0 = band / (n_band - 2) as f64;
+    let mut out: Vec<f64> = (0..n_band).map(|m| lo - d0 + d0 * m as f64).collect();
+    let rest = n - n_band;
+    let start = *out.last().unwrap();
+    let need = hi - start;
+    // d0 (q + q² + … + q^rest) = need, q ≥ 1 by bisection.
+    let sum = |q: f64| (1..=rest).map(|k| d0 * q.powi(k as i32)).sum::<f64>();
+    let q = if sum(1.0) >= need {
+        need / (d0 * rest as f64)
+    } else {
+        let (mut a, mut b) = (1.0, 2.0);
+        while sum(b) < need {
+            b *= 2.0;
+        }
+        for _ in 0..200 {
+            let c = 0.5 * (a + b);
+            if sum(c) < need {
+                a = c;
+            } else {
+                b = c;
+            }
+        }
+        0.5 * (a + b)
+    };
+    let mut x = start;
+    for k in 1..=rest {
+        x += if q < 1.0 {
+            d0 * q
+        } else {
+            d0 * q.powi(k as i32)
+        };
+        out.push(x);
+    }
+    *out.last_mut().unwrap() = hi.max(start + f64::EPSILON);
+    out
+}
+
+/// Cubic Hermite weights on a non-uniform grid x, cell [x_m, x_{m+1}], at
+/// `at`: slopes from central differences, d_m = (f_{m+1} − f_{m−1}) /
+/// (x_{m+1} − x_{m−1}); outside the grid the nodes continue with the end
+/// spacing. Returns the weights of f_{m−1..m+2} for the value and its first
+/// and second derivatives in x. On a uniform grid these are Catmull–Rom's.
+fn hermite_weights(x: &[f64], m: usize, at: f64) -> [[f64; 4]; 3] {
+    let n = x.len();
+    let node = |k: i64| -> f64 {
+        if k < 0 {
+            x[0] + (x[0] - x[1]) * (-k) as f64
+        } else if k >= n as i64 {
+            x[n - 1] + (x[n - 1] - x[n - 2]) * (k - n as i64 + 1) as f64
+        } else {
+            x[k as usize]
+        }
+    };
+    let m = m as i64;
+    let (xa, x0, x1, xb) = (node(m - 1), node(m), node(m + 1), node(m + 2));
+    let h = x1 - x0;
+    let t = (at - x0) / h;
+    let (a, b) = (h / (x1 - xa), h / (xb - x0));
+    let (t2, t3) = (t * t, t * t * t);
+    // Hermite basis and its t-derivatives.
+    let h00 = [
+        2.0 * t3 - 3.0 * t2 + 1.0,
+        6.0 * t2 - 6.0 * t,
+        12.0 * t - 6.0,
+    ];
+    let h10 = [t3 - 2.0 * t2 + t, 3.0 * t2 - 4.0 * t + 1.0, 6.0 * t - 4.0];
+    let h01 = [-2.0 * t3 + 3.0 * t2, -6.0 * t2 + 6.0 * t, -12.0 * t + 6.0];
+    let h11 = [t3 - t2, 3.0 * t2 - 2.0 * t, 6.0 * t - 2.0];
+    let scale = [1.0, 1.0 / h, 1.0 / (h * h)];
+    std::array::from_fn(|r| {
+        [
+            -h10[r] * a * scale[r],
+            (h00[r] - h11[r] * b) * scale[r],
+            (h01[r] + h10[r] * a) * scale[r],
+            h11[r] * b * scale[r],
+        ]
+    })
 }
 
 /// 1-D node values around a cell: periodic wrap or linear continuation past the ends.
@@ -201,9 +296,13 @@ impl MeshTable {
             columns = before;
         }
         let (lo, hi) = lag_range(&columns);
-        // One node below the first contact, so that V and T₁ start from zero rows.
-        let du = (hi - lo) / (spec.lag_nodes - 2) as f64;
-        let theta_lo = lo - du;
+        let te0_max = columns
+            .iter()
+            .map(|p| p.0.utca_te)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let lags = lag_grid(lo, te0_max, hi, spec.lag_nodes);
+        let theta_lo = lags[0];
+        let du = lags[1] - lags[0];
         // Pass 2: the lag-controlled solves.
         let cols: Vec<Column> = columns
             .into_par_iter()
@@ -221,7 +320,7 @@ impl MeshTable {
                 let mut force = Vec::with_capacity(spec.lag_nodes);
                 let mut warm: Option<Vec<bool>> = None;
                 for m in 0..spec.lag_nodes {
-                    let s = p.solve_at_lag(theta_lo + du * m as f64, warm.as_deref())?;
+                    let s = p.solve_at_lag(lags[m], warm.as_deref())?;
                     torque.push(p.pinion_torque(&s.force));
                     // Force on the wheel: along the pinion's outward normal,
                     // slice k of pair j at pinion rotation φ + jτ.
@@ -257,11 +356,17 @@ impl MeshTable {
             ratio,
             theta_lo,
             du,
+            lags,
             te0: cols.iter().map(|c| c.te0).collect(),
             torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
             force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
             cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / n as f64,
         })
+    }
+
+    /// Mean lag step over the table, rad (a scale for lag iterations).
+    pub fn mean_lag_step(&self) -> f64 {
+        (self.lags[self.lags.len() - 1] - self.lags[0]) / (self.lags.len() - 1) as f64
     }
 
     /// Table nodes in q₁, lead-in included.
@@ -319,21 +424,21 @@ impl MeshTable {
         theta: f64,
     ) -> Result<[f64; 6], SolverError> {
         let nu = self.spec.lag_nodes;
-        let s = (theta - self.theta_lo) / self.du;
-        if s > (nu - 1) as f64 {
+        let top = self.lags[nu - 1];
+        if theta > top {
             return Err(SolverError::Table(format!(
                 "wheel lag {:.3} µrad beyond the table's {:.3} µrad; raise the multibody table's torque",
                 theta * 1e6,
-                (self.theta_lo + self.du * (nu - 1) as f64) * 1e6
+                top * 1e6
             )));
         }
-        let m = (s.floor() as i64).clamp(0, nu as i64 - 2);
-        let tu = s - m as f64;
+        let m = (self.lags.partition_point(|&x| x <= theta) as i64 - 1).clamp(0, nu as i64 - 2);
         let (i, tq) = self.cell(q1)?;
-        let (wq, wu) = (catmull_rom(tq), catmull_rom(tu));
-        let (hq, hu) = (self.spec.step, self.du);
+        let wq = catmull_rom(tq);
+        let wu = hermite_weights(&self.lags, m as usize, theta);
+        let hq = self.spec.step;
         let mut out = [0.0; 6];
-        // Weights of lag node b: value, first and second derivative.
+        // Weights of lag node b: value, first and second derivative (per θ).
         let lag_weights = (0..4).map(|b| [wu[0][b], wu[1][b], wu[2][b]]);
         for (b, wb) in lag_weights.enumerate() {
             let k = m - 1 + b as i64;
@@ -350,10 +455,10 @@ impl MeshTable {
                 let v = col[a];
                 out[0] += wq[0][a] * wb[0] * v;
                 out[1] += wq[1][a] * wb[0] * v / hq;
-                out[2] += wq[0][a] * wb[1] * v / hu;
+                out[2] += wq[0][a] * wb[1] * v;
                 out[3] += wq[2][a] * wb[0] * v / (hq * hq);
-                out[4] += wq[1][a] * wb[1] * v / (hq * hu);
-                out[5] += wq[0][a] * wb[2] * v / (hu * hu);
+                out[4] += wq[1][a] * wb[1] * v / hq;
+                out[5] += wq[0][a] * wb[2] * v;
             }
         }
         Ok(out)
@@ -384,9 +489,7 @@ impl MeshTable {
             cuts.push(i * h);
             i += 1.0;
         }
-        let m_hi = ((theta - self.theta_lo) / self.du).ceil() as usize;
-        for m in 1..m_hi {
-            let th = self.theta_lo + self.du * m as f64;
+        for &th in self.lags.iter().skip(1).take_while(|&&x| x < theta) {
             let s = (th + q2) / r;
             if s > s_lo && s < q1 {
                 cuts.push(s);
@@ -428,6 +531,67 @@ impl MeshTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hermite_weights_are_catmull_rom_on_a_uniform_grid_and_reproduce_lines_on_any() {
+        let uniform: Vec<f64> = (0..8).map(|k| 0.5 * k as f64).collect();
+        let graded = [0.0, 0.1, 0.2, 0.35, 0.6, 1.0, 1.7, 3.0];
+        for t in [0.0, 0.3, 0.77, 1.0] {
+            let w = hermite_weights(&uniform, 3, 1.5 + 0.5 * t);
+            let c = catmull_rom(t);
+            for r in 0..3 {
+                for k in 0..4 {
+                    let scaled = c[r][k] / 0.5f64.powi(r as i32);
+                    assert!((w[r][k] - scaled).abs() < 1e-12, "{r} {k}");
+                }
+            }
+        }
+        // f(x) = 2 + 3x on the graded grid, every cell incl. the end ones.
+        for m in 0..graded.len() - 1 {
+            for t in [0.0, 0.4, 1.0] {
+                let at = graded[m] + t * (graded[m + 1] - graded[m]);
+                let w = hermite_weights(&graded, m, at);
+                let node = |k: i64| {
+                    let n = graded.len() as i64;
+                    if k < 0 {
+                        graded[0] - (graded[1] - graded[0])
+                    } else if k >= n {
+                        2.0 * graded[7] - graded[6]
+                    } else {
+                        graded[k as usize]
+                    }
+                };
+                let f: Vec<f64> = (0..4).map(|b| 2.0 + 3.0 * node(m as i64 - 1 + b)).collect();
+                let v: f64 = (0..4).map(|b| w[0][b] * f[b]).sum();
+                let d: f64 = (0..4).map(|b| w[1][b] * f[b]).sum();
+                let dd: f64 = (0..4).map(|b| w[2][b] * f[b]).sum();
+                assert!((v - (2.0 + 3.0 * at)).abs() < 1e-12, "value at {at}");
+                assert!((d - 3.0).abs() < 1e-10 && dd.abs() < 1e-9, "slopes at {at}");
+            }
+        }
+    }
+
+    #[test]
+    fn lag_grid_is_fine_over_twice_the_unloaded_band_and_ends_at_the_largest_lag() {
+        let (lo, te0_max, hi, n) = (10e-6, 40e-6, 2.5e-3, 96);
+        let g = lag_grid(lo, te0_max, hi, n);
+        assert_eq!(g.len(), n);
+        assert!(g.windows(2).all(|w| w[1] > w[0]));
+        assert!(g[0] < lo && (g[n - 1] - hi).abs() < 1e-15);
+        let d0 = g[1] - g[0];
+        // Uniform up to lo + 2 (te0_max − lo), then growing.
+        let band_end = g
+            .iter()
+            .position(|&x| x >= lo + 2.0 * (te0_max - lo) - 1e-15)
+            .unwrap();
+        for w in g[..=band_end].windows(2) {
+            assert!((w[1] - w[0] - d0).abs() < 1e-12 * hi);
+        }
+        // 32 of 96 nodes over 60 µrad.
+        assert!((d0 - 60e-6 / 30.0).abs() < 1e-12, "band step {d0}");
+        let steps: Vec<f64> = g[band_end..].windows(2).map(|w| w[1] - w[0]).collect();
+        assert!(steps.windows(2).all(|s| s[1] >= s[0] * (1.0 - 1e-9)));
+    }
 
     #[test]
     fn catmull_rom_weights_sum_to_one_and_reproduce_lines() {

@@ -192,18 +192,15 @@ impl Model<'_> {
         if torque <= 0.0 {
             return Ok(t0);
         }
+        let du = self.table.mean_lag_step();
         let mut theta = t0 + 0.1 * self.table.du;
         for _ in 0..100 {
             let ms = self.table.state(q1, r * q1 - theta)?;
             let f = ms.grad[0] - torque;
             // d(∂V/∂q₁)/dθ = −∂²V/∂q₁∂q₂.
             let df = -ms.hess[0][1];
-            let step = if df > 0.0 {
-                -f / df
-            } else {
-                0.1 * self.table.du
-            };
-            theta += step.clamp(-10.0 * self.table.du, 10.0 * self.table.du);
+            let step = if df > 0.0 { -f / df } else { 0.1 * du };
+            theta += step.clamp(-10.0 * du, 10.0 * du);
             if step.abs() < 1e-16 + 1e-12 * theta.abs() {
                 return Ok(theta);
             }

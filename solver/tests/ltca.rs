@@ -359,7 +359,7 @@ fn wheel_torque_of_the_potential_is_the_pinion_torque_over_the_ratio() {
     let a2 = f.g.frames[1].axis();
     for k in [3usize, 40, 101] {
         let q1 = t.spec.step * k as f64;
-        let theta = t.theta_lo + 0.6 * t.du * (t.spec.lag_nodes - 1) as f64;
+        let theta = t.theta_lo + 0.6 * (t.lags[t.lags.len() - 1] - t.theta_lo);
         let ms = t.state(q1, t.ratio * q1 - theta).unwrap();
         let fnorm = ms.force.iter().map(|c| c * c).sum::<f64>().sqrt();
         let axial = ms.force[0] * a2[0] + ms.force[1] * a2[1] + ms.force[2] * a2[2];
@@ -391,7 +391,7 @@ fn non_periodic_table_holds_the_potential_path_back_to_first_contact() {
         torque_max_nm: 1000.0,
     };
     let t = MeshTable::build(fp, &f.rs, &f.pc, &f.g.frames[0], ratio, spec).unwrap();
-    let reach = t.du * (t.spec.lag_nodes - 1) as f64 / ratio / t.spec.step;
+    let reach = (t.lags[t.lags.len() - 1] - t.theta_lo) / ratio / t.spec.step;
     eprintln!(
         "lead-in {} steps for a lag reach of {reach:.1} steps",
         t.lead
@@ -456,7 +456,9 @@ fn ten_rpm_multibody_te_matches_the_quasi_static_ltca() {
         positions: 24,
         slices: TABLE_SLICES,
     };
-    let torques = [100.0, 300.0, 700.0];
+    // 1 N·m: the light-load end, where the contact sits in the table's
+    // fine band just above the unloaded TE.
+    let torques = [1.0, 100.0, 300.0, 700.0];
     let ltca = run(fp, &f.rs, &f.pc, &sw, &torques).unwrap();
     for (i, &torque) in torques.iter().enumerate() {
         let mb = quasi_static_run(t, torque, 1.0, Scheme::GeneralizedAlpha { rho_inf: 0.8 });
