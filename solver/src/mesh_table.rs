@@ -319,8 +319,8 @@ impl MeshTable {
                 let mut torque = Vec::with_capacity(spec.lag_nodes);
                 let mut force = Vec::with_capacity(spec.lag_nodes);
                 let mut warm: Option<Vec<bool>> = None;
-                for m in 0..spec.lag_nodes {
-                    let s = p.solve_at_lag(lags[m], warm.as_deref())?;
+                for &lag in &lags {
+                    let s = p.solve_at_lag(lag, warm.as_deref())?;
                     torque.push(p.pinion_torque(&s.force));
                     // Force on the wheel: along the pinion's outward normal,
                     // slice k of pair j at pinion rotation φ + jτ.
