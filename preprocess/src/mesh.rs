@@ -412,6 +412,12 @@ fn straighten_inverted(s: &Session) -> gmsh::Result<usize> {
     Ok(moved.len())
 }
 
+/// Largest normal distance of a flank-group node that [`snap_to_flanks`]
+/// moves: loft errors are µm, straightened mid-edge nodes of coarse teeth
+/// ~0.15 mm; a node farther off is not on the generated flank (the face
+/// reaches into the top land or toe at the blank's seam) and stays.
+const MAX_SNAP: f64 = 0.5e-3;
+
 /// What [`snap_to_flanks`] did.
 struct Snap {
     moved: usize,
@@ -449,13 +455,19 @@ fn snap_to_flanks(
             // flank point with the node's (L, d) converge to well below 1 nm.
             let mut r = [ca * p[0] + sa * p[1], -sa * p[0] + ca * p[1], p[2]];
             let mut ok = true;
-            for _ in 0..3 {
+            for step in 0..3 {
                 let (l, d) = f.gen.frame.axial(&r);
                 let Ok(q) = f.at(l, d) else {
                     ok = false;
                     break;
                 };
                 let dist: f64 = (0..3).map(|i| (r[i] - q.pos[i]) * q.normal[i]).sum();
+                // Not a point of this flank (a sliver of the top land or
+                // toe cut into the flank face): leave it.
+                if step == 0 && dist.abs() > MAX_SNAP {
+                    ok = false;
+                    break;
+                }
                 for (ri, ni) in r.iter_mut().zip(q.normal) {
                     *ri -= dist * ni;
                 }
