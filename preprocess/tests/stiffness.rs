@@ -341,14 +341,11 @@ fn lightweight_wheel_compliance_varies_with_order_three_around_the_wheel() {
     let path = tmp("wheel_lightweight.msh");
     mesh_member(&req, &path).expect("wheel mesh");
     let body = body_mesh::read(&path).unwrap();
-    let grid = FlankGrid::new(
-        g.flank(Member::Wheel, Side::Drive),
-        GridSize {
-            profile: 2,
-            face: 3,
-        },
-    )
-    .unwrap();
+    let size = GridSize {
+        profile: 2,
+        face: 3,
+    };
+    let grid = FlankGrid::new(g.flank(Member::Wheel, Side::Drive), size).unwrap();
     let md = g.data.member(Member::Wheel);
     let z = md.teeth as usize;
     let flank = Side::Drive.flank_name(Member::Wheel);
@@ -370,7 +367,7 @@ fn lightweight_wheel_compliance_varies_with_order_three_around_the_wheel() {
         &["bore"],
     )
     .unwrap();
-    let np = 6;
+    let np = size.profile * size.face;
     let c: Vec<f64> = (0..z)
         .map(|s| {
             let b = &inf.total[s * np * np..(s + 1) * np * np];

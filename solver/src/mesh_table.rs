@@ -61,10 +61,6 @@ pub struct MeshTable {
     pub lead: usize,
     /// r = z₁/z₂.
     pub ratio: f64,
-    /// First lag node θ_lo (below every unloaded TE) and the smallest lag
-    /// step du, rad.
-    pub theta_lo: f64,
-    pub du: f64,
     /// Lag nodes θ_m, rad ([`lag_grid`]: fine over the band of unloaded TEs
     /// where light loads act, growing geometrically above it).
     pub lags: Vec<f64>,
@@ -301,8 +297,6 @@ impl MeshTable {
             .map(|p| p.0.utca_te)
             .fold(f64::NEG_INFINITY, f64::max);
         let lags = lag_grid(lo, te0_max, hi, spec.lag_nodes);
-        let theta_lo = lags[0];
-        let du = lags[1] - lags[0];
         // Pass 2: the lag-controlled solves.
         let cols: Vec<Column> = columns
             .into_par_iter()
@@ -354,14 +348,22 @@ impl MeshTable {
             spec,
             lead,
             ratio,
-            theta_lo,
-            du,
             lags,
             te0: cols.iter().map(|c| c.te0).collect(),
             torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
             force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
             cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / n as f64,
         })
+    }
+
+    /// First lag node θ_lo (below every unloaded TE), rad.
+    pub fn theta_lo(&self) -> f64 {
+        self.lags[0]
+    }
+
+    /// Smallest lag step (the fine band's), rad.
+    pub fn du(&self) -> f64 {
+        self.lags[1] - self.lags[0]
     }
 
     /// Mean lag step over the table, rad (a scale for lag iterations).
@@ -469,7 +471,7 @@ impl MeshTable {
         let r = self.ratio;
         let theta = r * q1 - q2;
         let u = theta - self.unloaded(q1)?[0];
-        if theta <= self.theta_lo {
+        if theta <= self.theta_lo() {
             return Ok(MeshState {
                 theta,
                 u,
@@ -481,7 +483,7 @@ impl MeshTable {
         let [t, tq, tt, ..] = torque(q1, theta)?;
         // The path s ↦ (s, r s − q₂) from θ = θ_lo to q₁, cut where it
         // crosses the grid lines q₁ = i·step and θ = θ_m.
-        let s_lo = q1 - (theta - self.theta_lo) / r;
+        let s_lo = q1 - (theta - self.theta_lo()) / r;
         let mut cuts = vec![s_lo, q1];
         let h = self.spec.step;
         let mut i = (s_lo / h).floor() + 1.0;
@@ -504,7 +506,7 @@ impl MeshTable {
             }
             for (x, g) in gauss4() {
                 let s = w[0] + len * x;
-                let th = (r * s - q2).max(self.theta_lo);
+                let th = (r * s - q2).max(self.theta_lo());
                 let f = torque(s, th)?;
                 v += g * len * f[0];
                 vt += g * len * f[2];

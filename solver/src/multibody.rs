@@ -142,7 +142,7 @@ impl Model<'_> {
     pub fn contact(&self, q: [f64; 2], v: [f64; 2]) -> Result<Contact, SolverError> {
         let ms = self.table.state(q[0], q[1])?;
         let r = self.table.ratio;
-        let (s, _) = smoothstep(ms.u / self.table.du);
+        let (s, _) = smoothstep(ms.u / self.table.du());
         let rate = r * v[0] - v[1];
         let c = self.damping * s;
         let dir = [r, -1.0];
@@ -193,7 +193,7 @@ impl Model<'_> {
             return Ok(t0);
         }
         let du = self.table.mean_lag_step();
-        let mut theta = t0 + 0.1 * self.table.du;
+        let mut theta = t0 + 0.1 * self.table.du();
         for _ in 0..100 {
             let ms = self.table.state(q1, r * q1 - theta)?;
             let f = ms.grad[0] - torque;

@@ -359,7 +359,7 @@ fn wheel_torque_of_the_potential_is_the_pinion_torque_over_the_ratio() {
     let a2 = f.g.frames[1].axis();
     for k in [3usize, 40, 101] {
         let q1 = t.spec.step * k as f64;
-        let theta = t.theta_lo + 0.6 * (t.lags[t.lags.len() - 1] - t.theta_lo);
+        let theta = t.theta_lo() + 0.6 * (t.lags[t.lags.len() - 1] - t.theta_lo());
         let ms = t.state(q1, t.ratio * q1 - theta).unwrap();
         let fnorm = ms.force.iter().map(|c| c * c).sum::<f64>().sqrt();
         let axial = ms.force[0] * a2[0] + ms.force[1] * a2[1] + ms.force[2] * a2[2];
@@ -391,7 +391,7 @@ fn non_periodic_table_holds_the_potential_path_back_to_first_contact() {
         torque_max_nm: 1000.0,
     };
     let t = MeshTable::build(fp, &f.rs, &f.pc, &f.g.frames[0], ratio, spec).unwrap();
-    let reach = (t.lags[t.lags.len() - 1] - t.theta_lo) / ratio / t.spec.step;
+    let reach = (t.lags[t.lags.len() - 1] - t.theta_lo()) / ratio / t.spec.step;
     eprintln!(
         "lead-in {} steps for a lag reach of {reach:.1} steps",
         t.lead

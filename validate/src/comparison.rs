@@ -235,15 +235,8 @@ pub fn compare(
 
 /// Linear interpolation of (x, y) (x increasing) at `at`; None outside.
 pub fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
-    let k = x.partition_point(|&v| v <= at);
-    if k == 0 || k > x.len() {
-        return None;
-    }
-    if k == x.len() {
-        return ((at - x[k - 1]).abs() < 1e-9).then_some(y[k - 1]);
-    }
-    let t = (at - x[k - 1]) / (x[k] - x[k - 1]);
-    Some(y[k - 1] + t * (y[k] - y[k - 1]))
+    let inside = !x.is_empty() && at >= x[0] && at <= x[x.len() - 1] + 1e-9;
+    inside.then(|| solver::multibody::interpolate(x, y, at))
 }
 
 /// Mean and peak-to-peak of the multibody TE at the reference's positions.

@@ -144,10 +144,8 @@ pub fn run(
     let cycles = sc.rotation.mesh_cycles(Blank::Standard);
     let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
     // The UTCA TE of the generated flanks at this position (unloaded check).
-    let input = preprocess::flank_stage::load_input(&scene.path)?;
-    let rs = preprocess::flank_stage::roll_surface(fp, &input.utca)?;
-    let utca = preprocess::utca::run(fp, &rs, phi, step, 1, direction);
-    let utca_te_urad = utca.te[0] * 1e6;
+    let utca_te_urad =
+        crate::reference_stage::utca_at(scene, fp, phi, step, 1, direction)?.te[0] * 1e6;
     let dir = out.join(&sc.name).join("reference");
     let cache = dir.join("convergence");
     std::fs::create_dir_all(&cache)?;

@@ -115,6 +115,22 @@ pub struct UnloadedCheck {
     pub reference_te_ptp_urad: f64,
 }
 
+/// The UTCA of the scene's generated flanks (its own UTCA settings) at `n`
+/// pinion angles from `start` in steps of `step`: the unloaded check's
+/// reference.
+pub fn utca_at(
+    scene: &LoadedScene,
+    fp: &preprocess::pair::FlankPair,
+    start: f64,
+    step: f64,
+    n: usize,
+    direction: f64,
+) -> anyhow::Result<preprocess::utca::Utca> {
+    let input = preprocess::flank_stage::load_input(&scene.path)?;
+    let rs = preprocess::flank_stage::roll_surface(fp, &input.utca)?;
+    Ok(preprocess::utca::run(fp, &rs, start, step, n, direction))
+}
+
 fn unloaded_check(res: &[PositionResult], utca: &[f64]) -> UnloadedCheck {
     let r: Vec<f64> = res.iter().map(|p| p.unloaded_te * 1e6).collect();
     let u: Vec<f64> = utca.iter().map(|t| t * 1e6).collect();
@@ -219,16 +235,14 @@ pub fn run(
                 }
             }
             // The UTCA TE at the same positions, for the unloaded check.
-            let input = preprocess::flank_stage::load_input(&scene.path)?;
-            let rs = preprocess::flank_stage::roll_surface(fp, &input.utca)?;
-            let utca = preprocess::utca::run(
+            let utca = utca_at(
+                scene,
                 fp,
-                &rs,
                 fp.roll_range[0],
                 step * stride as f64,
                 positions.len(),
                 direction,
-            );
+            )?;
             if let Some((a, b)) = utca
                 .pinion_angle
                 .iter()
