@@ -109,8 +109,16 @@ pub struct MeshReport {
     pub time_mesh_s: f64,
 }
 
-/// Sections of the slot loft and points per edge.
-const SLOT_SECTIONS: usize = 5;
+/// Sections of the slot loft. Four sections follow the generated flank to
+/// about 16 µm (five: 25 µm at the fillet junction) and the boolean cut
+/// takes about two thirds of five's time; three are faster still but 150 µm
+/// off. The flank nodes are snapped onto the generated flank after meshing.
+const SLOT_SECTIONS: usize = 4;
+
+/// A model face is a flank when its midpoint lies within this distance of
+/// the generated flank (the loft's deviation, with margin) and its normal
+/// is within about 25° of the flank normal.
+const FLANK_FACE_TOLERANCE: f64 = 1e-4;
 
 fn point(s: &Session, p: [f64; 3]) -> gmsh::Result<i32> {
     s.occ_add_point(p[0], p[1], p[2], 0.0, -1)
@@ -283,7 +291,12 @@ fn classify(
         let dist =
             ((pr[0] - q.pos[0]).powi(2) + (pr[1] - q.pos[1]).powi(2) + (pr[2] - q.pos[2]).powi(2))
                 .sqrt();
-        if dist < 1e-5 {
+        // A sliver of the top land or heel split off at the blank's seam
+        // can have its midpoint near a flank edge: the face normal tells.
+        let n = s.get_normal(tag, &mid).map_err(|e| gmsh_err(req, e))?;
+        let nr = [ca * n[0] - sa * n[1], sa * n[0] + ca * n[1], n[2]];
+        let cos: f64 = (0..3).map(|i| nr[i] * q.normal[i]).sum();
+        if dist < FLANK_FACE_TOLERANCE && cos.abs() > 0.9 {
             return Ok(Face::Flank {
                 tooth: k.rem_euclid(z as i64) as usize,
                 side,

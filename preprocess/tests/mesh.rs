@@ -213,6 +213,13 @@ fn flank_group_nodes_lie_on_the_generated_flank_within_half_a_micrometre() {
         "refined flank node {:.3} um off the generated flank",
         worst(true) * 1e6
     );
+    // Every flank-group face is a flank: no sliver of the top land or heel
+    // (which would sit a millimetre or more off) was put into a flank group.
+    assert!(
+        worst(false) < 0.5e-3,
+        "a flank-group node {:.3} mm off the generated flank",
+        worst(false) * 1e3
+    );
     // Elsewhere only the nodes the report names as kept may stay off.
     assert!(over <= report.unsnapped_nodes, "{over} nodes over 0.5 um");
     // Without snapping the loft is off by about 0.5 µm at the median: the
