@@ -12,7 +12,7 @@ use crate::ease_off::EaseOff;
 use crate::error::GeometryError;
 use crate::generation::{GeneratedFlank, Side};
 use crate::Scalar;
-use nalgebra::{Const, Matrix2, SVector, Vector3};
+use nalgebra::{Const, Matrix2, SVector, Vector2, Vector3};
 use num_dual::{hessian, Dual2Vec};
 use serde::Serialize;
 
@@ -237,35 +237,61 @@ impl Flank {
     }
 
     /// As [`Flank::solve_ld`], starting Newton from `start`.
+    ///
+    /// The Jacobian ∂(L, d)/∂(ζ, s) is taken by forward differences at the
+    /// first iterate and then kept up to date by Broyden's rank-one update
+    /// (one flank evaluation per iteration instead of three), taken afresh
+    /// whenever an iteration fails to halve the residual. Where that does
+    /// not converge (low on the profile, near a fold of the generated
+    /// surface), plain Newton with a difference Jacobian at every iterate
+    /// is tried. The tolerance on (L, d) is 1e-13 m either way.
     pub fn solve_ld_from(
         &self,
         l: f64,
         d: f64,
         start: [f64; 2],
     ) -> Result<[f64; 2], GeometryError> {
-        let [mut u, mut v] = start;
+        self.newton_ld(l, d, start, true)
+            .or_else(|| self.newton_ld(l, d, start, false))
+            .ok_or(GeometryError::NoFlankPoint {
+                member: self.gen.member.name(),
+                flank: self.gen.side.flank_name(self.gen.member),
+                cone_distance_mm: l * 1e3,
+                height_mm: d * 1e3,
+            })
+    }
+
+    fn newton_ld(&self, l: f64, d: f64, start: [f64; 2], broyden: bool) -> Option<[f64; 2]> {
+        let mut x = Vector2::new(start[0], start[1]);
         let h = 1e-7;
+        let residual = |x: &Vector2<f64>| {
+            let (l0, d0) = self.ld(x[0], x[1]);
+            Vector2::new(l0 - l, d0 - d)
+        };
+        let mut r = residual(&x);
+        let mut jac: Option<Matrix2<f64>> = None;
         for _ in 0..60 {
-            let (l0, d0) = self.ld(u, v);
-            let r = [l0 - l, d0 - d];
             if r[0].abs() < 1e-13 && r[1].abs() < 1e-13 {
-                return Ok([u, v]);
+                return Some([x[0], x[1]]);
             }
-            let (lu, du) = self.ld(u + h, v);
-            let (lv, dv) = self.ld(u, v + h);
-            let j = Matrix2::new((lu - l0) / h, (lv - l0) / h, (du - d0) / h, (dv - d0) / h);
-            let Some(ji) = j.try_inverse() else { break };
-            let step = ji * nalgebra::Vector2::new(r[0], r[1]);
-            let scale = (0.02 / step.norm()).min(1.0);
-            u -= scale * step[0];
-            v -= scale * step[1];
+            let j = match jac {
+                Some(j) => j,
+                None => {
+                    let ru = residual(&Vector2::new(x[0] + h, x[1]));
+                    let rv = residual(&Vector2::new(x[0], x[1] + h));
+                    Matrix2::from_columns(&[(ru - r) / h, (rv - r) / h])
+                }
+            };
+            let step = j.try_inverse()? * r;
+            let dx = -step * (0.02 / step.norm()).min(1.0);
+            x += dx;
+            let r_new = residual(&x);
+            // Broyden: J ← J + (Δr − J Δx) Δxᵀ / (Δxᵀ Δx).
+            jac = (broyden && r_new.norm() < 0.5 * r.norm())
+                .then(|| j + (r_new - r - j * dx) * dx.transpose() / dx.dot(&dx));
+            r = r_new;
         }
-        Err(GeometryError::NoFlankPoint {
-            member: self.gen.member.name(),
-            flank: self.gen.side.flank_name(self.gen.member),
-            cone_distance_mm: l * 1e3,
-            height_mm: d * 1e3,
-        })
+        None
     }
 
     /// Flank point at (L, d).
@@ -278,6 +304,21 @@ impl Flank {
     pub fn at_unit(&self, xi: f64, eta: f64) -> Result<FlankPoint, GeometryError> {
         let (l, d) = self.bounds.from_unit(xi, eta);
         self.at(l, d)
+    }
+
+    /// As [`Flank::at_unit`], Newton started from the generating parameters
+    /// `start` of a nearby point (falling back to the usual start).
+    pub fn at_unit_from(
+        &self,
+        xi: f64,
+        eta: f64,
+        start: [f64; 2],
+    ) -> Result<FlankPoint, GeometryError> {
+        let (l, d) = self.bounds.from_unit(xi, eta);
+        let [u, v] = self
+            .solve_ld_from(l, d, start)
+            .or_else(|_| self.solve_ld(l, d))?;
+        Ok(self.eval_uv(u, v))
     }
 
     /// Spiral angle and normal pressure angle (rad) at (L, d), from the

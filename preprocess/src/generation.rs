@@ -161,6 +161,8 @@ pub struct GeneratedFlank {
     pub cone: GeneratingCone,
     /// Rotation of the generating cone about the crown axis (tooth thickness phase).
     pub phase: f64,
+    /// (sin, cos) of `phase`.
+    pub phase_sin_cos: (f64, f64),
     pub frame: MemberFrame,
     /// +1 when the member's outward normal equals the cone normal, else −1.
     pub outward: f64,
@@ -296,7 +298,7 @@ impl GeneratedFlank {
     /// The generated point of a generating-surface point `p0` with normal `n0`
     /// (crown frame at phase 0, normal oriented like the cone's).
     pub fn envelope<D: Scalar>(&self, p0: [D; 3], n0: [D; 3]) -> RawPoint<D> {
-        let (sp, cp) = self.phase.sin_cos();
+        let (sp, cp) = self.phase_sin_cos;
         let rz = |v: [D; 3]| [v[0] * cp - v[1] * sp, v[0] * sp + v[1] * cp, v[2]];
         let p = rz(p0);
         let n0 = rz(n0);
@@ -308,8 +310,12 @@ impl GeneratedFlank {
         // Equation of meshing, closed form.
         let a = n[2] * p[1] - n[1] * p[2];
         let b = n[2] * p[0] - n[0] * p[2];
+        // φ_c = atan(−a/b) lies in [−π/2, π/2], so cos φ_c = |b|/√(a² + b²)
+        // and sin φ_c = −a sgn(b)/√(a² + b²) (no sin/cos needed).
         let phic = (-a / b).atan();
-        let (sc, cc) = phic.sin_cos();
+        let sgn = if b.re().is_sign_negative() { -1.0 } else { 1.0 };
+        let inv = (a * a + b * b).sqrt().recip() * sgn;
+        let (sc, cc) = (-a * inv, b * inv);
         let rzc = |v: [D; 3]| [v[0] * cc - v[1] * sc, v[0] * sc + v[1] * cc, v[2]];
         let pf = rzc(p);
         let nf = rzc(n);
@@ -399,6 +405,7 @@ impl Generator {
                 side,
                 cone: cones[side.index()],
                 phase,
+                phase_sin_cos: phase.sin_cos(),
                 frame: MemberFrame::new(pair, m),
                 outward,
                 tip: BladeTip {

@@ -42,6 +42,12 @@ pub fn pinion_direction(data: &PairData, side: Side) -> f64 {
 /// Grid used to find the active region of a flank pair.
 const REGION_GRID: usize = 41;
 
+/// Tolerance (m) of the active-region test at grid nodes: the flank grids'
+/// toe and heel rows lie exactly on the face-width bounds, and (L, d) comes
+/// back from Newton to 1e-13 m, so without it round-off decides whether a
+/// whole edge row counts as active.
+pub const EDGE_TOL: f64 = 1e-11;
+
 impl PairGeometry {
     pub fn new(data: &PairData) -> Result<Self, GeometryError> {
         Self::build(data, None)
@@ -162,7 +168,7 @@ impl FlankPair {
                 let act: Vec<bool> = (0..n)
                     .map(|b| {
                         let [u, v] = node(b);
-                        self.is_active(u, v, 0.0)
+                        self.is_active(u, v, EDGE_TOL)
                     })
                     .collect();
                 for b in 0..n {
@@ -213,7 +219,7 @@ fn bisect_boundary(fp: &FlankPair, inside: [f64; 2], outside: [f64; 2]) -> [f64;
     let (mut a, mut b) = (inside, outside);
     for _ in 0..40 {
         let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-        if fp.is_active(m[0], m[1], 0.0) {
+        if fp.is_active(m[0], m[1], EDGE_TOL) {
             a = m;
         } else {
             b = m;

@@ -117,7 +117,10 @@ impl RollSurface {
             roll: pts.iter().map(|p| p.pinion_roll).collect(),
             ease_off: pts.iter().map(|p| p.ease_off).collect(),
             lever: pts.iter().map(|p| p.wheel_lever).collect(),
-            active: uv.iter().map(|&[u, v]| fp.is_active(u, v, 0.0)).collect(),
+            active: uv
+                .iter()
+                .map(|&[u, v]| fp.is_active(u, v, crate::pair::EDGE_TOL))
+                .collect(),
             uv,
             k_sep,
         })

@@ -170,3 +170,41 @@ fn imported_topography_is_added_on_top_and_a_linear_field_is_reproduced_exactly(
         }
     }
 }
+
+/// The toe and heel rows of the flank grid lie exactly on the face-width
+/// bounds, where Newton's 1e-13 m round-off used to decide whether a row
+/// counted as active (and so where first contact began: 0.57° apart between
+/// two equally exact solvers). Each edge node must be active exactly when the
+/// point 1e-9 of the face width inside it is.
+#[test]
+fn toe_and_heel_rows_are_active_like_the_points_just_inside_them() {
+    let g = common::geometry(&common::white_paper());
+    for side in [Side::Drive, Side::Coast] {
+        let fp = g.side(side);
+        let grid = LineGrid {
+            n_face: 41,
+            n_profile: 41,
+        };
+        let rs = RollSurface::new(fp, grid).unwrap();
+        let np = grid.n_profile;
+        let mut edge_active = 0;
+        for (row, xi) in [(0, 1e-9), (grid.n_face - 1, 1.0 - 1e-9)] {
+            for k in 1..np - 1 {
+                let eta = k as f64 / (np - 1) as f64;
+                let p = fp.pinion.at_unit(xi, eta).unwrap();
+                let inside = fp.is_active(p.uv[0], p.uv[1], 0.0);
+                assert_eq!(
+                    rs.active[row * np + k],
+                    inside,
+                    "{side:?} row {row}, eta {eta}"
+                );
+                edge_active += usize::from(inside);
+            }
+        }
+        // The check means something: part of each edge row is active.
+        assert!(
+            edge_active > 10,
+            "{side:?}: {edge_active} active edge nodes"
+        );
+    }
+}

@@ -70,6 +70,9 @@ struct Column<'a> {
     rs: &'a RollSurface,
     target: f64,
     xi: f64,
+    /// Generating parameters of the last point evaluated: Newton's start
+    /// for the next, which lies close by on the same column.
+    last_uv: std::cell::Cell<Option<[f64; 2]>>,
 }
 
 impl Column<'_> {
@@ -78,7 +81,12 @@ impl Column<'_> {
         if !(0.0..=1.0).contains(&eta) {
             return None;
         }
-        let p = self.fp.pinion.at_unit(self.xi, eta).ok()?;
+        let p = match self.last_uv.get() {
+            Some(s) => self.fp.pinion.at_unit_from(self.xi, eta, s),
+            None => self.fp.pinion.at_unit(self.xi, eta),
+        }
+        .ok()?;
+        self.last_uv.set(Some(p.uv));
         let (lw, dw) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
         if !self.fp.wheel.bounds.contains(lw, dw, 1e-12) {
             return None;
@@ -309,7 +317,13 @@ pub fn pair_slices(
             continue;
         }
         let xi = c.clamp(0.0, 1.0);
-        let col = Column { fp, rs, target, xi };
+        let col = Column {
+            fp,
+            rs,
+            target,
+            xi,
+            last_uv: Default::default(),
+        };
         if let Some(c) = col.minimum(level_crossing(rs, xi, target)) {
             raw.push((band, xi, c));
         }
