@@ -251,8 +251,9 @@ impl Flank {
         d: f64,
         start: [f64; 2],
     ) -> Result<[f64; 2], GeometryError> {
-        self.newton_ld(l, d, start, true)
-            .or_else(|| self.newton_ld(l, d, start, false))
+        self.newton_ld(l, d, start, None, true)
+            .or_else(|| self.newton_ld(l, d, start, None, false))
+            .map(|(uv, _)| uv)
             .ok_or(GeometryError::NoFlankPoint {
                 member: self.gen.member.name(),
                 flank: self.gen.side.flank_name(self.gen.member),
@@ -261,7 +262,16 @@ impl Flank {
             })
     }
 
-    fn newton_ld(&self, l: f64, d: f64, start: [f64; 2], broyden: bool) -> Option<[f64; 2]> {
+    /// Newton for (L, d) from `start` with an optional initial Jacobian;
+    /// returns the solution and the last Jacobian used.
+    fn newton_ld(
+        &self,
+        l: f64,
+        d: f64,
+        start: [f64; 2],
+        jac0: Option<Matrix2<f64>>,
+        broyden: bool,
+    ) -> Option<([f64; 2], Option<Matrix2<f64>>)> {
         let mut x = Vector2::new(start[0], start[1]);
         let h = 1e-7;
         let residual = |x: &Vector2<f64>| {
@@ -269,10 +279,11 @@ impl Flank {
             Vector2::new(l0 - l, d0 - d)
         };
         let mut r = residual(&x);
-        let mut jac: Option<Matrix2<f64>> = None;
+        let mut jac = jac0;
+        let mut last = jac0;
         for _ in 0..60 {
             if r[0].abs() < 1e-13 && r[1].abs() < 1e-13 {
-                return Some([x[0], x[1]]);
+                return Some(([x[0], x[1]], last));
             }
             let j = match jac {
                 Some(j) => j,
@@ -282,6 +293,7 @@ impl Flank {
                     Matrix2::from_columns(&[(ru - r) / h, (rv - r) / h])
                 }
             };
+            last = Some(j);
             let step = j.try_inverse()? * r;
             let dx = -step * (0.02 / step.norm()).min(1.0);
             x += dx;
@@ -307,18 +319,22 @@ impl Flank {
     }
 
     /// As [`Flank::at_unit`], Newton started from the generating parameters
-    /// `start` of a nearby point (falling back to the usual start).
+    /// `start` of a nearby point and, if given, the Jacobian ∂(L, d)/∂(ζ, s)
+    /// there (falling back to the usual start). Returns the point and the
+    /// Jacobian to pass to the next nearby evaluation.
     pub fn at_unit_from(
         &self,
         xi: f64,
         eta: f64,
         start: [f64; 2],
-    ) -> Result<FlankPoint, GeometryError> {
+        jacobian: Option<Matrix2<f64>>,
+    ) -> Result<(FlankPoint, Option<Matrix2<f64>>), GeometryError> {
         let (l, d) = self.bounds.from_unit(xi, eta);
-        let [u, v] = self
-            .solve_ld_from(l, d, start)
-            .or_else(|_| self.solve_ld(l, d))?;
-        Ok(self.eval_uv(u, v))
+        let (uv, jac) = match self.newton_ld(l, d, start, jacobian, true) {
+            Some(found) => found,
+            None => (self.solve_ld(l, d)?, None),
+        };
+        Ok((self.eval_uv(uv[0], uv[1]), jac))
     }
 
     /// Spiral angle and normal pressure angle (rad) at (L, d), from the

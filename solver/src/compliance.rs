@@ -101,30 +101,55 @@ impl MemberCompliance {
             return;
         };
         let np = self.np;
-        // t[a][l] = Σ_b G[a][b] W_l[b], then C[k][l] += Σ_a W_k[a] t[a][l];
-        // t only on the grid points a that some row's weights touch (the
-        // contact line's band, a fraction of the grid).
-        let mut needed = vec![false; np];
-        for wk in w_rows {
-            for &(a, _) in wk.iter() {
-                needed[a] = true;
-            }
-        }
-        let nc = w_cols.len();
-        let mut t = vec![0.0; np * nc];
-        for a in (0..np).filter(|&a| needed[a]) {
+        // The sub-block of G on the grid points the weights touch (a band
+        // along the contact lines), gathered once; then per loaded slice k
+        // s_k = Σ_a W_k[a] G[a][·] over it and C[k][l] += Σ_b s_k[b] W_l[b].
+        let (ra, rmap) = touched(w_rows, np);
+        let (cb, cmap) = touched(w_cols, np);
+        let ncb = cb.len();
+        let mut gs = vec![0.0; ra.len() * ncb];
+        for (dst, &a) in gs.chunks_exact_mut(ncb).zip(&ra) {
             let row = &g[a * np..(a + 1) * np];
-            for (l, wl) in w_cols.iter().enumerate() {
-                t[a * nc + l] = wl.iter().map(|&(b, v)| v * row[b]).sum();
+            for (d, &b) in dst.iter_mut().zip(&cb) {
+                *d = row[b];
             }
         }
+        let w_cols: Vec<Vec<(usize, f64)>> = w_cols
+            .iter()
+            .map(|w| w.iter().map(|&(b, v)| (cmap[b], v)).collect())
+            .collect();
+        let mut s = vec![0.0; ncb];
         for (kk, wk) in w_rows.iter().enumerate() {
-            for l in 0..nc {
-                let v: f64 = wk.iter().map(|&(a, x)| x * t[a * nc + l]).sum();
-                c[rows[kk] * n + cols[l]] += v;
+            s.fill(0.0);
+            for &(a, x) in wk.iter() {
+                let r = rmap[a];
+                for (o, &v) in s.iter_mut().zip(&gs[r * ncb..(r + 1) * ncb]) {
+                    *o += x * v;
+                }
+            }
+            let row = &mut c[rows[kk] * n..(rows[kk] + 1) * n];
+            for (wl, &l) in w_cols.iter().zip(cols) {
+                row[l] += wl.iter().map(|&(b, v)| v * s[b]).sum::<f64>();
             }
         }
     }
+}
+
+/// The grid points that some of `weights` touch, ascending, and each grid
+/// point's place in that list.
+fn touched(weights: &[&Weights], np: usize) -> (Vec<usize>, Vec<usize>) {
+    let mut on = vec![false; np];
+    for w in weights {
+        for &(a, _) in w.iter() {
+            on[a] = true;
+        }
+    }
+    let list: Vec<usize> = (0..np).filter(|&a| on[a]).collect();
+    let mut place = vec![usize::MAX; np];
+    for (i, &a) in list.iter().enumerate() {
+        place[a] = i;
+    }
+    (list, place)
 }
 
 /// The two members' data.

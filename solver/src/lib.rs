@@ -13,6 +13,7 @@
 
 pub mod compliance;
 pub mod contact_problem;
+pub mod cpu_clock;
 pub mod dynamic_stage;
 pub mod interp;
 pub mod ltca;

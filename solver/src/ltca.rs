@@ -8,6 +8,7 @@
 
 use crate::compliance::PairCompliance;
 use crate::contact_problem::{ContactProblem, ContactSolution};
+use crate::cpu_clock::timed;
 use crate::slices::{pair_slices, Slice};
 use crate::weber_banaschek::{contact_modulus, half_width, LineContact};
 use crate::SolverError;
@@ -15,7 +16,6 @@ use preprocess::pair::{pairs_in_contact, FlankPair};
 use preprocess::utca::RollSurface;
 use rayon::prelude::*;
 use serde::Serialize;
-use std::time::Instant;
 
 /// The contact geometry of one position.
 #[derive(Debug, Clone)]
@@ -187,6 +187,8 @@ pub struct PositionResult {
     pub rotation: f64,
     pub utca_te: f64,
     pub slices: usize,
+    /// CPU seconds (of the thread that ran the position) for the slice
+    /// geometry and the compliance assembly.
     pub geometry_s: f64,
     pub assembly_s: f64,
     /// One entry per torque.
@@ -267,21 +269,17 @@ pub fn run(
         .map(|k| {
             let rotation = sweep.step * k as f64;
             let phi = sweep.start + sweep.direction * rotation;
-            let t = Instant::now();
-            let g = geometry(fp, rs, phi, tau, sweep.slices);
-            let geometry_s = t.elapsed().as_secs_f64();
+            let (g, geometry_s) = timed(|| geometry(fp, rs, phi, tau, sweep.slices));
             if g.slices.is_empty() {
                 return Err(SolverError::NoContact);
             }
-            let t = Instant::now();
-            let a = assemble(&g, pc)?;
-            let assembly_s = t.elapsed().as_secs_f64();
+            let (a, assembly_s) = timed(|| assemble(&g, pc));
+            let a = a?;
             let mut loads = Vec::with_capacity(torques.len());
             let mut warm: Option<Vec<bool>> = None;
             for &torque in torques {
-                let t = Instant::now();
-                let s = solve(&a, torque, warm.as_deref())?;
-                let dt = t.elapsed().as_secs_f64();
+                let (s, dt) = timed(|| solve(&a, torque, warm.as_deref()));
+                let s = s?;
                 loads.push(position_load(&g, &a, &s, torque, dt));
                 warm = Some(s.active);
             }

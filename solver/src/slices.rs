@@ -70,9 +70,10 @@ struct Column<'a> {
     rs: &'a RollSurface,
     target: f64,
     xi: f64,
-    /// Generating parameters of the last point evaluated: Newton's start
-    /// for the next, which lies close by on the same column.
-    last_uv: std::cell::Cell<Option<[f64; 2]>>,
+    /// Generating parameters of the last point evaluated and the Jacobian
+    /// of (L, d) there: Newton's start for the next point, which lies close
+    /// by on the same column.
+    last: std::cell::Cell<Option<([f64; 2], Option<nalgebra::Matrix2<f64>>)>>,
 }
 
 impl Column<'_> {
@@ -81,12 +82,12 @@ impl Column<'_> {
         if !(0.0..=1.0).contains(&eta) {
             return None;
         }
-        let p = match self.last_uv.get() {
-            Some(s) => self.fp.pinion.at_unit_from(self.xi, eta, s),
-            None => self.fp.pinion.at_unit(self.xi, eta),
+        let (p, jac) = match self.last.get() {
+            Some((uv, jac)) => self.fp.pinion.at_unit_from(self.xi, eta, uv, jac),
+            None => self.fp.pinion.at_unit(self.xi, eta).map(|p| (p, None)),
         }
         .ok()?;
-        self.last_uv.set(Some(p.uv));
+        self.last.set(Some((p.uv, jac)));
         let (lw, dw) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
         if !self.fp.wheel.bounds.contains(lw, dw, 1e-12) {
             return None;
@@ -322,7 +323,7 @@ pub fn pair_slices(
             rs,
             target,
             xi,
-            last_uv: Default::default(),
+            last: Default::default(),
         };
         if let Some(c) = col.minimum(level_crossing(rs, xi, target)) {
             raw.push((band, xi, c));
