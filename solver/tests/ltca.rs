@@ -531,3 +531,64 @@ fn undamped_run_keeps_its_energy_over_ten_mesh_cycles() {
     assert!(s.q[0] > 9.0 * t.span());
     assert!(worst < 1e-6 * scale, "{:.3e}", worst / scale);
 }
+
+/// The textbook mesh forces of a spiral bevel pair at the mean point
+/// (e.g. ISO 10300 / Gleason): tangential F_t = T₁/r_m1 with r_m1 = R_m sin δ₁,
+/// total normal force F_t/(cos α_n cos β_m), and axial thrusts
+/// F_t/cos β_m · |tan α_n sin δ₁ ± sin β_m cos δ₁| on the pinion and
+/// F_t/cos β_m · |tan α_n cos δ₁ ∓ sin β_m sin δ₁| on the wheel (shaft angle
+/// 90°; the sign pair follows hand and sense of rotation). The rigid
+/// bearings' force of the multibody element (the tabulated contact force),
+/// averaged over a mesh cycle of quasi-static states, must match magnitude
+/// and both thrusts of one sign pair within 5 % (the contact wanders about
+/// the mean point).
+#[test]
+fn wheel_bearing_force_matches_the_textbook_bevel_gear_mesh_forces() {
+    let f = fixture();
+    let t = table_fine();
+    let d = &f.g.data;
+    let torque = 300.0;
+    let (m, _) = wheel_driven(t, INERTIA, 1.0, torque, 0.1).unwrap();
+    let n = 48;
+    let mut mean = [0.0; 3];
+    for k in 0..n {
+        let q1 = t.span() * k as f64 / n as f64;
+        let theta = m.static_lag(q1).unwrap();
+        let s = t.state(q1, t.ratio * q1 - theta).unwrap();
+        for c in 0..3 {
+            mean[c] += s.force[c] / n as f64;
+        }
+    }
+    let fv = nalgebra::Vector3::from(mean);
+    let (delta1, beta) = (d.members[0].pitch_angle, d.spiral_angle);
+    let alpha = d.pressure_angle[Side::Drive.index()];
+    let ft = torque / (d.mean_cone_distance * delta1.sin());
+    let normal = ft / (alpha.cos() * beta.cos());
+    let (ta, sb) = (alpha.tan(), beta.sin());
+    let variants = [1.0, -1.0].map(|s| {
+        [
+            ft / beta.cos() * (ta * delta1.sin() + s * sb * delta1.cos()).abs(),
+            ft / beta.cos() * (ta * delta1.cos() - s * sb * delta1.sin()).abs(),
+        ]
+    });
+    let thrust = [
+        fv.dot(&f.g.frames[0].axis()).abs(),
+        fv.dot(&f.g.frames[1].axis()).abs(),
+    ];
+    eprintln!(
+        "|F| {:.1} N (textbook {normal:.1}); thrust pinion {:.1}, wheel {:.1} N (textbook {:.1}/{:.1} or {:.1}/{:.1})",
+        fv.norm(),
+        thrust[0],
+        thrust[1],
+        variants[0][0],
+        variants[0][1],
+        variants[1][0],
+        variants[1][1]
+    );
+    assert!((fv.norm() / normal - 1.0).abs() < 0.05);
+    let close = |v: [f64; 2]| (0..2).all(|i| (thrust[i] - v[i]).abs() < 0.05 * normal);
+    assert!(
+        variants.iter().any(|&v| close(v)),
+        "thrusts {thrust:?} match neither sign pair {variants:?}"
+    );
+}
