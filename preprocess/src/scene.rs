@@ -136,11 +136,17 @@ impl MultibodySettings {
 pub struct LtcaSettings {
     /// Slices across the face width per tooth pair.
     pub slices: usize,
+    /// Coulomb friction coefficient μ between the flanks, in the loaded TCA
+    /// and the multibody element (0: frictionless, as in the white paper).
+    pub friction_coefficient: f64,
 }
 
 impl Default for LtcaSettings {
     fn default() -> Self {
-        LtcaSettings { slices: 30 }
+        LtcaSettings {
+            slices: 30,
+            friction_coefficient: 0.0,
+        }
     }
 }
 
@@ -393,6 +399,14 @@ impl Scene {
                 "stiffness.solve_block",
                 st.solve_block.to_string(),
                 "must lie in [1, 256]",
+            ));
+        }
+        let mu = self.ltca.friction_coefficient;
+        if !(0.0..=0.5).contains(&mu) {
+            return Err(fail(
+                "ltca.friction_coefficient",
+                mu.to_string(),
+                "must lie in [0, 0.5]",
             ));
         }
         if !(4..=400).contains(&self.ltca.slices) {

@@ -80,8 +80,15 @@ fn main() {
         let (mut cpu, mut steps) = (0.0, 0usize);
         for (i, &torque) in torques.iter().enumerate() {
             let wheel = std::f64::consts::PI / 3.0;
-            let (m, s) =
-                wheel_driven(&table, inertia, wheel, torque, sc.multibody.damping_ratio).unwrap();
+            let (m, s) = wheel_driven(
+                &table,
+                inertia,
+                wheel,
+                torque,
+                sc.multibody.damping_ratio,
+                sc.ltca.friction_coefficient,
+            )
+            .unwrap();
             let mut integ = Integrator::new(
                 Scheme::GeneralizedAlpha {
                     rho_inf: sc.multibody.rho_inf,

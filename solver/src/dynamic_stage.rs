@@ -69,6 +69,8 @@ pub struct DynamicSummary {
     /// "scene" or "mesh" (∫ρr² dV over the body mesh).
     pub inertia_source: String,
     pub damping_nm_s_per_rad: f64,
+    /// Coulomb friction coefficient of the flanks.
+    pub friction_coefficient: f64,
     pub table_positions: usize,
     pub table_lag_nodes: usize,
     pub table_build_s: f64,
@@ -261,7 +263,14 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             let mut damping = 0.0;
             let mut qs_series = Vec::new();
             for &torque in &sc.pinion_torque_nm {
-                let (m, s0) = wheel_driven(&table, inertia, wheel_speed, torque, mb.damping_ratio)?;
+                let (m, s0) = wheel_driven(
+                    &table,
+                    inertia,
+                    wheel_speed,
+                    torque,
+                    mb.damping_ratio,
+                    sc.ltca.friction_coefficient,
+                )?;
                 damping = m.damping;
                 let mut integ = Integrator::new(scheme, control(mb.quasi_static_max_step_s));
                 let t = Instant::now();
@@ -323,11 +332,13 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                     pb,
                     wb,
                     g.data.members[0].teeth as f64,
+                    sc.ltca.friction_coefficient,
                 )?)
             } else {
                 None
             };
             let summary = DynamicSummary {
+                friction_coefficient: sc.ltca.friction_coefficient,
                 pinion_blank: pb,
                 wheel_blank: wb,
                 inertia_kgm2: inertia,
@@ -367,6 +378,7 @@ fn run_up(
     pb: Blank,
     wb: Blank,
     z1: f64,
+    friction: f64,
 ) -> anyhow::Result<RunupSummary> {
     let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
     let ramp = Ramp {
@@ -379,6 +391,7 @@ fn run_up(
         table,
         inertia,
         damping: 0.0,
+        friction,
         drive: Drive::PinionSpeed {
             speed: ramp,
             wheel_torque: torque / table.ratio,

@@ -53,11 +53,20 @@ pub struct Assembled {
     /// Per slice: touching lag (rad), wheel and pinion normal levers.
     pub lag: Vec<f64>,
     pub lever_wheel: Vec<f64>,
+    /// Pinion lever of each slice's normal force, friction included:
+    /// λ₁ + μ ℓ₁ (the torque balance Σ (λ₁ + μ ℓ₁) F = T₁).
     pub lever_pinion: Vec<f64>,
+    /// The friction coefficient μ.
+    pub friction: f64,
 }
 
-/// Interpolates both members' global influence fields and reference depths to the slices.
-pub fn assemble(g: &Geometry, pc: &PairCompliance) -> Result<Assembled, SolverError> {
+/// Interpolates both members' global influence fields and reference depths
+/// to the slices; `friction` is the Coulomb coefficient μ.
+pub fn assemble(
+    g: &Geometry,
+    pc: &PairCompliance,
+    friction: f64,
+) -> Result<Assembled, SolverError> {
     let n = g.slices.len();
     let mut c = vec![0.0; n * n];
     let wp: Vec<_> = g
@@ -115,7 +124,12 @@ pub fn assemble(g: &Geometry, pc: &PairCompliance) -> Result<Assembled, SolverEr
         line: line.into_iter().map(|e| e.1).collect(),
         lag: g.slices.iter().map(|s| s.lag).collect(),
         lever_wheel: g.slices.iter().map(|s| s.lever_wheel).collect(),
-        lever_pinion: g.slices.iter().map(|s| s.lever_pinion).collect(),
+        lever_pinion: g
+            .slices
+            .iter()
+            .map(|s| s.lever_pinion + friction * s.friction_lever[0])
+            .collect(),
+        friction,
     })
 }
 
@@ -147,6 +161,8 @@ pub struct Sweep {
     pub positions: usize,
     /// Slices across the face width per tooth pair.
     pub slices: usize,
+    /// Coulomb friction coefficient μ (forward rotation).
+    pub friction: f64,
 }
 
 /// One loaded slice.
@@ -167,6 +183,10 @@ pub struct SliceLoad {
 pub struct PositionLoad {
     /// Loaded TE, rad.
     pub te: f64,
+    /// Torque the contact drives the wheel with, N·m (normal forces and,
+    /// with friction, the friction forces); the mesh efficiency is
+    /// wheel torque / (pinion torque · z₂/z₁).
+    pub wheel_torque_nm: f64,
     /// Force of each tooth pair in contact: (pair, N).
     pub pair_force: Vec<(i32, f64)>,
     /// Share of the pinion torque carried by each pair (same order).
@@ -210,11 +230,11 @@ fn position_load(
         match pair_force.iter().position(|p| p.0 == sl.pair) {
             Some(i) => {
                 pair_force[i].1 += s.force[k];
-                pair_torque[i] += s.force[k] * sl.lever_pinion;
+                pair_torque[i] += s.force[k] * a.lever_pinion[k];
             }
             None => {
                 pair_force.push((sl.pair, s.force[k]));
-                pair_torque.push(s.force[k] * sl.lever_pinion);
+                pair_torque.push(s.force[k] * a.lever_pinion[k]);
             }
         }
         if s.force[k] > 0.0 {
@@ -239,8 +259,15 @@ fn position_load(
         .iter()
         .map(|t| if torque > 0.0 { t / torque } else { 0.0 })
         .collect();
+    let wheel_torque = g
+        .slices
+        .iter()
+        .zip(&s.force)
+        .map(|(sl, f)| f * (sl.lever_wheel + a.friction * sl.friction_lever[1]))
+        .sum();
     PositionLoad {
         te: s.theta,
+        wheel_torque_nm: wheel_torque,
         pair_force,
         pair_share: share,
         mesh_stiffness: if s.theta > g.utca_te {
@@ -273,7 +300,7 @@ pub fn run(
             if g.slices.is_empty() {
                 return Err(SolverError::NoContact);
             }
-            let (a, assembly_s) = timed(|| assemble(&g, pc));
+            let (a, assembly_s) = timed(|| assemble(&g, pc, sweep.friction));
             let a = a?;
             let mut loads = Vec::with_capacity(torques.len());
             let mut warm: Option<Vec<bool>> = None;

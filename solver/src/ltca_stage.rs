@@ -33,6 +33,10 @@ pub struct LoadSummary {
     pub mesh_stiffness_mean_nm_per_rad: f64,
     /// Largest torque share of one tooth pair over the sweep.
     pub max_pair_share: f64,
+    /// Mean torque driving the wheel, N·m; the mesh efficiency is this ·
+    /// z₁/z₂ / torque (one without friction, to the ease-off's departure
+    /// from conjugate levers).
+    pub wheel_torque_mean_nm: f64,
 }
 
 /// Summary of one pinion × wheel blank combination.
@@ -44,6 +48,8 @@ pub struct BlankSummary {
     pub step_deg: f64,
     pub mesh_cycles: f64,
     pub slices_per_pair: usize,
+    /// Coulomb friction coefficient of the flanks.
+    pub friction_coefficient: f64,
     pub utca_te_mean_urad: f64,
     pub utca_te_ptp_urad: f64,
     pub stiffness_files: Vec<PathBuf>,
@@ -88,6 +94,7 @@ pub fn scene_sweep(scene: &LoadedScene, g: &PairGeometry, wheel: Blank) -> Sweep
         direction: pinion_direction(&g.data, sc.loaded_flank),
         positions: (cycles * g.data.mesh_cycle() / step).round() as usize + 1,
         slices: sc.ltca.slices,
+        friction: sc.ltca.friction_coefficient,
     }
 }
 
@@ -130,6 +137,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 step_deg: sc.rotation.step_deg,
                 mesh_cycles: sc.rotation.mesh_cycles(wb),
                 slices_per_pair: sweep.slices,
+                friction_coefficient: sweep.friction,
                 utca_te_mean_urad: um * 1e6,
                 utca_te_ptp_urad: up * 1e6,
                 stiffness_files: vec![pin_path.path.clone(), whl_path.path],
@@ -190,6 +198,8 @@ pub fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummar
                     .iter()
                     .flat_map(|p| p.loads[i].pair_share.iter().copied())
                     .fold(0.0, f64::max),
+                wheel_torque_mean_nm: res.iter().map(|p| p.loads[i].wheel_torque_nm).sum::<f64>()
+                    / n,
             }
         })
         .collect()

@@ -70,6 +70,9 @@ pub struct MeshTable {
     /// fixed frame (N): row-major positions × lag nodes.
     pub torque: Vec<f64>,
     pub force: Vec<[f64; 3]>,
+    /// Friction moments per unit friction coefficient (Φ₁, Φ₂) = (Σ F ℓ₁,
+    /// Σ F ℓ₂), N·m (see [`crate::slices::friction_levers`]), same layout.
+    pub friction: Vec<[f64; 2]>,
     /// Geometry + assembly + lag-controlled solves, s per position (one core).
     pub cpu_s_per_position: f64,
 }
@@ -234,6 +237,7 @@ struct Column {
     te0: f64,
     torque: Vec<f64>,
     force: Vec<[f64; 3]>,
+    friction: Vec<[f64; 2]>,
     cpu: f64,
 }
 
@@ -266,7 +270,9 @@ impl MeshTable {
                     if g.slices.is_empty() {
                         return Err(SolverError::NoContact);
                     }
-                    let a = assemble(&g, pc)?;
+                    // Normal forces only: the potential is conservative;
+                    // friction is tabulated on its own.
+                    let a = assemble(&g, pc, 0.0)?;
                     let s = crate::ltca::solve(&a, spec.torque_max_nm, None)?;
                     Ok((g, a, s.theta, t.elapsed().as_secs_f64()))
                 })
@@ -312,6 +318,7 @@ impl MeshTable {
                 };
                 let mut torque = Vec::with_capacity(spec.lag_nodes);
                 let mut force = Vec::with_capacity(spec.lag_nodes);
+                let mut friction = Vec::with_capacity(spec.lag_nodes);
                 let mut warm: Option<Vec<bool>> = None;
                 for &lag in &lags {
                     let s = p.solve_at_lag(lag, warm.as_deref())?;
@@ -331,6 +338,13 @@ impl MeshTable {
                         }
                     }
                     force.push(f);
+                    friction.push([0, 1].map(|i| {
+                        g.slices
+                            .iter()
+                            .zip(&s.force)
+                            .map(|(sl, f)| f * sl.friction_lever[i])
+                            .sum::<f64>()
+                    }));
                     if s.active.iter().any(|&x| x) {
                         warm = Some(s.active);
                     }
@@ -339,6 +353,7 @@ impl MeshTable {
                     te0: g.utca_te,
                     torque,
                     force,
+                    friction,
                     cpu: cpu0 + t.elapsed().as_secs_f64(),
                 })
             })
@@ -352,6 +367,10 @@ impl MeshTable {
             te0: cols.iter().map(|c| c.te0).collect(),
             torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
             force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
+            friction: cols
+                .iter()
+                .flat_map(|c| c.friction.iter().copied())
+                .collect(),
             cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / n as f64,
         })
     }
@@ -464,6 +483,29 @@ impl MeshTable {
             }
         }
         Ok(out)
+    }
+
+    /// Friction moments per unit friction coefficient (Φ₁, Φ₂) at (q₁, q₂),
+    /// N·m, and their derivatives ∂Φᵢ/∂q_j (θ = r q₁ − q₂); zero where open.
+    pub fn friction_state(
+        &self,
+        q1: f64,
+        q2: f64,
+    ) -> Result<([f64; 2], [[f64; 2]; 2]), SolverError> {
+        let r = self.ratio;
+        let theta = r * q1 - q2;
+        let mut phi = [0.0; 2];
+        let mut grad = [[0.0; 2]; 2];
+        if theta <= self.theta_lo() || theta <= self.unloaded(q1)?[0] {
+            return Ok((phi, grad));
+        }
+        let nu = self.spec.lag_nodes;
+        for i in 0..2 {
+            let [f, fq, ft, ..] = self.field(|p, m| self.friction[p * nu + m][i], q1, theta)?;
+            phi[i] = f;
+            grad[i] = [fq + r * ft, -ft];
+        }
+        Ok((phi, grad))
     }
 
     /// Potential, gradient, Hessian and force at (q₁, q₂).

@@ -97,8 +97,16 @@ pub struct Model<'a> {
     pub inertia: [f64; 2],
     /// Mesh damping on the wheel lag, N·m·s/rad (pinion torque per lag rate).
     pub damping: f64,
+    /// Coulomb friction coefficient μ of the flanks: generalized forces
+    /// −μ s(q̇₁) Φ₁ on the pinion and +μ s(q̇₁) Φ₂ on the wheel
+    /// ([`MeshTable::friction_state`]), s a smooth sign of the pinion speed.
+    pub friction: f64,
     pub drive: Drive,
 }
+
+/// Pinion speed (rad/s) over which the friction force's sign is smoothed:
+/// s(ω) = tanh(ω / FRICTION_SPEED).
+pub const FRICTION_SPEED: f64 = 1e-2;
 
 /// State of the pair at time t.
 #[derive(Debug, Clone, Copy, Default)]
@@ -154,9 +162,26 @@ impl Model<'_> {
             [c * dir[0] * dir[0], c * dir[0] * dir[1]],
             [c * dir[1] * dir[0], c * dir[1] * dir[1]],
         ];
+        let (mut q_c, mut k, mut d) = (q_c, ms.hess, d);
+        if self.friction > 0.0 {
+            let (phi, dphi) = self.table.friction_state(q[0], q[1])?;
+            let th = (v[0] / FRICTION_SPEED).tanh();
+            let (mu, dmu) = (
+                self.friction * th,
+                self.friction * (1.0 - th * th) / FRICTION_SPEED,
+            );
+            q_c[0] -= mu * phi[0];
+            q_c[1] += mu * phi[1];
+            for j in 0..2 {
+                k[0][j] += mu * dphi[0][j];
+                k[1][j] -= mu * dphi[1][j];
+            }
+            d[0][0] += dmu * phi[0];
+            d[1][0] -= dmu * phi[1];
+        }
         Ok(Contact {
             force: q_c,
-            stiffness: ms.hess,
+            stiffness: k,
             damping: d,
             mesh: ms,
         })
@@ -184,7 +209,8 @@ impl Model<'_> {
     }
 
     /// Quasi-static wheel lag at pinion rotation q₁ under the drive's
-    /// torque: ∂V/∂q₁ = T₁ solved for θ by Newton (the unloaded TE at zero torque).
+    /// torque, turning forward: ∂V/∂q₁ + μ Φ₁ = T₁ solved for θ by Newton
+    /// (the unloaded TE at zero torque).
     pub fn static_lag(&self, q1: f64) -> Result<f64, SolverError> {
         let r = self.table.ratio;
         let torque = self.static_torque();
@@ -195,10 +221,16 @@ impl Model<'_> {
         let du = self.table.mean_lag_step();
         let mut theta = t0 + 0.1 * self.table.du();
         for _ in 0..100 {
-            let ms = self.table.state(q1, r * q1 - theta)?;
-            let f = ms.grad[0] - torque;
-            // d(∂V/∂q₁)/dθ = −∂²V/∂q₁∂q₂.
-            let df = -ms.hess[0][1];
+            let q2 = r * q1 - theta;
+            let ms = self.table.state(q1, q2)?;
+            let (phi, dphi) = if self.friction > 0.0 {
+                self.table.friction_state(q1, q2)?
+            } else {
+                Default::default()
+            };
+            let f = ms.grad[0] + self.friction * phi[0] - torque;
+            // d/dθ = −∂/∂q₂ at fixed q₁.
+            let df = -ms.hess[0][1] - self.friction * dphi[0][1];
             let step = if df > 0.0 { -f / df } else { 0.1 * du };
             theta += step.clamp(-10.0 * du, 10.0 * du);
             if step.abs() < 1e-16 + 1e-12 * theta.abs() {
@@ -280,19 +312,21 @@ pub fn integrate(
 }
 
 /// The white paper's quasi-static drive: constant wheel speed (rad/s), the
-/// torque on the pinion, mesh damping ratio ζ; with its quasi-static start
-/// at q₁ = 0.
+/// torque on the pinion, mesh damping ratio ζ, friction coefficient μ; with
+/// its quasi-static start at q₁ = 0.
 pub fn wheel_driven<'a>(
     table: &'a MeshTable,
     inertia: [f64; 2],
     wheel_speed: f64,
     pinion_torque: f64,
     zeta: f64,
+    friction: f64,
 ) -> Result<(Model<'a>, State), SolverError> {
     let mut m = Model {
         table,
         inertia,
         damping: 0.0,
+        friction,
         drive: Drive::WheelSpeed {
             speed: Ramp {
                 from: wheel_speed,

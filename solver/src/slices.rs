@@ -48,6 +48,11 @@ pub struct Slice {
     pub length: f64,
     /// Relative radius of curvature across the contact line, m.
     pub rho: f64,
+    /// Friction levers (ℓ₁, ℓ₂), m: with the pinion turning forward, a
+    /// normal force F with friction coefficient μ adds the generalized forces
+    /// −μ F ℓ₁ on the pinion rotation and +μ F ℓ₂ on the wheel rotation
+    /// (see [`friction_levers`]).
+    pub friction_lever: [f64; 2],
 }
 
 impl Slice {
@@ -65,6 +70,9 @@ impl Slice {
 /// Largest relative radius of curvature used (a flatter contact is treated as this one), m.
 pub const RHO_MAX: f64 = 1.0;
 
+/// Generating parameters and the Jacobian of (L, d) there.
+type NewtonStart = ([f64; 2], Option<nalgebra::Matrix2<f64>>);
+
 struct Column<'a> {
     fp: &'a FlankPair,
     rs: &'a RollSurface,
@@ -73,7 +81,7 @@ struct Column<'a> {
     /// Generating parameters of the last point evaluated and the Jacobian
     /// of (L, d) there: Newton's start for the next point, which lies close
     /// by on the same column.
-    last: std::cell::Cell<Option<([f64; 2], Option<nalgebra::Matrix2<f64>>)>>,
+    last: std::cell::Cell<Option<NewtonStart>>,
 }
 
 impl Column<'_> {
@@ -357,6 +365,7 @@ pub fn pair_slices(
             };
             let (lw, dw) = fp.wheel.ld(p.uv[0], p.uv[1]);
             let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw);
+            let friction_lever = friction_levers(fp, p.pos, p.normal, target);
             Slice {
                 pair,
                 band,
@@ -371,10 +380,51 @@ pub fn pair_slices(
                 normal: p.normal,
                 length,
                 rho: 1.0 / kappa.max(1.0 / RHO_MAX),
+                friction_lever,
             }
         })
         .collect();
     Some(PairSlices { utca_lag, slices })
+}
+
+/// Sliding velocity of the pinion flank against the wheel's at `pos`
+/// (pinion member frame, tooth 0 at pinion angle `phi`), per unit pinion
+/// angular speed: v_s = e_z × r − k a₂ × r, with a₂ the wheel axis seen
+/// from the pinion and k = φ̇₂/φ̇₁ the roll ratio (both axes pass through
+/// the apex, the frames' common origin).
+pub fn sliding_velocity(fp: &FlankPair, pos: [f64; 3], phi: f64) -> [f64; 3] {
+    let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
+    let a2 = pf.to_member(&wf.axis(), phi);
+    let k = wf.roll_ratio / pf.roll_ratio;
+    let w1 = cross([0.0, 0.0, 1.0], pos);
+    let w2 = cross([a2[0], a2[1], a2[2]], pos);
+    [0, 1, 2].map(|i| w1[i] - k * w2[i])
+}
+
+/// Friction levers (ℓ₁, ℓ₂) of a contact at `pos` with normal `normal`
+/// (pinion member frame, tooth 0 at pinion angle `phi`). Friction opposes
+/// sliding: on the pinion −μF û, on the wheel +μF û, û the unit sliding
+/// direction in the tangent plane for forward rotation. By virtual power
+/// the generalized forces are −μF ℓ₁ on q₁ and +μF ℓ₂ on q₂ with
+///   ℓ₁ = û·(e_z × r),  ℓ₂ = sgn(k) û·(a₂ × r),
+/// so that with q̇₂ = |k| q̇₁ the friction dissipates μF|v_s||q̇₁| (ℓ₁ − |k|ℓ₂
+/// = |v_s|). Both vanish at a pure-rolling point (on the pitch line).
+pub fn friction_levers(fp: &FlankPair, pos: [f64; 3], normal: [f64; 3], phi: f64) -> [f64; 2] {
+    let vs = sliding_velocity(fp, pos, phi);
+    let vn = dot(vs, normal);
+    let vt = [0, 1, 2].map(|i| vs[i] - vn * normal[i]);
+    let speed = norm(vt);
+    if speed <= 1e-12 * norm(pos) {
+        return [0.0, 0.0];
+    }
+    let u = vt.map(|c| c / speed);
+    let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
+    let a2 = pf.to_member(&wf.axis(), phi);
+    let k = wf.roll_ratio / pf.roll_ratio;
+    [
+        dot(u, cross([0.0, 0.0, 1.0], pos)),
+        k.signum() * dot(u, cross([a2[0], a2[1], a2[2]], pos)),
+    ]
 }
 
 /// Relative normal curvature across the contact line from the separation

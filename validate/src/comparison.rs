@@ -21,6 +21,8 @@ struct MbLoad {
 struct MbBlank {
     pinion_blank: String,
     wheel_blank: String,
+    #[serde(default)]
+    friction_coefficient: f64,
     quasi_static: Vec<MbLoad>,
 }
 
@@ -211,6 +213,16 @@ pub fn compare(
         }
     }
     let mut markdown = markdown(&rows, &rf);
+    if let Some(mu) = mb
+        .iter()
+        .map(|b| b.friction_coefficient)
+        .find(|&mu| mu > 0.0)
+    {
+        let _ = writeln!(
+            markdown,
+            "Note: the reduced model ran with Coulomb friction μ = {mu}; the reference contact is frictionless, so part of the difference is friction.\n"
+        );
+    }
     if let Some(c) =
         read::<crate::convergence::Convergence>(&out.join(scene).join("reference/convergence.json"))
     {

@@ -103,6 +103,8 @@ pub fn run(
                 direction: pinion_direction(&g.data, side),
                 positions: r.positions,
                 slices: n,
+                // Against the frictionless reference.
+                friction: 0.0,
             };
             let t = Instant::now();
             let res = run_sweep(fp, &rs, &pc, &sweep, &torques)

@@ -1,0 +1,39 @@
+//! Scene files with a setting out of range are rejected with the field, the
+//! value and the limit named.
+
+mod common;
+
+use preprocess::scene::{LoadedScene, Scene};
+
+/// The default scene with its design path made absolute and `extra` appended.
+fn scene_with(extra: &str) -> Result<LoadedScene, String> {
+    let text = std::fs::read_to_string(common::reference("scenes/default.toml")).unwrap();
+    let design = common::white_paper_path();
+    let text = text.replace(
+        "design = \"../white_paper_20x43.toml\"",
+        &format!("design = {:?}", design.display().to_string()),
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, format!("{text}\n{extra}\n")).unwrap();
+    Scene::load(&path).map_err(|e| e.to_string())
+}
+
+#[test]
+fn default_scene_with_frictionless_flanks_loads() {
+    let s = scene_with("[ltca]\nfriction_coefficient = 0.0").unwrap();
+    assert_eq!(s.scene.ltca.friction_coefficient, 0.0);
+    let s = scene_with("[ltca]\nfriction_coefficient = 0.08").unwrap();
+    assert_eq!(s.scene.ltca.friction_coefficient, 0.08);
+}
+
+#[test]
+fn friction_coefficient_out_of_range_is_rejected() {
+    for bad in ["0.8", "-0.1", "nan"] {
+        let e = scene_with(&format!("[ltca]\nfriction_coefficient = {bad}")).unwrap_err();
+        assert!(
+            e.contains("ltca.friction_coefficient") && e.contains("[0, 0.5]"),
+            "{e}"
+        );
+    }
+}
