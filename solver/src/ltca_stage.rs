@@ -2,7 +2,7 @@
 //! wheel blank of a scene with the reduced model, from the stiffness files
 //! that `preprocess stiffness` wrote (their hashes are checked), to
 //! `<out>/<scene>/ltca/<pinion>_<wheel>/`: `te.csv`, `pairs.csv`,
-//! `slices.csv`, `ltca.h5` and `summary.json`.
+//! `slices.csv`, `wheel_torque.csv`, `ltca.h5` and `summary.json`.
 
 use crate::compliance::{MemberCompliance, PairCompliance};
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
@@ -211,6 +211,12 @@ fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow:
         write!(te, ",te_{t}nm_urad")?;
     }
     te.push('\n');
+    // The torque driving the wheel (normal and friction forces).
+    let mut wheel = String::from("pinion_rotation_deg");
+    for t in torques {
+        write!(wheel, ",wheel_torque_{t}nm_nm")?;
+    }
+    wheel.push('\n');
     let mut pairs = String::from("torque_nm,pinion_rotation_deg,pair,force_n,torque_share\n");
     let mut slices = String::from(
         "torque_nm,pinion_rotation_deg,pair,xi,eta,force_n,line_load_n_per_mm,pressure_mpa,half_width_mm\n",
@@ -218,6 +224,11 @@ fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow:
     for p in res {
         let deg = p.rotation.to_degrees();
         write!(te, "{deg:.4},{:.5}", p.utca_te * 1e6)?;
+        write!(wheel, "{deg:.4}")?;
+        for l in &p.loads {
+            write!(wheel, ",{:.6}", l.wheel_torque_nm)?;
+        }
+        wheel.push('\n');
         for (i, l) in p.loads.iter().enumerate() {
             write!(te, ",{:.5}", l.te * 1e6)?;
             for (k, &(j, f)) in l.pair_force.iter().enumerate() {
@@ -246,6 +257,7 @@ fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow:
     }
     write_atomic(&dir.join("te.csv"), te.as_bytes())?;
     write_atomic(&dir.join("pairs.csv"), pairs.as_bytes())?;
+    write_atomic(&dir.join("wheel_torque.csv"), wheel.as_bytes())?;
     write_atomic(&dir.join("slices.csv"), slices.as_bytes())?;
     write_h5(&dir.join("ltca.h5"), res, torques)
 }
