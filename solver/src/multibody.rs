@@ -5,11 +5,12 @@
 //!
 //! Equations of motion in q = (q₁, q₂) (see [`crate::mesh_table`]):
 //!
-//!   J₁ q̈₁ = T₁ − ∂V/∂q₁ − c s(u) θ̇ r
-//!   J₂ q̈₂ = −T₂ − ∂V/∂q₂ + c s(u) θ̇,     θ = r q₁ − q₂,
+//!   J₁ q̈₁ = T₁ − ∂V/∂q₁ − c s(u) θ̇ r − μ σ(q̇₁) Φ₁
+//!   J₂ q̈₂ = −T₂ − ∂V/∂q₂ + c s(u) θ̇ + μ σ(q̇₁) Φ₂,     θ = r q₁ − q₂,
 //!
 //! with s(u) a smooth step from 0 (open) to 1 over the first lag step of
-//! the table. A member with imposed speed follows its ramp. Two implicit one-step schemes, both solved by
+//! the table, and optional Coulomb friction: μ the coefficient, Φᵢ the
+//! tabulated friction moments, σ a smoothed sign of the pinion speed. A member with imposed speed follows its ramp. Two implicit one-step schemes, both solved by
 //! Newton with the element's tangent (the Hessian of V):
 //! - generalized-α (Chung & Hulbert 1993) with spectral radius ρ∞ (numerical
 //!   damping of the high modes for ρ∞ < 1),
