@@ -161,8 +161,8 @@ pub struct GeneratedFlank {
     pub cone: GeneratingCone,
     /// Rotation of the generating cone about the crown axis (tooth thickness phase).
     pub phase: f64,
-    /// (sin, cos) of `phase`.
-    pub phase_sin_cos: (f64, f64),
+    /// (sin, cos) of `phase`, set with it in [`Generator::new`].
+    phase_sin_cos: (f64, f64),
     pub frame: MemberFrame,
     /// +1 when the member's outward normal equals the cone normal, else −1.
     pub outward: f64,

@@ -387,17 +387,26 @@ pub fn pair_slices(
     Some(PairSlices { utca_lag, slices })
 }
 
-/// Sliding velocity of the pinion flank against the wheel's at `pos`
-/// (pinion member frame, tooth 0 at pinion angle `phi`), per unit pinion
-/// angular speed: v_s = e_z × r − k a₂ × r, with a₂ the wheel axis seen
-/// from the pinion and k = φ̇₂/φ̇₁ the roll ratio (both axes pass through
-/// the apex, the frames' common origin).
-pub fn sliding_velocity(fp: &FlankPair, pos: [f64; 3], phi: f64) -> [f64; 3] {
+/// The two members' rotation velocities at `pos` (pinion member frame,
+/// tooth 0 at pinion angle `phi`) per unit pinion angular speed, e_z × r
+/// and a₂ × r, with a₂ the wheel axis seen from the pinion, and the roll
+/// ratio k = φ̇₂/φ̇₁ (both axes pass through the apex, the frames' common
+/// origin).
+fn rotation_velocities(fp: &FlankPair, pos: [f64; 3], phi: f64) -> ([f64; 3], [f64; 3], f64) {
     let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
     let a2 = pf.to_member(&wf.axis(), phi);
-    let k = wf.roll_ratio / pf.roll_ratio;
-    let w1 = cross([0.0, 0.0, 1.0], pos);
-    let w2 = cross([a2[0], a2[1], a2[2]], pos);
+    (
+        cross([0.0, 0.0, 1.0], pos),
+        cross([a2[0], a2[1], a2[2]], pos),
+        wf.roll_ratio / pf.roll_ratio,
+    )
+}
+
+/// Sliding velocity of the pinion flank against the wheel's at `pos`
+/// (pinion member frame, tooth 0 at pinion angle `phi`), per unit pinion
+/// angular speed: v_s = e_z × r − k a₂ × r ([`rotation_velocities`]).
+pub fn sliding_velocity(fp: &FlankPair, pos: [f64; 3], phi: f64) -> [f64; 3] {
+    let (w1, w2, k) = rotation_velocities(fp, pos, phi);
     [0, 1, 2].map(|i| w1[i] - k * w2[i])
 }
 
@@ -410,7 +419,8 @@ pub fn sliding_velocity(fp: &FlankPair, pos: [f64; 3], phi: f64) -> [f64; 3] {
 /// so that with q̇₂ = |k| q̇₁ the friction dissipates μF|v_s||q̇₁| (ℓ₁ − |k|ℓ₂
 /// = |v_s|). Both vanish at a pure-rolling point (on the pitch line).
 pub fn friction_levers(fp: &FlankPair, pos: [f64; 3], normal: [f64; 3], phi: f64) -> [f64; 2] {
-    let vs = sliding_velocity(fp, pos, phi);
+    let (w1, w2, k) = rotation_velocities(fp, pos, phi);
+    let vs = [0, 1, 2].map(|i| w1[i] - k * w2[i]);
     let vn = dot(vs, normal);
     let vt = [0, 1, 2].map(|i| vs[i] - vn * normal[i]);
     let speed = norm(vt);
@@ -418,13 +428,7 @@ pub fn friction_levers(fp: &FlankPair, pos: [f64; 3], normal: [f64; 3], phi: f64
         return [0.0, 0.0];
     }
     let u = vt.map(|c| c / speed);
-    let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
-    let a2 = pf.to_member(&wf.axis(), phi);
-    let k = wf.roll_ratio / pf.roll_ratio;
-    [
-        dot(u, cross([0.0, 0.0, 1.0], pos)),
-        k.signum() * dot(u, cross([a2[0], a2[1], a2[2]], pos)),
-    ]
+    [dot(u, w1), k.signum() * dot(u, w2)]
 }
 
 /// Relative normal curvature across the contact line from the separation
