@@ -50,6 +50,7 @@ fn main() {
                 level_name: name,
                 side: sc.loaded_flank,
                 refined_teeth: refined.clone(),
+                opposite_refined_teeth: Vec::new(),
             };
             let t = Instant::now();
             let r = mesh_member(&req, &dir.path().join("m.msh")).expect("mesh");

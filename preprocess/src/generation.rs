@@ -45,6 +45,13 @@ impl Side {
             Side::Coast => "coast",
         }
     }
+    /// The other side.
+    pub fn other(self) -> Side {
+        match self {
+            Side::Drive => Side::Coast,
+            Side::Coast => Side::Drive,
+        }
+    }
     /// Flank name (concave/convex) on a member.
     pub fn flank_name(self, m: Member) -> &'static str {
         match (m, self) {

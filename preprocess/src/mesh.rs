@@ -62,6 +62,9 @@ pub struct MeshRequest<'a> {
     pub side: Side,
     /// Teeth whose loaded flank is refined.
     pub refined_teeth: Vec<usize>,
+    /// Teeth whose opposite flank is refined too (coast-side contact:
+    /// backlash and rattle); empty when only the loaded side is analysed.
+    pub opposite_refined_teeth: Vec<usize>,
 }
 
 /// A refined flank and the elements achieved on it.
@@ -694,11 +697,17 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
     // Sizes: structured loaded flanks on the refined teeth, growth away from them.
     let d = &req.geom.data;
     let loaded = req.side.flank_name(req.member);
+    let opposite = req.side.other().flank_name(req.member);
     let mut refined = Vec::new();
     let mut refined_tags = Vec::new();
     let mut edge_faces = Vec::new();
-    for &tooth in &req.refined_teeth {
-        let Some(tags) = flanks.get(&(tooth, loaded)) else {
+    let wanted = req
+        .refined_teeth
+        .iter()
+        .map(|&t| (t, loaded))
+        .chain(req.opposite_refined_teeth.iter().map(|&t| (t, opposite)));
+    for (tooth, name) in wanted {
+        let Some(tags) = flanks.get(&(tooth, name)) else {
             continue;
         };
         for &tag in tags {
@@ -726,7 +735,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
             }
             s.mesh_set_transfinite_surface(tag, "Left", &[])
                 .map_err(g)?;
-            refined_tags.push((tooth, tag, curves));
+            refined_tags.push((tooth, name, tag, curves));
         }
     }
     // Away from the refined flanks the body only has to carry the load path:
@@ -738,7 +747,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
     s.option_set_number("Mesh.MeshSizeMin", 0.2 * fine)
         .map_err(g)?;
     if !refined_tags.is_empty() {
-        let flanks: Vec<i32> = refined_tags.iter().map(|r| r.1).collect();
+        let flanks: Vec<i32> = refined_tags.iter().map(|r| r.2).collect();
         let th = size_near(&s, &flanks, fine, coarse, 4.0 * d.normal_module).map_err(g)?;
         // Fillets and top lands of the refined flanks: elements small enough
         // to follow the fillet radius, so their curved mid-edge nodes (shared
@@ -792,7 +801,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         .map_err(g)?;
     let qmin = q.iter().copied().fold(f64::INFINITY, f64::min);
     let qmean = q.iter().sum::<f64>() / q.len().max(1) as f64;
-    for (tooth, tag, curves) in &refined_tags {
+    for (tooth, name, tag, curves) in &refined_tags {
         let mut prof = Vec::new();
         let mut face = Vec::new();
         for &(_, c) in curves {
@@ -805,7 +814,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         }
         refined.push(RefinedFlank {
             tooth: *tooth,
-            flank: loaded.to_string(),
+            flank: name.to_string(),
             surface: *tag,
             elements_profile: prof.iter().copied().max().unwrap_or(0),
             elements_face: face.iter().copied().max().unwrap_or(0),

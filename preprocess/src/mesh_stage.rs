@@ -33,6 +33,10 @@ fn input_hash(design_text: &str, dims: &BlankDimensions, req: &MeshRequest) -> S
         )
         .as_bytes(),
     );
+    // Only when present, so that meshes of loaded-side-only scenes keep their hashes.
+    if !req.opposite_refined_teeth.is_empty() {
+        h.update(format!("opposite{:?}", req.opposite_refined_teeth).as_bytes());
+    }
     format!("{:x}", h.finalize())
 }
 
@@ -86,6 +90,33 @@ pub fn refined_teeth(
     member: Member,
     blank: Blank,
 ) -> Vec<usize> {
+    refined_teeth_on(g, sc, member, blank, sc.loaded_flank)
+}
+
+/// Teeth whose opposite (coast) flank is refined: those the same rotation
+/// brings into contact on that side, when the scene asks for coast-side
+/// contact; none otherwise.
+pub fn opposite_refined_teeth(
+    g: &PairGeometry,
+    sc: &crate::scene::Scene,
+    member: Member,
+    blank: Blank,
+) -> Vec<usize> {
+    if sc.multibody.coast_contact {
+        refined_teeth_on(g, sc, member, blank, sc.loaded_flank.other())
+    } else {
+        Vec::new()
+    }
+}
+
+/// Teeth of `member` whose `side` flank the scene's rotation brings into contact.
+pub fn refined_teeth_on(
+    g: &PairGeometry,
+    sc: &crate::scene::Scene,
+    member: Member,
+    blank: Blank,
+    side: crate::generation::Side,
+) -> Vec<usize> {
     // A standard pinion's loads repeat from tooth to tooth: its range is the
     // loaded sweep's. A lightweight wheel needs every tooth a run-up meets.
     let cycles_of = |b: Blank| sc.rotation.mesh_cycles(b);
@@ -98,12 +129,7 @@ pub fn refined_teeth(
             .map(|&b| cycles_of(b))
             .fold(0.0, f64::max),
     };
-    let (pt, wt) = teeth_in_contact(
-        g,
-        sc.loaded_flank,
-        cycles,
-        sc.rotation.step_deg.to_radians(),
-    );
+    let (pt, wt) = teeth_in_contact(g, side, cycles, sc.rotation.step_deg.to_radians());
     match member {
         Member::Pinion => pt,
         Member::Wheel => wt,
@@ -149,6 +175,7 @@ pub fn run(
                     level_name: name,
                     side: sc.loaded_flank,
                     refined_teeth: refined.clone(),
+                    opposite_refined_teeth: opposite_refined_teeth(&g, sc, member, blank),
                 };
                 let stem = format!(
                     "{}_{}_{}",

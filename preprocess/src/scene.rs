@@ -80,6 +80,24 @@ pub struct MultibodySettings {
     /// Polar moments of inertia, kg·m²; computed from the body meshes when absent.
     pub pinion_inertia_kgm2: Option<f64>,
     pub wheel_inertia_kgm2: Option<f64>,
+    /// Coast-flank contact in the multibody element: the coast flanks of the
+    /// teeth that can touch are refined in the meshes too and get their own
+    /// stiffness files, and the element carries both flank pairs with the
+    /// backlash between them (tooth separation, coast-side impacts, rattle).
+    /// Needs standard blanks (the coast side's tooth numbering is not yet
+    /// mapped onto a lightweight wheel's teeth).
+    pub coast_contact: bool,
+    /// Rattle run (needs `coast_contact`): the pinion turns at
+    /// `rattle_pinion_rpm` with a speed fluctuation of relative amplitude
+    /// `rattle_speed_fluctuation` at `rattle_frequency_hz`; the wheel is
+    /// free, braked only by `rattle_wheel_drag_nm`; for `rattle_time_s` (0:
+    /// no rattle run) with steps up to `rattle_max_step_s`.
+    pub rattle_pinion_rpm: f64,
+    pub rattle_speed_fluctuation: f64,
+    pub rattle_frequency_hz: f64,
+    pub rattle_wheel_drag_nm: f64,
+    pub rattle_time_s: f64,
+    pub rattle_max_step_s: f64,
 }
 
 impl Default for MultibodySettings {
@@ -100,6 +118,13 @@ impl Default for MultibodySettings {
             table_torque_factor: 2.0,
             pinion_inertia_kgm2: None,
             wheel_inertia_kgm2: None,
+            coast_contact: false,
+            rattle_pinion_rpm: 300.0,
+            rattle_speed_fluctuation: 0.05,
+            rattle_frequency_hz: 40.0,
+            rattle_wheel_drag_nm: 0.0,
+            rattle_time_s: 0.0,
+            rattle_max_step_s: 1e-5,
         }
     }
 }
@@ -482,6 +507,60 @@ impl Scene {
                     return Err(fail(f, j.to_string(), "must be finite and > 0"));
                 }
             }
+        }
+        for (f, v, lo, hi) in [
+            (
+                "multibody.rattle_pinion_rpm",
+                mb.rattle_pinion_rpm,
+                0.0,
+                1e5,
+            ),
+            (
+                "multibody.rattle_speed_fluctuation",
+                mb.rattle_speed_fluctuation,
+                0.0,
+                1.0,
+            ),
+            (
+                "multibody.rattle_frequency_hz",
+                mb.rattle_frequency_hz,
+                0.0,
+                1e5,
+            ),
+            (
+                "multibody.rattle_wheel_drag_nm",
+                mb.rattle_wheel_drag_nm,
+                0.0,
+                1e4,
+            ),
+            ("multibody.rattle_time_s", mb.rattle_time_s, 0.0, 100.0),
+            (
+                "multibody.rattle_max_step_s",
+                mb.rattle_max_step_s,
+                1e-8,
+                1.0,
+            ),
+        ] {
+            if !(v >= lo && v <= hi) {
+                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
+            }
+        }
+        if mb.rattle_time_s > 0.0 && !mb.coast_contact {
+            return Err(fail(
+                "multibody.rattle_time_s",
+                mb.rattle_time_s.to_string(),
+                "must be 0 unless multibody.coast_contact = true (rattle needs both flanks)",
+            ));
+        }
+        if mb.coast_contact
+            && (self.blanks.wheel.contains(&Blank::Lightweight)
+                || self.blanks.pinion.contains(&Blank::Lightweight))
+        {
+            return Err(fail(
+                "multibody.coast_contact",
+                "true".into(),
+                "needs standard blanks only (blanks.pinion and blanks.wheel)",
+            ));
         }
         if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {
             return Err(fail(

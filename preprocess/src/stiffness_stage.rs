@@ -5,8 +5,9 @@
 
 use crate::body_mesh;
 use crate::design::Member;
+use crate::generation::Side;
 use crate::influence::{compute, FlankGrid, GridSize, Influence, InfluenceRequest, InfluenceStats};
-use crate::mesh_stage::refined_teeth;
+use crate::mesh_stage::refined_teeth_on;
 use crate::output::write_json;
 use crate::pair::PairGeometry;
 use crate::scene::{Blank, LoadedScene};
@@ -73,10 +74,22 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Vec<StiffnessRepo
             Member::Wheel => &sc.blanks.wheel,
         };
         for &blank in blanks {
-            out.push(run_one(scene, &g, &dir, member, blank, level)?);
+            for side in stiffness_sides(sc) {
+                out.push(run_one(scene, &g, &dir, member, blank, level, side)?);
+            }
         }
     }
     Ok(out)
+}
+
+/// The flanks that get stiffness files: the loaded one, and the opposite
+/// one when the scene asks for coast-side contact.
+pub fn stiffness_sides(sc: &crate::scene::Scene) -> Vec<Side> {
+    if sc.multibody.coast_contact {
+        vec![sc.loaded_flank, sc.loaded_flank.other()]
+    } else {
+        vec![sc.loaded_flank]
+    }
 }
 
 /// Where a member × blank's stiffness file lives and what it must hold: the
@@ -91,8 +104,10 @@ pub struct Planned {
     pub grid: FlankGrid,
 }
 
-/// The stiffness file of `member` × `blank` that `scene` needs (the mesh must
-/// exist, since its SHA-256 is part of the hash).
+/// The stiffness file of `member` × `blank` for loads on its `side` flank
+/// that `scene` needs (the mesh must exist, since its SHA-256 is part of the
+/// hash). The loaded side's file is `<member>_<blank>_<level>.stiffness.h5`,
+/// the opposite side's `<member>_<blank>_<level>_<side>.stiffness.h5`.
 pub fn planned(
     scene: &LoadedScene,
     g: &PairGeometry,
@@ -100,12 +115,18 @@ pub fn planned(
     member: Member,
     blank: Blank,
     level: &str,
+    side: Side,
 ) -> anyhow::Result<Planned> {
     let sc = &scene.scene;
     let blank_name = format!("{blank:?}").to_lowercase();
-    let stem = format!("{}_{blank_name}_{level}", member.name());
-    let msh = dir.join(format!("{stem}.msh"));
-    let inputs = dir.join(format!("{stem}.inputs.json"));
+    let mesh_stem = format!("{}_{blank_name}_{level}", member.name());
+    let stem = if side == sc.loaded_flank {
+        mesh_stem.clone()
+    } else {
+        format!("{mesh_stem}_{}", side.name())
+    };
+    let msh = dir.join(format!("{mesh_stem}.msh"));
+    let inputs = dir.join(format!("{mesh_stem}.inputs.json"));
     if !msh.exists() {
         anyhow::bail!(
             "scene {}: no mesh {} for the {} ({blank_name} blank); run `preprocess mesh {}` first",
@@ -133,10 +154,10 @@ pub fn planned(
             st.grid_face
         },
     };
-    let flank = g.flank(member, sc.loaded_flank);
+    let flank = g.flank(member, side);
     let fg = FlankGrid::new(flank, grid)?;
     let (sf, sp) = fg.spacing();
-    let refined = refined_teeth(g, sc, member, blank);
+    let refined = refined_teeth_on(g, sc, member, blank, side);
     let axisymmetric = blank == Blank::Standard;
     let solved_teeth = if axisymmetric {
         vec![refined[refined.len() / 2]]
@@ -149,7 +170,7 @@ pub fn planned(
         member: member.name().into(),
         blank: blank_name.clone(),
         level: level.into(),
-        loaded_flank: sc.loaded_flank.flank_name(member).into(),
+        loaded_flank: side.flank_name(member).into(),
         grid,
         load_radius_m: st.load_radius_factor * sf.max(sp),
         offsets: (-r..=r).collect(),
@@ -214,6 +235,7 @@ fn run_one(
     member: Member,
     blank: Blank,
     level: &str,
+    side: Side,
 ) -> anyhow::Result<StiffnessReport> {
     let t0 = std::time::Instant::now();
     let sc = &scene.scene;
@@ -228,7 +250,7 @@ fn run_one(
         config_json,
         hash,
         grid: fg,
-    } = planned(scene, g, dir, member, blank, level)?;
+    } = planned(scene, g, dir, member, blank, level, side)?;
     let axisymmetric = config.axisymmetric;
     let mut replaced_because = None;
     if path.exists() {
@@ -265,10 +287,7 @@ fn run_one(
     }
     eprintln!("{stem}: reading {}", msh.display());
     let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
-    let opposite = match sc.loaded_flank.flank_name(member) {
-        "concave" => "convex",
-        _ => "concave",
-    };
+    let opposite = side.other().flank_name(member);
     let req = InfluenceRequest {
         body: &body,
         material: md.material(),

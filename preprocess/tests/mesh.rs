@@ -37,6 +37,7 @@ fn request(member: Member, blank: Blank, dims: &BlankDimensions) -> MeshRequest<
         level_name: "reduced",
         side: Side::Drive,
         refined_teeth: if member == Member::Pinion { pt } else { wt },
+        opposite_refined_teeth: Vec::new(),
     }
 }
 

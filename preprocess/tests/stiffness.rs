@@ -162,6 +162,7 @@ fn fields() -> &'static (BodyMesh, Vec<usize>, Influence) {
             level_name: "reduced",
             side: Side::Drive,
             refined_teeth: pt.clone(),
+            opposite_refined_teeth: Vec::new(),
         };
         let path = tmp("pinion.msh");
         mesh_member(&req, &path).expect("pinion mesh");
@@ -337,6 +338,7 @@ fn lightweight_wheel_compliance_varies_with_order_three_around_the_wheel() {
         level_name: "reduced",
         side: Side::Drive,
         refined_teeth: Vec::new(),
+        opposite_refined_teeth: Vec::new(),
     };
     let path = tmp("wheel_lightweight.msh");
     mesh_member(&req, &path).expect("wheel mesh");

@@ -11,20 +11,21 @@
 //! Bearings are rigid: the bearing force of each member is the reaction to
 //! the contact force (the wheel's is reported; the pinion's is its negative).
 
+use crate::backlash::Coast;
 use crate::compliance::PairCompliance;
 use crate::ltca::mean_ptp;
-use crate::ltca_stage::{member_compliance, scene_sweep};
+use crate::ltca_stage::{member_compliance, member_compliance_on, scene_sweep};
 use crate::mesh_table::{MeshTable, TableSpec};
 use crate::multibody::{
-    integrate, interpolate, wheel_driven, Drive, Integrator, Model, Ramp, Scheme, State,
-    StepControl,
+    integrate, interpolate, wheel_driven, Drive, Fluctuation, Integrator, Model, Ramp, Scheme,
+    State, StepControl,
 };
 use crate::spectrum::{plot, resample, stft, OrderLine};
 use anyhow::Context;
 use preprocess::design::Member;
 use preprocess::flank_stage::roll_surface;
 use preprocess::output::{write_atomic, write_json};
-use preprocess::pair::PairGeometry;
+use preprocess::pair::{pinion_direction, PairGeometry};
 use preprocess::plots::{te_curve, Series};
 use preprocess::scene::{Blank, LoadedScene};
 use serde::Serialize;
@@ -77,7 +78,37 @@ pub struct DynamicSummary {
     pub table_cpu_s_per_position: f64,
     pub quasi_static: Vec<QuasiStaticSummary>,
     pub runup: Option<RunupSummary>,
+    /// With coast-side contact: the conjugate flanks' angular backlash at
+    /// the wheel and the free play between drive and coast contact over a
+    /// mesh cycle (min, max), µrad, and the rattle run.
+    pub backlash_urad: Option<f64>,
+    pub free_play_urad: Option<[f64; 2]>,
+    pub rattle: Option<RattleSummary>,
     pub dir: PathBuf,
+}
+
+/// The rattle run: fluctuating pinion speed, free wheel.
+#[derive(Debug, Clone, Serialize)]
+pub struct RattleSummary {
+    pub pinion_rpm: f64,
+    pub speed_fluctuation: f64,
+    pub frequency_hz: f64,
+    pub wheel_drag_nm: f64,
+    pub sim_time_s: f64,
+    pub steps: usize,
+    pub rejected_steps: usize,
+    pub cpu_s: f64,
+    pub cpu_s_per_step: f64,
+    /// Contacts begun on the drive and on the coast flanks.
+    pub drive_impacts: usize,
+    pub coast_impacts: usize,
+    /// Share of the time in drive contact, coast contact and free flight.
+    pub time_share_drive_coast_free: [f64; 3],
+    /// Extremes of the pinion mesh torque, N·m (negative: coast side).
+    pub mesh_torque_min_max_nm: [f64; 2],
+    /// Extremes of the wheel lag, µrad, and of the wheel speed, rpm.
+    pub te_min_max_urad: [f64; 2],
+    pub wheel_rpm_min_max: [f64; 2],
 }
 
 struct Trace {
@@ -106,7 +137,7 @@ fn record(
         force: vec![],
     };
     let (_, steps) = integrate(m, s0, integ, t_end, |s| {
-        let ms = m.table.state(s.q[0], s.q[1])?;
+        let (ms, _) = m.mesh(s.q)?;
         tr.t.push(s.t);
         tr.q1.push(s.q[0]);
         tr.speed.push(s.v[0]);
@@ -181,6 +212,12 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let side = sc.loaded_flank;
     let fp = g.side(side);
     let rs = roll_surface(fp, &sc.utca)?;
+    let coast_side = side.other();
+    let coast_rs = if mb.coast_contact {
+        Some(roll_surface(g.side(coast_side), &sc.utca)?)
+    } else {
+        None
+    };
     let dir = meshes.join(&sc.name);
     let tau = g.data.mesh_cycle();
     let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
@@ -243,6 +280,49 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 },
             )
             .with_context(|| format!("scene {}: contact-element table, {wb:?} wheel", sc.name))?;
+            let coast = match &coast_rs {
+                Some(crs) => {
+                    let cfp = g.side(coast_side);
+                    let cpc = PairCompliance {
+                        pinion: member_compliance_on(
+                            scene,
+                            &g,
+                            &dir,
+                            Member::Pinion,
+                            pb,
+                            coast_side,
+                        )?
+                        .0,
+                        wheel: member_compliance_on(
+                            scene,
+                            &g,
+                            &dir,
+                            Member::Wheel,
+                            wb,
+                            coast_side,
+                        )?
+                        .0,
+                    };
+                    eprintln!("multibody {pb:?}/{wb:?}: coast-flank table");
+                    let ctable = MeshTable::build(
+                        cfp,
+                        crs,
+                        &cpc,
+                        &g.frames[0],
+                        ratio,
+                        TableSpec {
+                            start: cfp.roll_range[0],
+                            direction: pinion_direction(&g.data, coast_side),
+                            ..table.spec
+                        },
+                    )
+                    .with_context(|| {
+                        format!("scene {}: coast-flank table, {wb:?} wheel", sc.name)
+                    })?;
+                    Some(Coast::place(fp, &table, cfp, ctable)?)
+                }
+                None => None,
+            };
             let table_s = t0.elapsed().as_secs_f64();
             let name = format!("{pb:?}_{wb:?}").to_lowercase();
             let odir = out.join(&sc.name).join("multibody").join(&name);
@@ -271,6 +351,10 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                     mb.damping_ratio,
                     sc.ltca.friction_coefficient,
                 )?;
+                let m = Model {
+                    coast: coast.as_ref(),
+                    ..m
+                };
                 damping = m.damping;
                 let mut integ = Integrator::new(scheme, control(mb.quasi_static_max_step_s));
                 let t = Instant::now();
@@ -333,11 +417,46 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                     wb,
                     g.data.members[0].teeth as f64,
                     sc.ltca.friction_coefficient,
+                    coast.as_ref(),
                 )?)
             } else {
                 None
             };
+            let free_play = match &coast {
+                Some(c) => {
+                    let fp: Vec<f64> = (0..table.spec.positions)
+                        .map(|k| c.free_play(&table, table.spec.step * k as f64))
+                        .collect::<Result<_, _>>()?;
+                    let lo = fp.iter().copied().fold(f64::INFINITY, f64::min);
+                    let hi = fp.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    eprintln!(
+                        "  backlash {:.2} µrad at the wheel, free play {:.2}..{:.2} µrad",
+                        c.backlash * 1e6,
+                        lo * 1e6,
+                        hi * 1e6
+                    );
+                    Some([lo * 1e6, hi * 1e6])
+                }
+                None => None,
+            };
+            let rattle = match &coast {
+                Some(c) if mb.rattle_time_s > 0.0 => Some(rattle(
+                    &table,
+                    c,
+                    inertia,
+                    damping,
+                    mb,
+                    &odir,
+                    scheme,
+                    &control,
+                    sc.ltca.friction_coefficient,
+                )?),
+                _ => None,
+            };
             let summary = DynamicSummary {
+                backlash_urad: coast.as_ref().map(|c| c.backlash * 1e6),
+                free_play_urad: free_play,
+                rattle,
                 friction_coefficient: sc.ltca.friction_coefficient,
                 pinion_blank: pb,
                 wheel_blank: wb,
@@ -379,6 +498,7 @@ fn run_up(
     wb: Blank,
     z1: f64,
     friction: f64,
+    coast: Option<&Coast>,
 ) -> anyhow::Result<RunupSummary> {
     let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
     let ramp = Ramp {
@@ -389,6 +509,7 @@ fn run_up(
     let torque = mb.runup_pinion_torque_nm;
     let mut m = Model {
         table,
+        coast,
         inertia,
         damping: 0.0,
         friction,
@@ -512,5 +633,177 @@ fn run_up(
         cpu_s: cpu,
         cpu_s_per_step: cpu / steps.max(1) as f64,
         te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
+    })
+}
+
+/// The rattle run: the pinion at a fluctuating speed, the wheel free under
+/// its drag torque, both flank pairs across the backlash; writes
+/// `rattle.csv` and `rattle_te.svg` (the lag between the two contact limits).
+#[allow(clippy::too_many_arguments)]
+fn rattle(
+    table: &MeshTable,
+    coast: &Coast,
+    inertia: [f64; 2],
+    damping: f64,
+    mb: &preprocess::scene::MultibodySettings,
+    odir: &Path,
+    scheme: Scheme,
+    control: &dyn Fn(f64) -> StepControl,
+    friction: f64,
+) -> anyhow::Result<RattleSummary> {
+    let r = table.ratio;
+    let w = mb.rattle_pinion_rpm * std::f64::consts::PI / 30.0;
+    let m = Model {
+        table,
+        coast: Some(coast),
+        inertia,
+        damping,
+        friction,
+        drive: Drive::PinionFluctuating {
+            speed: Fluctuation {
+                mean: w,
+                amplitude: mb.rattle_speed_fluctuation,
+                omega: 2.0 * std::f64::consts::PI * mb.rattle_frequency_hz,
+            },
+            wheel_torque: mb.rattle_wheel_drag_nm,
+        },
+    };
+    // Start in the middle of the free play, both members at the mean speed.
+    let contact_lags = |q1: f64| -> Result<[f64; 2], crate::SolverError> {
+        Ok([
+            table.unloaded(q1)?[0],
+            -coast.backlash - coast.table.unloaded(coast.a - q1)?[0],
+        ])
+    };
+    let [hi, lo] = contact_lags(0.0)?;
+    let theta0 = 0.5 * (hi + lo);
+    let s0 = State {
+        t: 0.0,
+        q: [0.0, -theta0],
+        v: [w, r * w],
+        a: [0.0; 2],
+    };
+    let mut integ = Integrator::new(scheme, control(mb.rattle_max_step_s));
+    eprintln!(
+        "  rattle: pinion {} rpm ± {:.1} % at {} Hz, wheel drag {} N·m, {} s",
+        mb.rattle_pinion_rpm,
+        100.0 * mb.rattle_speed_fluctuation,
+        mb.rattle_frequency_hz,
+        mb.rattle_wheel_drag_nm,
+        mb.rattle_time_s
+    );
+    let mut rows = String::from(
+        "time_s,pinion_rotation_deg,pinion_rpm,wheel_rpm,te_urad,drive_contact_lag_urad,coast_contact_lag_urad,pinion_mesh_torque_nm,contact\n",
+    );
+    let (mut t, mut te, mut lim_hi, mut lim_lo) = (vec![], vec![], vec![], vec![]);
+    let mut state = 0usize;
+    let mut impacts = [0usize; 2];
+    let mut share = [0.0; 3];
+    let mut torque = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut wheel = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut last_t = 0.0;
+    let rpm = |x: f64| x * 30.0 / std::f64::consts::PI;
+    let clock = crate::cpu_clock::thread_cpu_s();
+    let (_, steps) = integrate(&m, s0, &mut integ, mb.rattle_time_s, |s| {
+        let c = m.contact(s.q, s.v)?;
+        let cs = c.coast.unwrap_or_default();
+        let now = if c.mesh.u > 0.0 && c.mesh.grad[0] > 0.0 {
+            1
+        } else if cs.u > 0.0 && c.mesh.grad[0] < 0.0 {
+            2
+        } else {
+            0
+        };
+        if now != 0 && now != state {
+            impacts[now - 1] += 1;
+        }
+        share[[2, 0, 1][state]] += s.t - last_t;
+        state = now;
+        last_t = s.t;
+        let [dl, cl] = contact_lags(s.q[0])?;
+        let theta = r * s.q[0] - s.q[1];
+        torque = [torque[0].min(c.mesh.grad[0]), torque[1].max(c.mesh.grad[0])];
+        wheel = [wheel[0].min(rpm(s.v[1])), wheel[1].max(rpm(s.v[1]))];
+        let _ = writeln!(
+            rows,
+            "{:.8},{:.5},{:.4},{:.4},{:.4},{:.4},{:.4},{:.5},{}",
+            s.t,
+            s.q[0].to_degrees(),
+            rpm(s.v[0]),
+            rpm(s.v[1]),
+            theta * 1e6,
+            dl * 1e6,
+            cl * 1e6,
+            c.mesh.grad[0],
+            ["none", "drive", "coast"][now]
+        );
+        t.push(s.t * 1e3);
+        te.push(theta * 1e6);
+        lim_hi.push(dl * 1e6);
+        lim_lo.push(cl * 1e6);
+        Ok(())
+    })
+    .context("multibody rattle run")?;
+    let cpu = crate::cpu_clock::thread_cpu_s() - clock;
+    write_atomic(&odir.join("rattle.csv"), rows.as_bytes())?;
+    te_curve(
+        &odir.join("rattle_te.svg"),
+        &format!(
+            "Rattle: pinion {} rpm ± {:.1} % at {} Hz, free wheel",
+            mb.rattle_pinion_rpm,
+            100.0 * mb.rattle_speed_fluctuation,
+            mb.rattle_frequency_hz
+        ),
+        "time (ms)",
+        "wheel lag (µrad)",
+        &[
+            Series {
+                name: "wheel lag".into(),
+                x: t.clone(),
+                y: te.clone(),
+                dashed: false,
+            },
+            Series {
+                name: "drive contact".into(),
+                x: t.clone(),
+                y: lim_hi,
+                dashed: true,
+            },
+            Series {
+                name: "coast contact".into(),
+                x: t,
+                y: lim_lo,
+                dashed: true,
+            },
+        ],
+    )?;
+    let total = share.iter().sum::<f64>().max(f64::MIN_POSITIVE);
+    let te_lo = te.iter().copied().fold(f64::INFINITY, f64::min);
+    let te_hi = te.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    eprintln!(
+        "  rattle: {steps} steps ({} rejected), {} drive and {} coast impacts, mesh torque {:.1}..{:.1} N·m, {:.1} µs/step",
+        integ.rejected,
+        impacts[0],
+        impacts[1],
+        torque[0],
+        torque[1],
+        cpu / steps.max(1) as f64 * 1e6
+    );
+    Ok(RattleSummary {
+        pinion_rpm: mb.rattle_pinion_rpm,
+        speed_fluctuation: mb.rattle_speed_fluctuation,
+        frequency_hz: mb.rattle_frequency_hz,
+        wheel_drag_nm: mb.rattle_wheel_drag_nm,
+        sim_time_s: mb.rattle_time_s,
+        steps,
+        rejected_steps: integ.rejected,
+        cpu_s: cpu,
+        cpu_s_per_step: cpu / steps.max(1) as f64,
+        drive_impacts: impacts[0],
+        coast_impacts: impacts[1],
+        time_share_drive_coast_free: share.map(|x| x / total),
+        mesh_torque_min_max_nm: torque,
+        te_min_max_urad: [te_lo, te_hi],
+        wheel_rpm_min_max: wheel,
     })
 }

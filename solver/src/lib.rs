@@ -11,6 +11,7 @@
 //! integration) → [`dynamic_stage`] (10 rpm and run-up files, with
 //! [`spectrum`] for the bearing-force spectrogram).
 
+pub mod backlash;
 pub mod compliance;
 pub mod contact_problem;
 pub mod cpu_clock;

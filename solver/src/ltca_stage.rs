@@ -9,6 +9,7 @@ use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
 use anyhow::Context;
 use preprocess::design::Member;
 use preprocess::flank_stage::roll_surface;
+use preprocess::generation::Side;
 use preprocess::output::{write_atomic, write_json};
 use preprocess::pair::{pinion_direction, PairGeometry};
 use preprocess::scene::{Blank, LoadedScene};
@@ -67,12 +68,26 @@ pub fn member_compliance(
     member: Member,
     blank: Blank,
 ) -> anyhow::Result<(MemberCompliance, Planned)> {
-    let p = planned(scene, g, dir, member, blank, "reduced")?;
+    member_compliance_on(scene, g, dir, member, blank, scene.scene.loaded_flank)
+}
+
+/// A member's compliance for loads on its `side` flank (the coast side's
+/// stiffness file when the scene has coast-side contact).
+pub fn member_compliance_on(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+    side: Side,
+) -> anyhow::Result<(MemberCompliance, Planned)> {
+    let p = planned(scene, g, dir, member, blank, "reduced", side)?;
     let data = stiffness_file::read(&p.path, Some(&p.hash)).with_context(|| {
         format!(
-            "scene {}: stiffness file of the {} ({blank:?} blank) is missing or stale; run `preprocess stiffness {}`",
+            "scene {}: stiffness file of the {} ({blank:?} blank, {} flank) is missing or stale; run `preprocess stiffness {}`",
             scene.scene.name,
             member.name(),
+            side.flank_name(member),
             scene.path.display()
         )
     })?;

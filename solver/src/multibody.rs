@@ -22,6 +22,7 @@
 //! Taylor predictor estimates the local error; steps above the tolerance
 //! are retried with a smaller step, and the step never exceeds the maximum.
 
+use crate::backlash::Coast;
 use crate::mesh_table::{MeshState, MeshTable};
 use crate::SolverError;
 
@@ -51,6 +52,32 @@ impl Ramp {
     }
 }
 
+/// A speed fluctuating about its mean: ω(t) = ω̄ (1 + a sin Ωt), as an
+/// engine's speed ripple drives gear rattle.
+#[derive(Debug, Clone, Copy)]
+pub struct Fluctuation {
+    /// Mean speed ω̄, rad/s; relative amplitude a; circular frequency Ω, rad/s.
+    pub mean: f64,
+    pub amplitude: f64,
+    pub omega: f64,
+}
+
+impl Fluctuation {
+    /// (angle from t = 0, speed, acceleration) at time t.
+    pub fn at(&self, t: f64) -> [f64; 3] {
+        let (w, a, o) = (self.mean, self.amplitude, self.omega);
+        if o == 0.0 {
+            return [w * t, w, 0.0];
+        }
+        let (s, c) = (o * t).sin_cos();
+        [
+            w * t + w * a * (1.0 - c) / o,
+            w * (1.0 + a * s),
+            w * a * o * c,
+        ]
+    }
+}
+
 /// How the pair is driven. Torques in N·m, positive in the drive sense.
 #[derive(Debug, Clone, Copy)]
 pub enum Drive {
@@ -60,6 +87,12 @@ pub enum Drive {
     /// The pinion follows a speed ramp (the run-up); the wheel carries a
     /// resisting torque.
     PinionSpeed { speed: Ramp, wheel_torque: f64 },
+    /// The pinion follows a fluctuating speed (rattle); the wheel carries a
+    /// resisting (drag) torque.
+    PinionFluctuating {
+        speed: Fluctuation,
+        wheel_torque: f64,
+    },
     /// Both free: a driving pinion torque and a resisting wheel torque.
     Free {
         pinion_torque: f64,
@@ -72,7 +105,7 @@ impl Drive {
     fn free(&self) -> [bool; 2] {
         match self {
             Drive::WheelSpeed { .. } => [true, false],
-            Drive::PinionSpeed { .. } => [false, true],
+            Drive::PinionSpeed { .. } | Drive::PinionFluctuating { .. } => [false, true],
             Drive::Free { .. } => [true, true],
         }
     }
@@ -81,7 +114,8 @@ impl Drive {
     fn torques(&self) -> [f64; 2] {
         match *self {
             Drive::WheelSpeed { pinion_torque, .. } => [pinion_torque, 0.0],
-            Drive::PinionSpeed { wheel_torque, .. } => [0.0, -wheel_torque],
+            Drive::PinionSpeed { wheel_torque, .. }
+            | Drive::PinionFluctuating { wheel_torque, .. } => [0.0, -wheel_torque],
             Drive::Free {
                 pinion_torque,
                 wheel_torque,
@@ -94,6 +128,8 @@ impl Drive {
 #[derive(Debug, Clone, Copy)]
 pub struct Model<'a> {
     pub table: &'a MeshTable,
+    /// The coast flanks across the backlash, when the element has them.
+    pub coast: Option<&'a Coast>,
     /// Polar moments of inertia of pinion and wheel, kg·m².
     pub inertia: [f64; 2],
     /// Mesh damping on the wheel lag, N·m·s/rad (pinion torque per lag rate).
@@ -126,7 +162,11 @@ pub struct Contact {
     /// K = −∂force/∂q, N·m/rad, and D = −∂force/∂q̇, N·m·s/rad.
     pub stiffness: [[f64; 2]; 2],
     pub damping: [[f64; 2]; 2],
+    /// Both flank pairs together (potential, gradient, Hessian and force
+    /// summed; lag and u of the drive side).
     pub mesh: MeshState,
+    /// The coast flanks' own state (their lag and distance into contact).
+    pub coast: Option<MeshState>,
 }
 
 /// Smooth step 0 → 1 on [0, 1] (C¹).
@@ -142,16 +182,47 @@ impl Model<'_> {
         match self.drive {
             Drive::WheelSpeed { speed, .. } => Some((1, speed.at(t))),
             Drive::PinionSpeed { speed, .. } => Some((0, speed.at(t))),
+            Drive::PinionFluctuating { speed, .. } => Some((0, speed.at(t))),
             Drive::Free { .. } => None,
         }
+    }
+
+    /// The element's state at q: both flank pairs summed, and the coast
+    /// flanks' own state when the element has them.
+    pub fn mesh(&self, q: [f64; 2]) -> Result<(MeshState, Option<MeshState>), SolverError> {
+        let mut ms = self.table.state(q[0], q[1])?;
+        let Some(coast) = self.coast else {
+            return Ok((ms, None));
+        };
+        let cs = coast.state(q)?;
+        ms.potential += cs.potential;
+        for i in 0..2 {
+            ms.grad[i] += cs.grad[i];
+            ms.force[i] += cs.force[i];
+            for j in 0..2 {
+                ms.hess[i][j] += cs.hess[i][j];
+            }
+        }
+        ms.force[2] += cs.force[2];
+        Ok((ms, Some(cs)))
+    }
+
+    /// Potential of both flank pairs at q, J.
+    pub fn potential(&self, q: [f64; 2]) -> Result<f64, SolverError> {
+        Ok(self.mesh(q)?.0.potential)
     }
 
     /// Contact and damping generalized forces at (q, v), their stiffness
     /// K = −∂Q/∂q (Hessian of V) and damping matrix D = −∂Q/∂v.
     pub fn contact(&self, q: [f64; 2], v: [f64; 2]) -> Result<Contact, SolverError> {
-        let ms = self.table.state(q[0], q[1])?;
+        let (ms, cs) = self.mesh(q)?;
         let r = self.table.ratio;
-        let (s, _) = smoothstep(ms.u / self.table.du());
+        // Damping acts on the lag rate while either flank pair is in contact
+        // (θ̇ᶜ = −θ̇: the same force law on the coast side).
+        let (mut s, _) = smoothstep(ms.u / self.table.du());
+        if let (Some(cs), Some(coast)) = (cs, self.coast) {
+            s = s.max(smoothstep(cs.u / coast.table.du()).0);
+        }
         let rate = r * v[0] - v[1];
         let c = self.damping * s;
         let dir = [r, -1.0];
@@ -165,7 +236,16 @@ impl Model<'_> {
         ];
         let (mut q_c, mut k, mut d) = (q_c, ms.hess, d);
         if self.friction > 0.0 {
-            let (phi, dphi) = self.table.friction_state(q[0], q[1])?;
+            let (mut phi, mut dphi) = self.table.friction_state(q[0], q[1])?;
+            if let Some(coast) = self.coast {
+                let (pc, dc) = coast.friction_state(q)?;
+                for i in 0..2 {
+                    phi[i] += pc[i];
+                    for j in 0..2 {
+                        dphi[i][j] += dc[i][j];
+                    }
+                }
+            }
             let th = (v[0] / FRICTION_SPEED).tanh();
             let (mu, dmu) = (
                 self.friction * th,
@@ -185,17 +265,17 @@ impl Model<'_> {
             stiffness: k,
             damping: d,
             mesh: ms,
+            coast: cs,
         })
     }
 
     /// Kinetic + mesh potential energy − work of the constant torques, J
     /// (constant in a run without damping and with both members free).
     pub fn energy(&self, s: &State) -> Result<f64, SolverError> {
-        let ms = self.table.state(s.q[0], s.q[1])?;
         let ext = self.drive.torques();
         Ok(0.5 * self.inertia[0] * s.v[0] * s.v[0]
             + 0.5 * self.inertia[1] * s.v[1] * s.v[1]
-            + ms.potential
+            + self.potential(s.q)?
             - ext[0] * s.q[0]
             - ext[1] * s.q[1])
     }
@@ -204,7 +284,8 @@ impl Model<'_> {
     fn static_torque(&self) -> f64 {
         match self.drive {
             Drive::WheelSpeed { pinion_torque, .. } => pinion_torque,
-            Drive::PinionSpeed { wheel_torque, .. } => wheel_torque * self.table.ratio,
+            Drive::PinionSpeed { wheel_torque, .. }
+            | Drive::PinionFluctuating { wheel_torque, .. } => wheel_torque * self.table.ratio,
             Drive::Free { pinion_torque, .. } => pinion_torque,
         }
     }
@@ -287,6 +368,7 @@ impl Model<'_> {
         match self.drive {
             Drive::WheelSpeed { speed, .. } => [speed.from / r, speed.from],
             Drive::PinionSpeed { speed, .. } => [speed.from, speed.from * r],
+            Drive::PinionFluctuating { speed, .. } => [speed.mean, speed.mean * r],
             Drive::Free { .. } => [0.0, 0.0],
         }
     }
@@ -325,6 +407,7 @@ pub fn wheel_driven<'a>(
 ) -> Result<(Model<'a>, State), SolverError> {
     let mut m = Model {
         table,
+        coast: None,
         inertia,
         damping: 0.0,
         friction,
@@ -545,7 +628,7 @@ fn discrete_gradient(
     qn: [f64; 2],
     g_mid: [f64; 2],
 ) -> Result<[f64; 2], SolverError> {
-    let v = |a: [f64; 2]| m.table.state(a[0], a[1]).map(|s| s.potential);
+    let v = |a: [f64; 2]| m.potential(a);
     let corner = [qn[0], q[1]];
     let g0 = if (qn[0] - q[0]).abs() > 1e-10 {
         (v(corner)? - v(q)?) / (qn[0] - q[0])
@@ -586,6 +669,7 @@ fn midpoint_step(m: &Model, s: &State, h: f64) -> Result<(State, usize), SolverE
             stiffness: k,
             damping: d,
             mesh,
+            ..
         } = m.contact(qm, vm)?;
         let g = discrete_gradient(m, s.q, q, mesh.grad)?;
         let mut res = [0.0; 2];

@@ -4,28 +4,16 @@
 //! the UTCA, torque balance and complementarity, slice convergence, and the
 //! assembled compliance.
 
-use preprocess::body_mesh;
-use preprocess::design::{load_pair, Member};
-use preprocess::gear_body::{BlankDimensions, BlankDimensionsMm};
+mod common;
+
+use preprocess::design::Member;
 use preprocess::generation::Side;
-use preprocess::influence::{compute, FlankGrid, GridSize, InfluenceRequest};
-use preprocess::mesh::{mesh_member, MeshRequest};
 use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
-use preprocess::scene::{Blank, FlankElements};
 use preprocess::utca::{LineGrid, RollSurface};
-use solver::compliance::{MemberCompliance, PairCompliance};
+use solver::compliance::PairCompliance;
 use solver::ltca::{assemble, geometry, mean_ptp, run, solve, Sweep};
 use solver::slices::sliding_velocity;
 use std::sync::OnceLock;
-
-const LEVEL: FlankElements = FlankElements {
-    profile: 6,
-    face: 10,
-};
-const GRID: GridSize = GridSize {
-    profile: 6,
-    face: 10,
-};
 
 struct Fixture {
     g: PairGeometry,
@@ -33,67 +21,19 @@ struct Fixture {
     pc: PairCompliance,
 }
 
-fn member(g: &PairGeometry, m: Member, refined: Vec<usize>) -> MemberCompliance {
-    let dir = std::env::temp_dir().join(format!("bevel-solver-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{}.msh", m.name()));
-    let dims = BlankDimensions::resolve(&BlankDimensionsMm::default(), &g.data);
-    mesh_member(
-        &MeshRequest {
-            scene: "solver-test",
-            geom: g,
-            member: m,
-            blank: Blank::Standard,
-            dims: &dims,
-            level: LEVEL,
-            level_name: "reduced",
-            side: Side::Drive,
-            refined_teeth: refined.clone(),
-        },
-        &path,
-    )
-    .expect("mesh");
-    let body = body_mesh::read(&path).unwrap();
-    let grid = FlankGrid::new(g.flank(m, Side::Drive), GRID).unwrap();
-    let (sf, sp) = grid.spacing();
-    let md = g.data.member(m);
-    let loaded = Side::Drive.flank_name(m);
-    let opposite = if loaded == "concave" {
-        "convex"
-    } else {
-        "concave"
-    };
-    let inf = compute(
-        &InfluenceRequest {
-            body: &body,
-            material: md.material(),
-            teeth: md.teeth as usize,
-            loaded,
-            opposite,
-            grid: &grid,
-            solved_teeth: vec![refined[refined.len() / 2]],
-            offsets: (-2..=2).collect(),
-            load_radius: 0.75 * sf.max(sp),
-            block: 8,
-        },
-        &["bore"],
-    )
-    .unwrap();
-    let data = preprocess::stiffness_file::StiffnessData {
-        member: m.name().into(),
-        ..preprocess::stiffness_stage::stiffness_data(&grid, inf, md.teeth as usize, true)
-    };
-    MemberCompliance::new(data, md.material())
+fn member(
+    g: &PairGeometry,
+    m: Member,
+    refined: Vec<usize>,
+) -> solver::compliance::MemberCompliance {
+    let body = common::mesh(g, m, &refined, &[], "drive");
+    common::compliance(g, &body, m, Side::Drive, refined[refined.len() / 2])
 }
 
 fn fixture() -> &'static Fixture {
     static F: OnceLock<Fixture> = OnceLock::new();
     F.get_or_init(|| {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../reference/white_paper_20x43.toml"
-        );
-        let g = PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap();
+        let g = common::white_paper();
         let (pt, wt) = teeth_in_contact(&g, Side::Drive, 2.0, 0.5f64.to_radians());
         let pc = PairCompliance {
             pinion: member(&g, Member::Pinion, pt),
@@ -511,6 +451,7 @@ fn undamped_run_keeps_its_energy_over_ten_mesh_cycles() {
     let t = table_fine();
     let m = Model {
         table: t,
+        coast: None,
         inertia: INERTIA,
         damping: 0.0,
         friction: 0.0,
@@ -621,11 +562,7 @@ fn wheel_bearing_force_matches_the_textbook_bevel_gear_mesh_forces() {
 /// and grows with the distance from the pitch line.
 #[test]
 fn sliding_vanishes_on_the_pitch_line_and_lies_in_the_tangent_plane() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../reference/white_paper_20x43.toml"
-    );
-    let mut p = load_pair(std::path::Path::new(path)).unwrap();
+    let mut p = common::white_paper().data;
     p.ease_off = Default::default();
     let g = PairGeometry::new(&p).unwrap();
     let fp = g.side(Side::Drive);
