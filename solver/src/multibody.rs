@@ -1,7 +1,11 @@
 //! Multibody time integration: pinion and wheel as rigid bodies on revolute
 //! joints (rigid bearings), coupled by the tabulated contact element
 //! ([`crate::mesh_table`]) with viscous mesh damping, driven as in the white
-//! paper (an imposed speed on one member, a torque on the other).
+//! paper (an imposed speed on one member, a torque on the other) or by a
+//! fluctuating pinion speed against a free wheel (rattle). With coast-side
+//! contact the element holds both flank pairs across the backlash
+//! ([`crate::backlash`]): V below is then the sum of both sides' potentials,
+//! and the damping acts while either pair is in contact.
 //!
 //! Equations of motion in q = (q₁, q₂) (see [`crate::mesh_table`]):
 //!
