@@ -82,6 +82,10 @@ struct Column<'a> {
     /// of (L, d) there: Newton's start for the next point, which lies close
     /// by on the same column.
     last: std::cell::Cell<Option<NewtonStart>>,
+    /// η interval between active surface-of-roll nodes (on both neighbouring
+    /// node columns), where the wheel-bounds check is skipped: the mate of a
+    /// point between active nodes lies on the wheel flank.
+    trusted: std::cell::Cell<(f64, f64)>,
 }
 
 impl Column<'_> {
@@ -96,9 +100,12 @@ impl Column<'_> {
         }
         .ok()?;
         self.last.set(Some((p.uv, jac)));
-        let (lw, dw) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
-        if !self.fp.wheel.bounds.contains(lw, dw, 1e-12) {
-            return None;
+        let (lo, hi) = self.trusted.get();
+        if !(lo..=hi).contains(&eta) {
+            let (lw, dw) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
+            if !self.fp.wheel.bounds.contains(lw, dw, 1e-12) {
+                return None;
+            }
         }
         let k = self.rs.interpolate(&self.rs.k_sep, self.xi, eta);
         let d = self.target - p.pinion_roll;
@@ -115,6 +122,10 @@ impl Column<'_> {
     /// the second derivative d²lag/dη² and |∂r/∂η| there.
     fn minimum(&self, start: f64) -> Option<ColumnMin> {
         let ((lo, lo_out), (hi, hi_out)) = self.active_interval()?;
+        // One node spacing in from either end: the wheel's bounds can cut
+        // the cell between the last active nodes of the two node columns.
+        let cell = 1.0 / (self.rs.n_profile - 1) as f64;
+        self.trusted.set((lo + cell, hi - cell));
         let mut x = start.clamp(lo, hi);
         let mut fx = self.value(x);
         if !fx.is_finite() {
@@ -206,8 +217,77 @@ impl Column<'_> {
         ))
     }
 
-    /// Boundary of the active region between an active and an inactive η.
+    /// Signed distance (m) of the conjugate wheel point at η inside the
+    /// wheel flank's bounds (negative outside); None where the pinion point
+    /// cannot be evaluated.
+    fn margin(&self, eta: f64) -> Option<f64> {
+        let p = match self.last.get() {
+            Some((uv, jac)) => self.fp.pinion.at_unit_from(self.xi, eta, uv, jac),
+            None => self.fp.pinion.at_unit(self.xi, eta).map(|p| (p, None)),
+        }
+        .ok()?
+        .0;
+        let (l, d) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
+        let b = &self.fp.wheel.bounds;
+        Some(
+            (l - b.inner)
+                .min(b.outer - l)
+                .min(d - b.low.at(l, b.rm))
+                .min(b.face.at(l, b.rm) - d),
+        )
+    }
+
+    /// Boundary of the active region between an active and an inactive η:
+    /// regula falsi (Illinois) on the wheel-bounds margin, bracketed, to
+    /// 1e-9 in η; the last active η is returned.
     fn boundary(&self, inside: f64, outside: f64) -> f64 {
+        let (mut a, mut b) = (inside, outside);
+        let (Some(mut fa), Some(mut fb)) = (self.margin(a), self.margin(b)) else {
+            return self.bisect_boundary(a, b);
+        };
+        if !(fa >= -1e-12 && fb < -1e-12) {
+            return self.bisect_boundary(a, b);
+        }
+        let mut side = 0;
+        for _ in 0..40 {
+            if (b - a).abs() < 1e-9 {
+                break;
+            }
+            let m = (a * fb - b * fa) / (fb - fa);
+            let m = if m.is_finite() && (m - a) * (m - b) < 0.0 {
+                m
+            } else {
+                0.5 * (a + b)
+            };
+            let Some(fm) = self.margin(m) else {
+                b = m;
+                fb = -1.0;
+                continue;
+            };
+            if fm >= -1e-12 {
+                a = m;
+                fa = fm;
+                if side == -1 {
+                    fb *= 0.5;
+                }
+                side = -1;
+            } else {
+                b = m;
+                fb = fm;
+                if side == 1 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            }
+            if fm.abs() < 1e-13 {
+                break;
+            }
+        }
+        a
+    }
+
+    /// Bisection fallback of [`Column::boundary`] on activity alone.
+    fn bisect_boundary(&self, inside: f64, outside: f64) -> f64 {
         let (mut a, mut b) = (inside, outside);
         for _ in 0..14 {
             let m = 0.5 * (a + b);
@@ -235,6 +315,42 @@ struct ColumnMin {
 /// Start of the column search: where the tabulated roll angle along the
 /// column ξ crosses `target` (linear in the surface of roll angles' nodes),
 /// else the column end nearer to it.
+/// Start of the column search from the tabulated surface of roll angles:
+/// the smallest lag (E + ½ K (φ − φ(p))²) / λ₂ over the column's active
+/// nodes (linear between the two neighbouring node columns), refined by the
+/// parabola through it and its neighbours. None without active nodes.
+fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
+    let (nf, np) = (rs.n_face, rs.n_profile);
+    let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
+    let i = (x as usize).min(nf - 2);
+    let w = x - i as f64;
+    let lerp = |f: &[f64], k: usize| (1.0 - w) * f[i * np + k] + w * f[(i + 1) * np + k];
+    let lag = |k: usize| -> Option<f64> {
+        if !(rs.active[i * np + k] && rs.active[(i + 1) * np + k]) {
+            return None;
+        }
+        let d = target - lerp(&rs.roll, k);
+        Some((lerp(&rs.ease_off, k) + 0.5 * lerp(&rs.k_sep, k) * d * d) / lerp(&rs.lever, k))
+    };
+    let values: Vec<Option<f64>> = (0..np).map(lag).collect();
+    let (k, fk) = values
+        .iter()
+        .enumerate()
+        .filter_map(|(k, v)| v.map(|v| (k, v)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let at = |k: usize| k as f64 / (np - 1) as f64;
+    if k == 0 || k + 1 == np {
+        return Some(at(k));
+    }
+    match (values[k - 1], values[k + 1]) {
+        (Some(fm), Some(fp)) if fm + fp - 2.0 * fk > 0.0 => {
+            let t = (0.5 * (fm - fp) / (fm + fp - 2.0 * fk)).clamp(-1.0, 1.0);
+            Some((k as f64 + t) / (np - 1) as f64)
+        }
+        _ => Some(at(k)),
+    }
+}
+
 fn level_crossing(rs: &RollSurface, xi: f64, target: f64) -> f64 {
     let (nf, np) = (rs.n_face, rs.n_profile);
     let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
@@ -332,8 +448,11 @@ pub fn pair_slices(
             target,
             xi,
             last: Default::default(),
+            trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
         };
-        if let Some(c) = col.minimum(level_crossing(rs, xi, target)) {
+        let start =
+            tabulated_minimum(rs, xi, target).unwrap_or_else(|| level_crossing(rs, xi, target));
+        if let Some(c) = col.minimum(start) {
             raw.push((band, xi, c));
         }
     }
