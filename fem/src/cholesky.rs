@@ -98,7 +98,17 @@ impl Factor {
     pub fn solve_many(&self, rhs: &mut [f64], block: usize) {
         let n = self.n();
         assert_eq!(rhs.len() % n.max(1), 0);
-        rhs.par_chunks_mut(n * block.max(1)).for_each(|chunk| {
+        let k = rhs.len() / n.max(1);
+        if k == 0 {
+            return;
+        }
+        // Blocks of at most `block` columns, as many as a multiple of the
+        // threads and as even as possible: 15 columns on two threads are
+        // 8 + 7, not 15 on one thread while the other waits.
+        let threads = rayon::current_num_threads().max(1);
+        let blocks = k.div_ceil(block.max(1)).div_ceil(threads) * threads;
+        let width = k.div_ceil(blocks.min(k));
+        rhs.par_chunks_mut(n * width).for_each(|chunk| {
             let k = chunk.len() / n;
             let m = faer::MatMut::from_column_major_slice_mut(chunk, n, k);
             self.solve_block(m);

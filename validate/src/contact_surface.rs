@@ -111,6 +111,42 @@ pub struct MasterSurface {
     pub nodes: Vec<V3>,
     cell: f64,
     grid: HashMap<[i64; 3], Vec<usize>>,
+    /// Per face: a box that holds the whole curved face ([`face_box`]) and
+    /// its lowest grid cell.
+    boxes: Vec<(V3, V3)>,
+    first_cell: Vec<[i64; 3]>,
+}
+
+/// Axis-aligned box holding a tri6 face: the nodes' box grown by 4/3 of
+/// the largest mid-edge offset. The face is its linear triangle (inside
+/// the corners' box) plus the edge bubbles 4 λₐ λ_b δₑ, δₑ the offset of
+/// edge e's mid node from its chord's midpoint, and Σₑ 4 λₐ λ_b ≤ 4/3.
+pub fn face_box(x: &[V3; 6]) -> (V3, V3) {
+    let mut lo = x[0];
+    let mut hi = x[0];
+    for p in x {
+        for c in 0..3 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    let edges = [(0, 1, 3), (1, 2, 4), (2, 0, 5)];
+    let bulge = edges
+        .iter()
+        .map(|&(a, b, m)| norm([0, 1, 2].map(|c| x[m][c] - 0.5 * (x[a][c] + x[b][c]))))
+        .fold(0.0, f64::max);
+    let grow = 4.0 / 3.0 * bulge + 1e-12;
+    (lo.map(|v| v - grow), hi.map(|v| v + grow))
+}
+
+/// Squared distance from `p` to the box `b` (zero inside).
+fn box_distance2(p: V3, b: &(V3, V3)) -> f64 {
+    (0..3)
+        .map(|c| {
+            let d = (b.0[c] - p[c]).max(p[c] - b.1[c]).max(0.0);
+            d * d
+        })
+        .sum()
 }
 
 impl MasterSurface {
@@ -128,9 +164,13 @@ impl MasterSurface {
             nodes,
             cell,
             grid: HashMap::new(),
+            boxes: Vec::new(),
+            first_cell: Vec::new(),
         };
+        s.boxes = (0..s.faces.len()).map(|k| face_box(&s.face_x(k))).collect();
         for (k, f) in s.faces.iter().enumerate() {
             let (lo, hi) = s.cells_of(f);
+            s.first_cell.push(lo);
             for i in lo[0]..=hi[0] {
                 for j in lo[1]..=hi[1] {
                     for l in lo[2]..=hi[2] {
@@ -165,20 +205,27 @@ impl MasterSurface {
 
     /// Projects `p` onto the surface: among the faces near `p` (within
     /// `reach` m), the closest point that lies inside a face. None when `p`
-    /// projects outside the surface.
+    /// projects outside the surface. Faces whose box lies farther than the
+    /// best point so far are skipped (they cannot hold a closer one).
     pub fn project(&self, p: V3, reach: f64) -> Option<Projection> {
         let c = self.cell_of(p);
         let r = (reach / self.cell).ceil() as i64 + 1;
-        let mut seen = std::collections::HashSet::new();
         let mut best: Option<(f64, Projection)> = None;
         for i in -r..=r {
             for j in -r..=r {
                 for l in -r..=r {
-                    let Some(list) = self.grid.get(&[c[0] + i, c[1] + j, c[2] + l]) else {
+                    let here = [c[0] + i, c[1] + j, c[2] + l];
+                    let Some(list) = self.grid.get(&here) else {
                         continue;
                     };
                     for &k in list {
-                        if !seen.insert(k) {
+                        // Each face once: in the first searched cell it is listed in.
+                        let fc = &self.first_cell[k];
+                        if (0..3).any(|d| here[d] != fc[d].max(c[d] - r)) {
+                            continue;
+                        }
+                        let limit = best.as_ref().map_or(reach, |b| b.0.min(reach));
+                        if box_distance2(p, &self.boxes[k]) > limit * limit {
                             continue;
                         }
                         if let Some(pr) = project_on_face(&self.face_x(k), p) {
@@ -360,5 +407,91 @@ mod tests {
         assert!((a[&0] - 2.0 / 12.0).abs() < 1e-14);
         assert!((a[&3] - 2.0 / 4.0).abs() < 1e-14);
         assert!((a.values().sum::<f64>() - 2.0).abs() < 1e-14);
+    }
+
+    /// A wavy surface of curved tri6 faces (random mid-node offsets): every
+    /// point of every face lies in its box, and the grid search with the box
+    /// cut-off returns the closest point that trying every face returns.
+    #[test]
+    fn grid_search_with_face_boxes_matches_trying_every_face() {
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        };
+        // A 6 × 6 grid of vertices, spacing 1, two triangles per square,
+        // mid-edge nodes off their chords by up to ±0.15.
+        let n = 6;
+        let mut nodes: Vec<V3> = Vec::new();
+        let vid = |i: usize, j: usize| i * n + j;
+        for i in 0..n {
+            for j in 0..n {
+                nodes.push([i as f64, j as f64, 0.2 * rnd()]);
+            }
+        }
+        let mut mids: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut mid = |a: usize, b: usize, nodes: &mut Vec<V3>, rnd: &mut dyn FnMut() -> f64| {
+            let key = (a.min(b), a.max(b));
+            *mids.entry(key).or_insert_with(|| {
+                let (p, q) = (nodes[a], nodes[b]);
+                nodes.push([0, 1, 2].map(|c| 0.5 * (p[c] + q[c]) + 0.3 * rnd()));
+                nodes.len() - 1
+            })
+        };
+        let mut faces = Vec::new();
+        for i in 0..n - 1 {
+            for j in 0..n - 1 {
+                for [a, b, c] in [
+                    [vid(i, j), vid(i + 1, j), vid(i, j + 1)],
+                    [vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)],
+                ] {
+                    let (m0, m1, m2) = (
+                        mid(a, b, &mut nodes, &mut rnd),
+                        mid(b, c, &mut nodes, &mut rnd),
+                        mid(c, a, &mut nodes, &mut rnd),
+                    );
+                    faces.push([a, b, c, m0, m1, m2]);
+                }
+            }
+        }
+        let surface = MasterSurface::new(nodes.clone(), faces.clone());
+        for (k, f) in faces.iter().enumerate() {
+            let x = f.map(|i| nodes[i]);
+            let b = &surface.boxes[k];
+            for a in 0..=10 {
+                for c in 0..=10 - a {
+                    let st = [a as f64 / 10.0, c as f64 / 10.0];
+                    let sh = tri6::shape(st);
+                    let q = [0, 1, 2].map(|d| (0..6).map(|i| sh[i] * x[i][d]).sum::<f64>());
+                    assert!(box_distance2(q, b) == 0.0, "face {k} at {st:?}");
+                }
+            }
+        }
+        let mut found = 0;
+        for _ in 0..400 {
+            let p = [
+                0.5 + 4.0 * (rnd() + 0.5),
+                0.5 + 4.0 * (rnd() + 0.5),
+                0.6 * rnd(),
+            ];
+            let reach = 0.4;
+            let brute = (0..faces.len())
+                .filter_map(|k| project_on_face(&surface.face_x(k), p).map(|r| (k, r)))
+                .map(|(k, r)| (norm(sub(p, r.0)), k))
+                .filter(|&(d, _)| d <= reach)
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            let grid = surface.project(p, reach);
+            match (brute, grid) {
+                (Some((d, _)), Some(g)) => {
+                    assert!((norm(sub(p, g.point)) - d).abs() < 1e-12, "{p:?}");
+                    found += 1;
+                }
+                (None, None) => {}
+                (b, g) => panic!("{p:?}: brute {b:?}, grid {:?}", g.map(|g| g.face)),
+            }
+        }
+        assert!(found > 100, "{found}");
     }
 }
