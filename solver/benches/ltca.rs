@@ -17,6 +17,9 @@ use solver::ltca_stage::{member_compliance, scene_sweep};
 use std::path::Path;
 use std::time::Instant;
 
+/// Sweeps timed per blank; the fastest counts.
+const REPEATS: usize = 5;
+
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
@@ -34,7 +37,7 @@ fn main() {
     let step = sc.rotation.step_deg.to_radians();
     let torques = &sc.pinion_torque_nm;
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    println!("\nLTCA benchmark (default scene, {cores} cores; times are CPU per position, positions run in parallel)\n");
+    println!("\nLTCA benchmark (default scene, {cores} cores; times are CPU per position, positions run in parallel, fastest of {REPEATS} sweeps)\n");
     println!(
         "{:<12} {:>5} {:>7} {:>9} {:>9} {:>11} {:>12} {:>9}",
         "wheel blank",
@@ -54,18 +57,31 @@ fn main() {
             wheel: load(Member::Wheel, wb),
         };
         let sweep = scene_sweep(&scene, &g, wb);
-        let t = Instant::now();
-        let res = run(fp, &rs, &pc, &sweep, torques).unwrap();
-        let wall = t.elapsed().as_secs_f64();
+        // The fastest of REPEATS sweeps (the first one also pays for page
+        // faults and cold caches).
+        let mut best: Option<(f64, f64, f64, f64, Vec<_>)> = None;
+        for _ in 0..REPEATS {
+            let t = Instant::now();
+            let res = run(fp, &rs, &pc, &sweep, torques).unwrap();
+            let wall = t.elapsed().as_secs_f64();
+            let n = res.len() as f64;
+            let geom = res.iter().map(|p| p.geometry_s).sum::<f64>() / n;
+            let asm = res.iter().map(|p| p.assembly_s).sum::<f64>() / n;
+            let solve = res
+                .iter()
+                .map(|p| p.loads.iter().map(|l| l.solve_s).sum::<f64>())
+                .sum::<f64>()
+                / n
+                / torques.len() as f64;
+            if best
+                .as_ref()
+                .is_none_or(|b| geom + asm + solve < b.0 + b.1 + b.2)
+            {
+                best = Some((geom, asm, solve, wall, res));
+            }
+        }
+        let (geom, asm, solve, wall, res) = best.unwrap();
         let n = res.len() as f64;
-        let geom = res.iter().map(|p| p.geometry_s).sum::<f64>() / n;
-        let asm = res.iter().map(|p| p.assembly_s).sum::<f64>() / n;
-        let solve = res
-            .iter()
-            .map(|p| p.loads.iter().map(|l| l.solve_s).sum::<f64>())
-            .sum::<f64>()
-            / n
-            / torques.len() as f64;
         let slices = res.iter().map(|p| p.slices).sum::<usize>() as f64 / n;
         println!(
             "{:<12} {:>5} {:>7.0} {:>9.2} {:>9.2} {:>11.3} {:>12.2} {:>9.2}",
@@ -98,13 +114,18 @@ fn main() {
         ..one_cycle
     };
     let case = |slices: usize| {
-        let res = run(fp, &rs, &pc, &sweep(slices), &[300.0]).unwrap();
-        let n = res.len() as f64;
-        let cpu = res
-            .iter()
-            .map(|p| p.geometry_s + p.assembly_s + p.loads[0].solve_s)
-            .sum::<f64>()
-            / n;
+        let mut cpu = f64::INFINITY;
+        let mut res = Vec::new();
+        for _ in 0..REPEATS {
+            res = run(fp, &rs, &pc, &sweep(slices), &[300.0]).unwrap();
+            let n = res.len() as f64;
+            cpu = cpu.min(
+                res.iter()
+                    .map(|p| p.geometry_s + p.assembly_s + p.loads[0].solve_s)
+                    .sum::<f64>()
+                    / n,
+            );
+        }
         let (m, ptp) = mean_ptp(&res.iter().map(|p| p.loads[0].te).collect::<Vec<_>>());
         (cpu, m, ptp)
     };

@@ -528,22 +528,13 @@ fn run_up(
     );
     let (tr, steps) = record(&m, s0, &mut integ, mb.runup_time_s).context("multibody run-up")?;
     let cpu = t.elapsed().as_secs_f64();
-    // Quasi-static TE at the same pinion rotations (the table's static lag).
-    let qs_model = Model {
-        drive: Drive::WheelSpeed {
-            speed: Ramp {
-                from: 0.0,
-                to: 0.0,
-                duration: 0.0,
-            },
-            pinion_torque: torque,
-        },
-        ..m
-    };
+    // Quasi-static TE at the same pinion rotations: the static lag that
+    // balances the wheel's load (with friction, the pinion torque that
+    // needs includes the mesh losses).
     let statics: Vec<f64> = tr
         .q1
         .iter()
-        .map(|&q| qs_model.static_lag(q))
+        .map(|&q| m.static_lag(q))
         .collect::<Result<_, _>>()?;
     write_atomic(
         &odir.join("runup.csv"),

@@ -295,8 +295,11 @@ impl Model<'_> {
     }
 
     /// Quasi-static wheel lag at pinion rotation q₁ under the drive's
-    /// torque, turning forward: ∂V/∂q₁ + μ Φ₁ = T₁ solved for θ by Newton
-    /// (the unloaded TE at zero torque).
+    /// torque, turning forward (the unloaded TE at zero torque), by Newton
+    /// on the balance of the member that carries the torque: the pinion's
+    /// ∂V/∂q₁ + μ Φ₁ = T₁, or with the pinion's speed imposed the wheel's
+    /// −∂V/∂q₂ + μ Φ₂ = T₂ (with friction the two differ by the mesh
+    /// efficiency).
     pub fn static_lag(&self, q1: f64) -> Result<f64, SolverError> {
         let r = self.table.ratio;
         let torque = self.static_torque();
@@ -304,6 +307,7 @@ impl Model<'_> {
         if torque <= 0.0 {
             return Ok(t0);
         }
+        let wheel = self.drive.free() == [false, true];
         let du = self.table.mean_lag_step();
         let mut theta = t0 + 0.1 * self.table.du();
         for _ in 0..100 {
@@ -314,9 +318,18 @@ impl Model<'_> {
             } else {
                 Default::default()
             };
-            let f = ms.grad[0] + self.friction * phi[0] - torque;
-            // d/dθ = −∂/∂q₂ at fixed q₁.
-            let df = -ms.hess[0][1] - self.friction * dphi[0][1];
+            // Residual and its derivative in θ (d/dθ = −∂/∂q₂ at fixed q₁).
+            let (f, df) = if wheel {
+                (
+                    -ms.grad[1] + self.friction * phi[1] - torque / r,
+                    ms.hess[1][1] - self.friction * dphi[1][1],
+                )
+            } else {
+                (
+                    ms.grad[0] + self.friction * phi[0] - torque,
+                    -ms.hess[0][1] - self.friction * dphi[0][1],
+                )
+            };
             let step = if df > 0.0 { -f / df } else { 0.1 * du };
             theta += step.clamp(-10.0 * du, 10.0 * du);
             if step.abs() < 1e-16 + 1e-12 * theta.abs() {

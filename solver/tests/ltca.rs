@@ -662,3 +662,46 @@ fn ten_rpm_multibody_with_friction_matches_the_ltca_with_friction() {
     );
     assert!(worst < 0.01 * ptp);
 }
+
+/// The run-up's quasi-static reference (pinion speed imposed, the wheel
+/// loaded): with friction, the lag that balances the wheel's load is the
+/// LTCA's at the pinion torque that delivers that wheel torque (the LTCA
+/// at 300 N·m gives both). Within 1 % of the TE's peak-to-peak, as the
+/// 10 rpm runs.
+#[test]
+fn wheel_loaded_quasi_static_lag_with_friction_is_the_ltcas() {
+    let f = fixture();
+    let fp = f.g.side(Side::Drive);
+    let t = table_fine();
+    let mu = 0.05;
+    let sw = table_sweep(t, mu);
+    let ltca = run(fp, &f.rs, &f.pc, &sw, &[300.0]).unwrap();
+    let te: Vec<f64> = ltca.iter().map(|p| p.loads[0].te).collect();
+    let (_, ptp) = mean_ptp(&te);
+    let mut worst: f64 = 0.0;
+    for p in &ltca {
+        let m = Model {
+            table: t,
+            coast: None,
+            inertia: INERTIA,
+            damping: 0.0,
+            friction: mu,
+            drive: Drive::PinionSpeed {
+                speed: solver::multibody::Ramp {
+                    from: 1.0,
+                    to: 1.0,
+                    duration: 0.0,
+                },
+                wheel_torque: p.loads[0].wheel_torque_nm,
+            },
+        };
+        let theta = m.static_lag(p.rotation).unwrap();
+        worst = worst.max((theta - p.loads[0].te).abs());
+    }
+    eprintln!(
+        "wheel-loaded static lag vs LTCA: {:.4} urad, {:.2} % of ptp",
+        worst * 1e6,
+        100.0 * worst / ptp
+    );
+    assert!(worst < 0.01 * ptp);
+}
