@@ -741,6 +741,27 @@ mod tests {
     }
 
     #[test]
+    fn fluctuating_speed_is_the_derivative_of_its_angle() {
+        let f = Fluctuation {
+            mean: 30.0,
+            amplitude: 0.05,
+            omega: 2.0 * std::f64::consts::PI * 25.0,
+        };
+        assert_eq!(f.at(0.0)[0], 0.0);
+        // One period: the mean speed times the period.
+        let period = 2.0 * std::f64::consts::PI / f.omega;
+        assert!((f.at(period)[0] - 30.0 * period).abs() < 1e-12);
+        for t in [0.003, 0.011, 0.027] {
+            let h = 1e-6;
+            let [a0, w, acc] = f.at(t);
+            let (ap, am) = (f.at(t + h), f.at(t - h));
+            assert!(((ap[0] - am[0]) / (2.0 * h) - w).abs() < 1e-6 * w);
+            assert!(((ap[1] - am[1]) / (2.0 * h) - acc).abs() < 1e-6 * (w * 0.05 * f.omega));
+            assert!(a0 > 0.0);
+        }
+    }
+
+    #[test]
     fn smoothstep_is_c1() {
         assert_eq!(smoothstep(-1.0), (0.0, 0.0));
         assert_eq!(smoothstep(2.0), (1.0, 0.0));
