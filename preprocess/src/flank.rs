@@ -100,6 +100,14 @@ impl Bounds {
         )
     }
     /// True when (L, d) lies on the flank (toe..heel, fillet limit..tip), with tolerance.
+    /// Signed distance of (L, d) inside the bounds, m (negative outside):
+    /// the smallest of the four margins to toe, heel, lower limit and face.
+    pub fn margin(&self, l: f64, d: f64) -> f64 {
+        (l - self.inner)
+            .min(self.outer - l)
+            .min(d - self.low.at(l, self.rm))
+            .min(self.face.at(l, self.rm) - d)
+    }
     pub fn contains(&self, l: f64, d: f64, tol: f64) -> bool {
         l >= self.inner - tol
             && l <= self.outer + tol

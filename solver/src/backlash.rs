@@ -102,9 +102,19 @@ impl Coast {
         Ok((phi, d.map(|row| row.map(|x| -x))))
     }
 
+    /// Drive lags at which the flanks touch at drive pinion rotation q₁:
+    /// [θ₀(q₁) (drive flanks), −B − θ₀ᶜ(q₁ᶜ) (coast flanks)], rad.
+    pub fn contact_lags(&self, drive: &MeshTable, q1: f64) -> Result<[f64; 2], SolverError> {
+        Ok([
+            drive.unloaded(q1)?[0],
+            -self.backlash - self.table.unloaded(self.a - q1)?[0],
+        ])
+    }
+
     /// Free play between the flanks at drive pinion rotation q₁:
     /// B + θ₀(q₁) + θ₀ᶜ(q₁ᶜ), rad.
     pub fn free_play(&self, drive: &MeshTable, q1: f64) -> Result<f64, SolverError> {
-        Ok(self.backlash + drive.unloaded(q1)?[0] + self.table.unloaded(self.a - q1)?[0])
+        let [hi, lo] = self.contact_lags(drive, q1)?;
+        Ok(hi - lo)
     }
 }

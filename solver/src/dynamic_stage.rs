@@ -17,8 +17,8 @@ use crate::ltca::mean_ptp;
 use crate::ltca_stage::{member_compliance, member_compliance_on, scene_sweep};
 use crate::mesh_table::{MeshTable, TableSpec};
 use crate::multibody::{
-    integrate, interpolate, wheel_driven, Drive, Fluctuation, Integrator, Model, Ramp, Scheme,
-    State, StepControl,
+    integrate, interpolate, wheel_driven, Drive, Fluctuation, Impacts, Integrator, Model, Ramp,
+    Scheme, State, StepControl,
 };
 use crate::spectrum::{plot, resample, stft, OrderLine};
 use anyhow::Context;
@@ -660,13 +660,7 @@ fn rattle(
         },
     };
     // Start in the middle of the free play, both members at the mean speed.
-    let contact_lags = |q1: f64| -> Result<[f64; 2], crate::SolverError> {
-        Ok([
-            table.unloaded(q1)?[0],
-            -coast.backlash - coast.table.unloaded(coast.a - q1)?[0],
-        ])
-    };
-    let [hi, lo] = contact_lags(0.0)?;
+    let [hi, lo] = coast.contact_lags(table, 0.0)?;
     let theta0 = 0.5 * (hi + lo);
     let s0 = State {
         t: 0.0,
@@ -687,8 +681,7 @@ fn rattle(
         "time_s,pinion_rotation_deg,pinion_rpm,wheel_rpm,te_urad,drive_contact_lag_urad,coast_contact_lag_urad,pinion_mesh_torque_nm,contact\n",
     );
     let (mut t, mut te, mut lim_hi, mut lim_lo) = (vec![], vec![], vec![], vec![]);
-    let mut state = 0usize;
-    let mut impacts = [0usize; 2];
+    let mut impacts = Impacts::default();
     let mut share = [0.0; 3];
     let mut torque = [f64::INFINITY, f64::NEG_INFINITY];
     let mut wheel = [f64::INFINITY, f64::NEG_INFINITY];
@@ -697,21 +690,12 @@ fn rattle(
     let clock = crate::cpu_clock::thread_cpu_s();
     let (_, steps) = integrate(&m, s0, &mut integ, mb.rattle_time_s, |s| {
         let c = m.contact(s.q, s.v)?;
-        let cs = c.coast.unwrap_or_default();
-        let now = if c.mesh.u > 0.0 && c.mesh.grad[0] > 0.0 {
-            1
-        } else if cs.u > 0.0 && c.mesh.grad[0] < 0.0 {
-            2
-        } else {
-            0
-        };
-        if now != 0 && now != state {
-            impacts[now - 1] += 1;
-        }
-        share[[2, 0, 1][state]] += s.t - last_t;
-        state = now;
+        let now = c.touching();
+        let before = impacts.record(now);
+        // Drive, coast, free flight.
+        share[[2, 0, 1][before as usize]] += s.t - last_t;
         last_t = s.t;
-        let [dl, cl] = contact_lags(s.q[0])?;
+        let [dl, cl] = coast.contact_lags(table, s.q[0])?;
         let theta = r * s.q[0] - s.q[1];
         torque = [torque[0].min(c.mesh.grad[0]), torque[1].max(c.mesh.grad[0])];
         wheel = [wheel[0].min(rpm(s.v[1])), wheel[1].max(rpm(s.v[1]))];
@@ -726,7 +710,7 @@ fn rattle(
             dl * 1e6,
             cl * 1e6,
             c.mesh.grad[0],
-            ["none", "drive", "coast"][now]
+            ["none", "drive", "coast"][now as usize]
         );
         t.push(s.t * 1e3);
         te.push(theta * 1e6);
@@ -774,8 +758,8 @@ fn rattle(
     eprintln!(
         "  rattle: {steps} steps ({} rejected), {} drive and {} coast impacts, mesh torque {:.1}..{:.1} N·m, {:.1} µs/step",
         integ.rejected,
-        impacts[0],
-        impacts[1],
+        impacts.drive,
+        impacts.coast,
         torque[0],
         torque[1],
         cpu / steps.max(1) as f64 * 1e6
@@ -790,8 +774,8 @@ fn rattle(
         rejected_steps: integ.rejected,
         cpu_s: cpu,
         cpu_s_per_step: cpu / steps.max(1) as f64,
-        drive_impacts: impacts[0],
-        coast_impacts: impacts[1],
+        drive_impacts: impacts.drive,
+        coast_impacts: impacts.coast,
         time_share_drive_coast_free: share.map(|x| x / total),
         mesh_torque_min_max_nm: torque,
         te_min_max_urad: [te_lo, te_hi],

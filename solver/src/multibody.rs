@@ -173,6 +173,52 @@ pub struct Contact {
     pub coast: Option<MeshState>,
 }
 
+/// Which flank pair carries the contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Touching {
+    #[default]
+    Neither,
+    Drive,
+    Coast,
+}
+
+impl Contact {
+    /// The pair in contact: the drive flanks while they push the wheel
+    /// forward, the coast flanks while they push it back.
+    pub fn touching(&self) -> Touching {
+        let coast_u = self.coast.map_or(f64::NEG_INFINITY, |c| c.u);
+        if self.mesh.u > 0.0 && self.mesh.grad[0] > 0.0 {
+            Touching::Drive
+        } else if coast_u > 0.0 && self.mesh.grad[0] < 0.0 {
+            Touching::Coast
+        } else {
+            Touching::Neither
+        }
+    }
+}
+
+/// Contacts begun on each flank pair (impacts), counted along a run.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Impacts {
+    pub drive: usize,
+    pub coast: usize,
+    last: Touching,
+}
+
+impl Impacts {
+    /// Records the pair in contact now; returns the previous one.
+    pub fn record(&mut self, now: Touching) -> Touching {
+        if now != self.last {
+            match now {
+                Touching::Drive => self.drive += 1,
+                Touching::Coast => self.coast += 1,
+                Touching::Neither => {}
+            }
+        }
+        std::mem::replace(&mut self.last, now)
+    }
+}
+
 /// Smooth step 0 → 1 on [0, 1] (C¹).
 fn smoothstep(x: f64) -> (f64, f64) {
     let x = x.clamp(0.0, 1.0);

@@ -72,6 +72,11 @@ pub const RHO_MAX: f64 = 1.0;
 
 /// Generating parameters and the Jacobian of (L, d) there.
 type NewtonStart = ([f64; 2], Option<nalgebra::Matrix2<f64>>);
+/// A flank point and the Jacobian of (L, d) there.
+type NewtonPoint = (
+    preprocess::flank::FlankPoint,
+    Option<nalgebra::Matrix2<f64>>,
+);
 
 struct Column<'a> {
     fp: &'a FlankPair,
@@ -90,15 +95,22 @@ struct Column<'a> {
 
 impl Column<'_> {
     /// lag at profile parameter η, with the flank point; None where inactive.
+    /// The pinion flank point at η of this column and the Jacobian of
+    /// (L, d) there, Newton started from the last point [`Column::eval`]
+    /// kept.
+    fn point(&self, eta: f64) -> Option<NewtonPoint> {
+        match self.last.get() {
+            Some((uv, jac)) => self.fp.pinion.at_unit_from(self.xi, eta, uv, jac),
+            None => self.fp.pinion.at_unit(self.xi, eta).map(|p| (p, None)),
+        }
+        .ok()
+    }
+
     fn eval(&self, eta: f64) -> Option<(f64, preprocess::flank::FlankPoint)> {
         if !(0.0..=1.0).contains(&eta) {
             return None;
         }
-        let (p, jac) = match self.last.get() {
-            Some((uv, jac)) => self.fp.pinion.at_unit_from(self.xi, eta, uv, jac),
-            None => self.fp.pinion.at_unit(self.xi, eta).map(|p| (p, None)),
-        }
-        .ok()?;
+        let (p, jac) = self.point(eta)?;
         self.last.set(Some((p.uv, jac)));
         let (lo, hi) = self.trusted.get();
         if !(lo..=hi).contains(&eta) {
@@ -221,20 +233,9 @@ impl Column<'_> {
     /// wheel flank's bounds (negative outside); None where the pinion point
     /// cannot be evaluated.
     fn margin(&self, eta: f64) -> Option<f64> {
-        let p = match self.last.get() {
-            Some((uv, jac)) => self.fp.pinion.at_unit_from(self.xi, eta, uv, jac),
-            None => self.fp.pinion.at_unit(self.xi, eta).map(|p| (p, None)),
-        }
-        .ok()?
-        .0;
+        let p = self.point(eta)?.0;
         let (l, d) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
-        let b = &self.fp.wheel.bounds;
-        Some(
-            (l - b.inner)
-                .min(b.outer - l)
-                .min(d - b.low.at(l, b.rm))
-                .min(b.face.at(l, b.rm) - d),
-        )
+        Some(self.fp.wheel.bounds.margin(l, d))
     }
 
     /// Boundary of the active region between an active and an inactive η:

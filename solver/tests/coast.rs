@@ -12,7 +12,7 @@ use solver::backlash::{conjugate_backlash, Coast};
 use solver::compliance::PairCompliance;
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{
-    integrate, Drive, Fluctuation, Integrator, Model, Scheme, State, StepControl,
+    integrate, Drive, Fluctuation, Impacts, Integrator, Model, Scheme, State, StepControl,
 };
 use std::sync::OnceLock;
 
@@ -158,7 +158,7 @@ fn coast_flanks_touch_where_the_direct_contact_search_finds_them() {
     }
 }
 
-fn energy_run(f: &Fixture, relative_speed: f64, t_end: f64) -> (f64, [usize; 2], usize) {
+fn energy_run(f: &Fixture, relative_speed: f64, t_end: f64) -> (f64, Impacts, usize) {
     let m = model(
         f,
         0.0,
@@ -168,8 +168,7 @@ fn energy_run(f: &Fixture, relative_speed: f64, t_end: f64) -> (f64, [usize; 2],
         },
     );
     let r = f.drive.ratio;
-    let hi = f.drive.unloaded(0.0).unwrap()[0];
-    let lo = -f.coast.backlash - f.coast.table.unloaded(f.coast.a).unwrap()[0];
+    let [hi, lo] = f.coast.contact_lags(&f.drive, 0.0).unwrap();
     let w = 30.0 * std::f64::consts::PI / 30.0;
     // Mid-play, the wheel slower than conjugate: it lags, closes the drive
     // flanks, bounces back across the play onto the coast flanks, ...
@@ -189,22 +188,10 @@ fn energy_run(f: &Fixture, relative_speed: f64, t_end: f64) -> (f64, [usize; 2],
     );
     let e0 = m.energy(&s0).unwrap();
     let mut drift: f64 = 0.0;
-    let mut side = 0usize;
-    let mut impacts = [0usize; 2];
+    let mut impacts = Impacts::default();
     let (_, steps) = integrate(&m, s0, &mut integ, t_end, |s| {
         drift = drift.max((m.energy(s)? - e0).abs() / e0);
-        let c = m.contact(s.q, s.v)?;
-        let now = if c.mesh.grad[0] > 0.0 {
-            1
-        } else if c.mesh.grad[0] < 0.0 {
-            2
-        } else {
-            0
-        };
-        if now != 0 && now != side {
-            impacts[now - 1] += 1;
-            side = now;
-        }
+        impacts.record(m.contact(s.q, s.v)?.touching());
         Ok(())
     })
     .unwrap();
@@ -220,7 +207,7 @@ fn undamped_zero_torque_rattle_keeps_its_energy_through_drive_and_coast_impacts(
     let f = fixture();
     let (drift, impacts, steps) = energy_run(f, 0.05, 0.2);
     eprintln!("rattle: {impacts:?} drive/coast impacts, {steps} steps, energy drift {drift:.2e}");
-    assert!(impacts[0] >= 3 && impacts[1] >= 3, "{impacts:?}");
+    assert!(impacts.drive >= 3 && impacts.coast >= 3, "{impacts:?}");
     assert!(drift < 1e-6, "{drift}");
 }
 
@@ -252,8 +239,7 @@ fn damped_rattle_under_a_fluctuating_pinion_speed_stays_bounded() {
             wheel_torque: 0.0,
         },
     );
-    let hi = f.drive.unloaded(0.0).unwrap()[0];
-    let lo = -f.coast.backlash - f.coast.table.unloaded(f.coast.a).unwrap()[0];
+    let [hi, lo] = f.coast.contact_lags(&f.drive, 0.0).unwrap();
     let s0 = State {
         t: 0.0,
         q: [0.0, -0.5 * (hi + lo)],
@@ -269,23 +255,11 @@ fn damped_rattle_under_a_fluctuating_pinion_speed_stays_bounded() {
         },
     );
     let top = *f.drive.lags.last().unwrap();
-    let mut side = 0usize;
-    let mut impacts = [0usize; 2];
+    let mut impacts = Impacts::default();
     let mut theta_range = [f64::INFINITY, f64::NEG_INFINITY];
     let mut wheel = [f64::INFINITY, f64::NEG_INFINITY];
     let (_, steps) = integrate(&m, s0, &mut integ, 0.1, |s| {
-        let c = m.contact(s.q, s.v)?;
-        let now = if c.mesh.grad[0] > 0.0 {
-            1
-        } else if c.mesh.grad[0] < 0.0 {
-            2
-        } else {
-            0
-        };
-        if now != 0 && now != side {
-            impacts[now - 1] += 1;
-            side = now;
-        }
+        impacts.record(m.contact(s.q, s.v)?.touching());
         let th = r * s.q[0] - s.q[1];
         theta_range = [theta_range[0].min(th), theta_range[1].max(th)];
         wheel = [wheel[0].min(s.v[1]), wheel[1].max(s.v[1])];
@@ -302,7 +276,7 @@ fn damped_rattle_under_a_fluctuating_pinion_speed_stays_bounded() {
         wheel[0],
         wheel[1]
     );
-    assert!(impacts[0] >= 2 && impacts[1] >= 2, "{impacts:?}");
+    assert!(impacts.drive >= 2 && impacts.coast >= 2, "{impacts:?}");
     let coast_top = -f.coast.backlash - *f.coast.table.lags.last().unwrap();
     assert!(
         theta_range[0] > coast_top && theta_range[1] < top,

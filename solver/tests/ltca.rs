@@ -636,20 +636,37 @@ fn friction_enters_the_torque_balance_and_costs_efficiency() {
     }
 }
 
+/// The fine table, μ = 0.05, the LTCA with that friction at 300 N·m over
+/// the table's sweep and its TE peak-to-peak.
+fn ltca_with_friction() -> (
+    &'static MeshTable,
+    f64,
+    Vec<solver::ltca::PositionResult>,
+    f64,
+) {
+    let f = fixture();
+    let t = table_fine();
+    let mu = 0.05;
+    let ltca = run(
+        f.g.side(Side::Drive),
+        &f.rs,
+        &f.pc,
+        &table_sweep(t, mu),
+        &[300.0],
+    )
+    .unwrap();
+    let te: Vec<f64> = ltca.iter().map(|p| p.loads[0].te).collect();
+    let (_, ptp) = mean_ptp(&te);
+    (t, mu, ltca, ptp)
+}
+
 /// The 10 rpm multibody run with friction (tabulated friction moments,
 /// smoothed sign of the pinion speed) against the quasi-static LTCA with
 /// the same friction coefficient: TE within 1 % of its peak-to-peak.
 #[test]
 fn ten_rpm_multibody_with_friction_matches_the_ltca_with_friction() {
-    let f = fixture();
-    let fp = f.g.side(Side::Drive);
-    let t = table_fine();
-    let mu = 0.05;
-    let sw = table_sweep(t, mu);
-    let ltca = run(fp, &f.rs, &f.pc, &sw, &[300.0]).unwrap();
+    let (t, mu, ltca, ptp) = ltca_with_friction();
     let mb = quasi_static_run(t, 300.0, 1.0, Scheme::GeneralizedAlpha { rho_inf: 0.8 }, mu);
-    let te: Vec<f64> = ltca.iter().map(|p| p.loads[0].te).collect();
-    let (_, ptp) = mean_ptp(&te);
     let worst = ltca
         .iter()
         .map(|p| (interpolate(&mb[0], &mb[1], p.rotation) - p.loads[0].te).abs())
@@ -670,14 +687,7 @@ fn ten_rpm_multibody_with_friction_matches_the_ltca_with_friction() {
 /// 10 rpm runs.
 #[test]
 fn wheel_loaded_quasi_static_lag_with_friction_is_the_ltcas() {
-    let f = fixture();
-    let fp = f.g.side(Side::Drive);
-    let t = table_fine();
-    let mu = 0.05;
-    let sw = table_sweep(t, mu);
-    let ltca = run(fp, &f.rs, &f.pc, &sw, &[300.0]).unwrap();
-    let te: Vec<f64> = ltca.iter().map(|p| p.loads[0].te).collect();
-    let (_, ptp) = mean_ptp(&te);
+    let (t, mu, ltca, ptp) = ltca_with_friction();
     let mut worst: f64 = 0.0;
     for p in &ltca {
         let m = Model {
