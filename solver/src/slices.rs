@@ -72,6 +72,9 @@ pub const RHO_MAX: f64 = 1.0;
 
 /// Generating parameters and the Jacobian of (L, d) there.
 type NewtonStart = ([f64; 2], Option<nalgebra::Matrix2<f64>>);
+/// (d²lag/dη², ∂r/∂η) at an interior column minimum.
+type Curvature = (f64, [f64; 3]);
+
 /// A flank point and the Jacobian of (L, d) there.
 type NewtonPoint = (
     preprocess::flank::FlankPoint,
@@ -180,7 +183,7 @@ impl Column<'_> {
     /// interval and halved until lag falls. Returns (η, lag, curvature at
     /// the last iterate where both neighbours were active); None where the
     /// start itself is inactive.
-    fn descend(&self, start: f64, lo: f64, hi: f64) -> Option<(f64, f64, Option<(f64, [f64; 3])>)> {
+    fn descend(&self, start: f64, lo: f64, hi: f64) -> Option<(f64, f64, Option<Curvature>)> {
         let mut x = start.clamp(lo, hi);
         let mut fx = self.value(x);
         if !fx.is_finite() {
@@ -344,8 +347,7 @@ struct ColumnMin {
     eta: f64,
     lag: f64,
     point: preprocess::flank::FlankPoint,
-    /// (d²lag/dη², ∂r/∂η) at an interior minimum.
-    curvature: Option<(f64, [f64; 3])>,
+    curvature: Option<Curvature>,
 }
 
 /// Start of the column search: where the tabulated roll angle along the
