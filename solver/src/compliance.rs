@@ -31,8 +31,14 @@ pub struct MemberCompliance {
 }
 
 impl MemberCompliance {
+    /// The member's data with every reciprocal pair of blocks replaced by
+    /// its mean: G[s][o] and G[s′][−o]ᵀ, where s′ serves tooth solved[s] + o,
+    /// become equal (Maxwell–Betti; the FE gives them equal up to round-off
+    /// and, across teeth of an axisymmetric body, the mesh's departure from
+    /// rotational symmetry). The assembly then takes such a pair's coupling
+    /// from one of them, see [`MemberCompliance::mirrored`].
     pub fn new(d: StiffnessData, material: Material) -> Self {
-        MemberCompliance {
+        let mut m = MemberCompliance {
             member: d.member.clone(),
             teeth: d.teeth,
             axisymmetric: d.axisymmetric,
@@ -44,7 +50,59 @@ impl MemberCompliance {
             global: d.global,
             depth: d.depth_h,
             material,
+        };
+        m.symmetrize();
+        m
+    }
+
+    /// Start of block (s, offset index oi) in `global`.
+    fn block_start(&self, s: usize, oi: usize) -> usize {
+        (s * self.offsets.len() + oi) * self.np * self.np
+    }
+
+    /// The reciprocal partner (s′, index of −o) of block (s, offset index
+    /// oi), where stored.
+    fn partner(&self, s: usize, oi: usize) -> Option<(usize, usize)> {
+        let o = self.offsets[oi];
+        let tooth = self.solved[s] as i64 + o as i64;
+        let sp = self.solved_index(tooth).ok()?;
+        let op = self.offsets.iter().position(|&x| x == -o)?;
+        Some((sp, op))
+    }
+
+    fn symmetrize(&mut self) {
+        let np = self.np;
+        for s in 0..self.solved.len() {
+            for oi in 0..self.offsets.len() {
+                let Some((sp, op)) = self.partner(s, oi) else {
+                    continue;
+                };
+                let (x, y) = (self.block_start(s, oi), self.block_start(sp, op));
+                if y < x {
+                    continue; // met from its partner
+                }
+                for a in 0..np {
+                    // On a block that is its own partner, the lower triangle only.
+                    let bs = if x == y { 0..a + 1 } else { 0..np };
+                    for b in bs {
+                        let (i, j) = (x + a * np + b, y + b * np + a);
+                        let mean = 0.5 * (self.global[i] + self.global[j]);
+                        self.global[i] = mean;
+                        self.global[j] = mean;
+                    }
+                }
+            }
         }
+    }
+
+    /// Whether the coupling from solved tooth `s`'s loads to offset `o` is
+    /// the transpose of a stored block (so that it need not be assembled
+    /// twice).
+    pub fn mirrored(&self, s: usize, o: i64) -> bool {
+        self.offsets
+            .iter()
+            .position(|&x| x as i64 == o)
+            .is_some_and(|oi| self.partner(s, oi).is_some())
     }
 
     /// Index of the solved tooth whose data serve tooth `tooth` (pair numbering, any sign).
@@ -76,10 +134,8 @@ impl MemberCompliance {
     /// The np × np block of solved tooth `s` responding at offset `o` (None beyond the stored teeth).
     fn block(&self, s: usize, o: i64) -> Option<&[f64]> {
         let oi = self.offsets.iter().position(|&x| x as i64 == o)?;
-        let no = self.offsets.len();
-        let n2 = self.np * self.np;
-        let start = (s * no + oi) * n2;
-        Some(&self.global[start..start + n2])
+        let start = self.block_start(s, oi);
+        Some(&self.global[start..start + self.np * self.np])
     }
 
     /// Adds this member's compliance between slice groups to `c` (row-major
@@ -157,4 +213,83 @@ fn touched(weights: &[&Weights], np: usize) -> (Vec<usize>, Vec<usize>) {
 pub struct PairCompliance {
     pub pinion: MemberCompliance,
     pub wheel: MemberCompliance,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Five teeth, teeth 0–2 solved, offsets −1..1, a 3 × 4 grid, and
+    /// deterministic pseudo-random, unsymmetric blocks.
+    fn member() -> (StiffnessData, MemberCompliance) {
+        let (gp, gf, no, ns) = (3, 4, 3, 3);
+        let np = gp * gf;
+        let mut state = 12345u64;
+        let global = (0..ns * no * np * np)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                1e-9 * (1.0 + (state >> 33) as f64 / (1u64 << 31) as f64)
+            })
+            .collect();
+        let d = StiffnessData {
+            input_hash: String::new(),
+            config: String::new(),
+            member: "wheel".into(),
+            blank: "lightweight".into(),
+            level: "reduced".into(),
+            teeth: 5,
+            axisymmetric: false,
+            grid_profile: gp,
+            grid_face: gf,
+            xi: (0..gf).map(|i| i as f64 / (gf - 1) as f64).collect(),
+            eta: (0..gp).map(|i| i as f64 / (gp - 1) as f64).collect(),
+            position: vec![0.0; 3 * np],
+            normal: vec![0.0; 3 * np],
+            lever: vec![0.0; np],
+            solved_teeth: vec![0, 1, 2],
+            offsets: vec![-1, 0, 1],
+            depth_h: vec![1e-3; ns * np],
+            total: Vec::new(),
+            local: Vec::new(),
+            global,
+        };
+        (d.clone(), MemberCompliance::new(d, Material::STEEL))
+    }
+
+    /// Maxwell–Betti: after loading, the coupling from tooth t to tooth
+    /// t + o is the transpose of that from t + o to t, and both are the mean
+    /// of what the file held; a block whose partner tooth was not solved
+    /// (tooth 2 → 3, tooth 0 → 4) is left as it was.
+    #[test]
+    fn reciprocal_blocks_are_each_others_transpose_and_the_mean() {
+        let (d, m) = member();
+        let np = d.points();
+        for s in 0..3usize {
+            for (oi, &o) in d.offsets.iter().enumerate() {
+                let t = s as i64 + o as i64;
+                let partner = (0..3).contains(&t);
+                assert_eq!(m.mirrored(s, o as i64), partner, "tooth {s} offset {o}");
+                let block = m.block(s, o as i64).unwrap();
+                for a in 0..np {
+                    for b in 0..np {
+                        let here = d.global_at(s, oi, a, b);
+                        if !partner {
+                            assert_eq!(block[a * np + b], here);
+                            continue;
+                        }
+                        let ti = t as usize;
+                        let back = d.offsets.iter().position(|&x| x == -o).unwrap();
+                        let mean = 0.5 * (here + d.global_at(ti, back, b, a));
+                        assert!((block[a * np + b] - mean).abs() <= 1e-15 * mean);
+                        assert_eq!(
+                            block[a * np + b],
+                            m.block(ti, -o as i64).unwrap()[b * np + a]
+                        );
+                    }
+                }
+            }
+        }
+    }
 }

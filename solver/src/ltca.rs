@@ -87,6 +87,8 @@ pub fn assemble(
         .collect();
     let mut line = Vec::with_capacity(n);
     let bodies = [pc.pinion.material, pc.wheel.material];
+    // Pair blocks (a, b) left out because (b, a) holds their transpose.
+    let mut mirrored = vec![false; pairs.len() * pairs.len()];
     for (a, &ja) in pairs.iter().enumerate() {
         let sp = pc.pinion.solved_index(ja as i64)?;
         let sw = pc.wheel.solved_index(-(ja as i64))?;
@@ -98,22 +100,39 @@ pub fn assemble(
         let wpr: Vec<_> = rows.iter().map(|&k| &wp[k]).collect();
         let wwr: Vec<_> = rows.iter().map(|&k| &ww[k]).collect();
         for (b, &jb) in pairs.iter().enumerate() {
+            let o = (jb - ja) as i64;
+            if b < a && pc.pinion.mirrored(sp, o) && pc.wheel.mirrored(sw, -o) {
+                mirrored[a * pairs.len() + b] = true;
+                continue;
+            }
             let cols = &members[b];
             let wpc: Vec<_> = cols.iter().map(|&k| &wp[k]).collect();
             let wwc: Vec<_> = cols.iter().map(|&k| &ww[k]).collect();
-            let o = (jb - ja) as i64;
             pc.pinion
                 .add_block(sp, o, &wpr, &wpc, rows, cols, &mut c, n);
             pc.wheel
                 .add_block(sw, -o, &wwr, &wwc, rows, cols, &mut c, n);
         }
     }
-    // C(k, l) and C(l, k) come from different blocks (load on k's tooth, or on
-    // l's): equal by reciprocity up to the FE's round-off and, across teeth,
-    // the mesh's departure from rotational symmetry; use their mean.
+    // C(k, l) and C(l, k) come from different blocks (load on k's tooth, or
+    // on l's): equal by reciprocity where both members' blocks were
+    // symmetrized on loading (then one was assembled and is copied), else up
+    // to the FE's round-off and the mesh's departure from rotational
+    // symmetry (then both were, and their mean is taken).
+    let pair_of: Vec<usize> = g
+        .slices
+        .iter()
+        .map(|s| pairs.iter().position(|&j| j == s.pair).unwrap_or(0))
+        .collect();
     for k in 0..n {
         for l in 0..k {
-            let m = 0.5 * (c[k * n + l] + c[l * n + k]);
+            let m = if mirrored[pair_of[k] * pairs.len() + pair_of[l]] {
+                c[l * n + k]
+            } else if mirrored[pair_of[l] * pairs.len() + pair_of[k]] {
+                c[k * n + l]
+            } else {
+                0.5 * (c[k * n + l] + c[l * n + k])
+            };
             c[k * n + l] = m;
             c[l * n + k] = m;
         }

@@ -72,6 +72,9 @@ pub const RHO_MAX: f64 = 1.0;
 
 /// Generating parameters and the Jacobian of (L, d) there.
 type NewtonStart = ([f64; 2], Option<nalgebra::Matrix2<f64>>);
+/// Last Newton step (in η) of the column search.
+const NEWTON_STOP: f64 = 1e-3;
+
 /// (d²lag/dη², ∂r/∂η) at an interior column minimum.
 type Curvature = (f64, [f64; 3]);
 
@@ -148,47 +151,37 @@ impl Column<'_> {
         let mut best = self.descend(start, lo, hi)?;
         let beyond = |end: f64, out: Option<f64>, towards: f64| {
             let out = out?;
-            (self.value(end + towards * 1e-5) < best.1).then(|| self.boundary(end, out))
+            (self.value(end + towards * 1e-5) < best.lag).then(|| self.boundary(end, out))
         };
-        let extended = if best.0 <= lo + 1e-9 {
+        let extended = if best.eta <= lo + 1e-9 {
             beyond(lo, lo_out, -1.0).map(|b| (b, lo))
-        } else if best.0 >= hi - 1e-9 {
+        } else if best.eta >= hi - 1e-9 {
             beyond(hi, hi_out, 1.0).map(|b| (hi, b))
         } else {
             None
         };
         if let Some((a, b)) = extended {
-            if let Some(found) = self.descend(best.0, a, b) {
-                if found.1 <= best.1 {
+            if let Some(found) = self.descend(best.eta, a, b) {
+                if found.lag <= best.lag {
                     best = found;
                 }
             }
             // A minimum on the boundary has no interior curvature.
-            if best.0 <= a + 1e-9 || best.0 >= b - 1e-9 {
-                best.2 = None;
+            if best.eta <= a + 1e-9 || best.eta >= b - 1e-9 {
+                best.curvature = None;
             }
         }
-        let (x, _, curv) = best;
-        let (lag, point) = self.eval(x)?;
-        Some(ColumnMin {
-            eta: x,
-            lag,
-            point,
-            curvature: curv,
-        })
+        Some(best)
     }
 
     /// Damped Newton for the smallest lag on [lo, hi] from `start`, with
     /// central differences of step 1e-5 in η; steps are projected onto the
-    /// interval and halved until lag falls. Returns (η, lag, curvature at
-    /// the last iterate where both neighbours were active); None where the
-    /// start itself is inactive.
-    fn descend(&self, start: f64, lo: f64, hi: f64) -> Option<(f64, f64, Option<Curvature>)> {
+    /// interval and halved until lag falls. The curvature is that of the
+    /// last iterate where both neighbours were active. None where the start
+    /// itself is inactive.
+    fn descend(&self, start: f64, lo: f64, hi: f64) -> Option<ColumnMin> {
         let mut x = start.clamp(lo, hi);
-        let mut fx = self.value(x);
-        if !fx.is_finite() {
-            return None;
-        }
+        let (mut fx, mut point) = self.eval(x)?;
         let d = 1e-5;
         let mut curv = None;
         for _ in 0..40 {
@@ -226,10 +219,8 @@ impl Column<'_> {
                 } else {
                     (x + s).clamp(lo, hi)
                 };
-                let fnew = self.value(xn);
-                if fnew < fx {
-                    x = xn;
-                    fx = fnew;
+                if let Some((fnew, pnew)) = self.eval(xn).filter(|e| e.0 < fx) {
+                    (x, fx, point) = (xn, fnew, pnew);
                     moved = true;
                     break;
                 }
@@ -238,13 +229,20 @@ impl Column<'_> {
             if !moved {
                 break;
             }
-            // Quadratic convergence: after a full Newton step of < 1e-6 the
-            // next one is below round-off.
-            if step.abs() < 1e-6 && s == step {
+            // A full Newton step of less than STOP: the next one would move
+            // η by about STOP × (relative error of the difference curvature,
+            // ~1e-2), the point by well under a micrometre, and the lag,
+            // stationary there, by nothing measurable.
+            if step.abs() < NEWTON_STOP && s == step {
                 break;
             }
         }
-        Some((x, fx, curv))
+        Some(ColumnMin {
+            eta: x,
+            lag: fx,
+            point,
+            curvature: curv,
+        })
     }
 
     /// The active part of the column from the surface of roll angles'
