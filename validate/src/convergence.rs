@@ -1,7 +1,9 @@
 //! `validate convergence <scene>`: mesh convergence of the reference LTCA.
-//! The TE at one position and torque on three mesh levels (standard
-//! blanks), the observed order of convergence and the Richardson
-//! extrapolation, and how far each level lies from it. Written to
+//! The TE at one position and at each torque on three mesh levels (standard
+//! blanks; one set of unit-load columns serves every torque), the observed
+//! order of convergence and the Richardson extrapolation per torque, how
+//! far each level lies from it, and the reduced model's quasi-static LTCA
+//! at the same position against the extrapolated TE. Written to
 //! `<out>/<scene>/reference/convergence.json`; each level's result is kept
 //! under `convergence/` with the hash of its meshes and settings and reused.
 
@@ -28,14 +30,16 @@ pub struct LevelResult {
     pub h: f64,
     pub dofs: [usize; 2],
     pub constraints: usize,
-    pub te_urad: f64,
+    /// TE per torque of the study, µrad.
+    pub te_urad: Vec<f64>,
     /// The unloaded check at this level: TE at the vanishing torque against
     /// the UTCA of the generated flanks at the same position, µrad.
     #[serde(default)]
     pub unloaded_te_urad: f64,
     #[serde(default)]
     pub utca_te_urad: f64,
-    pub penalty_difference_pct: f64,
+    /// |TE − TE at the check penalty| / TE per torque, %.
+    pub penalty_difference_pct: Vec<f64>,
     pub factor_s: [f64; 2],
     pub position_s: f64,
     pub input_hash: String,
@@ -45,18 +49,29 @@ pub struct LevelResult {
     pub mesh_sha256: [String; 2],
 }
 
-/// The study.
+/// The study at one torque.
 #[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Convergence {
+pub struct TorqueConvergence {
     pub torque_nm: f64,
-    pub pinion_rotation_deg: f64,
-    pub levels: Vec<LevelResult>,
     /// Observed order p of TE(h) = TE∞ + c hᵖ from the three levels (None
     /// when the differences change sign: no monotone convergence).
     pub observed_order: Option<f64>,
     pub extrapolated_te_urad: Option<f64>,
     /// (TE(level) − TE∞) / TE∞ per level, %.
     pub error_to_extrapolation_pct: Vec<Option<f64>>,
+    /// The reduced model's quasi-static LTCA at the same position (the
+    /// scene's slices and stiffness files, standard blanks), µrad.
+    pub reduced_model_te_urad: f64,
+    /// (reduced model − TE∞) / TE∞, %.
+    pub reduced_model_error_pct: Option<f64>,
+}
+
+/// The study.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Convergence {
+    pub pinion_rotation_deg: f64,
+    pub levels: Vec<LevelResult>,
+    pub torques: Vec<TorqueConvergence>,
 }
 
 impl Convergence {
@@ -114,7 +129,7 @@ pub struct Study {
     pub levels: Vec<String>,
     /// Position index in the scene's sweep (its rotation steps).
     pub position: usize,
-    pub torque_nm: f64,
+    pub torques_nm: Vec<f64>,
     pub settings: ReferenceSettings,
     /// Right-hand sides per solve block.
     pub block: usize,
@@ -130,7 +145,7 @@ pub fn run(
     let Study {
         levels,
         position: index,
-        torque_nm,
+        torques_nm,
         settings,
         block,
     } = study.clone();
@@ -180,7 +195,7 @@ pub fn run(
             "wheel_mesh": mesh_sha256[1],
             "settings": settings,
             "phi": phi,
-            "torque_nm": torque_nm,
+            "torques_nm": torques_nm,
             "flank": side.flank_name(Which::Pinion),
         });
         let hash = format!("{:x}", Sha256::digest(key.to_string().as_bytes()));
@@ -216,9 +231,8 @@ pub fn run(
         pair.pinion.compliance.set_universe(&np);
         pair.wheel.compliance.set_universe(&nw);
         let r = pair
-            .position(phi, &[torque_nm])
+            .position(phi, &torques_nm)
             .with_context(|| format!("scene {}: convergence at level {level}", sc.name))?;
-        let l = &r.loads[0];
         let res = LevelResult {
             level: level.clone(),
             profile_elements: elements.profile,
@@ -226,44 +240,92 @@ pub fn run(
             h: 1.0 / (elements.profile as f64 * elements.face as f64).sqrt(),
             dofs: [pinion.compliance.dofs_free, wheel.compliance.dofs_free],
             constraints: r.constraints,
-            te_urad: l.te * 1e6,
+            te_urad: r.loads.iter().map(|l| l.te * 1e6).collect(),
             unloaded_te_urad: r.unloaded_te * 1e6,
             utca_te_urad,
-            penalty_difference_pct: ((l.te - l.te_check) / l.te).abs() * 100.0,
+            penalty_difference_pct: r
+                .loads
+                .iter()
+                .map(|l| ((l.te - l.te_check) / l.te).abs() * 100.0)
+                .collect(),
             factor_s: [pinion.compliance.factor_s, wheel.compliance.factor_s],
             position_s: r.cpu_s,
             input_hash: hash,
             mesh_sha256,
         };
         eprintln!(
-            "convergence {level}: TE {:.3} µrad at {torque_nm} N·m, unloaded {:.4} µrad (UTCA {:.4}) ({} + {} dofs, {} constraints, {:.0} s)",
+            "convergence {level}: TE {:.3?} µrad at {torques_nm:?} N·m, unloaded {:.4} µrad (UTCA {:.4}) ({} + {} dofs, {} constraints, {:.0} s)",
             res.te_urad, res.unloaded_te_urad, res.utca_te_urad, res.dofs[0], res.dofs[1], res.constraints, res.position_s
         );
         write_json(&path, &res)?;
         results.push(res);
     }
     results.sort_by(|a, b| b.h.total_cmp(&a.h));
-    let fit = (results.len() == 3)
-        .then(|| {
-            richardson(
-                [results[0].h, results[1].h, results[2].h],
-                [results[0].te_urad, results[1].te_urad, results[2].te_urad],
-            )
+    let reduced = reduced_model_te(scene, meshes, &g, phi, step, direction, &torques_nm)?;
+    let torques = torques_nm
+        .iter()
+        .enumerate()
+        .map(|(i, &torque_nm)| {
+            let fit = (results.len() == 3)
+                .then(|| {
+                    richardson(
+                        [results[0].h, results[1].h, results[2].h],
+                        [0, 1, 2].map(|k| results[k].te_urad[i]),
+                    )
+                })
+                .flatten();
+            let error = |te: f64| fit.map(|(_, inf)| (te - inf) / inf * 100.0);
+            TorqueConvergence {
+                torque_nm,
+                observed_order: fit.map(|f| f.0),
+                extrapolated_te_urad: fit.map(|f| f.1),
+                error_to_extrapolation_pct: results.iter().map(|r| error(r.te_urad[i])).collect(),
+                reduced_model_te_urad: reduced[i],
+                reduced_model_error_pct: error(reduced[i]),
+            }
         })
-        .flatten();
+        .collect();
     let c = Convergence {
-        torque_nm,
         pinion_rotation_deg: (step * index as f64).to_degrees(),
-        error_to_extrapolation_pct: results
-            .iter()
-            .map(|r| fit.map(|(_, inf)| (r.te_urad - inf) / inf * 100.0))
-            .collect(),
         levels: results,
-        observed_order: fit.map(|f| f.0),
-        extrapolated_te_urad: fit.map(|f| f.1),
+        torques,
     };
     write_json(&dir.join("convergence.json"), &c)?;
     Ok(c)
+}
+
+/// The reduced model's quasi-static TE (µrad) at pinion angle `phi`, per
+/// torque: the scene's stiffness files for standard blanks and its slice
+/// count, frictionless like the reference.
+fn reduced_model_te(
+    scene: &LoadedScene,
+    meshes: &Path,
+    g: &PairGeometry,
+    phi: f64,
+    step: f64,
+    direction: f64,
+    torques_nm: &[f64],
+) -> anyhow::Result<Vec<f64>> {
+    let sc = &scene.scene;
+    let fp = g.side(sc.loaded_flank);
+    let rs = preprocess::flank_stage::roll_surface(fp, &sc.utca)?;
+    let dir = meshes.join(&sc.name);
+    let load = |m| solver::ltca_stage::member_compliance(scene, g, &dir, m, Blank::Standard);
+    let pc = solver::compliance::PairCompliance {
+        pinion: load(Which::Pinion)?.0,
+        wheel: load(Which::Wheel)?.0,
+    };
+    let sweep = solver::ltca::Sweep {
+        start: phi,
+        step,
+        direction,
+        positions: 1,
+        slices: sc.ltca.slices,
+        friction: 0.0,
+    };
+    let r = solver::ltca::run(fp, &rs, &pc, &sweep, torques_nm)
+        .context("reduced model at the convergence study's position")?;
+    Ok(r[0].loads.iter().map(|l| l.te * 1e6).collect())
 }
 
 #[cfg(test)]
@@ -308,22 +370,19 @@ mod tests {
             h: 0.06,
             dofs: [1, 1],
             constraints: 1,
-            te_urad: 1.0,
+            te_urad: vec![1.0],
             unloaded_te_urad: 0.0,
             utca_te_urad: 0.0,
-            penalty_difference_pct: 0.0,
+            penalty_difference_pct: vec![0.0],
             factor_s: [0.0; 2],
             position_s: 0.0,
             input_hash: String::new(),
             mesh_sha256: [sha("pinion"), sha("wheel")],
         };
         let mut c = Convergence {
-            torque_nm: 300.0,
             pinion_rotation_deg: 0.0,
             levels: vec![level],
-            observed_order: None,
-            extrapolated_te_urad: None,
-            error_to_extrapolation_pct: vec![None],
+            torques: Vec::new(),
         };
         assert!(c.stale_levels(&dir).is_empty());
         write("wheel", "w2");

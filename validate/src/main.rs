@@ -107,9 +107,9 @@ enum Cmd {
         /// Position index in the scene's sweep (its rotation steps).
         #[arg(long, default_value_t = 0)]
         position: usize,
-        /// Pinion torque, N·m.
-        #[arg(long, default_value_t = 300.0)]
-        torque_nm: f64,
+        /// Pinion torques, N·m (default: the scene's loads).
+        #[arg(long, value_delimiter = ',')]
+        torque_nm: Vec<f64>,
         #[arg(long, default_value_t = 100.0)]
         penalty: f64,
         #[arg(long, default_value_t = 200.0)]
@@ -264,34 +264,47 @@ fn main() -> anyhow::Result<()> {
             penalty_check,
             block,
         } => {
-            if !(torque_nm.is_finite() && torque_nm > 0.0) {
-                anyhow::bail!("--torque-nm {torque_nm}: must be a positive number");
-            }
             let settings = penalty_settings(penalty, penalty_check, 2.0, 60.0)?;
             let sc = preprocess::scene::Scene::load(&scene)?;
+            let torques_nm = if torque_nm.is_empty() {
+                sc.scene.pinion_torque_nm.clone()
+            } else {
+                torque_nm
+            };
+            if let Some(t) = torques_nm.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
+                anyhow::bail!("--torque-nm {t}: must be a positive number");
+            }
             let study = validate::convergence::Study {
                 levels,
                 position,
-                torque_nm,
+                torques_nm,
                 settings,
                 block,
             };
             let c = validate::convergence::run(&sc, &meshes, &out, &study)?;
-            for (l, e) in c.levels.iter().zip(&c.error_to_extrapolation_pct) {
-                println!(
-                    "{:9} {:3} x {:3}: TE {:.3} urad, {} vs extrapolation",
-                    l.level,
-                    l.profile_elements,
-                    l.face_elements,
-                    l.te_urad,
-                    e.map_or("-".into(), |e| format!("{e:+.3} %"))
-                );
-            }
-            match (c.observed_order, c.extrapolated_te_urad) {
-                (Some(p), Some(t)) => {
-                    println!("observed order {p:.2}, extrapolated TE {t:.3} urad")
+            for (i, t) in c.torques.iter().enumerate() {
+                println!("{} N m:", t.torque_nm);
+                for (l, e) in c.levels.iter().zip(&t.error_to_extrapolation_pct) {
+                    println!(
+                        "  {:9} {:3} x {:3}: TE {:.3} urad, {} vs extrapolation",
+                        l.level,
+                        l.profile_elements,
+                        l.face_elements,
+                        l.te_urad[i],
+                        e.map_or("-".into(), |e| format!("{e:+.3} %"))
+                    );
                 }
-                _ => println!("no monotone convergence over these levels: no extrapolation"),
+                match (t.observed_order, t.extrapolated_te_urad) {
+                    (Some(p), Some(x)) => println!(
+                        "  observed order {p:.2}, extrapolated TE {x:.3} urad; reduced model {:.3} urad ({:+.3} %)",
+                        t.reduced_model_te_urad,
+                        t.reduced_model_error_pct.unwrap_or(f64::NAN)
+                    ),
+                    _ => println!(
+                        "  no monotone convergence over these levels: no extrapolation; reduced model {:.3} urad",
+                        t.reduced_model_te_urad
+                    ),
+                }
             }
         }
     }
