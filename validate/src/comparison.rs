@@ -223,9 +223,16 @@ pub fn compare(
             "Note: the reduced model ran with Coulomb friction μ = {mu}; the reference contact is frictionless, so part of the difference is friction.\n"
         );
     }
-    if let Some(c) =
-        read::<crate::convergence::Convergence>(&out.join(scene).join("reference/convergence.json"))
-    {
+    let conv_path = out.join(scene).join("reference/convergence.json");
+    let conv = read::<crate::convergence::Convergence>(&conv_path);
+    if conv.is_none() && conv_path.exists() {
+        let _ = writeln!(
+            markdown,
+            "\n## Mesh convergence of the reference\n\nNot shown: {} was written by an older version; `make convergence` recomputes it.",
+            conv_path.display()
+        );
+    }
+    if let Some(c) = conv {
         let stale = c.stale_levels(&meshes.join(scene));
         if stale.is_empty() {
             convergence_markdown(&mut markdown, &c);
@@ -371,19 +378,21 @@ fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
     }
     let _ = writeln!(
         s,
-        "\nPer torque: TE on each level and its difference to the Richardson extrapolation TE∞ (observed order p); the penalty check of the finest level; the reduced model's quasi-static LTCA at the same position against TE∞. The sweeps of the comparison above use the reduced level's meshes, so its column is the reference's own discretization error there.\n"
+        "\nPer torque: TE on each level and its difference to the Richardson extrapolation TE∞ (observed order p; no extrapolation where the levels do not converge monotonically or p < {:.1}, i.e. not yet in the asymptotic range); the penalty check of the finest level; the reduced model's quasi-static LTCA at the same position against TE∞ and against the finest level. The sweeps of the comparison above use the reduced level's meshes, so its column is the reference's own discretization error there.\n",
+        crate::convergence::MIN_ORDER
     );
     let names: Vec<&str> = c.levels.iter().map(|l| l.level.as_str()).collect();
     let _ = writeln!(
         s,
-        "| load, N·m | {} | p | TE∞, µrad | penalty check % | reduced model, µrad (vs TE∞ %) |",
+        "| load, N·m | {} | p | TE∞, µrad | penalty check % | reduced model, µrad (vs TE∞ %) | reduced model vs {} % |",
         names
             .iter()
             .map(|n| format!("{n}, µrad (vs TE∞ %)"))
             .collect::<Vec<_>>()
-            .join(" | ")
+            .join(" | "),
+        names.last().unwrap_or(&"finest level")
     );
-    let _ = writeln!(s, "|---|{}---|---|---|---|", "---|".repeat(names.len()));
+    let _ = writeln!(s, "|---|{}---|---|---|---|---|", "---|".repeat(names.len()));
     for (i, t) in c.torques.iter().enumerate() {
         let pct = |e: Option<f64>| e.map_or("–".into(), |e| format!("{e:+.2}"));
         let levels: Vec<String> = c
@@ -394,7 +403,7 @@ fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
             .collect();
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {:.2} ({}) |",
+            "| {} | {} | {} | {} | {} | {:.2} ({}) | {:+.2} |",
             t.torque_nm,
             levels.join(" | "),
             opt(t.observed_order, 2),
@@ -404,7 +413,8 @@ fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
                 l.penalty_difference_pct[i]
             )),
             t.reduced_model_te_urad,
-            pct(t.reduced_model_error_pct)
+            pct(t.reduced_model_error_pct),
+            t.reduced_model_vs_finest_pct
         );
     }
 }
