@@ -126,13 +126,22 @@ impl RollSurface {
         })
     }
 
+    /// Node column i at or before face parameter ξ (clamped to the grid)
+    /// and ξ's weight w ∈ [0, 1] towards column i + 1.
+    pub fn face_cell(&self, xi: f64) -> (usize, f64) {
+        let nf = self.n_face;
+        let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
+        let i = (x as usize).min(nf - 2);
+        (i, x - i as f64)
+    }
+
     /// Bilinear interpolation of a node field at normalised (ξ, η).
     pub fn interpolate(&self, field: &[f64], xi: f64, eta: f64) -> f64 {
-        let (nf, np) = (self.n_face, self.n_profile);
-        let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
+        let np = self.n_profile;
+        let (i, a) = self.face_cell(xi);
         let y = (eta * (np - 1) as f64).clamp(0.0, (np - 1) as f64);
-        let (i, k) = ((x as usize).min(nf - 2), (y as usize).min(np - 2));
-        let (a, b) = (x - i as f64, y - k as f64);
+        let k = (y as usize).min(np - 2);
+        let b = y - k as f64;
         let f = |i: usize, k: usize| field[i * np + k];
         (1.0 - a) * ((1.0 - b) * f(i, k) + b * f(i, k + 1))
             + a * ((1.0 - b) * f(i + 1, k) + b * f(i + 1, k + 1))

@@ -119,11 +119,12 @@ pub fn assemble(
     // symmetrized on loading (then one was assembled and is copied), else up
     // to the FE's round-off and the mesh's departure from rotational
     // symmetry (then both were, and their mean is taken).
-    let pair_of: Vec<usize> = g
-        .slices
-        .iter()
-        .map(|s| pairs.iter().position(|&j| j == s.pair).unwrap_or(0))
-        .collect();
+    let mut pair_of = vec![0; n];
+    for (a, rows) in members.iter().enumerate() {
+        for &k in rows {
+            pair_of[k] = a;
+        }
+    }
     for k in 0..n {
         for l in 0..k {
             let m = if mirrored[pair_of[k] * pairs.len() + pair_of[l]] {

@@ -206,8 +206,10 @@ impl Column<'_> {
                 (Some(_), None) => -0.05 * ((fx - fm) / d).signum(),
                 (None, None) => break,
             };
-            // Projected onto the interval.
-            let step = (x + newton.clamp(-0.1, 0.1)).clamp(lo, hi) - x;
+            // Projected onto the interval (the full step lands exactly on
+            // an end of it).
+            let full = (x + newton.clamp(-0.1, 0.1)).clamp(lo, hi);
+            let step = full - x;
             if step.abs() < 1e-9 {
                 break;
             }
@@ -215,7 +217,7 @@ impl Column<'_> {
             let mut moved = false;
             while s.abs() > 1e-9 {
                 let xn = if s == step {
-                    (x + newton.clamp(-0.1, 0.1)).clamp(lo, hi)
+                    full
                 } else {
                     (x + s).clamp(lo, hi)
                 };
@@ -250,9 +252,8 @@ impl Column<'_> {
     /// the outer bound is None where the column is active to its end.
     fn active_interval(&self) -> Option<(End, End)> {
         let rs = self.rs;
-        let (nf, np) = (rs.n_face, rs.n_profile);
-        let x = (self.xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
-        let i = (x as usize).min(nf - 2);
+        let np = rs.n_profile;
+        let (i, _) = rs.face_cell(self.xi);
         let on = |k: usize| rs.active[i * np + k] && rs.active[(i + 1) * np + k];
         let eta = |k: usize| k as f64 / (np - 1) as f64;
         let first = (0..np).find(|&k| on(k))?;
@@ -348,18 +349,13 @@ struct ColumnMin {
     curvature: Option<Curvature>,
 }
 
-/// Start of the column search: where the tabulated roll angle along the
-/// column ξ crosses `target` (linear in the surface of roll angles' nodes),
-/// else the column end nearer to it.
 /// Start of the column search from the tabulated surface of roll angles:
 /// the smallest lag (E + ½ K (φ − φ(p))²) / λ₂ over the column's active
 /// nodes (linear between the two neighbouring node columns), refined by the
 /// parabola through it and its neighbours. None without active nodes.
 fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
-    let (nf, np) = (rs.n_face, rs.n_profile);
-    let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
-    let i = (x as usize).min(nf - 2);
-    let w = x - i as f64;
+    let np = rs.n_profile;
+    let (i, w) = rs.face_cell(xi);
     let lerp = |f: &[f64], k: usize| (1.0 - w) * f[i * np + k] + w * f[(i + 1) * np + k];
     let lag = |k: usize| -> Option<f64> {
         if !(rs.active[i * np + k] && rs.active[(i + 1) * np + k]) {
@@ -384,28 +380,6 @@ fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
             Some((k as f64 + t) / (np - 1) as f64)
         }
         _ => Some(at(k)),
-    }
-}
-
-fn level_crossing(rs: &RollSurface, xi: f64, target: f64) -> f64 {
-    let (nf, np) = (rs.n_face, rs.n_profile);
-    let x = (xi * (nf - 1) as f64).clamp(0.0, (nf - 1) as f64);
-    let i = (x as usize).min(nf - 2);
-    let w = x - i as f64;
-    let roll = |k: usize| (1.0 - w) * rs.roll[i * np + k] + w * rs.roll[(i + 1) * np + k];
-    let mut prev = roll(0) - target;
-    for k in 1..np {
-        let cur = roll(k) - target;
-        if prev == 0.0 || prev.signum() != cur.signum() {
-            return (k as f64 - 1.0 + prev / (prev - cur)) / (np - 1) as f64;
-        }
-        prev = cur;
-    }
-    let (r0, r1) = (roll(0), roll(np - 1));
-    if (r0 - target).abs() < (r1 - target).abs() {
-        0.0
-    } else {
-        1.0
     }
 }
 
@@ -486,8 +460,10 @@ pub fn pair_slices(
             last: Default::default(),
             trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
         };
-        let start =
-            tabulated_minimum(rs, xi, target).unwrap_or_else(|| level_crossing(rs, xi, target));
+        // No active node on the column: no contact there either.
+        let Some(start) = tabulated_minimum(rs, xi, target) else {
+            continue;
+        };
         if let Some(c) = col.minimum(start) {
             raw.push((band, xi, c));
         }

@@ -115,6 +115,18 @@ fn model<'a>(f: &'a Fixture, damping: f64, drive: Drive) -> Model<'a> {
     }
 }
 
+/// Both bodies free, no torque, no damping.
+fn free_undamped(f: &Fixture) -> Model<'_> {
+    model(
+        f,
+        0.0,
+        Drive::Free {
+            pinion_torque: 0.0,
+            wheel_torque: 0.0,
+        },
+    )
+}
+
 /// The coast flanks touch where an independent geometric contact search on
 /// the coast side (at the same absolute pinion angle) says they do: just
 /// past that lag the pinion's mesh torque is negative (the wheel pushes it
@@ -125,14 +137,7 @@ fn coast_flanks_touch_where_the_direct_contact_search_finds_them() {
     let f = fixture();
     let cfp = f.g.side(Side::Coast);
     let crs = rolls(&f.g, Side::Coast);
-    let m = model(
-        f,
-        0.0,
-        Drive::Free {
-            pinion_torque: 0.0,
-            wheel_torque: 0.0,
-        },
-    );
+    let m = free_undamped(f);
     let r = f.drive.ratio;
     // 3 µrad either side of the contact lag: the table's cubics smear the
     // onset of contact over about a µrad (a few hundredths of a N·m).
@@ -159,14 +164,7 @@ fn coast_flanks_touch_where_the_direct_contact_search_finds_them() {
 }
 
 fn energy_run(f: &Fixture, relative_speed: f64, t_end: f64) -> (f64, Impacts, usize) {
-    let m = model(
-        f,
-        0.0,
-        Drive::Free {
-            pinion_torque: 0.0,
-            wheel_torque: 0.0,
-        },
-    );
+    let m = free_undamped(f);
     let r = f.drive.ratio;
     let [hi, lo] = f.coast.contact_lags(&f.drive, 0.0).unwrap();
     let w = 30.0 * std::f64::consts::PI / 30.0;
