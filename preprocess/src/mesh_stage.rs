@@ -5,7 +5,7 @@ use crate::design::Member;
 use crate::gear_body::BlankDimensions;
 use crate::mesh::{mesh_member, MeshError, MeshReport, MeshRequest};
 use crate::output::write_json;
-use crate::pair::{teeth_in_contact, PairGeometry};
+use crate::pair::{opposite_teeth_in_contact, teeth_in_contact, PairGeometry};
 use crate::scene::{Blank, FlankElements, LoadedScene};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
@@ -129,7 +129,14 @@ pub fn refined_teeth_on(
             .map(|&b| cycles_of(b))
             .fold(0.0, f64::max),
     };
-    let (pt, wt) = teeth_in_contact(g, side, cycles, sc.rotation.step_deg.to_radians());
+    let step = sc.rotation.step_deg.to_radians();
+    // The opposite flanks are numbered as the body's teeth over the loaded
+    // side's sweep (both sides share the pinion angle).
+    let (pt, wt) = if side == sc.loaded_flank {
+        teeth_in_contact(g, side, cycles, step)
+    } else {
+        opposite_teeth_in_contact(g, sc.loaded_flank, cycles, step)
+    };
     match member {
         Member::Pinion => pt,
         Member::Wheel => wt,

@@ -361,3 +361,79 @@ pub fn teeth_in_contact(
     }
     (p.into_iter().collect(), w.into_iter().collect())
 }
+
+/// How the opposite flank pair's wheel teeth map onto the loaded pair's.
+///
+/// Both pairs turn the pinion through the same angle φ, but each places the
+/// wheel at its own conjugate offset: ψ = −(z₁/z₂) φ + o (+ its lag). The
+/// offsets differ by the conjugate flanks' angular backlash B plus whole
+/// wheel pitches, d (o_l − o_o) = B + m τ₂ with d the loaded side's pinion
+/// direction and B reduced to the nearest pitch (the flanks across one tooth
+/// space). Placed with the backlash B, the opposite model's wheel stands m
+/// pitches off the physical wheel: its tooth k is the body's tooth k − d m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OppositePlacement {
+    /// Angular backlash B of the conjugate flanks at the wheel, rad.
+    pub backlash: f64,
+    /// Physical wheel tooth of the opposite model's wheel tooth k: k + shift.
+    pub wheel_tooth_shift: i64,
+}
+
+impl OppositePlacement {
+    /// The `opposite` flank pair's placement against the `loaded` one's,
+    /// `direction` being the loaded side's pinion direction.
+    pub fn new(loaded: &FlankPair, opposite: &FlankPair, direction: f64) -> Self {
+        let pitch2 = opposite.wheel.gen.frame.pitch();
+        let b = direction * (loaded.wheel_offset - opposite.wheel_offset);
+        let m = (b / pitch2).round();
+        OppositePlacement {
+            backlash: b - pitch2 * m,
+            wheel_tooth_shift: -(direction * m) as i64,
+        }
+    }
+}
+
+impl PairGeometry {
+    /// The opposite side's placement against the `loaded` side's.
+    pub fn opposite_placement(&self, loaded: Side) -> OppositePlacement {
+        OppositePlacement::new(
+            self.side(loaded),
+            self.side(loaded.other()),
+            pinion_direction(&self.data, loaded),
+        )
+    }
+}
+
+/// Pinion and wheel teeth (physical indices mod z) whose flank opposite to
+/// `loaded` can touch while the pinion turns `mesh_cycles` mesh cycles of the
+/// loaded side's sweep (from the entry of its tooth 0), with one mesh cycle
+/// of margin at either end for the tables that span the sweep.
+pub fn opposite_teeth_in_contact(
+    g: &PairGeometry,
+    loaded: Side,
+    mesh_cycles: f64,
+    step: f64,
+) -> (Vec<usize>, Vec<usize>) {
+    let lp = g.side(loaded);
+    let op = g.side(loaded.other());
+    let tau = g.data.mesh_cycle();
+    let dir = pinion_direction(&g.data, loaded);
+    let shift = g.opposite_placement(loaded).wheel_tooth_shift;
+    let margin = (tau / step).ceil() as i64;
+    let n = (mesh_cycles * tau / step).round() as i64;
+    let (z1, z2) = (
+        g.data.members[0].teeth as i64,
+        g.data.members[1].teeth as i64,
+    );
+    let mut p = std::collections::BTreeSet::new();
+    let mut w = std::collections::BTreeSet::new();
+    for k in -margin..=n + margin {
+        // Both sides share the pinion angle φ.
+        let phi = lp.roll_range[0] + dir * step * k as f64;
+        for j in pairs_in_contact(phi, op.roll_range, tau) {
+            p.insert((j as i64).rem_euclid(z1) as usize);
+            w.insert((-(j as i64) + shift).rem_euclid(z2) as usize);
+        }
+    }
+    (p.into_iter().collect(), w.into_iter().collect())
+}

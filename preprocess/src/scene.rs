@@ -84,8 +84,8 @@ pub struct MultibodySettings {
     /// teeth that can touch are refined in the meshes too and get their own
     /// stiffness files, and the element carries both flank pairs with the
     /// backlash between them (tooth separation, coast-side impacts, rattle).
-    /// Needs standard blanks (the coast side's tooth numbering is not yet
-    /// mapped onto a lightweight wheel's teeth).
+    /// With a lightweight wheel, every wheel tooth whose coast flank the
+    /// runs meet is solved (the rattle run's rotation included).
     pub coast_contact: bool,
     /// Rattle run (needs `coast_contact`): the pinion turns at
     /// `rattle_pinion_rpm` with a speed fluctuation of relative amplitude
@@ -136,11 +136,16 @@ impl Scene {
     /// repeats from tooth to tooth, so its run-up reuses the sweep's teeth.
     pub fn contact_mesh_cycles(&self, wheel: Blank, mesh_cycle_rad: f64) -> f64 {
         let sweep = self.rotation.mesh_cycles(wheel);
-        if wheel == Blank::Lightweight
-            && self.analyses.multibody
-            && self.multibody.runup_wheel_blanks.contains(&wheel)
-        {
-            sweep.max(self.multibody.runup_rotation() / mesh_cycle_rad + 1.0)
+        if wheel == Blank::Lightweight && self.analyses.multibody {
+            let mb = &self.multibody;
+            let mut cycles = sweep;
+            if mb.runup_wheel_blanks.contains(&wheel) {
+                cycles = cycles.max(mb.runup_rotation() / mesh_cycle_rad + 1.0);
+            }
+            if mb.coast_contact && mb.rattle_time_s > 0.0 {
+                cycles = cycles.max(mb.rattle_rotation() / mesh_cycle_rad + 1.0);
+            }
+            cycles
         } else {
             sweep
         }
@@ -152,6 +157,14 @@ impl MultibodySettings {
     pub fn runup_rotation(&self) -> f64 {
         let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
         0.5 * (w(self.runup_rpm[0]) + w(self.runup_rpm[1])) * self.runup_time_s
+    }
+
+    /// Largest pinion rotation of the rattle run, rad: the mean speed with
+    /// the fluctuation's amplitude added throughout.
+    pub fn rattle_rotation(&self) -> f64 {
+        self.rattle_pinion_rpm * std::f64::consts::PI / 30.0
+            * (1.0 + self.rattle_speed_fluctuation.abs())
+            * self.rattle_time_s
     }
 }
 
@@ -550,16 +563,6 @@ impl Scene {
                 "multibody.rattle_time_s",
                 mb.rattle_time_s.to_string(),
                 "must be 0 unless multibody.coast_contact = true (rattle needs both flanks)",
-            ));
-        }
-        if mb.coast_contact
-            && (self.blanks.wheel.contains(&Blank::Lightweight)
-                || self.blanks.pinion.contains(&Blank::Lightweight))
-        {
-            return Err(fail(
-                "multibody.coast_contact",
-                "true".into(),
-                "needs standard blanks only (blanks.pinion and blanks.wheel)",
             ));
         }
         if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {

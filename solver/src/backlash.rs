@@ -16,20 +16,24 @@
 //! flanks touch at θ = θ₀(q₁), the coast flanks at θ = −B − θ₀ᶜ(q₁ᶜ), and the
 //! free play between them is B + θ₀ + θ₀ᶜ. The coast potential
 //! Vᶜ(a − q₁, c − q₂) adds to the drive side's: its gradient changes sign,
-//! its Hessian does not. Shifting c by a wheel pitch only renumbers the
-//! wheel's teeth, which is why both members' blanks must be axisymmetric.
+//! its Hessian does not. Reducing B to the nearest pitch renumbers the
+//! wheel's teeth: the coast model's wheel tooth k is the body's tooth
+//! k + shift ([`OppositePlacement`]), which the coast side's wheel
+//! compliance applies, so that a blank that is not axisymmetric gives each
+//! coast flank its own tooth's stiffness. Both tables are periodic
+//! (axisymmetric blanks) or neither: a non-periodic coast table is built
+//! over the drive table's range mirrored, q₁ᶜ = a − q₁ (see
+//! [`Coast::mirrored_start`]).
 
 use crate::mesh_table::{MeshState, MeshTable};
 use crate::SolverError;
-use preprocess::pair::FlankPair;
+use preprocess::pair::{FlankPair, OppositePlacement};
 
 /// Angular backlash B = d_d (o_d − o_c) of the conjugate flanks at the
 /// wheel, reduced to the nearest wheel pitch, rad: how far the wheel turns
 /// against the drive direction from drive-flank to coast-flank contact.
 pub fn conjugate_backlash(drive_fp: &FlankPair, coast_fp: &FlankPair, drive_direction: f64) -> f64 {
-    let pitch2 = 2.0 * std::f64::consts::PI / coast_fp.wheel.gen.frame.teeth as f64;
-    let b = drive_direction * (drive_fp.wheel_offset - coast_fp.wheel_offset);
-    b - pitch2 * (b / pitch2).round()
+    OppositePlacement::new(drive_fp, coast_fp, drive_direction).backlash
 }
 
 /// The coast flanks' table in the drive side's coordinates.
@@ -59,10 +63,11 @@ impl Coast {
                 "coast table turns the pinion the same way as the drive table ({dc} vs {dd})"
             )));
         }
-        if !(drive.spec.periodic && coast.spec.periodic) {
-            return Err(SolverError::Table(
-                "coast-side contact needs periodic tables (standard blanks)".into(),
-            ));
+        if drive.spec.periodic != coast.spec.periodic {
+            return Err(SolverError::Table(format!(
+                "drive table periodic: {}, coast table periodic: {} (both or neither)",
+                drive.spec.periodic, coast.spec.periodic
+            )));
         }
         let r = drive.ratio;
         let backlash = conjugate_backlash(drive_fp, coast_fp, dd);
@@ -73,6 +78,16 @@ impl Coast {
             table: coast,
             backlash,
         })
+    }
+
+    /// Start (pinion angle, rad) of a non-periodic coast table that covers
+    /// the non-periodic `drive` table's range mirrored: with the same step
+    /// and number of positions it gives a = (positions − 1) · step, so that
+    /// q₁ᶜ = a − q₁ runs over the coast table's range as q₁ runs over the
+    /// drive table's.
+    pub fn mirrored_start(drive: &MeshTable) -> f64 {
+        let s = &drive.spec;
+        s.start + s.direction * s.step * (s.positions - 1) as f64
     }
 
     /// Coast coordinates of the drive coordinates q.

@@ -27,6 +27,9 @@ pub struct MemberCompliance {
     offsets: Vec<i32>,
     global: Vec<f64>,
     depth: Vec<f64>,
+    /// Body tooth of pair-numbering tooth t: t + tooth_shift (the coast
+    /// model's wheel, see `preprocess::pair::OppositePlacement`).
+    tooth_shift: i64,
     pub material: Material,
 }
 
@@ -49,6 +52,7 @@ impl MemberCompliance {
             offsets: d.offsets,
             global: d.global,
             depth: d.depth_h,
+            tooth_shift: 0,
             material,
         };
         m.symmetrize();
@@ -65,7 +69,7 @@ impl MemberCompliance {
     fn partner(&self, s: usize, oi: usize) -> Option<(usize, usize)> {
         let o = self.offsets[oi];
         let tooth = self.solved[s] as i64 + o as i64;
-        let sp = self.solved_index(tooth).ok()?;
+        let sp = self.body_index(tooth).ok()?;
         let op = self.offsets.iter().position(|&x| x == -o)?;
         Some((sp, op))
     }
@@ -105,8 +109,22 @@ impl MemberCompliance {
             .is_some_and(|oi| self.partner(s, oi).is_some())
     }
 
+    /// The same data for a model whose tooth t is the body's tooth
+    /// t + `shift`.
+    pub fn with_tooth_shift(self, shift: i64) -> Self {
+        MemberCompliance {
+            tooth_shift: shift,
+            ..self
+        }
+    }
+
     /// Index of the solved tooth whose data serve tooth `tooth` (pair numbering, any sign).
     pub fn solved_index(&self, tooth: i64) -> Result<usize, SolverError> {
+        self.body_index(tooth + self.tooth_shift)
+    }
+
+    /// Index of the solved tooth whose data serve the body's tooth `tooth`.
+    fn body_index(&self, tooth: i64) -> Result<usize, SolverError> {
         if self.axisymmetric {
             return Ok(0);
         }
@@ -289,6 +307,32 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// A model whose tooth t is the body's tooth t + 1 (the coast model's
+    /// wheel of the white-paper pair) takes tooth t's data from the body's
+    /// tooth t + 1, wrapping round the wheel, and says which body tooth it
+    /// missed; the reciprocal pairing of the blocks stays the body's.
+    #[test]
+    fn shifted_model_tooth_t_takes_the_body_tooth_t_plus_shift() {
+        let (_, m) = member();
+        let shifted = m.clone().with_tooth_shift(1);
+        for t in [-1i64, 0, 1] {
+            assert_eq!(
+                shifted.solved_index(t).unwrap(),
+                m.solved_index(t + 1).unwrap()
+            );
+        }
+        assert_eq!(shifted.solved_index(-6).unwrap(), 0);
+        match shifted.solved_index(2) {
+            Err(SolverError::ToothNotSolved { tooth, .. }) => assert_eq!(tooth, 3),
+            other => panic!("{other:?}"),
+        }
+        for s in 0..3 {
+            for o in -1..=1 {
+                assert_eq!(shifted.mirrored(s, o), m.mirrored(s, o));
             }
         }
     }

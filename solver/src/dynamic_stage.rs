@@ -239,11 +239,14 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             let periodic = wb == Blank::Standard && pb == Blank::Standard;
             let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
             // The 10 rpm runs go one sweep step past the sweep's end.
-            let range = if runs_up {
-                sc.rotation.mesh_cycles(wb).max(mb.runup_rotation() / tau) * tau
-            } else {
-                sc.rotation.mesh_cycles(wb) * tau
-            } + 3.0 * sweep.step;
+            let mut cycles = sc.rotation.mesh_cycles(wb);
+            if runs_up {
+                cycles = cycles.max(mb.runup_rotation() / tau);
+            }
+            if coast_rs.is_some() && mb.rattle_time_s > 0.0 {
+                cycles = cycles.max(mb.rattle_rotation() / tau);
+            }
+            let range = cycles * tau + 3.0 * sweep.step;
             let step = tau / per_cycle as f64;
             let positions = if periodic {
                 per_cycle
@@ -293,6 +296,8 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                             coast_side,
                         )?
                         .0,
+                        // The coast model's wheel teeth are the body's
+                        // shifted by whole pitches.
                         wheel: member_compliance_on(
                             scene,
                             &g,
@@ -301,7 +306,8 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                             wb,
                             coast_side,
                         )?
-                        .0,
+                        .0
+                        .with_tooth_shift(g.opposite_placement(side).wheel_tooth_shift),
                     };
                     eprintln!("multibody {pb:?}/{wb:?}: coast-flank table");
                     let ctable = MeshTable::build(
@@ -311,7 +317,11 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                         &g.frames[0],
                         ratio,
                         TableSpec {
-                            start: cfp.roll_range[0],
+                            start: if periodic {
+                                cfp.roll_range[0]
+                            } else {
+                                Coast::mirrored_start(&table)
+                            },
                             direction: pinion_direction(&g.data, coast_side),
                             ..table.spec
                         },
