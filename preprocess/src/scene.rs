@@ -83,9 +83,10 @@ pub struct MultibodySettings {
     /// Coast-flank contact in the multibody element: the coast flanks of the
     /// teeth that can touch are refined in the meshes too and get their own
     /// stiffness files, and the element carries both flank pairs with the
-    /// backlash between them (tooth separation, coast-side impacts, rattle).
-    /// With a lightweight wheel, every wheel tooth whose coast flank the
-    /// runs meet is solved (the rattle run's rotation included).
+    /// backlash between them (tooth separation, coast-side impacts, rattle);
+    /// `solver ltca` also runs the scene's loads on the coast flanks. With a
+    /// lightweight wheel, every wheel tooth whose coast flank the runs meet
+    /// is solved (the rattle run's rotation included).
     pub coast_contact: bool,
     /// Rattle run (needs `coast_contact`): the pinion turns at
     /// `rattle_pinion_rpm` with a speed fluctuation of relative amplitude

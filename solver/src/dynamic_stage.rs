@@ -14,7 +14,7 @@
 use crate::backlash::Coast;
 use crate::compliance::PairCompliance;
 use crate::ltca::mean_ptp;
-use crate::ltca_stage::{member_compliance, member_compliance_on, scene_sweep};
+use crate::ltca_stage::{coast_compliance, member_compliance, scene_sweep};
 use crate::mesh_table::{MeshTable, TableSpec};
 use crate::multibody::{
     integrate, interpolate, wheel_driven, Drive, Fluctuation, Impacts, Integrator, Model, Ramp,
@@ -286,29 +286,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             let coast = match &coast_rs {
                 Some(crs) => {
                     let cfp = g.side(coast_side);
-                    let cpc = PairCompliance {
-                        pinion: member_compliance_on(
-                            scene,
-                            &g,
-                            &dir,
-                            Member::Pinion,
-                            pb,
-                            coast_side,
-                        )?
-                        .0,
-                        // The coast model's wheel teeth are the body's
-                        // shifted by whole pitches.
-                        wheel: member_compliance_on(
-                            scene,
-                            &g,
-                            &dir,
-                            Member::Wheel,
-                            wb,
-                            coast_side,
-                        )?
-                        .0
-                        .with_tooth_shift(g.opposite_placement(side).wheel_tooth_shift),
-                    };
+                    let cpc = coast_compliance(scene, &g, &dir, pb, wb)?.0;
                     eprintln!("multibody {pb:?}/{wb:?}: coast-flank table");
                     let ctable = MeshTable::build(
                         cfp,

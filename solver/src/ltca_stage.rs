@@ -57,6 +57,37 @@ pub struct BlankSummary {
     pub wall_s: f64,
     pub loads: Vec<LoadSummary>,
     pub dir: PathBuf,
+    /// With coast-side contact (`multibody.coast_contact`): the same loads
+    /// on the coast flanks.
+    pub coast: Option<CoastSummary>,
+}
+
+/// The coast flanks under the scene's loads: the pinion driving the other
+/// way over the same pinion angles (the sweep run backwards), each coast
+/// flank with its own body tooth's compliance. TEs are the coast side's
+/// lags (positive, as on the drive side); the drive side's lag at coast
+/// contact is −backlash − TE.
+#[derive(Debug, Clone, Serialize)]
+pub struct CoastSummary {
+    /// Angular backlash B of the conjugate flanks at the wheel, µrad.
+    pub backlash_urad: f64,
+    /// Body wheel tooth of the coast model's tooth k: k + this.
+    pub wheel_tooth_shift: i64,
+    pub utca_te_mean_urad: f64,
+    pub utca_te_ptp_urad: f64,
+    pub stiffness_files: Vec<PathBuf>,
+    pub loads: Vec<LoadSummary>,
+    pub dir: PathBuf,
+}
+
+/// The coast side's sweep over the pinion angles of the loaded side's
+/// `sweep`, backwards (in the coast side's driving direction).
+pub fn coast_sweep(sweep: &Sweep, g: &PairGeometry, loaded: Side) -> Sweep {
+    Sweep {
+        start: sweep.start + sweep.direction * sweep.step * (sweep.positions - 1) as f64,
+        direction: pinion_direction(&g.data, loaded.other()),
+        ..*sweep
+    }
 }
 
 /// Reads the member × blank stiffness file that `scene` needs, checking its
@@ -97,6 +128,29 @@ pub fn member_compliance_on(
     ))
 }
 
+/// Both members' compliance for loads on the coast (opposite) flanks, the
+/// wheel's teeth numbered as the coast model's (see
+/// `preprocess::pair::OppositePlacement`); also their plans.
+pub fn coast_compliance(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    pb: Blank,
+    wb: Blank,
+) -> anyhow::Result<(PairCompliance, [Planned; 2])> {
+    let side = scene.scene.loaded_flank;
+    let (pin, pin_plan) = member_compliance_on(scene, g, dir, Member::Pinion, pb, side.other())?;
+    let (whl, whl_plan) = member_compliance_on(scene, g, dir, Member::Wheel, wb, side.other())?;
+    let shift = g.opposite_placement(side).wheel_tooth_shift;
+    Ok((
+        PairCompliance {
+            pinion: pin,
+            wheel: whl.with_tooth_shift(shift),
+        },
+        [pin_plan, whl_plan],
+    ))
+}
+
 /// The scene's sweep for a wheel blank: from the entry of tooth 0, the
 /// blank's mesh cycles at the scene's step.
 pub fn scene_sweep(scene: &LoadedScene, g: &PairGeometry, wheel: Blank) -> Sweep {
@@ -121,6 +175,11 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let fp = g.side(side);
     let rs = roll_surface(fp, &sc.utca)?;
     let dir = meshes.join(&sc.name);
+    let coast_rs = if sc.multibody.coast_contact {
+        Some(roll_surface(g.side(side.other()), &sc.utca)?)
+    } else {
+        None
+    };
     let mut out_all = Vec::new();
     for &pb in &sc.blanks.pinion {
         let (pin, pin_path) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
@@ -145,6 +204,15 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             std::fs::create_dir_all(&odir)?;
             write_outputs(&odir, &res, &sc.pinion_torque_nm)?;
             let (um, up) = mean_ptp(&res.iter().map(|p| p.utca_te).collect::<Vec<_>>());
+            let coast = match &coast_rs {
+                Some(crs) => Some(
+                    coast_loads(scene, &g, &dir, crs, pb, wb, &sweep, &odir.join("coast"))
+                        .with_context(|| {
+                            format!("scene {}: coast-side LTCA, {wb:?} wheel blank", sc.name)
+                        })?,
+                ),
+                None => None,
+            };
             let summary = BlankSummary {
                 pinion_blank: pb,
                 wheel_blank: wb,
@@ -159,6 +227,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 wall_s: t0.elapsed().as_secs_f64(),
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
                 dir: odir.clone(),
+                coast,
             };
             write_json(&odir.join("summary.json"), &summary)?;
             for l in &summary.loads {
@@ -170,6 +239,14 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                     l.cpu_s_per_position * 1e3
                 );
             }
+            if let Some(c) = &summary.coast {
+                for l in &c.loads {
+                    eprintln!(
+                        "  {:6.1} N·m on the coast flanks: TE mean {:8.2} µrad, ptp {:7.2} µrad",
+                        l.torque_nm, l.te_mean_urad, l.te_ptp_urad
+                    );
+                }
+            }
             out_all.push(summary);
         }
     }
@@ -178,6 +255,46 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &out_all,
     )?;
     Ok(out_all)
+}
+
+/// The scene's loads on the coast flanks of pinion blank `pb` × wheel
+/// blank `wb` (see [`CoastSummary`]), written to `odir`.
+#[allow(clippy::too_many_arguments)]
+fn coast_loads(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    crs: &preprocess::utca::RollSurface,
+    pb: Blank,
+    wb: Blank,
+    sweep: &Sweep,
+    odir: &Path,
+) -> anyhow::Result<CoastSummary> {
+    let sc = &scene.scene;
+    let side = sc.loaded_flank;
+    let placement = g.opposite_placement(side);
+    let (pc, [pin_plan, whl_plan]) = coast_compliance(scene, g, dir, pb, wb)?;
+    let res = run_sweep(
+        g.side(side.other()),
+        crs,
+        &pc,
+        &coast_sweep(sweep, g, side),
+        &sc.pinion_torque_nm,
+    )?;
+    std::fs::create_dir_all(odir)?;
+    write_outputs(odir, &res, &sc.pinion_torque_nm)?;
+    let (um, up) = mean_ptp(&res.iter().map(|p| p.utca_te).collect::<Vec<_>>());
+    let summary = CoastSummary {
+        backlash_urad: placement.backlash * 1e6,
+        wheel_tooth_shift: placement.wheel_tooth_shift,
+        utca_te_mean_urad: um * 1e6,
+        utca_te_ptp_urad: up * 1e6,
+        stiffness_files: vec![pin_plan.path, whl_plan.path],
+        loads: load_summaries(&res, &sc.pinion_torque_nm),
+        dir: odir.to_path_buf(),
+    };
+    write_json(&odir.join("summary.json"), &summary)?;
+    Ok(summary)
 }
 
 /// Per-torque statistics over the sweep.

@@ -10,6 +10,8 @@ use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use preprocess::utca::{LineGrid, RollSurface};
 use solver::backlash::{conjugate_backlash, Coast};
 use solver::compliance::PairCompliance;
+use solver::ltca::Sweep;
+use solver::ltca_stage::coast_sweep;
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{
     integrate, Drive, Fluctuation, Impacts, Integrator, Model, Scheme, State, StepControl,
@@ -46,6 +48,8 @@ struct Fixture {
     g: PairGeometry,
     drive: MeshTable,
     coast: Coast,
+    /// The coast flanks' compliance that built the coast table.
+    coast_compliance: PairCompliance,
 }
 
 fn rolls(g: &PairGeometry, side: Side) -> RollSurface {
@@ -78,7 +82,7 @@ fn fixture() -> &'static Fixture {
                 pinion: common::compliance(&g, &pinion, Member::Pinion, side, pt[pt.len() / 2]),
                 wheel: common::compliance(&g, &wheel, Member::Wheel, side, wt[wt.len() / 2]),
             };
-            MeshTable::build(
+            let t = MeshTable::build(
                 fp,
                 &rolls(&g, side),
                 &pc,
@@ -95,12 +99,18 @@ fn fixture() -> &'static Fixture {
                     torque_max_nm: 600.0,
                 },
             )
-            .unwrap()
+            .unwrap();
+            (t, pc)
         };
-        let drive = table(Side::Drive, &pd, &wd);
-        let coast = table(Side::Coast, &pc, &wc);
+        let (drive, _) = table(Side::Drive, &pd, &wd);
+        let (coast, coast_compliance) = table(Side::Coast, &pc, &wc);
         let coast = Coast::place(g.side(Side::Drive), &drive, g.side(Side::Coast), coast).unwrap();
-        Fixture { g, drive, coast }
+        Fixture {
+            g,
+            drive,
+            coast,
+            coast_compliance,
+        }
     })
 }
 
@@ -161,6 +171,48 @@ fn coast_flanks_touch_where_the_direct_contact_search_finds_them() {
         assert!(closed > 0.2, "q1 {q1}: drive contact {closed} N m");
         assert!(open.abs() < 0.1 * closed, "q1 {q1}: open {open} N m");
     }
+}
+
+/// Two paths to one loaded coast contact: the coast-loaded LTCA (coast
+/// flanks, the drive sweep's pinion angles run backwards) gives lag θᶜ
+/// under torque T; at drive lag −B − θᶜ the multibody element (the coast
+/// table placed across the backlash) must then carry a pinion torque of −T.
+#[test]
+fn coast_loaded_ltca_and_the_elements_coast_contact_carry_the_same_torque() {
+    let f = fixture();
+    let m = free_undamped(f);
+    let r = f.drive.ratio;
+    let positions = 9;
+    let drive_sweep = Sweep {
+        start: f.drive.spec.start,
+        step: f.drive.span() / positions as f64,
+        direction: f.drive.spec.direction,
+        positions,
+        slices: f.drive.spec.slices,
+        friction: 0.0,
+    };
+    let sweep = coast_sweep(&drive_sweep, &f.g, Side::Drive);
+    let torques = [50.0, 200.0, 500.0];
+    let res = solver::ltca::run(
+        f.g.side(Side::Coast),
+        &rolls(&f.g, Side::Coast),
+        &f.coast_compliance,
+        &sweep,
+        &torques,
+    )
+    .unwrap();
+    let mut worst: f64 = 0.0;
+    for (k, p) in res.iter().enumerate() {
+        let q1 = drive_sweep.step * (positions - 1 - k) as f64;
+        for (l, &t) in p.loads.iter().zip(&torques) {
+            let theta = -f.coast.backlash - l.te;
+            let torque = m.mesh([q1, r * q1 - theta]).unwrap().0.grad[0];
+            let e = (torque + t).abs() / t;
+            worst = worst.max(e);
+            assert!(e < 0.01, "q1 {q1}: {torque} N m against -{t} N m");
+        }
+    }
+    eprintln!("worst relative torque difference {worst:.2e}");
 }
 
 fn energy_run(f: &Fixture, relative_speed: f64, t_end: f64) -> (f64, Impacts, usize) {
