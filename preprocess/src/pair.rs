@@ -343,20 +343,37 @@ pub fn teeth_in_contact(
     mesh_cycles: f64,
     step: f64,
 ) -> (Vec<usize>, Vec<usize>) {
-    let fp = g.side(side);
+    let n = (mesh_cycles * g.data.mesh_cycle() / step).round() as i64;
+    teeth_over_sweep(g, side, side, 0..=n, step, 0)
+}
+
+/// Pinion and wheel teeth (indices mod z) whose `contact` flank touches at
+/// the pinion angles φ_k = r₀ + d k `step` of the `sweep` side's sweep (r₀
+/// its roll range's start, d its pinion direction), k in `ks`; the wheel's
+/// model tooth −j is the body's tooth −j + `wheel_shift`.
+fn teeth_over_sweep(
+    g: &PairGeometry,
+    sweep: Side,
+    contact: Side,
+    ks: std::ops::RangeInclusive<i64>,
+    step: f64,
+    wheel_shift: i64,
+) -> (Vec<usize>, Vec<usize>) {
+    let start = g.side(sweep).roll_range[0];
+    let range = g.side(contact).roll_range;
     let tau = g.data.mesh_cycle();
-    let dir = pinion_direction(&g.data, side);
-    let n = (mesh_cycles * tau / step).round() as usize + 1;
+    let dir = pinion_direction(&g.data, sweep);
     let (z1, z2) = (
-        g.data.members[0].teeth as i32,
-        g.data.members[1].teeth as i32,
+        g.data.members[0].teeth as i64,
+        g.data.members[1].teeth as i64,
     );
     let mut p = std::collections::BTreeSet::new();
     let mut w = std::collections::BTreeSet::new();
-    for k in 0..n {
-        for j in pairs_in_contact(fp.roll_range[0] + dir * step * k as f64, fp.roll_range, tau) {
+    for k in ks {
+        for j in pairs_in_contact(start + dir * step * k as f64, range, tau) {
+            let j = j as i64;
             p.insert(j.rem_euclid(z1) as usize);
-            w.insert((-j).rem_euclid(z2) as usize);
+            w.insert((-j + wheel_shift).rem_euclid(z2) as usize);
         }
     }
     (p.into_iter().collect(), w.into_iter().collect())
@@ -414,26 +431,16 @@ pub fn opposite_teeth_in_contact(
     mesh_cycles: f64,
     step: f64,
 ) -> (Vec<usize>, Vec<usize>) {
-    let lp = g.side(loaded);
-    let op = g.side(loaded.other());
     let tau = g.data.mesh_cycle();
-    let dir = pinion_direction(&g.data, loaded);
-    let shift = g.opposite_placement(loaded).wheel_tooth_shift;
     let margin = (tau / step).ceil() as i64;
     let n = (mesh_cycles * tau / step).round() as i64;
-    let (z1, z2) = (
-        g.data.members[0].teeth as i64,
-        g.data.members[1].teeth as i64,
-    );
-    let mut p = std::collections::BTreeSet::new();
-    let mut w = std::collections::BTreeSet::new();
-    for k in -margin..=n + margin {
-        // Both sides share the pinion angle φ.
-        let phi = lp.roll_range[0] + dir * step * k as f64;
-        for j in pairs_in_contact(phi, op.roll_range, tau) {
-            p.insert((j as i64).rem_euclid(z1) as usize);
-            w.insert((-(j as i64) + shift).rem_euclid(z2) as usize);
-        }
-    }
-    (p.into_iter().collect(), w.into_iter().collect())
+    // Both sides share the pinion angle φ.
+    teeth_over_sweep(
+        g,
+        loaded,
+        loaded.other(),
+        -margin..=n + margin,
+        step,
+        g.opposite_placement(loaded).wheel_tooth_shift,
+    )
 }
