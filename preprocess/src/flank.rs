@@ -10,7 +10,7 @@
 use crate::design::{Member, PairData};
 use crate::ease_off::EaseOff;
 use crate::error::GeometryError;
-use crate::generation::{GeneratedFlank, Side};
+use crate::generation::{GeneratedFlank, RawPoint, Side};
 use crate::Scalar;
 use nalgebra::{Const, Matrix2, SVector, Vector2, Vector3};
 use num_dual::{hessian, Dual2Vec};
@@ -186,7 +186,11 @@ impl Flank {
     }
 
     fn generic<D: Scalar>(&self, u: D, v: D) -> Generic<D> {
-        let raw = self.gen.eval(u, v);
+        self.modified(self.gen.eval(u, v))
+    }
+
+    /// The generic modified point of a generated (conjugate) point.
+    fn modified<D: Scalar>(&self, raw: RawPoint<D>) -> Generic<D> {
         let (l, d) = self.gen.frame.axial(&raw.pos);
         let roll = raw.crown_roll * self.pinion_ratio;
         let a = self.wheel_axis;
@@ -219,7 +223,12 @@ impl Flank {
 
     /// Evaluates at generating parameters (ζ, s).
     pub fn eval_uv(&self, u: f64, v: f64) -> FlankPoint {
-        let g = self.generic(u, v);
+        self.point_of(u, v, self.gen.eval(u, v))
+    }
+
+    /// The flank point at (ζ, s) from its generated point `raw`.
+    fn point_of(&self, u: f64, v: f64, raw: RawPoint<f64>) -> FlankPoint {
+        let g = self.modified(raw);
         FlankPoint {
             uv: [u, v],
             pos: g.pos,
@@ -259,9 +268,19 @@ impl Flank {
         d: f64,
         start: [f64; 2],
     ) -> Result<[f64; 2], GeometryError> {
+        self.solved_ld(l, d, start).map(|(uv, _)| uv)
+    }
+
+    /// As [`Flank::solve_ld_from`], with the generated point at the solution.
+    fn solved_ld(
+        &self,
+        l: f64,
+        d: f64,
+        start: [f64; 2],
+    ) -> Result<([f64; 2], RawPoint<f64>), GeometryError> {
         self.newton_ld(l, d, start, None, true)
             .or_else(|| self.newton_ld(l, d, start, None, false))
-            .map(|(uv, _)| uv)
+            .map(|(uv, _, raw)| (uv, raw))
             .ok_or(GeometryError::NoFlankPoint {
                 member: self.gen.member.name(),
                 flank: self.gen.side.flank_name(self.gen.member),
@@ -271,7 +290,8 @@ impl Flank {
     }
 
     /// Newton for (L, d) from `start` with an optional initial Jacobian;
-    /// returns the solution and the last Jacobian used.
+    /// returns the solution, the last Jacobian used and the generated point
+    /// there.
     fn newton_ld(
         &self,
         l: f64,
@@ -279,19 +299,21 @@ impl Flank {
         start: [f64; 2],
         jac0: Option<Matrix2<f64>>,
         broyden: bool,
-    ) -> Option<([f64; 2], Option<Matrix2<f64>>)> {
+    ) -> Option<([f64; 2], Option<Matrix2<f64>>, RawPoint<f64>)> {
         let mut x = Vector2::new(start[0], start[1]);
         let h = 1e-7;
-        let residual = |x: &Vector2<f64>| {
-            let (l0, d0) = self.ld(x[0], x[1]);
-            Vector2::new(l0 - l, d0 - d)
+        let generated = |x: &Vector2<f64>| {
+            let raw = self.gen.eval(x[0], x[1]);
+            let (l0, d0) = self.gen.frame.axial(&raw.pos);
+            (Vector2::new(l0 - l, d0 - d), raw)
         };
-        let mut r = residual(&x);
+        let residual = |x: &Vector2<f64>| generated(x).0;
+        let (mut r, mut raw) = generated(&x);
         let mut jac = jac0;
         let mut last = jac0;
         for _ in 0..60 {
             if r[0].abs() < 1e-13 && r[1].abs() < 1e-13 {
-                return Some(([x[0], x[1]], last));
+                return Some(([x[0], x[1]], last, raw));
             }
             let j = match jac {
                 Some(j) => j,
@@ -305,7 +327,8 @@ impl Flank {
             let step = j.try_inverse()? * r;
             let dx = -step * (0.02 / step.norm()).min(1.0);
             x += dx;
-            let r_new = residual(&x);
+            let r_new;
+            (r_new, raw) = generated(&x);
             // Broyden: J ← J + (Δr − J Δx) Δxᵀ / (Δxᵀ Δx).
             jac = (broyden && r_new.norm() < 0.5 * r.norm())
                 .then(|| j + (r_new - r - j * dx) * dx.transpose() / dx.dot(&dx));
@@ -316,8 +339,9 @@ impl Flank {
 
     /// Flank point at (L, d).
     pub fn at(&self, l: f64, d: f64) -> Result<FlankPoint, GeometryError> {
-        let [u, v] = self.solve_ld(l, d)?;
-        Ok(self.eval_uv(u, v))
+        let (u, v) = self.gen.guess(l, d);
+        let ([u, v], raw) = self.solved_ld(l, d, [u, v])?;
+        Ok(self.point_of(u, v, raw))
     }
 
     /// Flank point at normalised (ξ face, η profile).
@@ -338,11 +362,10 @@ impl Flank {
         jacobian: Option<Matrix2<f64>>,
     ) -> Result<(FlankPoint, Option<Matrix2<f64>>), GeometryError> {
         let (l, d) = self.bounds.from_unit(xi, eta);
-        let (uv, jac) = match self.newton_ld(l, d, start, jacobian, true) {
-            Some(found) => found,
-            None => (self.solve_ld(l, d)?, None),
-        };
-        Ok((self.eval_uv(uv[0], uv[1]), jac))
+        Ok(match self.newton_ld(l, d, start, jacobian, true) {
+            Some((uv, jac, raw)) => (self.point_of(uv[0], uv[1], raw), jac),
+            None => (self.at(l, d)?, None),
+        })
     }
 
     /// Spiral angle and normal pressure angle (rad) at (L, d), from the

@@ -138,6 +138,8 @@ impl ContactProblem<'_> {
                 .fold(0.0, f64::max),
         };
         let mut u: Vec<f64> = self.line.iter().map(|l| l.secant(f_nom)).collect();
+        // The secant of an unloaded slice: at a thousandth of the nominal force.
+        let u_open: Vec<f64> = self.line.iter().map(|l| l.secant(1e-3 * f_nom)).collect();
         let mut active = match (warm, prescribed) {
             (Some(w), _) if w.len() == n && w.iter().any(|&a| a) => w.to_vec(),
             (_, Some(th)) => closed(th),
@@ -162,11 +164,11 @@ impl ContactProblem<'_> {
             force = f;
             theta = th;
             for k in 0..n {
-                u[k] = self.line[k].secant(if force[k] > 0.0 {
-                    force[k]
+                u[k] = if force[k] > 0.0 {
+                    self.line[k].secant(force[k])
                 } else {
-                    1e-3 * f_nom
-                });
+                    u_open[k]
+                };
             }
             // Converged when another secant update moves the TE by < 1e-7 µrad
             // and the forces by < 1e-9 of the largest (round-off of the

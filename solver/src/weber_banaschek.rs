@@ -34,21 +34,20 @@ pub fn half_width(q: f64, rho: f64, e_star: f64) -> f64 {
 }
 
 /// Approach (m) of one body's surface to depth `h` under line load `q` (N/m)
-/// with Hertz half-width `b`: the exact half-plane form of the module doc.
+/// with Hertz half-width `b`: the exact half-plane form of the module doc,
+/// with x = h/b, asinh x = ln s and (h√(h² + b²) − h²)/b² = x/s for
+/// s = x + √(1 + x²) (no cancellation for x ≥ 0, → 1/2 for large x).
 pub fn body_approach(q: f64, b: f64, h: f64, m: Material) -> f64 {
     if q <= 0.0 {
         return 0.0;
     }
     let nu = m.poisson_ratio;
     let x = h / b;
+    // asinh x = ln(x + √(1 + x²)) and the lateral term share the root; for
+    // x ≥ 0 neither form cancels.
+    let s = (1.0 + x * x).sqrt() + x;
     2.0 * q * plane_strain_compliance(m) / std::f64::consts::PI
-        * (x.asinh() - nu / (1.0 - nu) * lateral(x))
-}
-
-/// (h√(h² + b²) − h²)/b² with x = h/b: x√(1 + x²) − x² = x / (√(1 + x²) + x),
-/// the form without cancellation for large x (→ 1/2).
-fn lateral(x: f64) -> f64 {
-    x / ((1.0 + x * x).sqrt() + x)
+        * (s.ln() - nu / (1.0 - nu) * (x / s))
 }
 
 /// The classical Weber–Banaschek formula for one body (valid for h ≫ b):
