@@ -156,6 +156,10 @@ pub struct Flank {
     wheel_axis: Vector3<f64>,
 }
 
+/// Newton's solution (ζ, s), its last Jacobian ∂(L, d)/∂(ζ, s) and the
+/// generated point there.
+type NewtonLd = ([f64; 2], Option<Matrix2<f64>>, RawPoint<f64>);
+
 /// The generic modified point: position (member frame), outward normal of the
 /// unmodified surface, (L, d), pinion roll, ease-off, wheel lever.
 struct Generic<D> {
@@ -299,7 +303,7 @@ impl Flank {
         start: [f64; 2],
         jac0: Option<Matrix2<f64>>,
         broyden: bool,
-    ) -> Option<([f64; 2], Option<Matrix2<f64>>, RawPoint<f64>)> {
+    ) -> Option<NewtonLd> {
         let mut x = Vector2::new(start[0], start[1]);
         let h = 1e-7;
         let generated = |x: &Vector2<f64>| {
