@@ -31,6 +31,7 @@ bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench flanks
 	$(CARGO) bench -p preprocess --bench mesh
 	$(CARGO) bench -p preprocess --bench stiffness
+	$(CARGO) bench -p preprocess --bench influence_convergence
 	$(CARGO) bench -p solver --bench ltca
 	$(CARGO) bench -p solver --bench multibody
 

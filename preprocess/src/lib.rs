@@ -9,6 +9,7 @@ pub mod design;
 pub mod direct;
 pub mod ease_off;
 pub mod error;
+pub mod field_convergence;
 pub mod flank;
 pub mod flank_stage;
 pub mod gear_body;

@@ -36,12 +36,16 @@ enum Cmd {
         #[arg(long, default_value = "meshes")]
         out: PathBuf,
     },
-    /// FE influence fields (stiffness files) from the reduced-order meshes.
+    /// FE influence fields (stiffness files) from the reduced-order meshes (or another level's).
     Stiffness {
         scene: PathBuf,
         /// Directory holding `<scene>/` meshes; stiffness files go next to them.
         #[arg(long, default_value = "meshes")]
         meshes: PathBuf,
+        /// Mesh level whose meshes are used (the contact grid is the scene's
+        /// either way); medium and reference serve mesh-convergence studies.
+        #[arg(long, value_enum, default_value = "reduced")]
+        level: preprocess::mesh_stage::Level,
     },
 }
 
@@ -100,9 +104,13 @@ fn main() -> anyhow::Result<()> {
                 );
             }
         }
-        Cmd::Stiffness { scene, meshes } => {
+        Cmd::Stiffness {
+            scene,
+            meshes,
+            level,
+        } => {
             let s = preprocess::scene::Scene::load(&scene)?;
-            for r in preprocess::stiffness_stage::run(&s, &meshes)? {
+            for r in preprocess::stiffness_stage::run_level(&s, &meshes, level)? {
                 match (&r.stats, r.reused) {
                     (_, true) => println!("{} {} {}: reused {}", r.member, r.blank, r.level, r.path.display()),
                     (Some(st), false) => println!(

@@ -7,7 +7,7 @@ use crate::body_mesh;
 use crate::design::Member;
 use crate::generation::Side;
 use crate::influence::{compute, FlankGrid, GridSize, Influence, InfluenceRequest, InfluenceStats};
-use crate::mesh_stage::refined_teeth_on;
+use crate::mesh_stage::{refined_teeth_on, Level};
 use crate::output::write_json;
 use crate::pair::PairGeometry;
 use crate::scene::{Blank, LoadedScene};
@@ -63,10 +63,27 @@ pub fn sha256_file(path: &Path) -> anyhow::Result<String> {
 
 /// Computes (or reuses) the stiffness files of the scene at the reduced level.
 pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Vec<StiffnessReport>> {
+    run_level(scene, root, Level::Reduced)
+}
+
+/// As [`run`] on the meshes of another level (same contact grid): the
+/// finer levels serve the mesh-convergence study of the influence fields.
+pub fn run_level(
+    scene: &LoadedScene,
+    root: &Path,
+    level: Level,
+) -> anyhow::Result<Vec<StiffnessReport>> {
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dir = root.join(&sc.name);
-    let level = "reduced";
+    let level = match level {
+        Level::Reduced => "reduced",
+        Level::Medium => "medium",
+        Level::Reference => "reference",
+        Level::Both => {
+            anyhow::bail!("stiffness files are made one mesh level at a time, not `both`")
+        }
+    };
     let mut out = Vec::new();
     for member in [Member::Pinion, Member::Wheel] {
         let blanks = match member {
