@@ -43,8 +43,6 @@ pub fn body_approach(q: f64, b: f64, h: f64, m: Material) -> f64 {
     }
     let nu = m.poisson_ratio;
     let x = h / b;
-    // asinh x = ln(x + √(1 + x²)) and the lateral term share the root; for
-    // x ≥ 0 neither form cancels.
     let s = (1.0 + x * x).sqrt() + x;
     2.0 * q * plane_strain_compliance(m) / std::f64::consts::PI
         * (s.ln() - nu / (1.0 - nu) * (x / s))
