@@ -680,8 +680,7 @@ fn rattle(
         let c = m.contact(s.q, s.v)?;
         let now = c.touching();
         let before = impacts.record(now);
-        // Drive, coast, free flight.
-        share[[2, 0, 1][before as usize]] += s.t - last_t;
+        share[before.slot()] += s.t - last_t;
         last_t = s.t;
         let [dl, cl] = coast.contact_lags(table, s.q[0])?;
         let theta = r * s.q[0] - s.q[1];
@@ -698,7 +697,7 @@ fn rattle(
             dl * 1e6,
             cl * 1e6,
             c.mesh.grad[0],
-            ["none", "drive", "coast"][now as usize]
+            now.name()
         );
         t.push(s.t * 1e3);
         te.push(theta * 1e6);

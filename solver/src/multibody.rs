@@ -182,6 +182,25 @@ pub enum Touching {
     Coast,
 }
 
+impl Touching {
+    /// Slot in a [drive, coast, neither] triple.
+    pub fn slot(self) -> usize {
+        match self {
+            Touching::Drive => 0,
+            Touching::Coast => 1,
+            Touching::Neither => 2,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Touching::Drive => "drive",
+            Touching::Coast => "coast",
+            Touching::Neither => "none",
+        }
+    }
+}
+
 impl Contact {
     /// The pair in contact: the drive flanks while they push the wheel
     /// forward, the coast flanks while they push it back.
