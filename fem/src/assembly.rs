@@ -109,8 +109,19 @@ const CHUNK: usize = 2048;
 /// Assembles K_ff (lower triangle) and the lift of the prescribed values.
 pub fn assemble(mesh: &TetMesh, material: &Material, dofs: &Dofs) -> Result<Assembled, FemError> {
     material.validate()?;
-    mesh.validate()?;
     let (lambda, mu) = material.lame();
+    assemble_with(mesh, dofs, |_, x| tet10::stiffness(x, lambda, mu))
+}
+
+/// [`assemble`] with the element matrices of `kernel` (element index, node
+/// coordinates → 30 × 30 row-major, or `Err(det J)` for an inverted
+/// element): for models whose elements are not all integrated whole
+/// ([`crate::cut_cell`]).
+pub fn assemble_with<F>(mesh: &TetMesh, dofs: &Dofs, kernel: F) -> Result<Assembled, FemError>
+where
+    F: Fn(usize, &[[f64; 3]; 10]) -> Result<[f64; 900], f64> + Sync,
+{
+    mesh.validate()?;
     let (col_ptr, row_idx) = pattern(mesh, dofs);
     let mut values = vec![0.0; row_idx.len()];
     let mut lift = vec![0.0; dofs.n_free];
@@ -120,10 +131,8 @@ pub fn assemble(mesh: &TetMesh, material: &Material, dofs: &Dofs) -> Result<Asse
             .enumerate()
             .map(|(k, t)| {
                 let x = t.map(|i| mesh.nodes[i]);
-                tet10::stiffness(&x, lambda, mu).map_err(|det_j| FemError::InvertedElement {
-                    element: c * CHUNK + k,
-                    det_j,
-                })
+                let element = c * CHUNK + k;
+                kernel(element, &x).map_err(|det_j| FemError::InvertedElement { element, det_j })
             })
             .collect();
         for (t, k) in chunk.iter().zip(ks) {

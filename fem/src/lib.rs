@@ -12,6 +12,7 @@
 
 pub mod assembly;
 pub mod cholesky;
+pub mod cut_cell;
 pub mod error;
 pub mod material;
 pub mod mesh;
@@ -20,7 +21,7 @@ pub mod structured;
 pub mod tet10;
 pub mod tri6;
 
-pub use assembly::{assemble, Assembled, Dofs};
+pub use assembly::{assemble, assemble_with, Assembled, Dofs};
 pub use cholesky::Factor;
 pub use error::FemError;
 pub use material::Material;

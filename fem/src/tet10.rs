@@ -154,8 +154,19 @@ pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
 /// with gᵢ the physical shape-function gradients at quadrature point q
 /// (4-point Gauss). Returns `Err(det J)` if det J ≤ 0 at any point.
 pub fn stiffness(x: &[[f64; 3]; 10], lambda: f64, mu: f64) -> Result<[f64; 900], f64> {
+    stiffness_with(x, lambda, mu, &gauss4())
+}
+
+/// [`stiffness`] with the quadrature rule `rule` (points ξ_q in reference
+/// coordinates, weights w_q): for parts of the element ([`crate::cut_cell`]).
+pub fn stiffness_with(
+    x: &[[f64; 3]; 10],
+    lambda: f64,
+    mu: f64,
+    rule: &[([f64; 3], f64)],
+) -> Result<[f64; 900], f64> {
     let mut k = [0.0; 900];
-    for (xi, w) in gauss4() {
+    for &(xi, w) in rule {
         let (g, det) = gradients(x, xi);
         if det <= 0.0 || !det.is_finite() {
             return Err(det);
