@@ -6,8 +6,10 @@
 //! q(r) ∝ (1 − r²/ρ²)², r < ρ, and the normal displacement at grid point q is
 //! measured with the same weights. So C_pq = w_pᵀ K⁻¹ w_q is symmetric by
 //! construction. The local part is the same load on the half tooth between
-//! the flank and its mid-surface (depth h), held fixed where it joins the rest
-//! of the body; global = total − local.
+//! the flank and its mid-surface (depth h), held fixed on that surface and
+//! where its sides join the rest of the body; global = total − local. The depth-h surface runs
+//! through the elements it cuts ([`fem::cut_cell`]), so the local model's
+//! support does not move with the mesh.
 
 use crate::body_mesh::BodyMesh;
 use crate::flank::Flank;
@@ -450,15 +452,43 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
     })
 }
 
-/// The elements of the half tooth under tooth k's loaded flank: centroid
-/// within depth 0 ≤ t ≤ h of the nearest grid point and within the flank's
-/// extent sideways.
-pub fn half_tooth_elements(req: &InfluenceRequest, k: usize, h: &[f64]) -> Vec<usize> {
+/// Penalty of the local model's tie on its far side, α = [`TIE_PENALTY`] ·
+/// E / ℓ with ℓ the element's edge length scale: the tie's own compliance
+/// adds about ℓ/(1e4 h) to the local field.
+pub const TIE_PENALTY: f64 = 1e4;
+
+/// Ghost stiffness of the cut elements' outside parts, relative.
+const GHOST: f64 = 1e-9;
+
+/// One-line description of the local model, part of the stiffness files'
+/// configuration (and so of their hash).
+pub const LOCAL_MODEL: &str = "half tooth to depth h cut through its elements (cut cells), far side tied by a penalty 1e4 E/l, sides clamped, reaching 0.6 grid spacings + the load radius beyond the grid";
+
+/// Where an element stands with respect to the half tooth.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HalfTooth {
+    /// In the half tooth (whole or cut), with the level set at its vertices.
+    Kept([f64; 4]),
+    /// Below the half tooth: beyond the depth h, under the loaded flank.
+    Deep,
+    /// Beside it (or far away).
+    Beside,
+}
+
+/// Every element's place in the half tooth under tooth k's loaded flank,
+/// with the level set φ = h_g − t at the vertices of those kept: t the depth
+/// below grid point g (the nearest to the element's centroid) along its
+/// inward normal, h_g that point's mid-surface depth. Kept: elements whose
+/// centroid lies below the flank (t ≥ 0), within 0.6 grid spacings + the
+/// load radius of g sideways, and that have a vertex with φ > 0 (some of
+/// their material above the depth h). The depth h itself cuts through
+/// elements: it does not move with the mesh.
+pub fn half_tooth(req: &InfluenceRequest, k: usize, h: &[f64]) -> Vec<HalfTooth> {
     let a = 2.0 * std::f64::consts::PI * k as f64 / req.teeth as f64;
     let pts: Vec<[f64; 3]> = req.grid.position.iter().map(|&p| rotate_z(p, a)).collect();
     let nrm: Vec<[f64; 3]> = req.grid.normal.iter().map(|&p| rotate_z(p, a)).collect();
     let (sf, sp) = req.grid.spacing();
-    let lateral_max = 0.6 * sf.max(sp);
+    let lateral_max = 0.6 * sf.max(sp) + req.load_radius;
     let hmax = h.iter().copied().fold(0.0, f64::max);
     let center = pts
         .iter()
@@ -468,33 +498,45 @@ pub fn half_tooth_elements(req: &InfluenceRequest, k: usize, h: &[f64]) -> Vec<u
     let mesh = &req.body.mesh;
     (0..mesh.tets.len())
         .into_par_iter()
-        .filter(|&e| {
+        .map(|e| {
             let t = &mesh.tets[e];
             let c = (0..4).fold([0.0; 3], |c, l| {
                 let x = mesh.nodes[t[l]];
                 [c[0] + 0.25 * x[0], c[1] + 0.25 * x[1], c[2] + 0.25 * x[2]]
             });
             if dist(c, center) > reach {
-                return false;
+                return HalfTooth::Beside;
             }
             let (g, _) = pts
                 .iter()
                 .enumerate()
                 .map(|(g, &p)| (g, dist(p, c)))
                 .fold((0, f64::INFINITY), |b, x| if x.1 < b.1 { x } else { b });
-            let depth = dot(
-                [pts[g][0] - c[0], pts[g][1] - c[1], pts[g][2] - c[2]],
-                nrm[g],
-            );
-            let lat = [0, 1, 2].map(|i| c[i] - pts[g][i] + depth * nrm[g][i]);
-            depth >= 0.0 && depth <= h[g] && dot(lat, lat).sqrt() <= lateral_max
+            let depth = |x: [f64; 3]| {
+                dot(
+                    [pts[g][0] - x[0], pts[g][1] - x[1], pts[g][2] - x[2]],
+                    nrm[g],
+                )
+            };
+            let dc = depth(c);
+            let lat = [0, 1, 2].map(|i| c[i] - pts[g][i] + dc * nrm[g][i]);
+            let phi: [f64; 4] = std::array::from_fn(|l| h[g] - depth(mesh.nodes[t[l]]));
+            if dc < 0.0 || dot(lat, lat).sqrt() > lateral_max {
+                HalfTooth::Beside
+            } else if phi.iter().any(|&p| p > 0.0) {
+                HalfTooth::Kept(phi)
+            } else {
+                HalfTooth::Deep
+            }
         })
         .collect()
 }
 
-/// The local field of tooth k: the half-tooth model, held fixed where it
-/// joins the rest of the body, under the same loads, measured with the same
-/// weights on tooth k. Returns the np × np block and the element count.
+/// The local field of tooth k: the half-tooth model, tied to zero
+/// displacement on its far side (the depth-h surface, through the elements
+/// it cuts) and clamped where its sides join the rest of the body, under the
+/// same loads, measured with the same weights on tooth k. Returns the
+/// np × np block and the element count.
 fn local_field(
     req: &InfluenceRequest,
     k: usize,
@@ -502,20 +544,20 @@ fn local_field(
     w: &[Weights],
 ) -> Result<(Vec<f64>, usize), InfluenceError> {
     let mesh = &req.body.mesh;
-    let elements = half_tooth_elements(req, k, h);
-    let mut inside = vec![false; mesh.tets.len()];
-    for &e in &elements {
-        inside[e] = true;
-    }
-    let mut touches_inside = vec![false; mesh.nodes.len()];
-    let mut touches_outside = vec![false; mesh.nodes.len()];
-    for (e, t) in mesh.tets.iter().enumerate() {
-        for &i in t {
-            if inside[e] {
-                touches_inside[i] = true;
-            } else {
-                touches_outside[i] = true;
+    let place = half_tooth(req, k, h);
+    let mut elements = Vec::new();
+    let mut phi = Vec::new();
+    let mut inside = vec![false; mesh.nodes.len()];
+    let mut beside = vec![false; mesh.nodes.len()];
+    for (e, p) in place.iter().enumerate() {
+        match p {
+            HalfTooth::Kept(f) => {
+                elements.push(e);
+                phi.push(*f);
+                mesh.tets[e].iter().for_each(|&i| inside[i] = true);
             }
+            HalfTooth::Beside => mesh.tets[e].iter().for_each(|&i| beside[i] = true),
+            HalfTooth::Deep => {}
         }
     }
     let (sub, old_of) = mesh.submesh(&elements);
@@ -526,15 +568,22 @@ fn local_field(
     let fixed: Vec<(usize, f64)> = old_of
         .iter()
         .enumerate()
-        .filter(|(_, &old)| touches_outside[old])
+        .filter(|(_, &old)| beside[old])
         .flat_map(|(new, _)| (0..3).map(move |c| (3 * new + c, 0.0)))
         .collect();
     let dofs = Dofs::new(&sub, &fixed)?;
-    let sys = assemble(&sub, &req.material, &dofs)?;
+    req.material.validate()?;
+    let (lambda, mu) = req.material.lame();
+    let e_mod = req.material.youngs_modulus_pa;
+    let sys = fem::assemble_with(&sub, &dofs, |e, x| {
+        let ell = fem::tet10::volume(x).cbrt() * 2.0;
+        let alpha = TIE_PENALTY * e_mod / ell;
+        fem::cut_cell::cut_stiffness(x, lambda, mu, phi[e], alpha, GHOST)
+    })?;
     let factor = Factor::new(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?;
     let map_w = |w: &Weights| -> Weights {
         w.iter()
-            .filter(|(d, _)| touches_inside[d / 3])
+            .filter(|(d, _)| inside[d / 3])
             .map(|&(d, v)| (3 * new_of[d / 3] + d % 3, v))
             .collect()
     };

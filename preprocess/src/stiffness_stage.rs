@@ -33,6 +33,8 @@ pub struct StiffnessConfig {
     pub youngs_modulus_pa: f64,
     pub poisson_ratio: f64,
     pub clamped_groups: Vec<String>,
+    /// How the local (near-load) field is computed ([`crate::influence::LOCAL_MODEL`]).
+    pub local_model: String,
     /// Hash of the mesh inputs (from `<stem>.inputs.json`) and of the mesh file.
     pub mesh_inputs_hash: String,
     pub mesh_file_sha256: String,
@@ -196,6 +198,7 @@ pub fn planned(
         youngs_modulus_pa: md.youngs_modulus,
         poisson_ratio: md.poisson_ratio,
         clamped_groups: vec!["bore".into()],
+        local_model: crate::influence::LOCAL_MODEL.into(),
         mesh_inputs_hash: mesh_inputs["hash"].as_str().unwrap_or_default().to_string(),
         mesh_file_sha256: sha256_file(&msh)?,
     };

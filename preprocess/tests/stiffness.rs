@@ -281,10 +281,11 @@ fn local_subtraction_removes_the_load_point_spike() {
 
 /// Two neighbouring teeth of an axisymmetric body carry the same compliance.
 /// Measured on this coarse (6 × 10) mesh: the total field agrees within
-/// 1.3 %, the global field only within 4.1 %: the half-tooth local model
-/// is cut along element faces, so its clamped surface (and with it the local
-/// field) differs from tooth to tooth by the element size. The 0.5 %
-/// is not reached; the bounds below hold what is.
+/// 1.6 %, the global field within 1.7 % (4.1 % when the local model was cut
+/// along element faces; its depth-h support now runs through the elements,
+/// see `influence::half_tooth`). The teeth's own meshes differ, so the
+/// issue's 0.5 % is not reached even by the total field; the bounds below
+/// hold what is.
 #[test]
 fn standard_blank_neighbouring_teeth_have_the_same_compliance() {
     let (_, _, inf) = fields();
@@ -303,7 +304,7 @@ fn standard_blank_neighbouring_teeth_have_the_same_compliance() {
         100.0 * g
     );
     assert!(t < 0.02, "total {:.3}%", 100.0 * t);
-    assert!(g < 0.05, "global {:.3}%", 100.0 * g);
+    assert!(g < 0.025, "global {:.3}%", 100.0 * g);
 }
 
 /// Fourier amplitude of order `m` of samples c_k at the tooth angles
