@@ -109,9 +109,7 @@ fn norm(a: Xi) -> f64 {
 /// reference volume.
 pub fn tet_rule(t: &[Xi; 4]) -> [(Xi, f64); 4] {
     let (e1, e2, e3) = (sub(t[1], t[0]), sub(t[2], t[0]), sub(t[3], t[0]));
-    let det = (e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) - e1[1] * (e2[0] * e3[2] - e2[2] * e3[0])
-        + e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]))
-        .abs();
+    let det = tet10::det3(&[e1, e2, e3]).abs();
     tet10::gauss4().map(|(r, w)| {
         let xi = [0, 1, 2].map(|c| t[0][c] + r[0] * e1[c] + r[1] * e2[c] + r[2] * e3[c]);
         (xi, w * det)
@@ -124,7 +122,7 @@ pub fn inside_volume(x: &[[f64; 3]; 10], c: &Clip) -> f64 {
     c.tets
         .iter()
         .flat_map(tet_rule)
-        .map(|(xi, w)| w * tet10::gradients(x, xi).1)
+        .map(|(xi, w)| w * tet10::jacobian(x, &tet10::shape_derivatives(xi)).1)
         .sum()
 }
 
