@@ -246,6 +246,59 @@ impl Session {
         })
     }
 
+    /// Removes the elements `element_tags` from entity (`dim`, `tag`); their
+    /// nodes stay (`gmshModelMeshRemoveElements`). An empty list removes
+    /// nothing (gmsh itself would remove every element of the entity).
+    pub fn mesh_remove_elements(&self, dim: i32, tag: i32, element_tags: &[usize]) -> Result<()> {
+        if element_tags.is_empty() {
+            return Ok(());
+        }
+        // SAFETY: valid slice.
+        check("gmshModelMeshRemoveElements", |ierr| unsafe {
+            sys::gmshModelMeshRemoveElements(
+                dim,
+                tag,
+                element_tags.as_ptr(),
+                element_tags.len(),
+                ierr,
+            )
+        })
+    }
+
+    /// Adds elements of gmsh type `element_type` to entity `tag` of the
+    /// element type's dimension: `node_tags` holds each element's nodes in
+    /// turn (`gmshModelMeshAddElementsByType`).
+    pub fn mesh_add_elements_by_type(
+        &self,
+        tag: i32,
+        element_type: i32,
+        element_tags: &[usize],
+        node_tags: &[usize],
+    ) -> Result<()> {
+        // SAFETY: valid slices.
+        check("gmshModelMeshAddElementsByType", |ierr| unsafe {
+            sys::gmshModelMeshAddElementsByType(
+                tag,
+                element_type,
+                element_tags.as_ptr(),
+                element_tags.len(),
+                node_tags.as_ptr(),
+                node_tags.len(),
+                ierr,
+            )
+        })
+    }
+
+    /// The largest element tag of the mesh (`gmshModelMeshGetMaxElementTag`).
+    pub fn mesh_get_max_element_tag(&self) -> Result<usize> {
+        let mut max = 0usize;
+        // SAFETY: valid out-pointer.
+        check("gmshModelMeshGetMaxElementTag", |ierr| unsafe {
+            sys::gmshModelMeshGetMaxElementTag(&mut max, ierr)
+        })?;
+        Ok(max)
+    }
+
     /// Clears the whole mesh of the current model (`gmshModelMeshClear`).
     pub fn mesh_clear(&self) -> Result<()> {
         // SAFETY: empty dimTags = all entities.

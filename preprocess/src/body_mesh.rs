@@ -71,6 +71,37 @@ pub fn read(path: &Path) -> Result<BodyMesh, String> {
             tets.push(t);
         }
     }
+    // Nodes no tet uses (left by the mesh stage's cap removal) would be
+    // free degrees of freedom: renumber the used ones, in file order.
+    let mut used = vec![usize::MAX; nodes.len()];
+    for t in &tets {
+        for &n in t {
+            used[n] = 0;
+        }
+    }
+    let mut kept = Vec::with_capacity(nodes.len());
+    for (i, u) in used.iter_mut().enumerate() {
+        if *u == 0 {
+            *u = kept.len();
+            kept.push(nodes[i]);
+        }
+    }
+    let nodes = kept;
+    for t in &mut tets {
+        for n in t.iter_mut() {
+            *n = used[*n];
+        }
+    }
+    let map = |t: usize| -> Result<usize, String> {
+        map(t).and_then(|i| {
+            Some(used[i]).filter(|&u| u != usize::MAX).ok_or_else(|| {
+                format!(
+                    "mesh {}: face node {t} belongs to no tetrahedron",
+                    path.display()
+                )
+            })
+        })
+    };
     let mut groups = BTreeMap::new();
     for (dim, tag) in s.get_physical_groups(2).map_err(ctx)? {
         let name = s.get_physical_name(dim, tag).map_err(ctx)?;

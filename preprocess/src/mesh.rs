@@ -101,6 +101,10 @@ pub struct MeshReport {
     pub snapped_nodes: usize,
     pub snap_max_move_um: f64,
     pub unsnapped_nodes: usize,
+    /// Flat tets over a flank's surface triangles removed before snapping
+    /// ([`remove_cap`]); their unused nodes stay in the file, unreferenced.
+    #[serde(default)]
+    pub caps_removed: usize,
     pub algorithm_3d: String,
     pub fallback_used: bool,
     pub refined_flanks: Vec<RefinedFlank>,
@@ -331,7 +335,8 @@ fn size_near(
     Ok(th)
 }
 
-/// Sum of the tet10 volumes of the current mesh.
+/// Sum of the tet10 volumes of the current mesh, the number of tets and
+/// the number of nodes they use.
 pub fn mesh_volume(s: &Session) -> gmsh::Result<(f64, usize, usize)> {
     let (tags, coord, _) = s.mesh_get_nodes(-1, -1, false, false)?;
     let max = tags.iter().copied().max().unwrap_or(0);
@@ -342,11 +347,15 @@ pub fn mesh_volume(s: &Session) -> gmsh::Result<(f64, usize, usize)> {
     let (types, _, nodes) = s.mesh_get_elements(3, -1)?;
     let mut vol = 0.0;
     let mut count = 0;
+    let mut used = vec![false; tags.len()];
     for (ty, nn) in types.iter().zip(&nodes) {
         if *ty != 11 {
             continue;
         }
         for el in nn.chunks(10) {
+            for &t in el {
+                used[idx[t]] = true;
+            }
             let x: [[f64; 3]; 10] = std::array::from_fn(|k| {
                 let i = idx[el[k]];
                 [coord[3 * i], coord[3 * i + 1], coord[3 * i + 2]]
@@ -355,7 +364,7 @@ pub fn mesh_volume(s: &Session) -> gmsh::Result<(f64, usize, usize)> {
             count += 1;
         }
     }
-    Ok((vol, count, tags.len()))
+    Ok((vol, count, used.iter().filter(|&&u| u).count()))
 }
 
 /// Elements along a curve of a second-order mesh: (nodes − 1) / 2.
@@ -439,84 +448,109 @@ struct Snap {
     moved: usize,
     max_move: f64,
     kept: usize,
+    caps_removed: usize,
+}
+
+/// Tet10 edges (vertex pairs) in gmsh's node order: mid-edge node `4 + e`.
+const TET10_EDGES: [(usize, usize); 6] = [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)];
+
+/// The point of `side`'s generated flank of `tooth` at `p`'s axial-section
+/// coordinates (L, d), reached by three steps along the flank normal; `None`
+/// when the flank has no point there or `p` lies farther than [`MAX_SNAP`]
+/// from it (a sliver of the top land or toe cut into the flank face).
+fn flank_point(req: &MeshRequest, tooth: usize, side: Side, p: [f64; 3]) -> Option<[f64; 3]> {
+    let f = req.geom.flank(req.member, side);
+    let z = req.geom.data.member(req.member).teeth as f64;
+    let (sa, ca) = (tooth as f64 * 2.0 * std::f64::consts::PI / z).sin_cos();
+    // Tooth-0 frame; three steps converge to well below 1 nm.
+    let mut r = [ca * p[0] + sa * p[1], -sa * p[0] + ca * p[1], p[2]];
+    for step in 0..3 {
+        let (l, d) = f.gen.frame.axial(&r);
+        let q = f.at(l, d).ok()?;
+        let dist: f64 = (0..3).map(|i| (r[i] - q.pos[i]) * q.normal[i]).sum();
+        if step == 0 && dist.abs() > MAX_SNAP {
+            return None;
+        }
+        for (ri, ni) in r.iter_mut().zip(q.normal) {
+            *ri -= dist * ni;
+        }
+    }
+    Some([ca * r[0] - sa * r[1], sa * r[0] + ca * r[1], r[2]])
 }
 
 /// The lofted slot follows the generated flank only to about 0.5 µm (more
 /// near the fillet junction), and the TE is measured in fractions of a µm.
 /// So every node of a flank surface (vertex and mid-edge, boundary included)
 /// is moved onto the generated flank at its own axial-section coordinates
-/// (L, d): in tooth 0's frame, x ← x − ((x − f(L, d))·n) n, repeated three
-/// times, with f and n the generated flank point and normal at x's (L, d);
-/// loft errors are a few µm, straightened mid-edge nodes of coarse teeth
-/// ~0.2 mm. A move that would invert a tet
-/// (min SICN ≤ 1e-3) is undone, node by node of the bad tets.
+/// (L, d) ([`flank_point`]); loft errors are a few µm, straightened mid-edge
+/// nodes of coarse teeth ~0.2 mm.
+///
+/// A tet whose four vertices all lie on one flank and which covers two or
+/// three of its surface triangles (a *cap*: a flat tet over a surface vertex
+/// of valence 3, or over an edge) has almost no volume, and on the exact
+/// curved flank it inverts. Such caps are removed ([`remove_cap`]). Any
+/// other move that would invert a tet (min SICN ≤ 1e-3) is undone, node by
+/// node of the bad tets.
 fn snap_to_flanks(
     s: &Session,
     req: &MeshRequest,
     faces: &[(usize, Side, i32)],
 ) -> gmsh::Result<Snap> {
-    let z = req.geom.data.member(req.member).teeth as f64;
     let mut old: std::collections::BTreeMap<usize, [f64; 3]> = Default::default();
     let mut max_move: f64 = 0.0;
     let mut kept = std::collections::BTreeSet::new();
-    for &(tooth, side, tag) in faces {
-        let f = req.geom.flank(req.member, side);
-        let (sa, ca) = (tooth as f64 * 2.0 * std::f64::consts::PI / z).sin_cos();
+    // Flank face of each flank node (the first one, for shared edges).
+    let mut face_of: std::collections::BTreeMap<usize, usize> = Default::default();
+    for (fi, &(tooth, side, tag)) in faces.iter().enumerate() {
         let (tags, xyz, _) = s.mesh_get_nodes(2, tag, true, false)?;
         for (&t, p) in tags.iter().zip(xyz.chunks(3)) {
-            if old.contains_key(&t) {
+            face_of.entry(t).or_insert(fi);
+            if old.contains_key(&t) || kept.contains(&t) {
                 continue;
             }
-            // Tooth-0 frame; three steps along the flank normal at the
-            // flank point with the node's (L, d) converge to well below 1 nm.
-            let mut r = [ca * p[0] + sa * p[1], -sa * p[0] + ca * p[1], p[2]];
-            let mut ok = true;
-            for step in 0..3 {
-                let (l, d) = f.gen.frame.axial(&r);
-                let Ok(q) = f.at(l, d) else {
-                    ok = false;
-                    break;
-                };
-                let dist: f64 = (0..3).map(|i| (r[i] - q.pos[i]) * q.normal[i]).sum();
-                // Not a point of this flank (a sliver of the top land or
-                // toe cut into the flank face): leave it.
-                if step == 0 && dist.abs() > MAX_SNAP {
-                    ok = false;
-                    break;
-                }
-                for (ri, ni) in r.iter_mut().zip(q.normal) {
-                    *ri -= dist * ni;
-                }
-            }
-            if !ok {
+            let p = [p[0], p[1], p[2]];
+            let Some(x) = flank_point(req, tooth, side, p) else {
                 kept.insert(t);
                 continue;
-            }
-            let x = [ca * r[0] - sa * r[1], sa * r[0] + ca * r[1], r[2]];
+            };
             let mv = (0..3).map(|i| (x[i] - p[i]).powi(2)).sum::<f64>().sqrt();
             max_move = max_move.max(mv);
-            old.insert(t, [p[0], p[1], p[2]]);
+            old.insert(t, p);
             s.mesh_set_node(t, x)?;
         }
     }
-    // Undo moves that invert a tet.
+    let mut caps_removed = 0;
+    // Remove caps; undo moves that invert any other tet.
     for _ in 0..4 {
-        let (types, etags, enodes) = s.mesh_get_elements(3, -1)?;
-        let Some(i) = types.iter().position(|&t| t == 11) else {
-            break;
-        };
-        let q = s.mesh_get_element_qualities(&etags[i], "minSICN")?;
-        let mut undone = false;
-        for (k, _) in q.iter().enumerate().filter(|(_, &v)| v <= 1e-3) {
-            for n in &enodes[i][10 * k..10 * k + 10] {
-                if let Some(p) = old.remove(n) {
-                    s.mesh_set_node(*n, p)?;
-                    kept.insert(*n);
-                    undone = true;
+        let mut changed = false;
+        for (_, vol) in s.get_entities(3)? {
+            let (types, etags, enodes) = s.mesh_get_elements(3, vol)?;
+            let Some(i) = types.iter().position(|&t| t == 11) else {
+                continue;
+            };
+            let q = s.mesh_get_element_qualities(&etags[i], "minSICN")?;
+            for (k, _) in q.iter().enumerate().filter(|(_, &v)| v <= 1e-3) {
+                let el: [usize; 10] = std::array::from_fn(|j| enodes[i][10 * k + j]);
+                let fi = face_of.get(&el[0]).copied();
+                let on_one_flank =
+                    fi.is_some() && el[..4].iter().all(|n| face_of.get(n).copied() == fi);
+                if let (true, Some(fi)) = (on_one_flank, fi) {
+                    if remove_cap(s, req, vol, etags[i][k], &el, faces[fi], &mut old)? {
+                        caps_removed += 1;
+                        changed = true;
+                        continue;
+                    }
+                }
+                for n in &el {
+                    if let Some(p) = old.remove(n) {
+                        s.mesh_set_node(*n, p)?;
+                        kept.insert(*n);
+                        changed = true;
+                    }
                 }
             }
         }
-        if !undone {
+        if !changed {
             break;
         }
     }
@@ -524,7 +558,108 @@ fn snap_to_flanks(
         moved: old.len(),
         max_move,
         kept: kept.len(),
+        caps_removed,
     })
+}
+
+/// Removes the cap `tet` (nodes `el`) of volume `vol` if two or three of its
+/// faces are triangles of the flank surface `face`: those triangles go, the
+/// tet's other faces become the flank's triangles (oriented like the ones
+/// they replace, their nodes put on the generated flank), and the tet goes.
+/// A vertex covered by three cap faces, and the mid-edge nodes of edges no
+/// longer used, stay as nodes without elements (the FE reader drops them).
+/// Returns false (nothing changed) if `tet` is not such a cap.
+fn remove_cap(
+    s: &Session,
+    req: &MeshRequest,
+    vol: i32,
+    tet: usize,
+    el: &[usize; 10],
+    face: (usize, Side, i32),
+    old: &mut std::collections::BTreeMap<usize, [f64; 3]>,
+) -> gmsh::Result<bool> {
+    let (tooth, side, tag) = face;
+    let (types, ftags, fnodes) = s.mesh_get_elements(2, tag)?;
+    let Some(ti) = types.iter().position(|&t| t == 9) else {
+        return Ok(false);
+    };
+    let key = |mut v: [usize; 3]| {
+        v.sort_unstable();
+        v
+    };
+    let tris: std::collections::HashMap<[usize; 3], (usize, [usize; 6])> = ftags[ti]
+        .iter()
+        .zip(fnodes[ti].chunks(6))
+        .map(|(&t, n)| (key([n[0], n[1], n[2]]), (t, std::array::from_fn(|j| n[j]))))
+        .collect();
+    // Face opposite vertex v: the other three vertices.
+    let opposite = |v: usize| -> [usize; 3] {
+        let o: Vec<usize> = (0..4).filter(|&j| j != v).collect();
+        [o[0], o[1], o[2]]
+    };
+    let (on, inner): (Vec<usize>, Vec<usize>) =
+        (0..4).partition(|&v| tris.contains_key(&key(opposite(v).map(|j| el[j]))));
+    if on.len() < 2 || inner.is_empty() {
+        return Ok(false);
+    }
+    let (ntags, coord, _) = s.mesh_get_nodes(-1, -1, false, false)?;
+    let mut idx = std::collections::HashMap::new();
+    for (k, &t) in ntags.iter().enumerate() {
+        idx.insert(t, k);
+    }
+    let x = |t: usize| -> [f64; 3] {
+        let k = idx[&t];
+        [coord[3 * k], coord[3 * k + 1], coord[3 * k + 2]]
+    };
+    let normal = |a: usize, b: usize, c: usize| -> [f64; 3] {
+        let (pa, pb, pc) = (x(a), x(b), x(c));
+        let u: [f64; 3] = std::array::from_fn(|i| pb[i] - pa[i]);
+        let w: [f64; 3] = std::array::from_fn(|i| pc[i] - pa[i]);
+        [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ]
+    };
+    let (_, reference) = tris[&key(opposite(on[0]).map(|j| el[j]))];
+    let n_ref = normal(reference[0], reference[1], reference[2]);
+    let mid = |a: usize, b: usize| -> usize {
+        let e = TET10_EDGES
+            .iter()
+            .position(|&(p, q)| (p, q) == (a, b) || (p, q) == (b, a))
+            .expect("two distinct tet vertices span an edge");
+        el[4 + e]
+    };
+    let mut new_nodes = Vec::new();
+    for &v in &inner {
+        let [a, b, c] = opposite(v);
+        let n = normal(el[a], el[b], el[c]);
+        let (b, c) = if (0..3).map(|i| n[i] * n_ref[i]).sum::<f64>() >= 0.0 {
+            (b, c)
+        } else {
+            (c, b)
+        };
+        new_nodes.extend([el[a], el[b], el[c], mid(a, b), mid(b, c), mid(c, a)]);
+    }
+    for &n in &new_nodes {
+        if let std::collections::btree_map::Entry::Vacant(e) = old.entry(n) {
+            let p = x(n);
+            if let Some(q) = flank_point(req, tooth, side, p) {
+                e.insert(p);
+                s.mesh_set_node(n, q)?;
+            }
+        }
+    }
+    let removed: Vec<usize> = on
+        .iter()
+        .map(|&v| tris[&key(opposite(v).map(|j| el[j]))].0)
+        .collect();
+    s.mesh_remove_elements(3, vol, &[tet])?;
+    s.mesh_remove_elements(2, tag, &removed)?;
+    let first = s.mesh_get_max_element_tag()? + 1;
+    let new_tags: Vec<usize> = (0..inner.len()).map(|k| first + k).collect();
+    s.mesh_add_elements_by_type(tag, 9, &new_tags, &new_nodes)?;
+    Ok(true)
 }
 
 /// Angle of the blank's seam: opposite the circular mean of the refined teeth.
@@ -853,6 +988,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         snapped_nodes: snap.moved,
         snap_max_move_um: snap.max_move * 1e6,
         unsnapped_nodes: snap.kept,
+        caps_removed: snap.caps_removed,
         algorithm_3d: algorithm_3d.to_string(),
         fallback_used,
         refined_flanks: refined,
