@@ -425,10 +425,9 @@ fn straighten_inverted(s: &Session) -> gmsh::Result<usize> {
                 coord[3 * idx[t] + 2],
             ]
         };
-        let edges = [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)];
         for k in bad {
             let el = &nodes[i][10 * k..10 * k + 10];
-            for (e, &(a, b)) in edges.iter().enumerate() {
+            for (e, &[a, b]) in fem::tet10::EDGES.iter().enumerate() {
                 let (pa, pb) = (x(el[a]), x(el[b]));
                 s.mesh_set_node(el[4 + e], std::array::from_fn(|c| 0.5 * (pa[c] + pb[c])))?;
                 moved.insert(el[4 + e]);
@@ -444,8 +443,8 @@ fn straighten_inverted(s: &Session) -> gmsh::Result<usize> {
 /// reaches into the top land or toe at the blank's seam) and stays.
 const MAX_SNAP: f64 = 0.5e-3;
 
-/// A tet of lower quality (min SICN) after snapping is checked for being a
-/// cap ([`remove_cap`]).
+/// A tet whose min SICN after snapping is at or below this is checked for
+/// being a cap ([`remove_cap`]).
 const CAP_QUALITY: f64 = 1e-3;
 
 /// Snap moves are µm, so they may lower the quality of a tet that was poor
@@ -462,9 +461,6 @@ struct Snap {
     kept: usize,
     caps_removed: usize,
 }
-
-/// Tet10 edges (vertex pairs) in gmsh's node order: mid-edge node `4 + e`.
-const TET10_EDGES: [(usize, usize); 6] = [(0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)];
 
 /// The point of `side`'s generated flank of `tooth` at `p`'s axial-section
 /// coordinates (L, d), reached by three steps along the flank normal; `None`
@@ -639,9 +635,9 @@ fn remove_cap(
     let (_, reference) = tris[&key(opposite(on[0]).map(|j| el[j]))];
     let n_ref = normal(reference[0], reference[1], reference[2]);
     let mid = |a: usize, b: usize| -> usize {
-        let e = TET10_EDGES
+        let e = fem::tet10::EDGES
             .iter()
-            .position(|&(p, q)| (p, q) == (a, b) || (p, q) == (b, a))
+            .position(|&[p, q]| (p, q) == (a, b) || (p, q) == (b, a))
             .expect("two distinct tet vertices span an edge");
         el[4 + e]
     };
