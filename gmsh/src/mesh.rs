@@ -237,6 +237,29 @@ impl Session {
         })
     }
 
+    /// The coordinates of mesh node `tag` and the (dim, tag) of the entity
+    /// it is classified on (`gmshModelMeshGetNode`).
+    pub fn mesh_get_node(&self, tag: usize) -> Result<([f64; 3], DimTag)> {
+        let mut coord = OutArray::<f64>::new();
+        let mut param = OutArray::<f64>::new();
+        let (mut dim, mut entity) = (0, 0);
+        // SAFETY: valid out-pointers; arrays freed by OutArray.
+        check("gmshModelMeshGetNode", |ierr| unsafe {
+            sys::gmshModelMeshGetNode(
+                tag,
+                coord.ptr(),
+                coord.len(),
+                param.ptr(),
+                param.len(),
+                &mut dim,
+                &mut entity,
+                ierr,
+            )
+        })?;
+        let c = coord.to_vec();
+        Ok(([c[0], c[1], c[2]], (dim, entity)))
+    }
+
     /// Moves mesh node `tag` to `coord` (parametric coordinates dropped)
     /// (`gmshModelMeshSetNode`).
     pub fn mesh_set_node(&self, tag: usize, coord: [f64; 3]) -> Result<()> {

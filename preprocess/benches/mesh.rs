@@ -30,8 +30,19 @@ fn main() {
         std::thread::available_parallelism().map_or(0, |n| n.get())
     );
     println!(
-        "{:<8} {:<12} {:<10} {:>9} {:>9} {:>10} {:>10} {:>9} {:>8}",
-        "member", "blank", "level", "nodes", "tet10", "geom [s]", "mesh [s]", "total", "target"
+        "{:<8} {:<12} {:<10} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7}",
+        "member",
+        "blank",
+        "level",
+        "nodes",
+        "tet10",
+        "cut [s]",
+        "geom",
+        "1-3D",
+        "order 2",
+        "snap",
+        "total",
+        "target"
     );
     for (member, blank) in [
         (Member::Pinion, Blank::Standard),
@@ -56,19 +67,23 @@ fn main() {
             let r = mesh_member(&req, &dir.path().join("m.msh")).expect("mesh");
             let total = t.elapsed().as_secs_f64();
             println!(
-                "{:<8} {:<12} {:<10} {:>9} {:>9} {:>10.1} {:>10.1} {:>9.1} {:>8}",
+                "{:<8} {:<12} {:<10} {:>9} {:>9} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>8.1} {:>7}",
                 member.name(),
                 format!("{blank:?}"),
                 name,
                 r.nodes,
                 r.tet10_elements,
+                r.time_cut_s,
                 r.time_geometry_s,
-                r.time_mesh_s,
+                r.time_generate_s,
+                r.time_order2_s,
+                r.time_snap_s,
                 total,
                 target
             );
             rows.push(json!({"member": member.name(), "blank": blank, "level": name, "nodes": r.nodes, "tet10": r.tet10_elements,
-                "geometry_s": r.time_geometry_s, "mesh_s": r.time_mesh_s, "total_s": total, "target_s": target, "min_sicn": r.quality_min_sicn}));
+                "geometry_s": r.time_geometry_s, "cut_s": r.time_cut_s, "mesh_s": r.time_mesh_s,
+                "generate_s": r.time_generate_s, "order2_s": r.time_order2_s, "snap_s": r.time_snap_s, "total_s": total, "target_s": target, "min_sicn": r.quality_min_sicn}));
         }
     }
     let out = root.join("bench");

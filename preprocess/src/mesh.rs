@@ -106,6 +106,14 @@ pub struct MeshReport {
     /// ([`remove_cap`]); their unused nodes stay in the file, unreferenced.
     #[serde(default)]
     pub caps_removed: usize,
+    /// Caps on a surface next to a flank (a fillet) that its snapped flank
+    /// edge would have inverted, removed the same way ([`remove_other_cap`]).
+    #[serde(default)]
+    pub other_caps_removed: usize,
+    /// Interior nodes moved by a few µm along with the snapped vertex of a
+    /// sliver tet that the snap alone would have inverted ([`carry`]).
+    #[serde(default)]
+    pub carried_nodes: usize,
     pub algorithm_3d: String,
     pub fallback_used: bool,
     pub refined_flanks: Vec<RefinedFlank>,
@@ -115,6 +123,16 @@ pub struct MeshReport {
     pub hole_angles_deg: Vec<f64>,
     pub time_geometry_s: f64,
     pub time_mesh_s: f64,
+    /// Phases: the OCC cut (part of the geometry time); gmsh's 1-D to 3-D
+    /// meshing, second order, and straightening + snapping (the mesh time).
+    #[serde(default)]
+    pub time_cut_s: f64,
+    #[serde(default)]
+    pub time_generate_s: f64,
+    #[serde(default)]
+    pub time_order2_s: f64,
+    #[serde(default)]
+    pub time_snap_s: f64,
 }
 
 /// Sections of the slot loft. Four sections follow the generated flank to
@@ -460,6 +478,9 @@ struct Snap {
     max_move: f64,
     kept: usize,
     caps_removed: usize,
+    other_caps_removed: usize,
+    /// Interior nodes moved along with a poor tet's snapped nodes ([`carry`]).
+    carried: usize,
 }
 
 /// The point of `side`'s generated flank of `tooth` at `p`'s axial-section
@@ -496,9 +517,11 @@ fn flank_point(req: &MeshRequest, tooth: usize, side: Side, p: [f64; 3]) -> Opti
 /// A tet whose four vertices all lie on one flank and which covers two or
 /// three of its surface triangles (a *cap*: a flat tet over a surface vertex
 /// of valence 3, or over an edge) has almost no volume, and on the exact
-/// curved flank it inverts. Such caps are removed ([`remove_cap`]). Any
-/// other move that would take a tet below [`SNAP_MIN_QUALITY`] is undone,
-/// node by node of the bad tets.
+/// curved flank it inverts. Such caps are removed ([`remove_cap`]), and so
+/// are caps on a fillet that a snapped flank edge inverts
+/// ([`remove_other_cap`]). A sliver the snap inverts otherwise is translated
+/// with its snapped nodes ([`carry`]). Any move that still takes a tet below
+/// [`SNAP_MIN_QUALITY`] is undone, node by node of the bad tets.
 fn snap_to_flanks(
     s: &Session,
     req: &MeshRequest,
@@ -528,8 +551,14 @@ fn snap_to_flanks(
         }
     }
     let mut caps_removed = 0;
-    // Remove caps; undo moves that leave any other tet too poor.
-    for _ in 0..4 {
+    let mut other_caps_removed = 0;
+    // Interior nodes carried along with a poor tet's snapped nodes: node →
+    // (position before, the tet that carried it).
+    let mut carried: std::collections::BTreeMap<usize, ([f64; 3], usize)> = Default::default();
+    let mut carry_tried = std::collections::BTreeSet::new();
+    // Remove caps; carry the interior nodes of other poor tets along with
+    // their snapped nodes; undo the moves where that fails too.
+    for _ in 0..8 {
         let mut changed = false;
         for (_, vol) in s.get_entities(3)? {
             let (types, etags, enodes) = s.mesh_get_elements(3, vol)?;
@@ -538,12 +567,14 @@ fn snap_to_flanks(
             };
             let q = s.mesh_get_element_qualities(&etags[i], "minSICN")?;
             for (k, &qk) in q.iter().enumerate().filter(|(_, &v)| v <= CAP_QUALITY) {
+                let tet = etags[i][k];
                 let el: [usize; 10] = std::array::from_fn(|j| enodes[i][10 * k + j]);
                 let fi = face_of.get(&el[0]).copied();
                 let on_one_flank =
                     fi.is_some() && el[..4].iter().all(|n| face_of.get(n).copied() == fi);
                 if let (true, Some(fi)) = (on_one_flank, fi) {
-                    if remove_cap(s, req, vol, etags[i][k], &el, faces[fi], &mut old)? {
+                    let (tooth, side, tag) = faces[fi];
+                    if remove_cap(s, req, vol, tet, &el, (tag, Some((tooth, side))), &mut old)? {
                         caps_removed += 1;
                         changed = true;
                         continue;
@@ -551,6 +582,42 @@ fn snap_to_flanks(
                 }
                 if qk > SNAP_MIN_QUALITY {
                     continue;
+                }
+                // A cap on a neighbouring surface (a fillet, whose edge with
+                // the flank moved): its nodes stay where gmsh put them.
+                if remove_other_cap(s, req, vol, tet, &el, faces, &mut old)? {
+                    other_caps_removed += 1;
+                    changed = true;
+                    continue;
+                }
+                // A carry that made this tet poor is taken back (its
+                // origin is then undone below on the next pass).
+                let origins: std::collections::BTreeSet<usize> = el
+                    .iter()
+                    .filter_map(|n| carried.get(n).map(|c| c.1))
+                    .collect();
+                if !origins.is_empty() {
+                    let back: Vec<usize> = carried
+                        .iter()
+                        .filter(|(_, c)| origins.contains(&c.1))
+                        .map(|(&n, _)| n)
+                        .collect();
+                    for n in back {
+                        let (p, _) = carried.remove(&n).expect("listed above");
+                        s.mesh_set_node(n, p)?;
+                    }
+                    changed = true;
+                    continue;
+                }
+                if carry_tried.insert(tet) {
+                    let skip = |n: &usize| face_of.contains_key(n) || carried.contains_key(n);
+                    if let Some(moves) = carry(s, &el, &old, skip)? {
+                        for (n, p) in moves {
+                            carried.insert(n, (p, tet));
+                        }
+                        changed = true;
+                        continue;
+                    }
                 }
                 for n in &el {
                     if let Some(p) = old.remove(n) {
@@ -570,13 +637,57 @@ fn snap_to_flanks(
         max_move,
         kept: kept.len(),
         caps_removed,
+        other_caps_removed,
+        carried: carried.len(),
     })
 }
 
+/// A node tag and a position of it.
+type NodeAt = (usize, [f64; 3]);
+
+/// Moves the nodes of tet `el` for which `skip` is false (flank nodes and
+/// nodes carried already are skipped) by the mean snap move of its snapped
+/// nodes, so that the tet is translated rather than flattened: a sliver with one vertex on the flank and its other three
+/// just inside inverts when that vertex alone moves a few µm, while the
+/// well-shaped tets around its interior nodes hardly notice the same µm.
+/// Returns the nodes moved with their old positions, or `None` if the tet
+/// has no snapped node or no interior node.
+fn carry(
+    s: &Session,
+    el: &[usize; 10],
+    old: &std::collections::BTreeMap<usize, [f64; 3]>,
+    skip: impl Fn(&usize) -> bool,
+) -> gmsh::Result<Option<Vec<NodeAt>>> {
+    let mut d = [0.0; 3];
+    let mut snapped = 0;
+    for n in el {
+        if let Some(p) = old.get(n) {
+            let (x, _) = s.mesh_get_node(*n)?;
+            for c in 0..3 {
+                d[c] += x[c] - p[c];
+            }
+            snapped += 1;
+        }
+    }
+    let interior: Vec<usize> = el.iter().copied().filter(|n| !skip(n)).collect();
+    if snapped == 0 || interior.is_empty() {
+        return Ok(None);
+    }
+    let d = d.map(|v| v / snapped as f64);
+    let mut moves = Vec::with_capacity(interior.len());
+    for n in interior {
+        let (x, _) = s.mesh_get_node(n)?;
+        s.mesh_set_node(n, std::array::from_fn(|c| x[c] + d[c]))?;
+        moves.push((n, x));
+    }
+    Ok(Some(moves))
+}
+
 /// Removes the cap `tet` (nodes `el`) of volume `vol` if two or three of its
-/// faces are triangles of the flank surface `face`: those triangles go, the
-/// tet's other faces become the flank's triangles (oriented like the ones
-/// they replace, their nodes put on the generated flank), and the tet goes.
+/// faces are triangles of surface `tag`: those triangles go, the tet's other
+/// faces become the surface's triangles (oriented like the ones they
+/// replace; on a `flank` (tooth, side) their nodes are put on the generated
+/// flank), and the tet goes.
 /// A vertex covered by three cap faces, and the mid-edge nodes of edges no
 /// longer used, stay as nodes without elements (the FE reader drops them).
 /// Returns false (nothing changed) if `tet` is not such a cap.
@@ -586,10 +697,9 @@ fn remove_cap(
     vol: i32,
     tet: usize,
     el: &[usize; 10],
-    face: (usize, Side, i32),
+    (tag, flank): (i32, Option<(usize, Side)>),
     old: &mut std::collections::BTreeMap<usize, [f64; 3]>,
 ) -> gmsh::Result<bool> {
-    let (tooth, side, tag) = face;
     let (types, ftags, fnodes) = s.mesh_get_elements(2, tag)?;
     let Some(ti) = types.iter().position(|&t| t == 9) else {
         return Ok(false);
@@ -652,7 +762,8 @@ fn remove_cap(
         };
         new_nodes.extend([el[a], el[b], el[c], mid(a, b), mid(b, c), mid(c, a)]);
     }
-    for &n in &new_nodes {
+    for &n in new_nodes.iter().filter(|_| flank.is_some()) {
+        let (tooth, side) = flank.expect("filtered");
         if let std::collections::btree_map::Entry::Vacant(e) = old.entry(n) {
             let p = x(n);
             if let Some(q) = flank_point(req, tooth, side, p) {
@@ -671,6 +782,34 @@ fn remove_cap(
     let new_tags: Vec<usize> = (0..inner.len()).map(|k| first + k).collect();
     s.mesh_add_elements_by_type(tag, 9, &new_tags, &new_nodes)?;
     Ok(true)
+}
+
+/// Removes `tet` if it is a cap ([`remove_cap`]) on a surface other than a
+/// flank that its nodes lie on: the fillet next to a flank, on the reference
+/// level's pinion, whose caps invert when their flank edge is snapped (a
+/// sliver 0.4 mm wide and 0.4 µm thin, its flank edge moved 7 µm).
+fn remove_other_cap(
+    s: &Session,
+    req: &MeshRequest,
+    vol: i32,
+    tet: usize,
+    el: &[usize; 10],
+    faces: &[(usize, Side, i32)],
+    old: &mut std::collections::BTreeMap<usize, [f64; 3]>,
+) -> gmsh::Result<bool> {
+    let mut surfaces = std::collections::BTreeSet::new();
+    for &n in el {
+        let (_, (dim, tag)) = s.mesh_get_node(n)?;
+        if dim == 2 && !faces.iter().any(|f| f.2 == tag) {
+            surfaces.insert(tag);
+        }
+    }
+    for tag in surfaces {
+        if remove_cap(s, req, vol, tet, el, (tag, None), old)? {
+            return Ok(true);
+        }
+    }
+    Ok(false)
 }
 
 /// Angle of the blank's seam: opposite the circular mean of the refined teeth.
@@ -787,8 +926,10 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
             tools.push((3, c));
         }
     }
+    let t_cut = Instant::now();
     let (body, _) = s.occ_cut(&[blank], &tools, true, true).map_err(g)?;
     s.occ_synchronize().map_err(g)?;
+    let time_cut = t_cut.elapsed().as_secs_f64();
     let vols: Vec<i32> = body.iter().filter(|d| d.0 == 3).map(|d| d.1).collect();
     let occ_volume: f64 = vols
         .iter()
@@ -934,9 +1075,14 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         fallback_used = true;
         s.mesh_generate(3).map_err(g)?;
     }
+    let time_generate = t1.elapsed().as_secs_f64();
+    let t2 = Instant::now();
     s.mesh_set_order(2).map_err(g)?;
+    let time_order2 = t2.elapsed().as_secs_f64();
+    let t3 = Instant::now();
     let straightened = straighten_inverted(&s).map_err(g)?;
     let snap = snap_to_flanks(&s, req, &flank_faces).map_err(g)?;
+    let time_snap = t3.elapsed().as_secs_f64();
     let time_mesh = t1.elapsed().as_secs_f64();
 
     let (mesh_volume, tets, nodes) = mesh_volume(&s).map_err(g)?;
@@ -1005,6 +1151,8 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         snap_max_move_um: snap.max_move * 1e6,
         unsnapped_nodes: snap.kept,
         caps_removed: snap.caps_removed,
+        other_caps_removed: snap.other_caps_removed,
+        carried_nodes: snap.carried,
         algorithm_3d: algorithm_3d.to_string(),
         fallback_used,
         refined_flanks: refined,
@@ -1012,5 +1160,9 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         hole_angles_deg,
         time_geometry_s: time_geometry,
         time_mesh_s: time_mesh,
+        time_cut_s: time_cut,
+        time_generate_s: time_generate,
+        time_order2_s: time_order2,
+        time_snap_s: time_snap,
     })
 }

@@ -12,7 +12,7 @@ use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
 /// Bumped whenever the meshing changes what it produces for the same input.
-pub const MESH_SCHEMA: u32 = 9;
+pub const MESH_SCHEMA: u32 = 10;
 
 /// What `<stem>.inputs.json` records: the hash of everything that determines a mesh.
 #[derive(Debug, Serialize, Deserialize, PartialEq)]
