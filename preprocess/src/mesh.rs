@@ -647,8 +647,8 @@ type NodeAt = (usize, [f64; 3]);
 
 /// Moves the nodes of tet `el` for which `skip` is false (flank nodes and
 /// nodes carried already are skipped) by the mean snap move of its snapped
-/// nodes, so that the tet is translated rather than flattened: a sliver with one vertex on the flank and its other three
-/// just inside inverts when that vertex alone moves a few µm, while the
+/// nodes, so that the tet is translated rather than flattened: a sliver
+/// with one vertex on the flank and its other three just inside inverts when that vertex alone moves a few µm, while the
 /// well-shaped tets around its interior nodes hardly notice the same µm.
 /// Returns the nodes moved with their old positions, or `None` if the tet
 /// has no snapped node or no interior node.
@@ -723,15 +723,12 @@ fn remove_cap(
     if on.len() < 2 || inner.is_empty() {
         return Ok(false);
     }
-    let (ntags, coord, _) = s.mesh_get_nodes(-1, -1, false, false)?;
-    let mut idx = std::collections::HashMap::new();
-    for (k, &t) in ntags.iter().enumerate() {
-        idx.insert(t, k);
+    // The tet's own nodes are all that is looked at.
+    let mut at = std::collections::HashMap::new();
+    for &n in el {
+        at.insert(n, s.mesh_get_node(n)?.0);
     }
-    let x = |t: usize| -> [f64; 3] {
-        let k = idx[&t];
-        [coord[3 * k], coord[3 * k + 1], coord[3 * k + 2]]
-    };
+    let x = |t: usize| -> [f64; 3] { at[&t] };
     let normal = |a: usize, b: usize, c: usize| -> [f64; 3] {
         let (pa, pb, pc) = (x(a), x(b), x(c));
         let u: [f64; 3] = std::array::from_fn(|i| pb[i] - pa[i]);
@@ -762,13 +759,14 @@ fn remove_cap(
         };
         new_nodes.extend([el[a], el[b], el[c], mid(a, b), mid(b, c), mid(c, a)]);
     }
-    for &n in new_nodes.iter().filter(|_| flank.is_some()) {
-        let (tooth, side) = flank.expect("filtered");
-        if let std::collections::btree_map::Entry::Vacant(e) = old.entry(n) {
-            let p = x(n);
-            if let Some(q) = flank_point(req, tooth, side, p) {
-                e.insert(p);
-                s.mesh_set_node(n, q)?;
+    if let Some((tooth, side)) = flank {
+        for &n in &new_nodes {
+            if let std::collections::btree_map::Entry::Vacant(e) = old.entry(n) {
+                let p = x(n);
+                if let Some(q) = flank_point(req, tooth, side, p) {
+                    e.insert(p);
+                    s.mesh_set_node(n, q)?;
+                }
             }
         }
     }

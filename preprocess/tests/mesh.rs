@@ -33,15 +33,6 @@ fn geometry() -> &'static PairGeometry {
 }
 
 fn request(member: Member, blank: Blank, dims: &BlankDimensions) -> MeshRequest<'_> {
-    request_at(member, blank, dims, LEVEL)
-}
-
-fn request_at(
-    member: Member,
-    blank: Blank,
-    dims: &BlankDimensions,
-    level: FlankElements,
-) -> MeshRequest<'_> {
     let g = geometry();
     let (pt, wt) = teeth_in_contact(g, Side::Drive, 1.0, 1f64.to_radians());
     MeshRequest {
@@ -50,7 +41,7 @@ fn request_at(
         member,
         blank,
         dims,
-        level,
+        level: LEVEL,
         level_name: "reduced",
         side: Side::Drive,
         refined_teeth: if member == Member::Pinion { pt } else { wt },
@@ -203,8 +194,8 @@ const FLANK_TOLERANCE: f64 = 0.5e-6;
 
 /// Checks that every flank-group node of the pinion mesh at `path` lies on
 /// the generated flank within [`FLANK_TOLERANCE`] and that the report agrees
-/// (nothing left unsnapped, valid tets); returns the number of nodes.
-fn assert_flank_nodes_on_the_generated_flank(report: &MeshReport, path: &std::path::Path) -> usize {
+/// (nothing left unsnapped, valid tets).
+fn assert_flank_nodes_on_the_generated_flank(report: &MeshReport, path: &std::path::Path) {
     let refined: Vec<String> = report
         .refined_flanks
         .iter()
@@ -214,7 +205,7 @@ fn assert_flank_nodes_on_the_generated_flank(report: &MeshReport, path: &std::pa
     let g = geometry();
     let s = gmsh::Session::new().unwrap();
     s.open(path).unwrap();
-    let pitch = 2.0 * std::f64::consts::PI / 20.0;
+    let pitch = 2.0 * std::f64::consts::PI / g.data.member(Member::Pinion).teeth as f64;
     // (normal distance, on a refined flank), every flank-group node once.
     let mut seen = std::collections::BTreeSet::new();
     let mut all = Vec::new();
@@ -295,7 +286,6 @@ fn assert_flank_nodes_on_the_generated_flank(report: &MeshReport, path: &std::pa
     // snap must have moved the flank nodes.
     assert!(report.snapped_nodes + report.unsnapped_nodes >= all.len());
     assert!(report.snap_max_move_um > 0.5);
-    all.len()
 }
 
 #[test]
@@ -318,14 +308,8 @@ fn flank_group_nodes_lie_on_the_generated_flank_within_half_a_micrometre_caps_re
 fn reference_level_flank_nodes_lie_on_the_generated_flank_fillet_caps_removed() {
     let dir = std::env::temp_dir().join(format!("bevel-mesh-test-{}", std::process::id()));
     let path = dir.join("pinion_reference.msh");
-    let (report, path) = (
-        mesh_member(
-            &default_scene_pinion(default_scene().scene.mesh.reference, "reference"),
-            &path,
-        )
-        .unwrap(),
-        path,
-    );
+    let level = default_scene().scene.mesh.reference;
+    let report = mesh_member(&default_scene_pinion(level, "reference"), &path).unwrap();
     assert_flank_nodes_on_the_generated_flank(&report, &path);
     assert!(report.other_caps_removed > 0, "no fillet cap to remove");
 }
