@@ -53,11 +53,14 @@ validate: solve
 	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
 
 # Mesh convergence of the reference (three mesh levels at one position and
-# torque; the reference level needs ~10 GB and about half an hour).
+# torque; the reference level needs ~10 GB and about half an hour), and the
+# line-load check of the stiffness files' global field + Weber-Banaschek
+# against the fine-mesh FE (issue 4).
 convergence: build
 	$(BIN)/preprocess mesh $(SCENE) --level medium --out meshes
 	$(BIN)/preprocess mesh $(SCENE) --level reference --out meshes
 	$(BIN)/validate convergence $(SCENE) --meshes meshes --out $(OUT)
+	$(BIN)/validate line-load $(SCENE) --meshes meshes --out $(OUT)
 
 clean:
 	$(CARGO) clean

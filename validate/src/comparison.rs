@@ -244,6 +244,18 @@ pub fn compare(
             );
         }
     }
+    let ll_path = out.join(scene).join("reference/line_load.json");
+    if let Some(l) = read::<crate::line_load::LineLoad>(&ll_path) {
+        if l.current(&meshes.join(scene)) {
+            l.markdown(&mut markdown);
+        } else {
+            let _ = writeln!(
+                markdown,
+                "\n## Line load: global FE + Weber–Banaschek against fine-mesh FE\n\nNot shown: the meshes changed since {} was computed; `make convergence` recomputes it.",
+                ll_path.display()
+            );
+        }
+    }
     if let Some(t) =
         read::<Vec<crate::tradeoff::Point>>(&out.join(scene).join("reference/tradeoff.json"))
     {

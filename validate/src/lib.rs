@@ -14,6 +14,7 @@ pub mod contact_pairs;
 pub mod contact_surface;
 pub mod convergence;
 pub mod figures;
+pub mod line_load;
 pub mod penalty;
 pub mod published;
 pub mod reference_ltca;
