@@ -259,15 +259,9 @@ fn locate(x: &[[f64; 3]; 6], p: [f64; 3], slack: f64) -> Option<([f64; 2], f64)>
     Some((st, dot(sub(p, xp), sub(p, xp)).sqrt()))
 }
 
-/// The displacement `u` (3 per node) interpolated at the surface point
-/// `p` of `faces` (the nearest face containing it), projected on `dir`.
-pub fn surface_value(
-    mesh: &TetMesh,
-    faces: &[[usize; 6]],
-    u: &[f64],
-    p: [f64; 3],
-    dir: [f64; 3],
-) -> Option<f64> {
+/// The face of `faces` that contains the surface point `p` (nearest, within
+/// two element sizes) and the local coordinates there.
+pub fn find_face(mesh: &TetMesh, faces: &[[usize; 6]], p: [f64; 3]) -> Option<(usize, [f64; 2])> {
     let mut best: Option<([f64; 2], f64, usize)> = None;
     for (fi, f) in faces.iter().enumerate() {
         let x = f.map(|i| mesh.nodes[i]);
@@ -283,7 +277,19 @@ pub fn surface_value(
             }
         }
     }
-    let (st, _, fi) = best?;
+    best.map(|(st, _, fi)| (fi, st))
+}
+
+/// The displacement `u` (3 per node) interpolated at the surface point
+/// `p` of `faces` (the nearest face containing it), projected on `dir`.
+pub fn surface_value(
+    mesh: &TetMesh,
+    faces: &[[usize; 6]],
+    u: &[f64],
+    p: [f64; 3],
+    dir: [f64; 3],
+) -> Option<f64> {
+    let (fi, st) = find_face(mesh, faces, p)?;
     let nsh = tri6::shape(st);
     Some(
         faces[fi]
@@ -361,6 +367,10 @@ pub struct LineLoadLevel {
     pub mesh_sha256: String,
     pub dofs: usize,
     pub factor_s: f64,
+    /// Length of the load line that lies on the meshed flank (the rest
+    /// runs past the tooth's toe or heel edge and carries no load in the
+    /// FE), mm.
+    pub line_on_mesh_mm: f64,
     /// Mean flank element size along the profile, mm.
     pub profile_element_mm: f64,
     pub cases: Vec<LineLoadCase>,
@@ -508,6 +518,16 @@ pub fn run(
             fem::cholesky::Ordering::Metis,
         )?;
         let factor_s = t.elapsed().as_secs_f64();
+        let on_mesh: Vec<bool> = pts
+            .iter()
+            .map(|&p| find_face(&body.mesh, faces, p).is_some())
+            .collect();
+        let line_on_mesh: f64 = pts
+            .windows(2)
+            .zip(on_mesh.windows(2))
+            .filter(|(_, o)| o[0] && o[1])
+            .map(|(w, _)| dot(sub(w[1], w[0]), sub(w[1], w[0])).sqrt())
+            .sum();
         let mut cases = Vec::new();
         for &b in &study.half_widths {
             let f = strip_forces(&body.mesh, faces, &line, study.q, b, 8);
@@ -577,6 +597,7 @@ pub fn run(
             mesh_sha256: preprocess::stiffness_stage::sha256_file(&path)?,
             dofs: dofs.n_free(),
             factor_s,
+            line_on_mesh_mm: line_on_mesh * 1e3,
             profile_element_mm: profile_len / elements.profile as f64 * 1e3,
             cases,
         });
