@@ -138,7 +138,9 @@ pub fn hertz_pressure(q: f64, b: f64, s: f64) -> f64 {
 }
 
 /// Consistent nodal forces (dof 3 · node + component, value) of the Hertz
-/// strip along `line` on the faces `faces`. Each face that the strip
+/// strip along `line` on the faces `faces`, and the applied force ∫ p dA
+/// (the sum of the force magnitudes; the vector sum is smaller on a twisted
+/// flank, whose normal turns along the line). Each face that the strip
 /// reaches is integrated on `sub`² sub-triangles with the 6-point rule, so
 /// that the strip's square-root edges are resolved inside the element.
 pub fn strip_forces(
@@ -148,8 +150,9 @@ pub fn strip_forces(
     q: f64,
     b: f64,
     sub_div: usize,
-) -> Vec<(usize, f64)> {
+) -> (Vec<(usize, f64)>, f64) {
     let mut acc: std::collections::BTreeMap<usize, f64> = Default::default();
+    let mut applied = 0.0;
     let rule = tri6::dunavant6();
     let n = sub_div.max(1);
     for f in faces {
@@ -192,6 +195,7 @@ pub fn strip_forces(
                             continue;
                         }
                         let da = dot(nn, nn).sqrt();
+                        applied += w * jac * da * pr;
                         let nshape = tri6::shape(p);
                         for (k, fk) in fe.iter_mut().enumerate() {
                             for c in 0..3 {
@@ -210,7 +214,7 @@ pub fn strip_forces(
             }
         }
     }
-    acc.into_iter().collect()
+    (acc.into_iter().collect(), applied)
 }
 
 /// The local coordinates (s, t) of the point of face `x` nearest to `p`
@@ -307,9 +311,9 @@ pub struct LineLoadCase {
     /// Fine-mesh elements across the strip (2b over the mean flank element
     /// size along the profile).
     pub elements_across: f64,
-    /// Resultant of the applied strip forces over q · L (1 when the strip
-    /// is integrated exactly).
-    pub resultant_ratio: f64,
+    /// The applied force ∫ p dA over q · L (1 when the strip lies on the
+    /// meshed flank and is integrated exactly).
+    pub applied_load_ratio: f64,
     /// Per compared grid column: ξ, fine FE approach, global part, WB part,
     /// reduced prediction (µm), and the difference (%).
     pub xi: Vec<f64>,
@@ -367,9 +371,8 @@ pub struct LineLoadLevel {
     pub mesh_sha256: String,
     pub dofs: usize,
     pub factor_s: f64,
-    /// Length of the load line that lies on the meshed flank (the rest
-    /// runs past the tooth's toe or heel edge and carries no load in the
-    /// FE), mm.
+    /// Length of the load line that lies on the meshed flank, to the
+    /// line's sampling (ten points per grid column), mm.
     pub line_on_mesh_mm: f64,
     /// Mean flank element size along the profile, mm.
     pub profile_element_mm: f64,
@@ -530,14 +533,7 @@ pub fn run(
             .sum();
         let mut cases = Vec::new();
         for &b in &study.half_widths {
-            let f = strip_forces(&body.mesh, faces, &line, study.q, b, 8);
-            let resultant: f64 = {
-                let mut r = [0.0; 3];
-                for &(d, v) in &f {
-                    r[d % 3] += v;
-                }
-                dot(r, r).sqrt()
-            };
+            let (f, applied) = strip_forces(&body.mesh, faces, &line, study.q, b, 8);
             let mut full = vec![0.0; 3 * body.mesh.nodes.len()];
             for &(d, v) in &f {
                 full[d] = v;
@@ -571,7 +567,7 @@ pub fn run(
             let case = LineLoadCase {
                 half_width_mm: b * 1e3,
                 elements_across: 2.0 * b / (profile_len / elements.profile as f64),
-                resultant_ratio: resultant / (study.q * line.length()),
+                applied_load_ratio: applied / (study.q * line.length()),
                 xi: cols.iter().map(|&j| data.xi[j]).collect(),
                 fe_um: fe.iter().map(|w| w * 1e6).collect(),
                 global_um: cols.iter().map(|&j| glob[j] * 1e6).collect(),
@@ -700,7 +696,8 @@ mod tests {
         let top = faces_where(&block, |p| p[2] > 1.0 - 1e-12);
         let line = straight_line(0.0043, 0.004, 0.015);
         let (q, b) = (2.0e5, 0.9e-3);
-        let f = strip_forces(&block.mesh, &top, &line, q, b, 8);
+        let (f, applied) = strip_forces(&block.mesh, &top, &line, q, b, 8);
+        assert!((applied / (q * 0.015) - 1.0).abs() < 2e-3, "{applied}");
         let mut res = [0.0; 3];
         let mut moment_y = 0.0;
         for &(d, v) in &f {
