@@ -24,6 +24,7 @@
 //! half-plane approach to the stored depth hⱼ
 //! ([`solver::weber_banaschek::body_approach`]).
 
+use crate::contact_surface::{cross, dot, norm, sub, MasterSurface};
 use fem::{tri6, TetMesh};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
@@ -39,24 +40,8 @@ pub struct LoadLine {
     pub across: Vec<[f64; 3]>,
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 fn unit(a: [f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
+    let n = norm(a);
     [a[0] / n, a[1] / n, a[2] / n]
 }
 
@@ -87,10 +72,7 @@ impl LoadLine {
 
     /// Arc length of the line.
     pub fn length(&self) -> f64 {
-        self.points
-            .windows(2)
-            .map(|w| dot(sub(w[1], w[0]), sub(w[1], w[0])).sqrt())
-            .sum()
+        self.points.windows(2).map(|w| norm(sub(w[1], w[0]))).sum()
     }
 
     /// Signed distance s of `x` from the line across it, and the inward
@@ -157,9 +139,7 @@ pub fn strip_forces(
     let n = sub_div.max(1);
     for f in faces {
         let x = f.map(|i| mesh.nodes[i]);
-        let size = (1..6)
-            .map(|k| dot(sub(x[0], x[k]), sub(x[0], x[k])).sqrt())
-            .fold(0.0, f64::max);
+        let size = (1..6).map(|k| norm(sub(x[0], x[k]))).fold(0.0, f64::max);
         match line.across_distance(x[0]) {
             Some((s, _)) if s.abs() <= b + 2.0 * size => {}
             // Beyond an end: the face may still straddle it.
@@ -194,7 +174,7 @@ pub fn strip_forces(
                         if pr == 0.0 {
                             continue;
                         }
-                        let da = dot(nn, nn).sqrt();
+                        let da = norm(nn);
                         applied += w * jac * da * pr;
                         let nshape = tri6::shape(p);
                         for (k, fk) in fe.iter_mut().enumerate() {
@@ -217,86 +197,22 @@ pub fn strip_forces(
     (acc.into_iter().collect(), applied)
 }
 
-/// The local coordinates (s, t) of the point of face `x` nearest to `p`
-/// (Gauss–Newton from the centroid) and its distance; None when the
-/// iteration leaves the triangle by more than `slack`.
-fn locate(x: &[[f64; 3]; 6], p: [f64; 3], slack: f64) -> Option<([f64; 2], f64)> {
-    let mut st = [1.0 / 3.0, 1.0 / 3.0];
-    for _ in 0..20 {
-        let nsh = tri6::shape(st);
-        let d = tri6::shape_derivatives(st);
-        let mut xp = [0.0; 3];
-        let mut xs = [0.0; 3];
-        let mut xt = [0.0; 3];
-        for i in 0..6 {
-            for c in 0..3 {
-                xp[c] += nsh[i] * x[i][c];
-                xs[c] += d[i][0] * x[i][c];
-                xt[c] += d[i][1] * x[i][c];
-            }
-        }
-        let r = sub(p, xp);
-        let (a11, a12, a22) = (dot(xs, xs), dot(xs, xt), dot(xt, xt));
-        let (b1, b2) = (dot(xs, r), dot(xt, r));
-        let det = a11 * a22 - a12 * a12;
-        let ds = (a22 * b1 - a12 * b2) / det;
-        let dt = (a11 * b2 - a12 * b1) / det;
-        st = [st[0] + ds, st[1] + dt];
-        if st[0] < -slack - 1.0 || st[1] < -slack - 1.0 || st[0] + st[1] > 2.0 + slack {
-            return None;
-        }
-        if ds.abs() + dt.abs() < 1e-13 {
-            break;
-        }
-    }
-    let inside = st[0] >= -slack && st[1] >= -slack && st[0] + st[1] <= 1.0 + slack;
-    if !inside {
-        return None;
-    }
-    let nsh = tri6::shape(st);
-    let mut xp = [0.0; 3];
-    for i in 0..6 {
-        for c in 0..3 {
-            xp[c] += nsh[i] * x[i][c];
-        }
-    }
-    Some((st, dot(sub(p, xp), sub(p, xp)).sqrt()))
-}
-
-/// The face of `faces` that contains the surface point `p` (nearest, within
-/// two element sizes) and the local coordinates there.
-pub fn find_face(mesh: &TetMesh, faces: &[[usize; 6]], p: [f64; 3]) -> Option<(usize, [f64; 2])> {
-    let mut best: Option<([f64; 2], f64, usize)> = None;
-    for (fi, f) in faces.iter().enumerate() {
-        let x = f.map(|i| mesh.nodes[i]);
-        let size = (1..6)
-            .map(|k| dot(sub(x[0], x[k]), sub(x[0], x[k])).sqrt())
-            .fold(0.0, f64::max);
-        if dot(sub(x[0], p), sub(x[0], p)).sqrt() > 2.0 * size {
-            continue;
-        }
-        if let Some((st, d)) = locate(&x, p, 1e-9) {
-            if best.is_none_or(|b| d < b.1) {
-                best = Some((st, d, fi));
-            }
-        }
-    }
-    best.map(|(st, _, fi)| (fi, st))
-}
+/// How far from the flank faces a point of the load line may lie (the
+/// quadratic faces' departure from the generated flank, with margin), m.
+const ON_FACE_REACH: f64 = 1e-4;
 
 /// The displacement `u` (3 per node) interpolated at the surface point
-/// `p` of `faces` (the nearest face containing it), projected on `dir`.
+/// `p` of `surface` (its nearest face), projected on `dir`.
 pub fn surface_value(
-    mesh: &TetMesh,
-    faces: &[[usize; 6]],
+    surface: &MasterSurface,
     u: &[f64],
     p: [f64; 3],
     dir: [f64; 3],
 ) -> Option<f64> {
-    let (fi, st) = find_face(mesh, faces, p)?;
-    let nsh = tri6::shape(st);
+    let pr = surface.project(p, ON_FACE_REACH)?;
+    let nsh = tri6::shape(pr.st);
     Some(
-        faces[fi]
+        surface.faces[pr.face]
             .iter()
             .zip(nsh)
             .map(|(&node, w)| w * (0..3).map(|c| dir[c] * u[3 * node + c]).sum::<f64>())
@@ -457,11 +373,12 @@ pub fn run(
         flank.at_unit(0.5, eta0 + 0.01)?.pos,
         flank.at_unit(0.5, eta0)?.pos,
     );
-    let line = LoadLine::new(pts.clone(), nrm, towards);
+    let line = LoadLine::new(pts, nrm, towards);
+    let pts = &line.points;
     let col_len: Vec<f64> = (0..nf)
         .map(|j| {
             (j * per_col..(j + 1) * per_col)
-                .map(|k| dot(sub(pts[k + 1], pts[k]), sub(pts[k + 1], pts[k])).sqrt())
+                .map(|k| norm(sub(pts[k + 1], pts[k])))
                 .sum()
         })
         .collect();
@@ -469,7 +386,7 @@ pub fn run(
         .map(|k| {
             let a = flank.at_unit(0.5, k as f64 / 100.0).map(|p| p.pos);
             let b = flank.at_unit(0.5, (k + 1) as f64 / 100.0).map(|p| p.pos);
-            a.and_then(|a| b.map(|b| dot(sub(b, a), sub(b, a)).sqrt()))
+            a.and_then(|a| b.map(|b| norm(sub(b, a))))
         })
         .sum::<Result<f64, _>>()?;
     let idx = |j: usize| j * np + row;
@@ -521,15 +438,16 @@ pub fn run(
             fem::cholesky::Ordering::Metis,
         )?;
         let factor_s = t.elapsed().as_secs_f64();
+        let surface = MasterSurface::new(body.mesh.nodes.clone(), faces.to_vec());
         let on_mesh: Vec<bool> = pts
             .iter()
-            .map(|&p| find_face(&body.mesh, faces, p).is_some())
+            .map(|&p| surface.project(p, ON_FACE_REACH).is_some())
             .collect();
         let line_on_mesh: f64 = pts
             .windows(2)
             .zip(on_mesh.windows(2))
             .filter(|(_, o)| o[0] && o[1])
-            .map(|(w, _)| dot(sub(w[1], w[0]), sub(w[1], w[0])).sqrt())
+            .map(|(w, _)| norm(sub(w[1], w[0])))
             .sum();
         let mut cases = Vec::new();
         for &b in &study.half_widths {
@@ -543,7 +461,7 @@ pub fn run(
                 .iter()
                 .map(|&j| {
                     let (p, inward) = col_points[j];
-                    surface_value(&body.mesh, faces, &u, p, inward)
+                    surface_value(&surface, &u, p, inward)
                         .with_context(|| format!("column {j}: point not on the flank mesh"))
                 })
                 .collect::<anyhow::Result<_>>()?;
@@ -736,7 +654,8 @@ mod tests {
             .collect();
         let x: f64 = 0.0043;
         let p = [x, 0.0061, 0.005 + 1e-4 * (3.0 * x / 0.01).sin()];
-        let v = surface_value(&block.mesh, &top, &u, p, [0.0, 0.0, 1.0]);
+        let surface = MasterSurface::new(block.mesh.nodes.clone(), top);
+        let v = surface_value(&surface, &u, p, [0.0, 0.0, 1.0]);
         let v = v.expect("point on the top face");
         assert!((v - (3e-6 + 1e-4 * x)).abs() < 1e-9, "{v}");
     }
