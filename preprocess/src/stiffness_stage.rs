@@ -318,6 +318,7 @@ fn run_one(
         solved_teeth: config.solved_teeth.clone(),
         offsets: config.offsets.clone(),
         load_radius: config.load_radius_m,
+        fillet_rise: crate::influence::FILLET_RISE,
         block: st.solve_block,
     };
     eprintln!(

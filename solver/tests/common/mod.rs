@@ -88,6 +88,7 @@ pub fn compliance(
             solved_teeth: vec![solved],
             offsets: (-2..=2).collect(),
             load_radius: 0.75 * sf.max(sp),
+            fillet_rise: preprocess::influence::FILLET_RISE,
             block: 8,
         },
         &["bore"],
