@@ -465,9 +465,14 @@ pub const TIE_PENALTY: f64 = 1e4;
 /// Ghost stiffness of the cut elements' outside parts, relative.
 const GHOST: f64 = 1e-9;
 
-/// One-line description of the local model, part of the stiffness files'
-/// configuration (and so of their hash).
-pub const LOCAL_MODEL: &str = "half tooth to depth h cut through its elements (cut cells), far side tied by a penalty 1e4 E/l, sides clamped, reaching 0.6 grid spacings + the load radius beyond the grid and up to 0.3 h above the flank's tangent plane (the fillet)";
+/// One-line description of the local model with its fillet rise (see
+/// [`FILLET_RISE`]), part of the stiffness files' configuration (and so of
+/// their hash).
+pub fn local_model(fillet_rise: f64) -> String {
+    format!(
+        "half tooth to depth h cut through its elements (cut cells), far side tied by a penalty {TIE_PENALTY:e} E/l, sides clamped, reaching 0.6 grid spacings + the load radius beyond the grid and up to {fillet_rise} h above the flank's tangent plane (the fillet)"
+    )
+}
 
 /// How far above a grid point's tangent plane (outside the tooth, as a
 /// share of its depth h) an element's centroid may lie and still belong to

@@ -33,7 +33,7 @@ pub struct StiffnessConfig {
     pub youngs_modulus_pa: f64,
     pub poisson_ratio: f64,
     pub clamped_groups: Vec<String>,
-    /// How the local (near-load) field is computed ([`crate::influence::LOCAL_MODEL`]).
+    /// How the local (near-load) field is computed ([`crate::influence::local_model`]).
     pub local_model: String,
     /// Hash of the mesh inputs (from `<stem>.inputs.json`) and of the mesh file.
     pub mesh_inputs_hash: String,
@@ -198,7 +198,7 @@ pub fn planned(
         youngs_modulus_pa: md.youngs_modulus,
         poisson_ratio: md.poisson_ratio,
         clamped_groups: vec!["bore".into()],
-        local_model: crate::influence::LOCAL_MODEL.into(),
+        local_model: crate::influence::local_model(crate::influence::FILLET_RISE),
         mesh_inputs_hash: mesh_inputs["hash"].as_str().unwrap_or_default().to_string(),
         mesh_file_sha256: sha256_file(&msh)?,
     };
@@ -372,4 +372,89 @@ fn run_one(
     };
     write_json(&dir.join(format!("{stem}.stiffness.json")), &report)?;
     Ok(report)
+}
+
+/// Rotational symmetry of a standard blank on its own mesh: the diagonal
+/// C(p, p) of the loaded tooth when the stiffness file's solved tooth is
+/// loaded and when its refined neighbour is (the same body, factored once),
+/// relative difference |C_b − C_a|/C_a per field. The teeth's meshes differ,
+/// so this is the mesh noise that the file's reuse by rotation ignores.
+#[derive(Debug, Clone, Serialize)]
+pub struct ToothToTooth {
+    pub member: String,
+    pub level: String,
+    pub teeth: [usize; 2],
+    pub total_max_abs: f64,
+    pub total_mean_abs: f64,
+    /// Grid point (face, profile index) of the largest total difference.
+    pub total_worst_point: [usize; 2],
+    pub global_max_abs: f64,
+    pub global_mean_abs: f64,
+    pub global_worst_point: [usize; 2],
+}
+
+/// [`ToothToTooth`] of `member`'s standard blank on the meshes of `level`
+/// under `root/<scene>/`.
+pub fn tooth_to_tooth(
+    scene: &LoadedScene,
+    root: &Path,
+    member: Member,
+    level: &str,
+) -> anyhow::Result<ToothToTooth> {
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let dir = root.join(&sc.name);
+    let side = sc.loaded_flank;
+    let p = planned(scene, &g, &dir, member, Blank::Standard, level, side)?;
+    let refined = refined_teeth_on(&g, sc, member, Blank::Standard, side);
+    let a = p.config.solved_teeth[0];
+    let z = g.data.member(member).teeth as usize;
+    let b = [(a + 1) % z, (a + z - 1) % z]
+        .into_iter()
+        .find(|t| refined.contains(t))
+        .with_context(|| format!("no refined neighbour of tooth {a} on the {}", member.name()))?;
+    let body = body_mesh::read(&p.msh).map_err(anyhow::Error::msg)?;
+    let req = InfluenceRequest {
+        body: &body,
+        material: g.data.member(member).material(),
+        teeth: z,
+        loaded: &p.config.loaded_flank,
+        opposite: side.other().flank_name(member),
+        grid: &p.grid,
+        solved_teeth: vec![a, b],
+        offsets: vec![0],
+        load_radius: p.config.load_radius_m,
+        fillet_rise: crate::influence::FILLET_RISE,
+        block: sc.stiffness.solve_block,
+    };
+    let inf = compute(&req, &["bore"])?;
+    let np = p.grid.len();
+    let change = |f: &[f64]| {
+        let r: Vec<f64> = (0..np)
+            .map(|i| {
+                let (ca, cb) = (f[i * np + i], f[np * np + i * np + i]);
+                ((cb - ca) / ca).abs()
+            })
+            .collect();
+        let worst = (0..np).fold(0, |w, i| if r[i] > r[w] { i } else { w });
+        let npf = p.grid.size.profile;
+        (
+            r[worst],
+            r.iter().sum::<f64>() / np as f64,
+            [worst / npf, worst % npf],
+        )
+    };
+    let (tm, ta, tw) = change(&inf.total);
+    let (gm, ga, gw) = change(&inf.global);
+    Ok(ToothToTooth {
+        member: member.name().into(),
+        level: level.into(),
+        teeth: [a, b],
+        total_max_abs: tm,
+        total_mean_abs: ta,
+        total_worst_point: tw,
+        global_max_abs: gm,
+        global_mean_abs: ga,
+        global_worst_point: gw,
+    })
 }
