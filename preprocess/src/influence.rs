@@ -315,7 +315,14 @@ fn tooth_weights(req: &InfluenceRequest, k: usize) -> Result<Vec<Weights>, Influ
 
 /// Mid-surface depths of tooth k's grid points. A ray that leaves the tooth
 /// through its toe or heel face instead of the opposite flank takes the
-/// value of the nearest grid point whose ray meets the opposite flank.
+/// value of the nearest grid point of the same profile row whose ray meets
+/// the opposite flank (the depth varies little along the face). Taking the
+/// nearest point of any row put steps of up to 1 mm between neighbouring
+/// rows into the end columns' depths, and so into the local model's support
+/// surface; which elements fell on either side of a step depended on the
+/// mesh, and the local field at the default pinion's heel differed by 20 %
+/// between two teeth (global diagonal tooth to tooth: 7.2 % at most, 1.9 %
+/// with the row-wise fallback).
 fn tooth_depths(req: &InfluenceRequest, k: usize) -> Result<Vec<f64>, InfluenceError> {
     let opp = group(req.body, &format!("tooth{k}_{}", req.opposite))?;
     let a = 2.0 * std::f64::consts::PI * k as f64 / req.teeth as f64;
@@ -339,7 +346,7 @@ fn tooth_depths(req: &InfluenceRequest, k: usize) -> Result<Vec<f64>, InfluenceE
             .enumerate()
             .filter_map(|(j, h)| {
                 let (fj, pj) = (j as i64 / np, j as i64 % np);
-                h.map(|h| ((fi - fj).pow(2) + (pi - pj).pow(2), h))
+                h.map(|h| (((pi - pj).abs(), (fi - fj).abs()), h))
             })
             .min_by_key(|x| x.0);
         *o = best
@@ -470,7 +477,7 @@ const GHOST: f64 = 1e-9;
 /// their hash).
 pub fn local_model(fillet_rise: f64) -> String {
     format!(
-        "half tooth to depth h cut through its elements (cut cells), far side tied by a penalty {TIE_PENALTY:e} E/l, sides clamped, reaching 0.6 grid spacings + the load radius beyond the grid and up to {fillet_rise} h above the flank's tangent plane (the fillet)"
+        "half tooth to depth h (half the thickness along the normal; where the normal leaves through toe or heel, the nearest point's of the same profile row) cut through its elements (cut cells), far side tied by a penalty {TIE_PENALTY:e} E/l, sides clamped, reaching 0.6 grid spacings + the load radius beyond the grid and up to {fillet_rise} h above the flank's tangent plane (the fillet)"
     )
 }
 
