@@ -490,8 +490,8 @@ pub fn local_model(fillet_rise: f64) -> String {
 /// root-row points (load radius 2 mm) on the default scene's pinion, and
 /// the local diagonal there changed by up to 21 % between the reduced and
 /// the medium mesh; with 0.3 the supports move 2.2–2.5 mm away and the
-/// global diagonal changes by at most 3.3 % (0.5 gives the same fields
-/// within 0.04 % on the mean). Along the root-row normals the facing flank
+/// root row's global diagonal changes by at most 1.4 % (0.5 gives the same
+/// fields within 0.04 % on the mean). Along the root-row normals the facing flank
 /// of the neighbouring tooth is 4.6 mm away on the default pinion (h =
 /// 4.5 mm) and 4.85 mm on its wheel (h = 4.3 mm), so 0.3 h keeps to the
 /// loaded tooth's own half of the space.
