@@ -123,6 +123,33 @@ pub struct Planned {
     pub grid: FlankGrid,
 }
 
+/// The influence request that a stiffness file's `config` on grid `fg` asks
+/// for, on `body`.
+pub fn request<'a>(
+    config: &'a StiffnessConfig,
+    fg: &'a FlankGrid,
+    body: &'a body_mesh::BodyMesh,
+    g: &PairGeometry,
+    member: Member,
+    side: Side,
+    block: usize,
+) -> InfluenceRequest<'a> {
+    let md = g.data.member(member);
+    InfluenceRequest {
+        body,
+        material: md.material(),
+        teeth: md.teeth as usize,
+        loaded: &config.loaded_flank,
+        opposite: side.other().flank_name(member),
+        grid: fg,
+        solved_teeth: config.solved_teeth.clone(),
+        offsets: config.offsets.clone(),
+        load_radius: config.load_radius_m,
+        fillet_rise: crate::influence::FILLET_RISE,
+        block,
+    }
+}
+
 /// The stiffness file of `member` × `blank` for loads on its `side` flank
 /// that `scene` needs (the mesh must exist, since its SHA-256 is part of the
 /// hash). The loaded side's file is `<member>_<blank>_<level>.stiffness.h5`,
@@ -307,20 +334,7 @@ fn run_one(
     }
     eprintln!("{stem}: reading {}", msh.display());
     let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
-    let opposite = side.other().flank_name(member);
-    let req = InfluenceRequest {
-        body: &body,
-        material: md.material(),
-        teeth: md.teeth as usize,
-        loaded: &config.loaded_flank,
-        opposite,
-        grid: &fg,
-        solved_teeth: config.solved_teeth.clone(),
-        offsets: config.offsets.clone(),
-        load_radius: config.load_radius_m,
-        fillet_rise: crate::influence::FILLET_RISE,
-        block: st.solve_block,
-    };
+    let req = request(&config, &fg, &body, g, member, side, st.solve_block);
     eprintln!(
         "{stem}: {} nodes, {} tet10; unit loads on {} tooth(s) x {} grid points",
         body.mesh.nodes.len(),
@@ -415,17 +429,17 @@ pub fn tooth_to_tooth(
         .with_context(|| format!("no refined neighbour of tooth {a} on the {}", member.name()))?;
     let body = body_mesh::read(&p.msh).map_err(anyhow::Error::msg)?;
     let req = InfluenceRequest {
-        body: &body,
-        material: g.data.member(member).material(),
-        teeth: z,
-        loaded: &p.config.loaded_flank,
-        opposite: side.other().flank_name(member),
-        grid: &p.grid,
         solved_teeth: vec![a, b],
         offsets: vec![0],
-        load_radius: p.config.load_radius_m,
-        fillet_rise: crate::influence::FILLET_RISE,
-        block: sc.stiffness.solve_block,
+        ..request(
+            &p.config,
+            &p.grid,
+            &body,
+            &g,
+            member,
+            side,
+            sc.stiffness.solve_block,
+        )
     };
     let inf = compute(&req, &["bore"])?;
     let np = p.grid.len();
