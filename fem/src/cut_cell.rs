@@ -1,5 +1,6 @@
 //! Tet10 elements cut by a level set: stiffness of the part where φ ≥ 0,
-//! and a penalty tie u = 0 on the cut surface φ = 0.
+//! and a tie u = 0 on the cut surface φ = 0, by a penalty or by Nitsche's
+//! method.
 //!
 //! φ is linear over the element, interpolated from its four vertex values in
 //! reference coordinates. The part {φ ≥ 0} of the reference tetrahedron is a
@@ -22,6 +23,20 @@
 //! with t_s, t_t the reference edge vectors of a surface triangle. A straight
 //! element's integrand is a polynomial of degree 2 (stiffness) and 4 (tie),
 //! which the 4-point tetrahedron and 6-point triangle rules integrate exactly.
+//!
+//! A penalty forces the quadratic field towards zero on a plane that runs
+//! through the elements; the only quadratics that vanish there are φ times a
+//! linear function, so a large α locks the cut elements (the held side grows
+//! stiffer with every decade of α, by a share that depends on the mesh).
+//! Nitsche's method adds the consistency terms
+//!
+//!   K_N = −∫_Γ (Nᵀ T + Tᵀ N) dA + α_T ∫_Γ Nᵀ N dA,
+//!
+//! with T the traction σ(u) n of the element's field on Γ (n the outward
+//! normal of {φ ≥ 0}); the exact solution satisfies it for any α_T, so α_T
+//! only has to keep K_N coercive: α_T = γ λ_T with λ_T = max_v ‖σ(v) n‖²_Γ /
+//! a_T+(v, v), the largest eigenvalue of the element's traction matrix
+//! ∫_Γ Tᵀ T dA against its inside stiffness, and γ > 2.
 
 use crate::{tet10, tri6};
 
@@ -177,19 +192,141 @@ pub fn surface_tie(x: &[[f64; 3]; 10], c: &Clip, alpha: f64) -> [f64; 900] {
     k
 }
 
+/// Outward unit normal n = −∇φ/|∇φ| of {φ ≥ 0} at ξ (φ linear in the
+/// reference coordinates: ∇_ξ φ = (φ1 − φ0, φ2 − φ0, φ3 − φ0); ∇_x φ =
+/// J⁻ᵀ ∇_ξ φ).
+fn outward_normal(x: &[[f64; 3]; 10], phi: [f64; 4], xi: Xi) -> Xi {
+    let d = [phi[1] - phi[0], phi[2] - phi[0], phi[3] - phi[0]];
+    let (j, det) = tet10::jacobian(x, &tet10::shape_derivatives(xi));
+    let ji = tet10::inv3(&j, det);
+    let g: Xi = [0, 1, 2].map(|r| (0..3).map(|c| ji[c][r] * d[c]).sum::<f64>());
+    let l = norm(g);
+    g.map(|v| -v / l)
+}
+
+/// Traction operator at ξ: t = T u (3 × 30, dof 3 · node + component),
+///
+///   T_j,ai = λ g_a,i n_j + μ (δ_ij (g_a · n) + n_i g_a,j),
+///
+/// the traction σ n of the field u = N_a e_i, g_a the physical gradient of
+/// N_a.
+fn traction_operator(x: &[[f64; 3]; 10], lambda: f64, mu: f64, n: Xi, xi: Xi) -> [[f64; 30]; 3] {
+    let (g, _) = tet10::gradients(x, xi);
+    let mut t = [[0.0; 30]; 3];
+    for (a, ga) in g.iter().enumerate() {
+        let gn = ga[0] * n[0] + ga[1] * n[1] + ga[2] * n[2];
+        for i in 0..3 {
+            for (j, tj) in t.iter_mut().enumerate() {
+                let mut v = lambda * ga[i] * n[j] + mu * n[i] * ga[j];
+                if i == j {
+                    v += mu * gn;
+                }
+                tj[3 * a + i] = v;
+            }
+        }
+    }
+    t
+}
+
+/// Nitsche's tie u = 0 on the cut surface with the parameter `alpha` (Pa/m):
+///
+///   K_N,ai,bj = ∫_Γ (−N_a T_i,bj − T_j,ai N_b + α δ_ij N_a N_b) dA.
+pub fn surface_nitsche(
+    x: &[[f64; 3]; 10],
+    c: &Clip,
+    phi: [f64; 4],
+    lambda: f64,
+    mu: f64,
+    alpha: f64,
+) -> [f64; 900] {
+    let mut k = [0.0; 900];
+    for (xi, w) in surface_rule(x, c) {
+        let nn = tet10::shape(xi);
+        let t = traction_operator(x, lambda, mu, outward_normal(x, phi, xi), xi);
+        for a in 0..10 {
+            for i in 0..3 {
+                let row = (3 * a + i) * 30;
+                for b in 0..10 {
+                    for j in 0..3 {
+                        let mut v = -nn[a] * t[i][3 * b + j] - t[j][3 * a + i] * nn[b];
+                        if i == j {
+                            v += alpha * nn[a] * nn[b];
+                        }
+                        k[row + 3 * b + j] += w * v;
+                    }
+                }
+            }
+        }
+    }
+    k
+}
+
+/// λ_T = max_v ‖σ(v) n‖²_Γ / a_T+(v, v): the largest eigenvalue of the
+/// traction matrix M = ∫_Γ Tᵀ T dA against the inside stiffness `k_inside`,
+/// over the modes that strain the inside part (rigid motions leave both
+/// zero). Pa/m.
+pub fn nitsche_bound(
+    x: &[[f64; 3]; 10],
+    c: &Clip,
+    phi: [f64; 4],
+    lambda: f64,
+    mu: f64,
+    k_inside: &[f64; 900],
+) -> f64 {
+    use nalgebra::{DMatrix, SymmetricEigen};
+    let mut m = DMatrix::<f64>::zeros(30, 30);
+    for (xi, w) in surface_rule(x, c) {
+        let t = traction_operator(x, lambda, mu, outward_normal(x, phi, xi), xi);
+        for p in 0..30 {
+            for q in 0..30 {
+                m[(p, q)] += w * (0..3).map(|k| t[k][p] * t[k][q]).sum::<f64>();
+            }
+        }
+    }
+    let k = DMatrix::from_row_slice(30, 30, k_inside);
+    let k = SymmetricEigen::new(0.5 * (&k + k.transpose()));
+    let top = k.eigenvalues.max();
+    // Straining modes: K_+ = V Λ Vᵀ restricted to Λ > 0 (rigid ones are at
+    // round-off), L = V Λ^{-1/2}; λ_T is the top eigenvalue of Lᵀ M L.
+    let keep: Vec<usize> = (0..30)
+        .filter(|&i| k.eigenvalues[i] > 1e-10 * top)
+        .collect();
+    let mut l = DMatrix::<f64>::zeros(30, keep.len());
+    for (c, &i) in keep.iter().enumerate() {
+        let s = k.eigenvalues[i].sqrt().recip();
+        for r in 0..30 {
+            l[(r, c)] = k.eigenvectors[(r, i)] * s;
+        }
+    }
+    let a = l.transpose() * m * &l;
+    SymmetricEigen::new(0.5 * (&a + a.transpose()))
+        .eigenvalues
+        .max()
+}
+
+/// How a cut element holds its cut surface at zero displacement.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tie {
+    /// The penalty P with α in Pa/m.
+    Penalty { alpha: f64 },
+    /// Nitsche's terms with α_T = γ λ_T ([`nitsche_bound`]); γ > 2 keeps
+    /// the element's matrix coercive.
+    Nitsche { gamma: f64 },
+}
+
 /// The element matrix of a model that keeps {φ ≥ 0} and ties u = 0 on
-/// φ = 0 by a penalty α (Pa/m): the whole stiffness where every vertex is
-/// inside; for a cut element, the inside part's stiffness, the tie, and
-/// `ghost` × the whole element's stiffness (a small multiple, 1e-9 say: it
-/// keeps the outside nodes of a barely cut element from being nearly free,
-/// at a relative change of the order of `ghost`). `phi` are the vertex
-/// values; an element with no vertex inside gets a zero matrix.
+/// φ = 0 ([`Tie`]): the whole stiffness where every vertex is inside; for a
+/// cut element, the inside part's stiffness, the tie, and `ghost` × the
+/// whole element's stiffness (a small multiple, 1e-9 say: it keeps the
+/// outside nodes of a barely cut element from being nearly free, at a
+/// relative change of the order of `ghost`). `phi` are the vertex values;
+/// an element with no vertex inside gets a zero matrix.
 pub fn cut_stiffness(
     x: &[[f64; 3]; 10],
     lambda: f64,
     mu: f64,
     phi: [f64; 4],
-    alpha: f64,
+    tie: Tie,
     ghost: f64,
 ) -> Result<[f64; 900], f64> {
     if phi.iter().all(|&p| p >= 0.0) {
@@ -200,7 +337,13 @@ pub fn cut_stiffness(
         return Ok([0.0; 900]);
     }
     let mut k = inside_stiffness(x, lambda, mu, &c)?;
-    let tie = surface_tie(x, &c, alpha);
+    let tie = match tie {
+        Tie::Penalty { alpha } => surface_tie(x, &c, alpha),
+        Tie::Nitsche { gamma } => {
+            let alpha = gamma * nitsche_bound(x, &c, phi, lambda, mu, &k);
+            surface_nitsche(x, &c, phi, lambda, mu, alpha)
+        }
+    };
     let whole = tet10::stiffness(x, lambda, mu)?;
     for ((k, t), w) in k.iter_mut().zip(tie).zip(whole) {
         *k += t + ghost * w;
@@ -276,6 +419,55 @@ mod tests {
             // The 4-point rule is not exact on curved elements: 1e-4 here.
             assert!((sum - whole).abs() < 1e-4 * whole, "{sum} vs {whole}");
             assert!((surface_area(&x, &a) - surface_area(&x, &b)).abs() < 1e-14);
+        }
+    }
+
+    /// Nitsche's element matrix (inside stiffness + tie) is symmetric and
+    /// positive semi-definite (to round-off) at γ = 4 for cuts of every kind, slivers included
+    /// (λ_T grows as the inside part shrinks, and α_T with it), while the
+    /// tie's consistency terms alone, without α_T, leave it indefinite.
+    #[test]
+    fn nitsche_element_matrix_is_symmetric_and_coercive_for_slivers_and_full_cuts() {
+        use nalgebra::{DMatrix, SymmetricEigen};
+        let mut x = unit();
+        x[4][1] += 0.05;
+        x[7][0] -= 0.04;
+        let (lambda, mu) = (1.2, 0.8);
+        let min_eig = |k: &[f64; 900]| -> (f64, f64) {
+            let m = DMatrix::from_row_slice(30, 30, k);
+            let asym = (&m - m.transpose()).abs().max() / m.abs().max();
+            let e = SymmetricEigen::new(m).eigenvalues;
+            (e.min() / e.max(), asym)
+        };
+        for (phi, sliver) in [
+            ([0.3, -0.2, 0.1, -0.5], false),
+            ([0.9, -0.1, -0.3, -0.2], false),
+            ([0.2, 0.4, 0.1, -0.7], false),
+            ([1e-3, -1.0, -1.0, -1.0], true),
+            ([1.0, 1.0, 1.0, -1e-3], true),
+        ] {
+            let c = clip(phi);
+            let inside = inside_stiffness(&x, lambda, mu, &c).unwrap();
+            let bound = nitsche_bound(&x, &c, phi, lambda, mu, &inside);
+            let k = cut_stiffness(&x, lambda, mu, phi, Tie::Nitsche { gamma: 4.0 }, 0.0).unwrap();
+            let (low, asym) = min_eig(&k);
+            assert!(asym < 1e-12, "{phi:?}: asymmetry {asym:e}");
+            // Rigid motions are held only by the tie on Γ: at round-off for
+            // a tiny Γ, never below it.
+            assert!(
+                low > -1e-13,
+                "{phi:?}: smallest / largest eigenvalue {low:e}"
+            );
+            let mut bare = inside;
+            let tie = surface_nitsche(&x, &c, phi, lambda, mu, 0.0);
+            bare.iter_mut().zip(tie).for_each(|(k, t)| *k += t);
+            let (low0, _) = min_eig(&bare);
+            // (A sliver's consistency terms are too small to show it.)
+            assert!(
+                sliver || low0 < -1e-6,
+                "{phi:?}: no α, smallest / largest eigenvalue {low0:e}"
+            );
+            assert!(bound > 0.0 && bound.is_finite(), "{phi:?}: λ_T {bound:e}");
         }
     }
 }

@@ -3,6 +3,7 @@
 //! rate under h-refinement.
 
 use fem::cholesky::Ordering;
+use fem::cut_cell::Tie;
 use fem::structured::{distort_interior, faces_where, mapped_block, Block};
 use fem::{assemble, cut_cell, tet10, tri6, Dofs, Factor, Material};
 
@@ -288,13 +289,14 @@ fn polar_moment_of_a_box_and_a_tube_match_the_closed_forms() {
     assert!(e2 < 1e-4 && e1 / e2 > 4.0, "{e1:e} {e2:e}");
 }
 
-/// Cut-cell patch test: a bar (ν = 0) held by the penalty tie on the plane
-/// x = c, which runs through its elements, and stretched by u_x = δ at
-/// x = L. The exact field u_x = δ (x − c)/(L − c) is linear and lies in the
-/// tet10 space. The penalty tie carries the reaction σ A only through a
-/// displacement σ/α on the plane, so the cut-cell model (only the part
-/// x ≥ c integrated) reproduces the exact field up to that, an error
-/// E/(α (L − c)) relative to δ that falls as 1/α. Integrating the whole cut
+/// Cut-cell patch test: a bar (ν = 0) held on the plane x = c, which runs
+/// through its elements, and stretched by u_x = δ at x = L. The exact field
+/// u_x = δ (x − c)/(L − c) is linear and lies in the tet10 space. The
+/// penalty tie carries the reaction σ A only through a displacement σ/α on
+/// the plane, so the cut-cell model (only the part x ≥ c integrated)
+/// reproduces the exact field up to that, an error E/(α (L − c)) relative
+/// to δ that falls as 1/α. Nitsche's tie is consistent: it reproduces the
+/// field to round-off at any admissible γ. Integrating the whole cut
 /// elements instead leaves a 2 % error at any α.
 #[test]
 fn cut_cell_patch_test_bar_tied_on_a_plane_through_its_elements_stretches_linearly() {
@@ -312,16 +314,17 @@ fn cut_cell_patch_test_bar_tied_on_a_plane_through_its_elements_stretches_linear
         .collect();
     let (sub, _) = block.mesh.submesh(&keep);
     let phis: Vec<[f64; 4]> = keep.iter().map(|&e| phi_of(&block.mesh.tets[e])).collect();
-    // Largest nodal error over x ≥ c, relative to δ.
-    let error = |inside_only: bool, alpha: f64| -> f64 {
+    // Largest nodal error over x ≥ c, relative to δ; `tie` None: the whole
+    // cut elements with the penalty α.
+    let error = |tie: Option<Tie>, alpha: f64| -> f64 {
         let fixed: Vec<(usize, f64)> = (0..sub.nodes.len())
             .filter(|&i| (sub.nodes[i][0] - l).abs() < 1e-12)
             .map(|i| (3 * i, delta))
             .collect();
         let dofs = Dofs::new(&sub, &fixed).unwrap();
         let sys = fem::assemble_with(&sub, &dofs, |e, x| {
-            if inside_only {
-                return cut_cell::cut_stiffness(x, lambda, mu, phis[e], alpha, 1e-9);
+            if let Some(tie) = tie {
+                return cut_cell::cut_stiffness(x, lambda, mu, phis[e], tie, 1e-9);
             }
             let mut k = tet10::stiffness(x, lambda, mu)?;
             if phis[e].iter().any(|&p| p < 0.0) {
@@ -348,10 +351,19 @@ fn cut_cell_patch_test_bar_tied_on_a_plane_through_its_elements_stretches_linear
     let e = bar.youngs_modulus_pa;
     let h = l / 6.0;
     let (a4, a6) = (1e4 * e / h, 1e6 * e / h);
-    let (cut4, cut6, whole) = (error(true, a4), error(true, a6), error(false, a6));
+    let penalty = |alpha| Some(Tie::Penalty { alpha });
+    let (cut4, cut6, whole) = (
+        error(penalty(a4), 0.0),
+        error(penalty(a6), 0.0),
+        error(None, a6),
+    );
+    let (nitsche3, nitsche30) = (
+        error(Some(Tie::Nitsche { gamma: 3.0 }), 0.0),
+        error(Some(Tie::Nitsche { gamma: 30.0 }), 0.0),
+    );
     let predicted = e / (a4 * (l - c));
     println!(
-        "largest error / δ: cut cells {cut4:.3e} (α = 1e4 E/h; E/(α(L − c)) = {predicted:.3e}), {cut6:.3e} (1e6 E/h); whole cut elements {whole:.2e}"
+        "largest error / δ: cut cells {cut4:.3e} (α = 1e4 E/h; E/(α(L − c)) = {predicted:.3e}), {cut6:.3e} (1e6 E/h); Nitsche {nitsche3:.1e} (γ = 3), {nitsche30:.1e} (γ = 30); whole cut elements {whole:.2e}"
     );
     assert!(
         (cut4 / predicted - 1.0).abs() < 0.05,
@@ -360,6 +372,10 @@ fn cut_cell_patch_test_bar_tied_on_a_plane_through_its_elements_stretches_linear
     assert!(
         (cut4 / cut6 / 100.0 - 1.0).abs() < 0.05,
         "{cut4:e} / {cut6:e}"
+    );
+    assert!(
+        nitsche3 < 1e-9 && nitsche30 < 1e-9,
+        "{nitsche3:e} {nitsche30:e}"
     );
     assert!(whole > 1e-2, "whole elements: {whole:e}");
 }
