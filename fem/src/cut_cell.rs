@@ -286,6 +286,10 @@ pub fn nitsche_bound(
     let k = DMatrix::from_row_slice(30, 30, k_inside);
     let k = SymmetricEigen::new(0.5 * (&k + k.transpose()));
     let top = k.eigenvalues.max();
+    if top <= 0.0 || top.is_nan() {
+        // No inside volume (φ = 0 at the only vertex not below it): no tie.
+        return 0.0;
+    }
     // Straining modes: K_+ = V Λ Vᵀ restricted to Λ > 0 (rigid ones are at
     // round-off), L = V Λ^{-1/2}; λ_T is the top eigenvalue of Lᵀ M L.
     let keep: Vec<usize> = (0..30)
@@ -423,9 +427,10 @@ mod tests {
     }
 
     /// Nitsche's element matrix (inside stiffness + tie) is symmetric and
-    /// positive semi-definite (to round-off) at γ = 4 for cuts of every kind, slivers included
-    /// (λ_T grows as the inside part shrinks, and α_T with it), while the
-    /// tie's consistency terms alone, without α_T, leave it indefinite.
+    /// positive semi-definite (to round-off) at γ = 4 for cuts of every
+    /// kind, slivers included (λ_T grows as the inside part shrinks, and α_T
+    /// with it), while the tie's consistency terms alone, without α_T, leave
+    /// it indefinite.
     #[test]
     fn nitsche_element_matrix_is_symmetric_and_coercive_for_slivers_and_full_cuts() {
         use nalgebra::{DMatrix, SymmetricEigen};
@@ -469,5 +474,12 @@ mod tests {
             );
             assert!(bound > 0.0 && bound.is_finite(), "{phi:?}: λ_T {bound:e}");
         }
+        // φ = 0 at the one vertex not below it: nothing inside, no tie.
+        let c = clip([0.0, -1.0, -1.0, -1.0]);
+        let inside = inside_stiffness(&x, lambda, mu, &c).unwrap();
+        assert_eq!(
+            nitsche_bound(&x, &c, [0.0, -1.0, -1.0, -1.0], lambda, mu, &inside),
+            0.0
+        );
     }
 }
