@@ -228,6 +228,32 @@ fn traction_operator(x: &[[f64; 3]; 10], lambda: f64, mu: f64, n: Xi, xi: Xi) ->
     t
 }
 
+/// A quadrature point of the cut surface: area weight, shape functions and
+/// traction operator ([`traction_operator`]).
+struct SurfacePoint {
+    w: f64,
+    n: [f64; 10],
+    t: [[f64; 30]; 3],
+}
+
+/// The cut surface's quadrature points with what both Nitsche terms need.
+fn surface_points(
+    x: &[[f64; 3]; 10],
+    c: &Clip,
+    phi: [f64; 4],
+    lambda: f64,
+    mu: f64,
+) -> Vec<SurfacePoint> {
+    surface_rule(x, c)
+        .into_iter()
+        .map(|(xi, w)| SurfacePoint {
+            w,
+            n: tet10::shape(xi),
+            t: traction_operator(x, lambda, mu, outward_normal(x, phi, xi), xi),
+        })
+        .collect()
+}
+
 /// Nitsche's tie u = 0 on the cut surface with the parameter `alpha` (Pa/m):
 ///
 ///   K_N,ai,bj = ∫_Γ (−N_a T_i,bj − T_j,ai N_b + α δ_ij N_a N_b) dA.
@@ -239,10 +265,12 @@ pub fn surface_nitsche(
     mu: f64,
     alpha: f64,
 ) -> [f64; 900] {
+    nitsche_matrix(&surface_points(x, c, phi, lambda, mu), alpha)
+}
+
+fn nitsche_matrix(points: &[SurfacePoint], alpha: f64) -> [f64; 900] {
     let mut k = [0.0; 900];
-    for (xi, w) in surface_rule(x, c) {
-        let nn = tet10::shape(xi);
-        let t = traction_operator(x, lambda, mu, outward_normal(x, phi, xi), xi);
+    for SurfacePoint { w, n: nn, t } in points {
         for a in 0..10 {
             for i in 0..3 {
                 let row = (3 * a + i) * 30;
@@ -273,10 +301,13 @@ pub fn nitsche_bound(
     mu: f64,
     k_inside: &[f64; 900],
 ) -> f64 {
+    bound_of(&surface_points(x, c, phi, lambda, mu), k_inside)
+}
+
+fn bound_of(points: &[SurfacePoint], k_inside: &[f64; 900]) -> f64 {
     use nalgebra::{DMatrix, SymmetricEigen};
     let mut m = DMatrix::<f64>::zeros(30, 30);
-    for (xi, w) in surface_rule(x, c) {
-        let t = traction_operator(x, lambda, mu, outward_normal(x, phi, xi), xi);
+    for SurfacePoint { w, t, .. } in points {
         for p in 0..30 {
             for q in 0..30 {
                 m[(p, q)] += w * (0..3).map(|k| t[k][p] * t[k][q]).sum::<f64>();
@@ -344,8 +375,8 @@ pub fn cut_stiffness(
     let tie = match tie {
         Tie::Penalty { alpha } => surface_tie(x, &c, alpha),
         Tie::Nitsche { gamma } => {
-            let alpha = gamma * nitsche_bound(x, &c, phi, lambda, mu, &k);
-            surface_nitsche(x, &c, phi, lambda, mu, alpha)
+            let points = surface_points(x, &c, phi, lambda, mu);
+            nitsche_matrix(&points, gamma * bound_of(&points, &k))
         }
     };
     let whole = tet10::stiffness(x, lambda, mu)?;

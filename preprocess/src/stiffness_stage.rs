@@ -123,6 +123,11 @@ pub struct Planned {
     pub grid: FlankGrid,
 }
 
+/// The groups a stiffness file's `config` clamps, as [`compute`] takes them.
+fn clamped_groups(config: &StiffnessConfig) -> Vec<&str> {
+    config.clamped_groups.iter().map(String::as_str).collect()
+}
+
 /// The influence request that a stiffness file's `config` on grid `fg` asks
 /// for, on `body`.
 pub fn request<'a>(
@@ -342,7 +347,7 @@ fn run_one(
         req.solved_teeth.len(),
         fg.len()
     );
-    let inf = compute(&req, &["bore"]).with_context(|| {
+    let inf = compute(&req, &clamped_groups(&config)).with_context(|| {
         format!(
             "scene {}: influence fields of the {} ({blank_name} blank)",
             sc.name,
@@ -441,7 +446,7 @@ pub fn tooth_to_tooth(
             sc.stiffness.solve_block,
         )
     };
-    let inf = compute(&req, &["bore"])?;
+    let inf = compute(&req, &clamped_groups(&p.config))?;
     let np = p.grid.len();
     let change = |f: &[f64]| {
         let r: Vec<f64> = (0..np)
