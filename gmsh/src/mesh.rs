@@ -322,6 +322,77 @@ impl Session {
         Ok(max)
     }
 
+    /// Makes the mesh of each entity `tags[i]` of dimension `dim` a copy of
+    /// the mesh of `masters[i]` mapped by `affine` (a 4 × 4 matrix by rows,
+    /// master to slave) (`gmshModelMeshSetPeriodic`).
+    pub fn mesh_set_periodic(
+        &self,
+        dim: i32,
+        tags: &[i32],
+        masters: &[i32],
+        affine: &[f64; 16],
+    ) -> Result<()> {
+        // SAFETY: valid slices.
+        check("gmshModelMeshSetPeriodic", |ierr| unsafe {
+            sys::gmshModelMeshSetPeriodic(
+                dim,
+                tags.as_ptr(),
+                tags.len(),
+                masters.as_ptr(),
+                masters.len(),
+                affine.as_ptr(),
+                affine.len(),
+                ierr,
+            )
+        })
+    }
+
+    /// Adds nodes `node_tags` at `coords` (`[x, y, z, ...]`) to entity
+    /// `(dim, tag)` (`gmshModelMeshAddNodes`, no parametric coordinates).
+    pub fn mesh_add_nodes(
+        &self,
+        dim: i32,
+        tag: i32,
+        node_tags: &[usize],
+        coords: &[f64],
+    ) -> Result<()> {
+        // SAFETY: valid slices.
+        check("gmshModelMeshAddNodes", |ierr| unsafe {
+            sys::gmshModelMeshAddNodes(
+                dim,
+                tag,
+                node_tags.as_ptr(),
+                node_tags.len(),
+                coords.as_ptr(),
+                coords.len(),
+                std::ptr::null(),
+                0,
+                ierr,
+            )
+        })
+    }
+
+    /// The largest node tag of the mesh (`gmshModelMeshGetMaxNodeTag`).
+    pub fn mesh_get_max_node_tag(&self) -> Result<usize> {
+        let mut max = 0usize;
+        // SAFETY: valid out-pointer.
+        check("gmshModelMeshGetMaxNodeTag", |ierr| unsafe {
+            sys::gmshModelMeshGetMaxNodeTag(&mut max, ierr)
+        })?;
+        Ok(max)
+    }
+
+    /// Clears the mesh (nodes and elements) of the entities `dimtags` only
+    /// (`gmshModelMeshClear`); an entity on the boundary of a meshed one
+    /// cannot be cleared.
+    pub fn mesh_clear_entities(&self, dimtags: &[DimTag]) -> Result<()> {
+        let flat = flatten(dimtags);
+        // SAFETY: valid slice.
+        check("gmshModelMeshClear", |ierr| unsafe {
+            sys::gmshModelMeshClear(flat.as_ptr(), flat.len(), ierr)
+        })
+    }
+
     /// Clears the whole mesh of the current model (`gmshModelMeshClear`).
     pub fn mesh_clear(&self) -> Result<()> {
         // SAFETY: empty dimTags = all entities.

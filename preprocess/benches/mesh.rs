@@ -6,7 +6,7 @@
 use preprocess::design::Member;
 use preprocess::gear_body::BlankDimensions;
 use preprocess::mesh::{mesh_member, MeshRequest};
-use preprocess::mesh_stage::refined_teeth;
+use preprocess::mesh_stage::{periodic_teeth, refined_teeth};
 use preprocess::pair::PairGeometry;
 use preprocess::scene::{Blank, Scene};
 use serde_json::json;
@@ -62,6 +62,7 @@ fn main() {
                 side: sc.loaded_flank,
                 refined_teeth: refined.clone(),
                 opposite_refined_teeth: Vec::new(),
+                periodic_teeth: periodic_teeth(blank, &refined, &[]),
             };
             let t = Instant::now();
             let r = mesh_member(&req, &dir.path().join("m.msh")).expect("mesh");

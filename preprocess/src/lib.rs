@@ -20,6 +20,7 @@ pub mod mesh_stage;
 pub mod minimize;
 pub mod output;
 pub mod pair;
+pub mod periodic_sectors;
 pub mod plots;
 pub mod scene;
 pub mod stiffness_file;

@@ -6,15 +6,23 @@
 //! (with the lightweight wheel's holes). Loaded flanks of the teeth that the
 //! scene brings into contact get a structured (transfinite) surface mesh with
 //! the requested elements along the profile × face width; sizes grow away
-//! from them.
+//! from them. On a standard (axisymmetric) blank the refined teeth are
+//! periodic sectors: the body is split along the middle of their slots and
+//! each sector's mesh is the solved tooth's turned by whole pitches
+//! ([`crate::periodic_sectors`]), so that the compliance solved on one tooth
+//! holds for the others up to the far body's mesh.
 
 use crate::design::Member;
 use crate::error::GeometryError;
 use crate::gear_body::{
-    blank_shape, revolution_volume, slot_sections, BlankDimensions, BlankShape,
+    blank_shape, revolution_volume, slot_sections, BlankDimensions, BlankShape, SlotSection,
 };
 use crate::generation::Side;
 use crate::pair::PairGeometry;
+use crate::periodic_sectors::{
+    add_slot_surface, align_mid_edge_nodes, copy_deviation, copy_master_tets, polar_extent,
+    set_periodic_faces, slot_centre, split, Sector,
+};
 use crate::scene::{Blank, FlankElements};
 use gmsh::{DimTag, Session};
 use serde::Serialize;
@@ -65,6 +73,10 @@ pub struct MeshRequest<'a> {
     /// Teeth whose opposite flank is refined too (coast-side contact:
     /// backlash and rattle); empty when only the loaded side is analysed.
     pub opposite_refined_teeth: Vec<usize>,
+    /// Teeth meshed as identical sectors copied by rotation
+    /// ([`crate::periodic_sectors`]), the master (the tooth the influence
+    /// solves load) first; empty for no periodic sectors (lightweight blank).
+    pub periodic_teeth: Vec<usize>,
 }
 
 /// A refined flank and the elements achieved on it.
@@ -121,6 +133,15 @@ pub struct MeshReport {
     pub physical_groups: Vec<(i32, i32, String)>,
     /// Angular positions of the web holes, degrees.
     pub hole_angles_deg: Vec<f64>,
+    /// Teeth meshed as rotated copies of the first one's sector, the faces
+    /// set periodic, and the largest distance of a copied tet10 node from
+    /// its master node turned onto it (m).
+    #[serde(default)]
+    pub periodic_teeth: Vec<usize>,
+    #[serde(default)]
+    pub periodic_faces: usize,
+    #[serde(default)]
+    pub periodic_copy_deviation_m: f64,
     pub time_geometry_s: f64,
     pub time_mesh_s: f64,
     /// Phases: the OCC cut (part of the geometry time); gmsh's 1-D to 3-D
@@ -187,17 +208,23 @@ fn thin(e: &[[f64; 3]], keep: usize) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// The slot loft of tooth space 0.
-fn add_slot(s: &Session, req: &MeshRequest) -> Result<DimTag, MeshError> {
+/// Sections of the slot loft of tooth space 0: from a tenth of the face
+/// width before the toe to as far beyond the heel, 0.6 m_n above the face cone.
+fn slot_loft_sections(req: &MeshRequest) -> Result<Vec<SlotSection>, MeshError> {
     let d = &req.geom.data;
-    let secs = slot_sections(
+    slot_sections(
         req.geom,
         req.member,
         SLOT_SECTIONS,
         0.1 * d.face_width,
         0.6 * d.normal_module,
     )
-    .map_err(|e| geometry_err(req, e))?;
+    .map_err(|e| geometry_err(req, e))
+}
+
+/// The slot loft of tooth space 0.
+fn add_slot(s: &Session, req: &MeshRequest) -> Result<DimTag, MeshError> {
+    let secs = slot_loft_sections(req)?;
     let mut wires = Vec::new();
     for sec in &secs {
         let keep = [7, 5, 3, 5, 7];
@@ -237,6 +264,99 @@ fn add_slot(s: &Session, req: &MeshRequest) -> Result<DimTag, MeshError> {
     out.into_iter()
         .find(|d| d.0 == 3)
         .ok_or_else(|| other_err(req, "the slot loft made no volume".into()))
+}
+
+/// Distance within which the centre of a periodic sector's face turned onto
+/// the master sector counts as the master face's (m): OCC's mass properties
+/// of copies differ by ~0.2 µm; distinct faces are millimetres apart.
+const SECTOR_FACE_TOLERANCE: f64 = 1e-5;
+
+/// Distance within which a master node turned onto a periodic sector
+/// counts as the sector's boundary node (m): gmsh puts a periodic copy's
+/// nodes on the copied face's geometry (~0.2 µm off the exact turn);
+/// distinct nodes are ≥ 10 µm apart.
+const SECTOR_NODE_TOLERANCE: f64 = 2e-6;
+
+/// Splits the cut body along the middle of the slots on either side of the
+/// periodic teeth. Returns the volumes.
+fn split_at_periodic_slots(
+    s: &Session,
+    req: &MeshRequest,
+    shape: &BlankShape,
+    vols: &[i32],
+) -> Result<Vec<i32>, MeshError> {
+    let d = &req.geom.data;
+    let centre = slot_centre(&slot_loft_sections(req)?);
+    let (r, phi) = polar_extent(&shape.polygon);
+    let z = d.member(req.member).teeth as usize;
+    let pitch = 2.0 * std::f64::consts::PI / z as f64;
+    // Slot k lies between tooth k and tooth k + 1.
+    let mut slots = std::collections::BTreeSet::new();
+    for &t in &req.periodic_teeth {
+        slots.insert((t + z - 1) % z);
+        slots.insert(t);
+    }
+    let g = |e| gmsh_err(req, e);
+    let mut surfaces = Vec::new();
+    for k in slots {
+        surfaces.extend(add_slot_surface(s, &centre, r, phi, k as f64 * pitch).map_err(g)?);
+    }
+    let body: Vec<DimTag> = vols.iter().map(|&v| (3, v)).collect();
+    let out = split(s, &body, &surfaces).map_err(g)?;
+    let expected = req.periodic_teeth.len() + 1;
+    if out.len() < expected {
+        return Err(other_err(
+            req,
+            format!(
+                "splitting the body at the slots of the periodic teeth {:?} gave {} volumes, expected at least {expected}",
+                req.periodic_teeth,
+                out.len()
+            ),
+        ));
+    }
+    Ok(out)
+}
+
+/// The periodic teeth's sectors (master first): the volume next to each
+/// one's loaded flank. Empty without periodic teeth.
+fn periodic_sectors(
+    s: &Session,
+    req: &MeshRequest,
+    flank_faces: &[(usize, Side, i32)],
+) -> Result<Vec<Sector>, MeshError> {
+    let mut out: Vec<Sector> = Vec::new();
+    for &tooth in &req.periodic_teeth {
+        let face = flank_faces
+            .iter()
+            .find(|f| f.0 == tooth && f.1 == req.side)
+            .ok_or_else(|| {
+                other_err(
+                    req,
+                    format!("periodic tooth {tooth} has no loaded flank face"),
+                )
+            })?;
+        let (up, _) = s.get_adjacencies(2, face.2).map_err(|e| gmsh_err(req, e))?;
+        let volume = match up[..] {
+            [v] => v,
+            _ => {
+                return Err(other_err(
+                    req,
+                    format!(
+                        "the loaded flank of periodic tooth {tooth} bounds {} volumes",
+                        up.len()
+                    ),
+                ))
+            }
+        };
+        if out.iter().any(|x| x.volume == volume) {
+            return Err(other_err(
+                req,
+                format!("periodic tooth {tooth} shares its sector with another tooth: the slot surfaces did not split the body"),
+            ));
+        }
+        out.push(Sector { tooth, volume });
+    }
+    Ok(out)
 }
 
 fn gmsh_err(req: &MeshRequest, e: gmsh::GmshError) -> MeshError {
@@ -928,7 +1048,10 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
     let (body, _) = s.occ_cut(&[blank], &tools, true, true).map_err(g)?;
     s.occ_synchronize().map_err(g)?;
     let time_cut = t_cut.elapsed().as_secs_f64();
-    let vols: Vec<i32> = body.iter().filter(|d| d.0 == 3).map(|d| d.1).collect();
+    let mut vols: Vec<i32> = body.iter().filter(|d| d.0 == 3).map(|d| d.1).collect();
+    if !req.periodic_teeth.is_empty() {
+        vols = split_at_periodic_slots(&s, req, &shape, &vols)?;
+    }
     let occ_volume: f64 = vols
         .iter()
         .map(|&t| s.occ_get_mass(3, t))
@@ -1060,6 +1183,13 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
     // every curve of every tooth from 3–3.6 s to about 0.5 s per member.
     s.option_set_number("Mesh.LcIntegrationPrecision", 1e-5)
         .map_err(g)?;
+    let sectors = periodic_sectors(&s, req, &flank_faces)?;
+    let periodic_faces = if sectors.len() > 1 {
+        set_periodic_faces(&s, &sectors, z, SECTOR_FACE_TOLERANCE)
+            .map_err(|e| other_err(req, e.to_string()))?
+    } else {
+        0
+    };
     let time_geometry = t0.elapsed().as_secs_f64();
 
     let t1 = Instant::now();
@@ -1073,14 +1203,27 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         fallback_used = true;
         s.mesh_generate(3).map_err(g)?;
     }
+    if sectors.len() > 1 {
+        copy_master_tets(&s, &sectors, z, SECTOR_NODE_TOLERANCE)
+            .map_err(|e| other_err(req, e.to_string()))?;
+    }
     let time_generate = t1.elapsed().as_secs_f64();
     let t2 = Instant::now();
     s.mesh_set_order(2).map_err(g)?;
+    if sectors.len() > 1 {
+        align_mid_edge_nodes(&s, &sectors, z, SECTOR_NODE_TOLERANCE)
+            .map_err(|e| other_err(req, e.to_string()))?;
+    }
     let time_order2 = t2.elapsed().as_secs_f64();
     let t3 = Instant::now();
     let straightened = straighten_inverted(&s).map_err(g)?;
     let snap = snap_to_flanks(&s, req, &flank_faces).map_err(g)?;
     let time_snap = t3.elapsed().as_secs_f64();
+    let periodic_copy_deviation = if sectors.len() > 1 {
+        copy_deviation(&s, &sectors, z).map_err(|e| other_err(req, e.to_string()))?
+    } else {
+        0.0
+    };
     let time_mesh = t1.elapsed().as_secs_f64();
 
     let (mesh_volume, tets, nodes) = mesh_volume(&s).map_err(g)?;
@@ -1156,6 +1299,9 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         refined_flanks: refined,
         physical_groups: groups,
         hole_angles_deg,
+        periodic_teeth: sectors.iter().map(|x| x.tooth).collect(),
+        periodic_faces,
+        periodic_copy_deviation_m: periodic_copy_deviation,
         time_geometry_s: time_geometry,
         time_mesh_s: time_mesh,
         time_cut_s: time_cut,

@@ -37,6 +37,9 @@ fn input_hash(design_text: &str, dims: &BlankDimensions, req: &MeshRequest) -> S
     if !req.opposite_refined_teeth.is_empty() {
         h.update(format!("opposite{:?}", req.opposite_refined_teeth).as_bytes());
     }
+    if !req.periodic_teeth.is_empty() {
+        h.update(format!("periodic{:?}", req.periodic_teeth).as_bytes());
+    }
     format!("{:x}", h.finalize())
 }
 
@@ -91,6 +94,33 @@ pub fn refined_teeth(
     blank: Blank,
 ) -> Vec<usize> {
     refined_teeth_on(g, sc, member, blank, sc.loaded_flank)
+}
+
+/// The tooth whose flank the influence solves of an axisymmetric (standard)
+/// blank load: the middle one of the refined teeth.
+pub fn solved_tooth(refined: &[usize]) -> Option<usize> {
+    refined.get(refined.len() / 2).copied()
+}
+
+/// Teeth meshed as periodic sectors (rotated copies of the solved tooth's
+/// sector, [`crate::periodic_sectors`]): on a standard blank the solved tooth
+/// first, then every other refined tooth whose opposite flank is refined
+/// alike; none on a lightweight blank (its holes break the symmetry) or
+/// with fewer than two such teeth.
+pub fn periodic_teeth(blank: Blank, refined: &[usize], opposite: &[usize]) -> Vec<usize> {
+    let Some(master) = solved_tooth(refined) else {
+        return Vec::new();
+    };
+    if blank != Blank::Standard {
+        return Vec::new();
+    }
+    let alike = |t: usize| opposite.contains(&t) == opposite.contains(&master);
+    let mut out = vec![master];
+    out.extend(refined.iter().copied().filter(|&t| t != master && alike(t)));
+    if out.len() < 2 {
+        out.clear();
+    }
+    out
 }
 
 /// Teeth whose opposite (coast) flank is refined: those the same rotation
@@ -171,6 +201,8 @@ pub fn run(
         };
         for &blank in blanks {
             let refined = refined_teeth(&g, sc, member, blank);
+            let opposite = opposite_refined_teeth(&g, sc, member, blank);
+            let periodic = periodic_teeth(blank, &refined, &opposite);
             for &(name, lv) in &levels {
                 let req = MeshRequest {
                     scene: &sc.name,
@@ -182,7 +214,8 @@ pub fn run(
                     level_name: name,
                     side: sc.loaded_flank,
                     refined_teeth: refined.clone(),
-                    opposite_refined_teeth: opposite_refined_teeth(&g, sc, member, blank),
+                    opposite_refined_teeth: opposite.clone(),
+                    periodic_teeth: periodic.clone(),
                 };
                 let stem = format!(
                     "{}_{}_{}",

@@ -7,7 +7,7 @@ use crate::body_mesh;
 use crate::design::Member;
 use crate::generation::Side;
 use crate::influence::{compute, FlankGrid, GridSize, Influence, InfluenceRequest, InfluenceStats};
-use crate::mesh_stage::{refined_teeth_on, Level};
+use crate::mesh_stage::{refined_teeth_on, solved_tooth, Level};
 use crate::output::write_json;
 use crate::pair::PairGeometry;
 use crate::scene::{Blank, LoadedScene};
@@ -211,7 +211,7 @@ pub fn planned(
     let refined = refined_teeth_on(g, sc, member, blank, side);
     let axisymmetric = blank == Blank::Standard;
     let solved_teeth = if axisymmetric {
-        vec![refined[refined.len() / 2]]
+        solved_tooth(&refined).into_iter().collect()
     } else {
         refined.clone()
     };

@@ -10,6 +10,7 @@ use preprocess::gear_body::{BlankDimensions, BlankDimensionsMm};
 use preprocess::generation::Side;
 use preprocess::influence::{compute, FlankGrid, GridSize, InfluenceRequest};
 use preprocess::mesh::{mesh_member, MeshRequest};
+use preprocess::mesh_stage::periodic_teeth;
 use preprocess::pair::PairGeometry;
 use preprocess::scene::{Blank, FlankElements};
 use solver::compliance::MemberCompliance;
@@ -58,6 +59,7 @@ pub fn mesh(
             side: Side::Drive,
             refined_teeth: refined.to_vec(),
             opposite_refined_teeth: opposite.to_vec(),
+            periodic_teeth: periodic_teeth(Blank::Standard, refined, opposite),
         },
         &path,
     )
