@@ -7,7 +7,9 @@ use crate::body_mesh;
 use crate::design::Member;
 use crate::generation::Side;
 use crate::influence::{compute, FlankGrid, GridSize, Influence, InfluenceRequest, InfluenceStats};
-use crate::mesh_stage::{refined_teeth_on, solved_tooth, Level};
+use crate::mesh_stage::{
+    opposite_refined_teeth, periodic_teeth, refined_teeth_on, solved_tooth, Level,
+};
 use crate::output::write_json;
 use crate::pair::PairGeometry;
 use crate::scene::{Blank, LoadedScene};
@@ -395,21 +397,25 @@ fn run_one(
 
 /// Rotational symmetry of a standard blank on its own mesh: the diagonal
 /// C(p, p) of the loaded tooth when the stiffness file's solved tooth is
-/// loaded and when its refined neighbour is (the same body, factored once),
-/// relative difference |C_b − C_a|/C_a per field. The teeth's meshes differ,
-/// so this is the mesh noise that the file's reuse by rotation ignores.
+/// loaded and when each other periodic tooth of the standard blank is (the
+/// same body, factored once): relative difference |C_b − C_a|/C_a per field,
+/// the largest over teeth and grid points and the mean. The periodic teeth
+/// are meshed as the solved tooth's sector turned, so this is what the
+/// file's reuse by rotation ignores: the freely meshed rest of the body.
+/// Without periodic teeth, the solved tooth's refined neighbour is compared.
 #[derive(Debug, Clone, Serialize)]
 pub struct ToothToTooth {
     pub member: String,
     pub level: String,
-    pub teeth: [usize; 2],
+    /// The solved tooth first, then the teeth compared with it.
+    pub teeth: Vec<usize>,
     pub total_max_abs: f64,
     pub total_mean_abs: f64,
-    /// Grid point (face, profile index) of the largest total difference.
-    pub total_worst_point: [usize; 2],
+    /// Tooth and grid point (face, profile index) of the largest total difference.
+    pub total_worst: [usize; 3],
     pub global_max_abs: f64,
     pub global_mean_abs: f64,
-    pub global_worst_point: [usize; 2],
+    pub global_worst: [usize; 3],
 }
 
 /// [`ToothToTooth`] of `member`'s standard blank on the meshes of `level`
@@ -426,15 +432,27 @@ pub fn tooth_to_tooth(
     let side = sc.loaded_flank;
     let p = planned(scene, &g, &dir, member, Blank::Standard, level, side)?;
     let refined = refined_teeth_on(&g, sc, member, Blank::Standard, side);
+    let opposite = opposite_refined_teeth(&g, sc, member, Blank::Standard);
     let a = p.config.solved_teeth[0];
     let z = g.data.member(member).teeth as usize;
-    let b = [(a + 1) % z, (a + z - 1) % z]
-        .into_iter()
-        .find(|t| refined.contains(t))
-        .with_context(|| format!("no refined neighbour of tooth {a} on the {}", member.name()))?;
+    let mut teeth = periodic_teeth(Blank::Standard, &refined, &opposite);
+    if teeth.len() < 2 {
+        let b = [(a + 1) % z, (a + z - 1) % z]
+            .into_iter()
+            .find(|t| refined.contains(t))
+            .with_context(|| {
+                format!("no refined neighbour of tooth {a} on the {}", member.name())
+            })?;
+        teeth = vec![a, b];
+    }
+    anyhow::ensure!(
+        teeth[0] == a,
+        "the {}'s periodic teeth {teeth:?} do not start with the solved tooth {a}",
+        member.name()
+    );
     let body = body_mesh::read(&p.msh).map_err(anyhow::Error::msg)?;
     let req = InfluenceRequest {
-        solved_teeth: vec![a, b],
+        solved_teeth: teeth.clone(),
         offsets: vec![0],
         ..request(
             &p.config,
@@ -448,32 +466,32 @@ pub fn tooth_to_tooth(
     };
     let inf = compute(&req, &clamped_groups(&p.config))?;
     let np = p.grid.len();
+    let npf = p.grid.size.profile;
     let change = |f: &[f64]| {
-        let r: Vec<f64> = (0..np)
-            .map(|i| {
-                let (ca, cb) = (f[i * np + i], f[np * np + i * np + i]);
-                ((cb - ca) / ca).abs()
-            })
-            .collect();
-        let worst = (0..np).fold(0, |w, i| if r[i] > r[w] { i } else { w });
-        let npf = p.grid.size.profile;
-        (
-            r[worst],
-            r.iter().sum::<f64>() / np as f64,
-            [worst / npf, worst % npf],
-        )
+        let (mut worst, mut at, mut sum) = (0.0f64, [0; 3], 0.0);
+        for (s, &tooth) in teeth.iter().enumerate().skip(1) {
+            for i in 0..np {
+                let (ca, cb) = (f[i * np + i], f[s * np * np + i * np + i]);
+                let r = ((cb - ca) / ca).abs();
+                sum += r;
+                if r > worst {
+                    (worst, at) = (r, [tooth, i / npf, i % npf]);
+                }
+            }
+        }
+        (worst, sum / ((teeth.len() - 1) * np) as f64, at)
     };
     let (tm, ta, tw) = change(&inf.total);
     let (gm, ga, gw) = change(&inf.global);
     Ok(ToothToTooth {
         member: member.name().into(),
         level: level.into(),
-        teeth: [a, b],
+        teeth: teeth.clone(),
         total_max_abs: tm,
         total_mean_abs: ta,
-        total_worst_point: tw,
+        total_worst: tw,
         global_max_abs: gm,
         global_mean_abs: ga,
-        global_worst_point: gw,
+        global_worst: gw,
     })
 }
