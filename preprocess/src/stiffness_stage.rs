@@ -212,8 +212,19 @@ pub fn planned(
     let (sf, sp) = fg.spacing();
     let refined = refined_teeth_on(g, sc, member, blank, side);
     let axisymmetric = blank == Blank::Standard;
+    // The mesh's periodic master (refined on both flanks with coast-side
+    // contact), where this side is refined on it: the teeth around it are
+    // its sector turned, so its loads hold for them by rotation.
+    let periodic = periodic_teeth(
+        blank,
+        &refined_teeth_on(g, sc, member, blank, sc.loaded_flank),
+        &opposite_refined_teeth(g, sc, member, blank),
+    );
     let solved_teeth = if axisymmetric {
-        solved_tooth(&refined).into_iter().collect()
+        match periodic.first() {
+            Some(&m) if refined.contains(&m) => vec![m],
+            _ => solved_tooth(&refined).into_iter().collect(),
+        }
     } else {
         refined.clone()
     };
