@@ -11,7 +11,8 @@
 //! the slot sections to within (d² / 2R) ≈ 0.25 mm of depth. Each face of a
 //! periodic sector is meshed as a rotated copy of the master sector's face
 //! (gmsh periodic meshes); after the 3-D meshing each sector's tets are
-//! replaced by the master's, rotated.
+//! replaced by the master's, rotated, and after second order its mid-edge
+//! nodes are put at the master's, rotated.
 
 use crate::gear_body::SlotSection;
 use gmsh::{DimTag, Session};
@@ -532,6 +533,25 @@ pub fn copy_deviation(s: &Session, sectors: &[Sector], teeth: usize) -> Result<f
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn slot_centre_azimuth_is_continuous_across_the_negative_x_axis() {
+        // Root centres at 179°, 181°, 183° (atan2 gives 179°, −179°, −177°).
+        let sec = |deg: f64, r: f64| {
+            let a = deg.to_radians();
+            let p = [r * a.cos(), r * a.sin(), 0.05];
+            SlotSection {
+                cone_distance: r,
+                edges: [vec![p], vec![p], vec![p, p, p, p, p], vec![p], vec![p]],
+            }
+        };
+        let c = slot_centre(&[sec(179.0, 0.1), sec(181.0, 0.11), sec(183.0, 0.12)]);
+        let deg: Vec<f64> = c.azimuth.iter().map(|a| a.to_degrees()).collect();
+        for (got, want) in deg.iter().zip([179.0, 181.0, 183.0]) {
+            assert!((got - want).abs() < 1e-9, "{deg:?}");
+        }
+        assert!((c.distance[1] - 0.11f64.hypot(0.05)).abs() < 1e-15);
+    }
 
     #[test]
     fn offset_wraps_to_the_nearer_side() {
