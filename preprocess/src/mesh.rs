@@ -273,8 +273,9 @@ const SECTOR_FACE_TOLERANCE: f64 = 1e-5;
 
 /// Distance within which a master node turned onto a periodic sector
 /// counts as the sector's boundary node (m): gmsh puts a periodic copy's
-/// nodes on the copied face's geometry (~0.2 µm off the exact turn);
-/// distinct nodes are ≥ 10 µm apart.
+/// nodes on the copied face's geometry, which OCC's boolean pieces hold only
+/// to about the 0.2 µm their face centres differ by; distinct nodes are
+/// ≥ 10 µm apart.
 const SECTOR_NODE_TOLERANCE: f64 = 2e-6;
 
 /// Splits the cut body along the middle of the slots on either side of the
