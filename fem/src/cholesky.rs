@@ -6,8 +6,10 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    SymmetricOrdering,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMat;
 use faer::{Conj, MatMut, Par, Side};
 use rayon::prelude::*;
@@ -23,8 +25,11 @@ pub enum Ordering {
 
 /// A Cholesky factor L Lᵀ = P K Pᵀ of a symmetric positive definite matrix.
 pub struct Factor {
-    symbolic: SymbolicCholesky<usize>,
-    values: Vec<f64>,
+    pub(crate) symbolic: SymbolicCholesky<usize>,
+    pub(crate) values: Vec<f64>,
+    /// Supernodal elimination tree, for pruned solves (built by
+    /// [`Factor::new_supernodal`]).
+    pub(crate) tree: Option<crate::path_solve::Tree>,
 }
 
 impl Factor {
@@ -34,6 +39,28 @@ impl Factor {
         k: &SparseColMat<usize, f64>,
         node_of: &[usize],
         ordering: Ordering,
+    ) -> Result<Factor, FemError> {
+        Factor::new_with(k, node_of, ordering, SupernodalThreshold::AUTO)
+    }
+
+    /// As [`Factor::new`], always supernodal, with the supernodal
+    /// elimination tree kept for the pruned solves of
+    /// [`crate::path_solve`].
+    pub fn new_supernodal(
+        k: &SparseColMat<usize, f64>,
+        node_of: &[usize],
+        ordering: Ordering,
+    ) -> Result<Factor, FemError> {
+        let mut f = Factor::new_with(k, node_of, ordering, SupernodalThreshold::FORCE_SUPERNODAL)?;
+        f.tree = Some(crate::path_solve::Tree::new(&f)?);
+        Ok(f)
+    }
+
+    fn new_with(
+        k: &SparseColMat<usize, f64>,
+        node_of: &[usize],
+        ordering: Ordering,
+        threshold: SupernodalThreshold,
     ) -> Result<Factor, FemError> {
         let n = k.ncols();
         let (fwd, mut inv);
@@ -48,9 +75,12 @@ impl Factor {
                 SymmetricOrdering::Custom(PermRef::new_checked(&fwd, &inv, n))
             }
         };
-        let symbolic =
-            factorize_symbolic_cholesky(k.symbolic(), Side::Lower, ord, Default::default())
-                .map_err(|e| FemError::Factorization(format!("{e:?}")))?;
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: threshold,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_cholesky(k.symbolic(), Side::Lower, ord, params)
+            .map_err(|e| FemError::Factorization(format!("{e:?}")))?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::rayon(0);
         let mut mem = MemBuffer::try_new(
@@ -68,7 +98,11 @@ impl Factor {
                 Default::default(),
             )
             .map_err(|e| FemError::NotPositiveDefinite(format!("{e:?}")))?;
-        Ok(Factor { symbolic, values })
+        Ok(Factor {
+            symbolic,
+            values,
+            tree: None,
+        })
     }
 
     /// Number of rows.

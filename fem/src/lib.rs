@@ -17,6 +17,7 @@ pub mod error;
 pub mod material;
 pub mod mesh;
 pub mod ordering;
+pub mod path_solve;
 pub mod structured;
 pub mod tet10;
 pub mod tri6;

@@ -234,10 +234,6 @@ pub fn run(
             direction,
             settings,
         };
-        // One position: keep the responses only where it can touch.
-        let [np, nw] = pair.potential_nodes(phi)?;
-        pair.pinion.compliance.set_universe(&np);
-        pair.wheel.compliance.set_universe(&nw);
         let r = pair
             .position(phi, &torques_nm)
             .with_context(|| format!("scene {}: convergence at level {level}", sc.name))?;

@@ -15,6 +15,7 @@ pub mod contact_surface;
 pub mod convergence;
 pub mod figures;
 pub mod line_load;
+pub mod path_compliance;
 pub mod penalty;
 pub mod published;
 pub mod reference_ltca;

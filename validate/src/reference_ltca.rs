@@ -14,20 +14,18 @@
 //! Nothing here uses the reduced model: no surface of roll angles, no
 //! slices, no influence grid, no Weber–Banaschek term.
 
-use crate::body_compliance::{clamped, BodyCompliance};
+use crate::body_compliance::clamped;
 use crate::contact_pairs::{rot, two_pass, ContactBody, PenaltySettings};
 use crate::contact_surface::{nodal_normals, orient_outward, smoothed_pressure};
-use crate::penalty::{
-    carried_load, condensed_matrix, nodal_normal_forces, solve, Compliance, Constraint,
-    ContactError,
-};
+use crate::path_compliance::PathCompliance;
+use crate::penalty::{carried_load, nodal_normal_forces, solve, Constraint, ContactError};
+use fem::path_solve::{combine, gram, PathVec};
 use nalgebra::Vector3;
 use preprocess::body_mesh::BodyMesh;
 use preprocess::generation::{rot_z, MemberFrame};
 use preprocess::pair::FlankPair;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 type V3 = [f64; 3];
 
@@ -37,7 +35,7 @@ pub struct Member {
     pub frame: MemberFrame,
     /// Loaded-flank faces of the teeth that can touch, oriented outward.
     pub faces: Vec<[usize; 6]>,
-    pub compliance: BodyCompliance,
+    pub compliance: PathCompliance,
     pub youngs_modulus_pa: f64,
     /// Inward unit normal at each flank node, member frame.
     inward: HashMap<usize, V3>,
@@ -71,11 +69,7 @@ impl Member {
         if bore.is_empty() {
             return Err(ReferenceError::MissingGroup("bore".into()));
         }
-        let mut universe: Vec<usize> = faces.iter().flatten().copied().collect();
-        universe.sort_unstable();
-        universe.dedup();
-        let compliance =
-            BodyCompliance::new(&mesh.mesh, material, &clamped(&bore), &universe, block)?;
+        let compliance = PathCompliance::new(&mesh.mesh, material, &clamped(&bore), block)?;
         let inward = nodal_normals(&mesh.mesh.nodes, &faces)
             .into_iter()
             .map(|(i, n)| (i, n.map(|c| -c)))
@@ -243,6 +237,9 @@ struct WorkingSet {
     idx: Vec<usize>,
     /// Row-major idx.len()².
     w: Vec<f64>,
+    /// Each constraint's vector y_cb on the pinion (0) and the wheel (1),
+    /// in the order of `idx`.
+    y: Vec<[PathVec; 2]>,
 }
 
 impl ReferencePair<'_> {
@@ -263,7 +260,7 @@ impl ReferencePair<'_> {
     ) -> Result<PositionResult, ReferenceError> {
         let t0 = std::time::Instant::now();
         let (cs, at) = self.constraints(phi)?;
-        let before = self.pinion.compliance.computed() + self.wheel.compliance.computed();
+        let before = self.pinion.compliance.solves + self.wheel.compliance.solves;
         let g_min = cs.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
         let start: Vec<usize> = (0..cs.len())
             .filter(|&c| cs[c].gap0 <= g_min + self.settings.start_band_m)
@@ -271,6 +268,7 @@ impl ReferencePair<'_> {
         let mut ws = WorkingSet {
             idx: Vec::new(),
             w: Vec::new(),
+            y: Vec::new(),
         };
         self.grow(&cs, &mut ws, &start)?;
         let scale = self.settings.penalty_factor_check / self.settings.penalty_factor;
@@ -283,7 +281,7 @@ impl ReferencePair<'_> {
             .chain(torques.iter().copied())
             .collect();
         for (k, &t) in all.iter().enumerate() {
-            let (s, sc) = loop {
+            let (s, sc, outside) = loop {
                 let sub: Vec<Constraint> = ws.idx.iter().map(|&c| cs[c].clone()).collect();
                 let check: Vec<Constraint> = sub
                     .iter()
@@ -305,11 +303,14 @@ impl ReferencePair<'_> {
                 };
                 let s = solve(&sub, &ws.w, t, warm_of(&warm[0]).as_deref())?;
                 let sc = solve(&check, &ws.w, t, warm_of(&warm[1]).as_deref())?;
-                let mut add = Vec::new();
-                for sol in [&s, &sc] {
-                    let g = self.outside_gaps(&cs, &ws.idx, &sol.force, sol.psi)?;
-                    add.extend(g.into_iter().filter(|&(_, v)| v < 0.0).map(|(c, _)| c));
-                }
+                let mut gaps =
+                    self.outside_gaps(&cs, &ws, &[(&s.force, s.psi), (&sc.force, sc.psi)])?;
+                let mut add: Vec<usize> = gaps
+                    .iter()
+                    .flatten()
+                    .filter(|&&(_, v)| v < 0.0)
+                    .map(|&(c, _)| c)
+                    .collect();
                 add.sort_unstable();
                 add.dedup();
                 let on = |sol: &crate::penalty::Solution| -> Vec<usize> {
@@ -320,7 +321,7 @@ impl ReferencePair<'_> {
                 };
                 warm = [Some(on(&s)), Some(on(&sc))];
                 if add.is_empty() {
-                    break (s, sc);
+                    break (s, sc, gaps.swap_remove(0));
                 }
                 self.grow(&cs, &mut ws, &add)?;
             };
@@ -329,7 +330,6 @@ impl ReferencePair<'_> {
                 first_force = s.force.clone();
                 first_idx = ws.idx.clone();
             }
-            let outside = self.outside_gaps(&cs, &ws.idx, &s.force, s.psi)?;
             let band_margin_m = outside
                 .iter()
                 .filter(|&&(c, _)| cs[c].gap0 > 0.5 * self.settings.search_gap_m)
@@ -362,6 +362,17 @@ impl ReferencePair<'_> {
                 search_margin_m,
             });
         }
+        // The sliding window: keep the vectors of the nodes this position
+        // loaded; the next position's contact lies next to them.
+        for (body, m) in [(0, &mut *self.pinion), (1, &mut *self.wheel)] {
+            let keep: HashSet<usize> = ws
+                .idx
+                .iter()
+                .flat_map(|&c| cs[c].terms.iter().filter(move |t| t.body == body))
+                .map(|t| t.node)
+                .collect();
+            m.compliance.retain(&keep);
+        }
         let unloaded = loads.remove(0);
         let unloaded_point = first_force
             .iter()
@@ -376,30 +387,15 @@ impl ReferencePair<'_> {
             unloaded_point,
             loads,
             pattern,
-            new_columns: self.pinion.compliance.computed() + self.wheel.compliance.computed()
-                - before,
+            new_columns: (self.pinion.compliance.solves + self.wheel.compliance.solves - before)
+                / 3,
             cpu_s: t0.elapsed().as_secs_f64(),
         })
     }
 
     /// Every two-pass constraint up to the search gap that closes as the
-    /// pinion turns in its driving sense, at pinion angle `phi`.
-    /// The nodes of every constraint up to the search gap at `phi`, per body
-    /// (pinion, wheel): all that position can load or check.
-    pub fn potential_nodes(&self, phi: f64) -> Result<[Vec<usize>; 2], ReferenceError> {
-        let (cs, _) = self.constraints(phi)?;
-        let mut out = [Vec::new(), Vec::new()];
-        for t in cs.iter().flat_map(|c| c.terms.iter()) {
-            out[t.body].push(t.node);
-        }
-        for v in &mut out {
-            v.sort_unstable();
-            v.dedup();
-        }
-        Ok(out)
-    }
-
-    /// With each constraint: its slave point in the pinion's member frame.
+    /// pinion turns in its driving sense, at pinion angle `phi`, each with
+    /// its slave point in the pinion's member frame.
     fn constraints(&self, phi: f64) -> Result<(Vec<Constraint>, Vec<V3>), ReferenceError> {
         let phi2 = self.flanks.conjugate_wheel_angle(phi);
         let (pn, pr) = self.pinion.placed(phi);
@@ -451,14 +447,16 @@ impl ReferencePair<'_> {
     }
 
     /// Adds the constraints `add` (indices into `cs`, not yet in the set)
-    /// to the working set: their nodes' columns, and the new rows and
-    /// columns of the condensed matrix (W is symmetric).
+    /// to the working set: their nodes' unit-load vectors, their constraint
+    /// vectors, and the new rows and columns of the condensed matrix
+    /// W = Σ_b Y_bᵀ Y_b (symmetric).
     fn grow(
         &mut self,
         cs: &[Constraint],
         ws: &mut WorkingSet,
         add: &[usize],
     ) -> Result<(), ReferenceError> {
+        let mut add_y = Vec::with_capacity(add.len());
         for (body, m) in [(0, &mut *self.pinion), (1, &mut *self.wheel)] {
             let nodes: Vec<usize> = add
                 .iter()
@@ -472,30 +470,53 @@ impl ReferencePair<'_> {
                 .collect();
             m.compliance.ensure(&nodes)?;
         }
+        for &c in add {
+            add_y.push([
+                self.pinion.compliance.constraint_vector(&cs[c].terms, 0)?,
+                self.wheel.compliance.constraint_vector(&cs[c].terms, 1)?,
+            ]);
+        }
         let mut idx = ws.idx.clone();
         idx.extend_from_slice(add);
         idx.sort_unstable();
         idx.dedup();
         let n = idx.len();
-        // W(all, new): the new columns; the new rows are their transpose.
-        let bodies: [&(dyn Compliance + Sync); 2] =
-            [&self.pinion.compliance, &self.wheel.compliance];
-        let cols = condensed_matrix(cs, &idx, add, &bodies)?;
-        let mut w = vec![0.0; n * n];
-        let old = &ws.idx;
-        let pos_old: Vec<usize> = old
+        let pos_old: Vec<usize> = ws
+            .idx
             .iter()
             .map(|c| idx.binary_search(c).expect("old constraint kept"))
             .collect();
+        let pos_new: Vec<usize> = add
+            .iter()
+            .map(|c| idx.binary_search(c).expect("new constraint added"))
+            .collect();
+        let mut y: Vec<Option<[PathVec; 2]>> = (0..n).map(|_| None).collect();
+        for (p, v) in pos_old.iter().zip(std::mem::take(&mut ws.y)) {
+            y[*p] = Some(v);
+        }
+        for (p, v) in pos_new.iter().zip(add_y) {
+            y[*p] = Some(v);
+        }
+        let y: Vec<[PathVec; 2]> = y
+            .into_iter()
+            .map(|v| v.expect("every constraint has its vectors"))
+            .collect();
+        // W(all, new): the new columns; the new rows are their transpose.
+        let mut cols = vec![0.0; n * add.len()];
+        for b in 0..2 {
+            let all: Vec<&PathVec> = y.iter().map(|v| &v[b]).collect();
+            let new: Vec<&PathVec> = pos_new.iter().map(|&p| &y[p][b]).collect();
+            for (c, v) in cols.iter_mut().zip(gram(&all, &new)) {
+                *c += v;
+            }
+        }
+        let mut w = vec![0.0; n * n];
+        let old = &ws.idx;
         for (a, &pa) in pos_old.iter().enumerate() {
             for (b, &pb) in pos_old.iter().enumerate() {
                 w[pa * n + pb] = ws.w[a * old.len() + b];
             }
         }
-        let pos_new: Vec<usize> = add
-            .iter()
-            .map(|c| idx.binary_search(c).expect("new constraint added"))
-            .collect();
         for r in 0..n {
             for (k, &pk) in pos_new.iter().enumerate() {
                 let v = cols[r * add.len() + k];
@@ -505,74 +526,72 @@ impl ReferencePair<'_> {
         }
         ws.idx = idx;
         ws.w = w;
+        ws.y = y;
         Ok(())
     }
 
-    /// Loaded gap of every constraint of `cs` outside the working set
-    /// `idx`, under the forces `force` of the working set's constraints and
-    /// the rigid rotation `psi`: (constraint, gap).
+    /// Loaded gap of every constraint of `cs` outside the working set,
+    /// under each of `loads` (forces of the working set's constraints and
+    /// the rigid rotation ψ): per load, (constraint, gap). The displacements
+    /// are one backward solve per body for all loads together, on the paths
+    /// of the outside constraints' nodes.
     fn outside_gaps(
         &self,
         cs: &[Constraint],
-        idx: &[usize],
-        force: &[f64],
-        psi: f64,
-    ) -> Result<Vec<(usize, f64)>, ReferenceError> {
+        ws: &WorkingSet,
+        loads: &[(&[f64], f64)],
+    ) -> Result<Vec<Vec<(usize, f64)>>, ReferenceError> {
         let outside: Vec<usize> = (0..cs.len())
-            .filter(|c| idx.binary_search(c).is_err())
+            .filter(|c| ws.idx.binary_search(c).is_err())
             .collect();
-        let mut gap: Vec<f64> = outside
+        let mut gaps: Vec<Vec<f64>> = loads
             .iter()
-            .map(|&c| cs[c].gap0 + cs[c].rigid * psi)
+            .map(|&(_, psi)| {
+                outside
+                    .iter()
+                    .map(|&c| cs[c].gap0 + cs[c].rigid * psi)
+                    .collect()
+            })
             .collect();
-        let bodies: [&(dyn Compliance + Sync); 2] =
-            [&self.pinion.compliance, &self.wheel.compliance];
-        for (b, body) in bodies.iter().enumerate() {
-            // Nodal loads of the working set on this body.
-            let mut load: HashMap<usize, V3> = HashMap::new();
-            for (k, &c) in idx.iter().enumerate() {
-                if force[k] == 0.0 {
-                    continue;
-                }
-                for t in cs[c].terms.iter().filter(|t| t.body == b) {
-                    let e = load.entry(t.node).or_insert([0.0; 3]);
-                    for (x, d) in e.iter_mut().zip(t.dir) {
-                        *x += force[k] * d;
-                    }
-                }
-            }
+        for (b, body) in [&self.pinion.compliance, &self.wheel.compliance]
+            .into_iter()
+            .enumerate()
+        {
             let mut at: Vec<usize> = outside
                 .iter()
                 .flat_map(|&c| cs[c].terms.iter().filter(|t| t.body == b).map(|t| t.node))
                 .collect();
             at.sort_unstable();
             at.dedup();
-            if at.is_empty() || load.is_empty() {
+            if at.is_empty() {
                 continue;
             }
-            let slots = body.slots(&at)?;
-            let loads: Vec<(usize, V3)> = load.into_iter().collect();
-            let u = loads
-                .par_iter()
-                .map(|&(j, f)| body.response(j, f, &slots))
-                .try_reduce(
-                    || vec![[0.0; 3]; at.len()],
-                    |mut a, b| {
-                        for (x, y) in a.iter_mut().zip(&b) {
-                            for i in 0..3 {
-                                x[i] += y[i];
-                            }
-                        }
-                        Ok(a)
-                    },
-                )?;
-            for (g, &c) in gap.iter_mut().zip(&outside) {
-                for t in cs[c].terms.iter().filter(|t| t.body == b) {
-                    let p = at.binary_search(&t.node).expect("node collected above");
-                    *g += (0..3).map(|i| t.dir[i] * u[p][i]).sum::<f64>();
+            let z: Vec<PathVec> = loads
+                .iter()
+                .map(|(force, _)| {
+                    let parts: Vec<(&PathVec, &[f64])> =
+                        ws.y.iter()
+                            .zip(force.iter())
+                            .filter(|(_, f)| **f != 0.0)
+                            .map(|(v, f)| (&v[b], std::slice::from_ref(f)))
+                            .collect();
+                    combine(&parts)
+                })
+                .collect();
+            let zr: Vec<&PathVec> = z.iter().collect();
+            let u = body.displacements(&zr, &at)?;
+            for (g, u) in gaps.iter_mut().zip(&u) {
+                for (g, &c) in g.iter_mut().zip(&outside) {
+                    for t in cs[c].terms.iter().filter(|t| t.body == b) {
+                        let p = at.binary_search(&t.node).expect("node collected above");
+                        *g += (0..3).map(|i| t.dir[i] * u[p][i]).sum::<f64>();
+                    }
                 }
             }
         }
-        Ok(outside.into_iter().zip(gap).collect())
+        Ok(gaps
+            .into_iter()
+            .map(|g| outside.iter().copied().zip(g).collect())
+            .collect())
     }
 }

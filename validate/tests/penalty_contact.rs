@@ -1,10 +1,12 @@
 //! The reference contact machinery against independent solutions: the fully
 //! assembled penalty FE system (no condensation) and Hertz line contact.
 
+use fem::path_solve::{combine, gram, PathVec};
 use fem::structured::{faces_where, mapped_block, Block};
 use fem::{assemble, Dofs, Material};
 use validate::body_compliance::{clamped, BodyCompliance};
 use validate::contact_pairs::{two_pass, ContactBody, PenaltySettings};
+use validate::path_compliance::PathCompliance;
 use validate::penalty::{carried_load, condensed_matrix, solve, Compliance, Constraint};
 
 const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -23,12 +25,9 @@ fn contact_nodes(cs: &[Constraint], body: usize) -> Vec<usize> {
     v
 }
 
-/// Two blocks, the upper one with a crowned bottom face, pressed together:
-/// the condensed penalty solution equals the solution of the assembled
-/// system (both bodies' stiffness plus the penalty terms, rigid coordinate
-/// included, active set iterated by semismooth Newton) within 1e-6.
-#[test]
-fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
+/// The crowned upper block on the flat lower one: the meshes, their
+/// clamped nodes and every two-pass constraint.
+fn crowned_block_pair() -> (Block, Block, Vec<usize>, Vec<usize>, Vec<Constraint>) {
     let (l, h, kappa) = (0.01, 0.005, 0.1);
     let upper = mapped_block([3, 3, 2], |p| {
         let (x, y) = (l * (p[0] - 0.5), l * (p[1] - 0.5));
@@ -70,6 +69,17 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
         2 * 49,
         "every contact node of both faces projects"
     );
+    (upper, lower, clamp_up, clamp_lo, cs)
+}
+
+/// Two blocks, the upper one with a crowned bottom face, pressed together:
+/// the condensed penalty solution equals the solution of the assembled
+/// system (both bodies' stiffness plus the penalty terms, rigid coordinate
+/// included, active set iterated by semismooth Newton) within 1e-6.
+#[test]
+fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
+    let mat = Material::STEEL;
+    let (upper, lower, clamp_up, clamp_lo, cs) = crowned_block_pair();
     let all_up: Vec<usize> = (0..upper.mesh.nodes.len()).collect();
     let all_lo: Vec<usize> = (0..lower.mesh.nodes.len()).collect();
     let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), &all_up, 8).unwrap();
@@ -191,6 +201,87 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
                     assert!((ud - x[off + f]).abs() < 1e-6 * umax, "node {i} dof {d}");
                 }
             }
+        }
+    }
+}
+
+/// The pruned-solve compliance (forward solves along elimination-tree
+/// paths, W = Σ_b Y_bᵀ Y_b, displacements by a backward solve on the paths
+/// of the nodes asked for) against today's full-solve columns on the
+/// crowned block pair: W and the displacements within 1e-12 relative, and
+/// the same contact solution.
+#[test]
+fn pruned_path_compliance_equals_full_solve_columns() {
+    let mat = Material::STEEL;
+    let (upper, lower, clamp_up, clamp_lo, cs) = crowned_block_pair();
+    let all_up: Vec<usize> = (0..upper.mesh.nodes.len()).collect();
+    let all_lo: Vec<usize> = (0..lower.mesh.nodes.len()).collect();
+    let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), &all_up, 8).unwrap();
+    let mut cb = BodyCompliance::new(&lower.mesh, &mat, &clamped(&clamp_lo), &all_lo, 8).unwrap();
+    ca.ensure(&contact_nodes(&cs, 0)).unwrap();
+    cb.ensure(&contact_nodes(&cs, 1)).unwrap();
+    let idx: Vec<usize> = (0..cs.len()).collect();
+    let w_full = condensed_matrix(&cs, &idx, &idx, &[&ca, &cb]).unwrap();
+
+    // Blocks of 7 right-hand sides: several blocks, partial paths.
+    let mut pa = PathCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), 7).unwrap();
+    let mut pb = PathCompliance::new(&lower.mesh, &mat, &clamped(&clamp_lo), 7).unwrap();
+    pa.ensure(&contact_nodes(&cs, 0)).unwrap();
+    pb.ensure(&contact_nodes(&cs, 1)).unwrap();
+    let y: Vec<[PathVec; 2]> = cs
+        .iter()
+        .map(|c| {
+            [
+                pa.constraint_vector(&c.terms, 0).unwrap(),
+                pb.constraint_vector(&c.terms, 1).unwrap(),
+            ]
+        })
+        .collect();
+    let mut w_path = vec![0.0; cs.len() * cs.len()];
+    for b in 0..2 {
+        let v: Vec<&PathVec> = y.iter().map(|p| &p[b]).collect();
+        for (x, g) in w_path.iter_mut().zip(gram(&v, &v)) {
+            *x += g;
+        }
+    }
+    let scale = w_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let worst = w_full
+        .iter()
+        .zip(&w_path)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(worst <= 1e-12 * scale, "W: {worst:e} of {scale:e}");
+
+    let q = 4e4;
+    let s_full = solve(&cs, &w_full, q, None).unwrap();
+    let s_path = solve(&cs, &w_path, q, None).unwrap();
+    assert_eq!(s_full.active, s_path.active, "same active set");
+    assert!((s_full.psi - s_path.psi).abs() <= 1e-10 * s_full.psi.abs());
+
+    // Displacements at every contact node under the contact forces.
+    for (body, full, path) in [(0, &ca, &pa), (1, &cb, &pb)] {
+        let parts: Vec<(&PathVec, &[f64])> = y
+            .iter()
+            .zip(&s_path.force)
+            .map(|(v, f)| (&v[body], std::slice::from_ref(f)))
+            .collect();
+        let z = combine(&parts);
+        let nodes = contact_nodes(&cs, body);
+        let u_path = path.displacements(&[&z], &nodes).unwrap().remove(0);
+        let mut u_full = vec![[0.0; 3]; nodes.len()];
+        for (k, &i) in nodes.iter().enumerate() {
+            for (c, con) in cs.iter().enumerate() {
+                for t in con.terms.iter().filter(|t| t.body == body) {
+                    let m = full.block(i, t.node).unwrap();
+                    for r in 0..3 {
+                        u_full[k][r] +=
+                            (0..3).map(|q| m[r][q] * t.dir[q]).sum::<f64>() * s_path.force[c];
+                    }
+                }
+            }
+        }
+        let umax = u_full.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        for (a, b) in u_full.iter().flatten().zip(u_path.iter().flatten()) {
+            assert!((a - b).abs() <= 1e-12 * umax, "body {body}: {a} vs {b}");
         }
     }
 }
