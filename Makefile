@@ -34,6 +34,7 @@ bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench influence_convergence
 	$(CARGO) bench -p solver --bench ltca
 	$(CARGO) bench -p solver --bench multibody
+	$(CARGO) bench -p validate --bench reference
 
 preprocess: build
 	$(BIN)/preprocess flanks $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/flanks

@@ -41,22 +41,23 @@ pub fn column<'a>(csv: &'a Csv, name: &str) -> Option<&'a [f64]> {
 /// `te_loaded_<blanks>_<T>nm.svg`.
 pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> Vec<Figure> {
     let mut figs = Vec::new();
-    let Ok(dirs) = std::fs::read_dir(out.join(scene).join("reference")) else {
-        return figs;
-    };
-    let mut blanks: Vec<String> = dirs
+    let mut blanks: Vec<String> = crate::reference_stage::LEVELS_FINEST_FIRST
+        .iter()
+        .filter_map(|l| {
+            std::fs::read_dir(crate::reference_stage::reference_dir(out, scene, l)).ok()
+        })
+        .flatten()
         .filter_map(|e| e.ok())
         .filter(|e| e.path().join("te.csv").exists())
         .filter_map(|e| e.file_name().into_string().ok())
         .collect();
     blanks.sort();
+    blanks.dedup();
     for blank in blanks {
-        let Some(reference) = read_csv(
-            &out.join(scene)
-                .join("reference")
-                .join(&blank)
-                .join("te.csv"),
-        ) else {
+        // The finest level's sweep.
+        let Some(reference) = crate::reference_stage::finest_reference(out, scene, &blank)
+            .and_then(|d| read_csv(&d.join("te.csv")))
+        else {
             continue;
         };
         for &t in torques {
@@ -133,9 +134,7 @@ pub fn pattern_figure(
 ) -> Option<Figure> {
     let reduced = read_csv(&out.join(scene).join("ltca").join(blank).join("slices.csv"))?;
     let reference = read_csv(
-        &out.join(scene)
-            .join("reference")
-            .join(blank)
+        &crate::reference_stage::finest_reference(out, scene, blank)?
             .join(format!("pattern_{t}nm.csv")),
     )?;
     let pick = |csv: &Csv, at: Option<f64>| -> Vec<(f64, f64, f64)> {

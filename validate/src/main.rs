@@ -71,9 +71,18 @@ enum Cmd {
         /// Stride for the lightweight wheel blank (default: --stride).
         #[arg(long)]
         stride_lightweight: Option<usize>,
-        /// Right-hand sides per solve block.
-        #[arg(long, default_value_t = 16)]
+        /// Right-hand sides per forward-solve block.
+        #[arg(long, default_value_t = 96)]
         block: usize,
+        /// Solve every cached position anew and compare it with the cache
+        /// (relative tolerance 1e-6); writes compare_cache.json, exits
+        /// non-zero on a difference.
+        #[arg(long)]
+        compare_cache: bool,
+        /// Solve one shard of the sweep, I/N (positions i with i mod N = I),
+        /// into the shared position cache.
+        #[arg(long)]
+        shard: Option<String>,
     },
     /// The reduced model's run time against its error to the reference, over
     /// the slices per tooth pair (needs `validate reference` results).
@@ -114,7 +123,7 @@ enum Cmd {
         penalty: f64,
         #[arg(long, default_value_t = 200.0)]
         penalty_check: f64,
-        #[arg(long, default_value_t = 16)]
+        #[arg(long, default_value_t = 96)]
         block: usize,
     },
     /// Issue 4's line-load check: a Hertzian line load on one pinion tooth,
@@ -240,10 +249,16 @@ fn main() -> anyhow::Result<()> {
             stride,
             stride_lightweight,
             block,
+            compare_cache,
+            shard,
         } => {
             if !["reduced", "medium", "reference"].contains(&level.as_str()) {
                 anyhow::bail!("--level {level}: must be reduced, medium or reference");
             }
+            if !(1..=100_000).contains(&block) {
+                anyhow::bail!("--block {block}: must lie in [1, 100000] right-hand sides");
+            }
+            let shard = shard.map(|s| parse_shard(&s)).transpose()?;
             let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
             let sc = preprocess::scene::Scene::load(&scene)?;
             let opt = validate::reference_stage::StageOptions {
@@ -252,6 +267,8 @@ fn main() -> anyhow::Result<()> {
                 stride,
                 stride_lightweight,
                 block,
+                compare_cache,
+                shard,
             };
             validate::reference_stage::run(&sc, &meshes, &out, &opt)?;
         }
@@ -376,4 +393,19 @@ fn main() -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// `I/N` with N ≥ 1 and I < N.
+fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
+    let bad =
+        || anyhow::anyhow!("--shard {s}: must be I/N with whole numbers N >= 1 and 0 <= I < N");
+    let (i, n) = s.split_once('/').ok_or_else(bad)?;
+    let (i, n): (usize, usize) = (
+        i.trim().parse().map_err(|_| bad())?,
+        n.trim().parse().map_err(|_| bad())?,
+    );
+    if n == 0 || i >= n {
+        return Err(bad());
+    }
+    Ok((i, n))
 }

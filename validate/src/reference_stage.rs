@@ -34,8 +34,100 @@ pub struct StageOptions {
     /// Stride for the lightweight wheel blank (its sweep is 2.5 times
     /// longer), when given.
     pub stride_lightweight: Option<usize>,
-    /// Right-hand sides per solve block.
+    /// Right-hand sides per forward-solve block.
     pub block: usize,
+    /// Solve every position anew and compare it with its cached result
+    /// (old and new solution paths must agree within
+    /// [`COMPARE_TOLERANCE`]); the cache is left as it is.
+    pub compare_cache: bool,
+    /// Solve only the positions i with i mod N = I (`Some((I, N))`): one
+    /// shard of a sweep split among processes or machines. Shards write
+    /// their positions to the shared cache; a run without a shard then
+    /// finds them all there and writes the result.
+    pub shard: Option<(usize, usize)>,
+}
+
+/// Largest relative difference that `--compare-cache` accepts between a
+/// position solved now and its cached result.
+pub const COMPARE_TOLERANCE: f64 = 1e-6;
+
+/// Where the reference of mesh level `level` writes its results:
+/// `<out>/<scene>/reference/` for the reduced level (the meshes of the
+/// reduced model), `<out>/<scene>/reference_<level>/` for a finer one.
+pub fn reference_dir(out: &Path, scene: &str, level: &str) -> std::path::PathBuf {
+    match level {
+        "reduced" => out.join(scene).join("reference"),
+        l => out.join(scene).join(format!("reference_{l}")),
+    }
+}
+
+/// Mesh levels of the reference, finest first.
+pub const LEVELS_FINEST_FIRST: [&str; 3] = ["reference", "medium", "reduced"];
+
+/// The results directory of blank combination `blank` (`<pinion>_<wheel>`)
+/// at the finest mesh level that has a swept `te.csv`.
+pub fn finest_reference(out: &Path, scene: &str, blank: &str) -> Option<std::path::PathBuf> {
+    LEVELS_FINEST_FIRST
+        .iter()
+        .map(|l| reference_dir(out, scene, l).join(blank))
+        .find(|d| d.join("te.csv").exists())
+}
+
+/// The largest differences between positions solved now and their cached
+/// results (`validate reference --compare-cache`), relative to the cached
+/// value; torque balance (already relative) as an absolute difference.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub struct CacheComparison {
+    pub positions_compared: usize,
+    pub positions_without_cache: usize,
+    pub unloaded_te: f64,
+    pub te: f64,
+    pub te_check: f64,
+    pub max_pressure: f64,
+    pub torque_balance_abs: f64,
+    pub search_margin: f64,
+    /// Positions whose working set or active-constraint counts differ.
+    pub count_mismatches: usize,
+    pub tolerance: f64,
+}
+
+impl CacheComparison {
+    fn add(&mut self, new: &PositionResult, old: &PositionResult) {
+        let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(f64::MIN_POSITIVE);
+        self.positions_compared += 1;
+        self.unloaded_te = self.unloaded_te.max(rel(new.unloaded_te, old.unloaded_te));
+        let mut counts_differ =
+            new.constraints != old.constraints || new.loads.len() != old.loads.len();
+        for (a, b) in new.loads.iter().zip(&old.loads) {
+            self.te = self.te.max(rel(a.te, b.te));
+            self.te_check = self.te_check.max(rel(a.te_check, b.te_check));
+            self.max_pressure = self
+                .max_pressure
+                .max(rel(a.max_pressure_pa, b.max_pressure_pa));
+            self.torque_balance_abs = self
+                .torque_balance_abs
+                .max((a.torque_balance - b.torque_balance).abs());
+            if let (Some(x), Some(y)) = (a.search_margin_m, b.search_margin_m) {
+                self.search_margin = self.search_margin.max(rel(x, y));
+            }
+            counts_differ |= a.active != b.active;
+        }
+        self.count_mismatches += usize::from(counts_differ);
+    }
+
+    /// The largest of the relative differences.
+    pub fn worst(&self) -> f64 {
+        [
+            self.unloaded_te,
+            self.te,
+            self.te_check,
+            self.max_pressure,
+            self.torque_balance_abs,
+            self.search_margin,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
 }
 
 /// Per-torque statistics over the sweep.
@@ -180,7 +272,7 @@ pub fn run(
         for &wb in &sc.blanks.wheel {
             let t0 = std::time::Instant::now();
             let name = format!("{}_{}", blank_name(pb), blank_name(wb));
-            let odir = out.join(&sc.name).join("reference").join(&name);
+            let odir = reference_dir(out, &sc.name, &opt.level).join(&name);
             let stride = match wb {
                 Blank::Lightweight => opt.stride_lightweight.unwrap_or(opt.stride),
                 _ => opt.stride,
@@ -222,7 +314,8 @@ pub fn run(
                 "positions": positions,
             }));
             let summary_path = odir.join("summary.json");
-            if let Ok(text) = std::fs::read_to_string(&summary_path) {
+            let partial = opt.compare_cache || opt.shard.is_some();
+            if let (false, Ok(text)) = (partial, std::fs::read_to_string(&summary_path)) {
                 if let Ok(s) = serde_json::from_str::<BlankSummary>(&text) {
                     if s.input_hash == hash {
                         eprintln!(
@@ -269,17 +362,30 @@ pub fn run(
             let t_sweep = std::time::Instant::now();
             let mut res = Vec::with_capacity(positions.len());
             let mut reused = 0;
+            let mut comparison = CacheComparison {
+                tolerance: COMPARE_TOLERANCE,
+                ..Default::default()
+            };
             for (i, &phi) in positions.iter().enumerate() {
+                if opt.shard.is_some_and(|(k, n)| i % n != k) {
+                    bar.inc(1);
+                    continue;
+                }
                 let cached = cache_dir.join(format!(
                     "phi_{}udeg.json",
                     (phi.to_degrees() * 1e6).round() as i64
                 ));
-                if let Some(r) = std::fs::read_to_string(&cached)
+                let from_cache = std::fs::read_to_string(&cached)
                     .ok()
                     .and_then(|t| serde_json::from_str::<PositionResult>(&t).ok())
-                    .filter(|r| r.loads.len() == sc.pinion_torque_nm.len())
-                {
-                    res.push(r);
+                    .filter(|r| r.loads.len() == sc.pinion_torque_nm.len());
+                if opt.compare_cache && from_cache.is_none() {
+                    comparison.positions_without_cache += 1;
+                    bar.inc(1);
+                    continue;
+                }
+                if let (false, Some(r)) = (opt.compare_cache, &from_cache) {
+                    res.push(r.clone());
                     reused += 1;
                     bar.inc(1);
                     continue;
@@ -322,7 +428,10 @@ pub fn run(
                         phi.to_degrees()
                     )
                 })?;
-                write_json(&cached, &r)?;
+                match &from_cache {
+                    Some(old) => comparison.add(&r, old),
+                    None => write_json(&cached, &r)?,
+                }
                 if bar.is_hidden() {
                     eprintln!(
                         "reference {name}: position {}/{}: {} of {} constraints solved, {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
@@ -340,6 +449,38 @@ pub fn run(
                 bar.inc(1);
             }
             bar.finish_and_clear();
+            if opt.compare_cache {
+                std::fs::create_dir_all(&odir)?;
+                write_json(&odir.join("compare_cache.json"), &comparison)?;
+                eprintln!(
+                    "reference {name}: {} positions solved anew against the cache ({} not cached): largest relative difference {:.2e} (TE {:.2e}, check-penalty TE {:.2e}, max pressure {:.2e}, search margin {:.2e}; torque balance {:.2e}), {} with other constraint counts",
+                    comparison.positions_compared,
+                    comparison.positions_without_cache,
+                    comparison.worst(),
+                    comparison.te,
+                    comparison.te_check,
+                    comparison.max_pressure,
+                    comparison.search_margin,
+                    comparison.torque_balance_abs,
+                    comparison.count_mismatches
+                );
+                if comparison.worst() > COMPARE_TOLERANCE || comparison.count_mismatches > 0 {
+                    anyhow::bail!(
+                        "reference {name}: positions solved now differ from the cache by {:.2e} (tolerance {COMPARE_TOLERANCE:e}) with {} constraint-count mismatches; see {}",
+                        comparison.worst(),
+                        comparison.count_mismatches,
+                        odir.join("compare_cache.json").display()
+                    );
+                }
+                continue;
+            }
+            if let Some((k, n)) = opt.shard {
+                eprintln!(
+                    "reference {name}: shard {k}/{n} solved; a run without --shard collects every shard's positions from {}",
+                    cache_dir.display()
+                );
+                continue;
+            }
             let sweep_s = t_sweep.elapsed().as_secs_f64();
             std::fs::create_dir_all(&odir)?;
             write_te_csv(
@@ -437,10 +578,12 @@ pub fn run(
             all.push(summary);
         }
     }
-    write_json(
-        &out.join(&sc.name).join("reference").join("summary.json"),
-        &all,
-    )?;
+    if !(opt.compare_cache || opt.shard.is_some()) {
+        write_json(
+            &reference_dir(out, &sc.name, &opt.level).join("summary.json"),
+            &all,
+        )?;
+    }
     Ok(all)
 }
 

@@ -1,0 +1,224 @@
+//! `make bench` (reference): the cost of the reference FE contact.
+//!
+//! 1. Unit-load right-hand sides on the reduced-level pinion: the full
+//!    forward + backward solves with responses kept over every flank node
+//!    (`BodyCompliance`, the path before the pruned solves) against the
+//!    pruned forward solves along each node's elimination-tree path
+//!    (`PathCompliance`), for the same nodes of one flank: time per
+//!    right-hand side.
+//! 2. Consecutive positions of the standard pair's sweep at the reduced
+//!    level (and, with `BENCH_FINE=1`, at the reference level, 35 × 75;
+//!    needs its meshes and about 12 GB): factor time, CPU per position over
+//!    the window (the first position pays for a cold window), peak memory.
+//!
+//! Target (issue 27): ≤ 30 s per position amortized over a reference-level
+//! sweep, peak ≤ 16 GB; the white paper's reference took 1,020–1,150 s per
+//! step. Results in `bench/reference.json`. Meshes come from `meshes/default/`
+//! (`make preprocess`; `preprocess mesh --level reference` for the fine part).
+
+use preprocess::design::Member as Which;
+use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
+use preprocess::scene::Scene;
+use serde_json::json;
+use std::path::Path;
+use std::time::Instant;
+use validate::body_compliance::{clamped, BodyCompliance};
+use validate::path_compliance::PathCompliance;
+use validate::reference_ltca::{Member, ReferencePair, ReferenceSettings};
+
+/// Peak resident memory of this process (VmHWM), GB.
+fn peak_memory_gb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|v| v.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0 / 1024.0)
+}
+
+/// Flank nodes loaded per solve comparison.
+const NODES: usize = 96;
+/// Right-hand sides per block: today's default for each path.
+const BLOCK_FULL: usize = 16;
+const BLOCK_PATH: usize = 96;
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
+    let sc = &scene.scene;
+    let dir = root.join("meshes").join(&sc.name);
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
+    let side = sc.loaded_flank;
+    let fp = g.side(side);
+    let direction = pinion_direction(&g.data, side);
+    let step = sc.rotation.step_deg.to_radians();
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    println!("\nReference FE contact benchmark (default scene, {cores} cores)\n");
+
+    // 1. Right-hand sides, reduced-level pinion.
+    let pm = dir.join("pinion_standard_reduced.msh");
+    let mesh = preprocess::body_mesh::read(&pm)
+        .expect("meshes/default/pinion_standard_reduced.msh: run `make preprocess` first");
+    let mat = g.data.member(Which::Pinion).material();
+    let fixed = clamped(&mesh.group_nodes("bore"));
+    let (teeth, _) = teeth_in_contact(&g, side, sc.rotation.mesh_cycles_standard, step);
+    let flank = mesh.group(&format!(
+        "tooth{}_{}",
+        teeth[0],
+        side.flank_name(Which::Pinion)
+    ));
+    let mut universe: Vec<usize> = flank.iter().flatten().copied().collect();
+    universe.sort_unstable();
+    universe.dedup();
+    let nodes: Vec<usize> = universe
+        .iter()
+        .step_by((universe.len() / NODES).max(1))
+        .copied()
+        .take(NODES)
+        .collect();
+    let mut full = BodyCompliance::new(&mesh.mesh, &mat, &fixed, &universe, BLOCK_FULL).unwrap();
+    let t = Instant::now();
+    full.ensure(&nodes).unwrap();
+    let full_s = t.elapsed().as_secs_f64();
+    let mut path = PathCompliance::new(&mesh.mesh, &mat, &fixed, BLOCK_PATH).unwrap();
+    let t = Instant::now();
+    path.ensure(&nodes).unwrap();
+    let path_s = t.elapsed().as_secs_f64();
+    let rhs = 3 * nodes.len();
+    println!(
+        "reduced pinion ({} free dofs), {} flank nodes of tooth {} ({rhs} right-hand sides):",
+        path.dofs_free,
+        nodes.len(),
+        teeth[0]
+    );
+    println!(
+        "  factor: full {:.1} s, supernodal {:.1} s",
+        full.factor_s, path.factor_s
+    );
+    println!(
+        "  full solves, blocks of {BLOCK_FULL}:    {:7.2} ms per right-hand side",
+        full_s / rhs as f64 * 1e3
+    );
+    println!(
+        "  pruned forward, blocks of {BLOCK_PATH}: {:7.2} ms per right-hand side ({:.0}x less), {:.1} MB per node kept",
+        path_s / rhs as f64 * 1e3,
+        full_s / path_s,
+        path.bytes() as f64 / nodes.len() as f64 / 1e6
+    );
+    drop(full);
+    drop(path);
+
+    // 2. Consecutive positions.
+    let settings = ReferenceSettings {
+        penalty_factor: 100.0,
+        penalty_factor_check: 200.0,
+        start_band_m: 2e-6,
+        search_gap_m: 60e-6,
+    };
+    let (pinion_teeth, wheel_teeth) =
+        teeth_in_contact(&g, side, sc.rotation.mesh_cycles_standard, step);
+    let mut levels = vec![("reduced", 12usize)];
+    if std::env::var("BENCH_FINE").is_ok_and(|v| v == "1") {
+        levels.push(("reference", 6));
+    } else {
+        println!("\n(BENCH_FINE=1 adds consecutive positions at the reference level, 35 x 75)");
+    }
+    let mut sweeps = Vec::new();
+    for (level, n) in levels {
+        let msh = |m: &str| dir.join(format!("{m}_standard_{level}.msh"));
+        if !msh("pinion").exists() || !msh("wheel").exists() {
+            println!(
+                "\n{level}: no meshes in {}; `preprocess mesh --level {level}` makes them",
+                dir.display()
+            );
+            continue;
+        }
+        let t = Instant::now();
+        let mut pinion = Member::load(
+            &msh("pinion"),
+            &g,
+            Which::Pinion,
+            side,
+            &pinion_teeth,
+            BLOCK_PATH,
+        )
+        .unwrap();
+        let mut wheel = Member::load(
+            &msh("wheel"),
+            &g,
+            Which::Wheel,
+            side,
+            &wheel_teeth,
+            BLOCK_PATH,
+        )
+        .unwrap();
+        let load_s = t.elapsed().as_secs_f64();
+        let mut pair = ReferencePair {
+            pinion: &mut pinion,
+            wheel: &mut wheel,
+            flanks: fp,
+            direction,
+            settings,
+        };
+        let mut cpu = Vec::new();
+        let mut new_nodes = Vec::new();
+        let mut window_gb: f64 = 0.0;
+        for i in 0..n {
+            let phi = fp.roll_range[0] + direction * step * i as f64;
+            let r = pair.position(phi, &sc.pinion_torque_nm).unwrap();
+            cpu.push(r.cpu_s);
+            new_nodes.push(r.new_columns);
+            window_gb = window_gb
+                .max((pair.pinion.compliance.bytes() + pair.wheel.compliance.bytes()) as f64 / 1e9);
+        }
+        let warm = &cpu[1..];
+        let warm_mean = warm.iter().sum::<f64>() / warm.len().max(1) as f64;
+        println!(
+            "\n{level} level, standard pair, {} + {} dofs: read + factor {:.0} s ({:.0} + {:.0} s factoring)",
+            pair.pinion.compliance.dofs_free,
+            pair.wheel.compliance.dofs_free,
+            load_s,
+            pair.pinion.compliance.factor_s,
+            pair.wheel.compliance.factor_s
+        );
+        println!(
+            "  {n} positions: first {:.2} s ({} new nodes), then {:.2} s per position ({:.0} new nodes each); window {:.2} GB; peak memory {:.1} GB",
+            cpu[0],
+            new_nodes[0],
+            warm_mean,
+            new_nodes[1..].iter().sum::<usize>() as f64 / warm.len().max(1) as f64,
+            window_gb,
+            peak_memory_gb()
+        );
+        sweeps.push(json!({
+            "level": level,
+            "dofs": [pair.pinion.compliance.dofs_free, pair.wheel.compliance.dofs_free],
+            "read_and_factor_s": load_s,
+            "factor_s": [pair.pinion.compliance.factor_s, pair.wheel.compliance.factor_s],
+            "positions": n,
+            "cpu_s_per_position": cpu,
+            "new_nodes_per_position": new_nodes,
+            "cpu_s_per_position_after_first": warm_mean,
+            "window_gb": window_gb,
+        }));
+    }
+    let out = json!({
+        "machine_cores": cores,
+        "right_hand_sides": {
+            "member": "pinion_standard_reduced",
+            "nodes": nodes.len(),
+            "full_block": BLOCK_FULL,
+            "full_ms_per_rhs": full_s / rhs as f64 * 1e3,
+            "path_block": BLOCK_PATH,
+            "path_ms_per_rhs": path_s / rhs as f64 * 1e3,
+        },
+        "sweeps": sweeps,
+        "peak_memory_gb": peak_memory_gb(),
+    });
+    preprocess::output::write_json(&root.join("bench/reference.json"), &out).unwrap();
+    println!("\nwritten to bench/reference.json");
+}
