@@ -121,6 +121,39 @@ fn ramp(v: f64) -> RGBColor {
     RGBColor(c(a.1 .0, b.1 .0), c(a.1 .1, b.1 .1), c(a.1 .2, b.1 .2))
 }
 
+/// Cells of the contact-pattern map along the face (ξ) and the profile (η):
+/// about three flank nodes of the 35 × 75 reference mesh per cell and
+/// direction.
+pub const PATTERN_CELLS: [usize; 2] = [50, 24];
+
+/// The pressure envelope on a grid of `cells` over the unit flank (ξ, η):
+/// each cell that holds points takes their largest pressure, as
+/// (ξ₀, η₀, ξ₁, η₁, p). Cells without a point are not returned.
+pub fn envelope_cells(
+    pts: &[(f64, f64, f64)],
+    cells: [usize; 2],
+) -> Vec<(f64, f64, f64, f64, f64)> {
+    let [nx, ny] = cells;
+    let mut grid = vec![f64::NAN; nx * ny];
+    for &(x, y, p) in pts {
+        if !(0.0..=1.0).contains(&x) || !(0.0..=1.0).contains(&y) {
+            continue;
+        }
+        let i = ((x * nx as f64) as usize).min(nx - 1);
+        let j = ((y * ny as f64) as usize).min(ny - 1);
+        let c = &mut grid[j * nx + i];
+        *c = if c.is_nan() { p } else { c.max(p) };
+    }
+    let (dx, dy) = (1.0 / nx as f64, 1.0 / ny as f64);
+    (0..nx * ny)
+        .filter(|&k| !grid[k].is_nan())
+        .map(|k| {
+            let (i, j) = ((k % nx) as f64, (k / nx) as f64);
+            (i * dx, j * dy, (i + 1.0) * dx, (j + 1.0) * dy, grid[k])
+        })
+        .collect()
+}
+
 /// Contact pattern at torque `t` of one blank combination: the reduced
 /// model's slices (quasi-static LTCA, all positions) and the reference's
 /// pressure envelope, on the pinion flank's unit coordinates (ξ along the
@@ -170,7 +203,7 @@ pub fn pattern_figure(
     let (peak_a, peak_b) = (peak(&a), peak(&b));
     let file = reports.join(format!("pattern_{blank}_{t}nm.svg"));
     let title = format!(
-        "Contact pattern at {t} N·m, {} blanks (colour: pressure envelope, 0 – {p_max:.0} MPa; points from 2%)",
+        "Contact pattern at {t} N·m, {} blanks (pressure envelope, one colour scale 0 – {p_max:.0} MPa, from 2 %; frame: the flank)",
         blank.replace('_', " / ")
     );
     let draw = || -> Result<(), Box<dyn std::error::Error>> {
@@ -196,14 +229,43 @@ pub fn pattern_figure(
                 .x_desc("ξ (face, toe → heel)")
                 .y_desc("η (profile, root → tip)")
                 .draw()?;
-            chart.draw_series(
-                pts.iter()
-                    .map(|&(x, y, p)| Circle::new((x, y), 3, ramp(p / p_max).filled())),
-            )?;
+            // The flank's outline and the envelope filled cell by cell.
+            chart.draw_series(envelope_cells(pts, PATTERN_CELLS).into_iter().map(
+                |(x0, y0, x1, y1, p)| {
+                    Rectangle::new([(x0, y0), (x1, y1)], ramp(p / p_max).filled())
+                },
+            ))?;
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(0.0, 0.0), (1.0, 1.0)],
+                BLACK.stroke_width(1),
+            )))?;
         }
         root.present()?;
         Ok(())
     };
     draw().ok()?;
     Some((title, std::fs::read_to_string(&file).ok()?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::envelope_cells;
+
+    /// Each cell takes the largest pressure of the points in it; points
+    /// outside the flank and empty cells give nothing.
+    #[test]
+    fn envelope_cells_take_the_largest_pressure_per_cell() {
+        let pts = [
+            (0.10, 0.10, 5.0),
+            (0.20, 0.20, 7.0),
+            (0.90, 0.60, 1.0),
+            (1.00, 1.00, 2.0),
+            (1.20, 0.50, 9.0),
+        ];
+        let cells = envelope_cells(&pts, [2, 2]);
+        assert_eq!(
+            cells,
+            vec![(0.0, 0.0, 0.5, 0.5, 7.0), (0.5, 0.5, 1.0, 1.0, 2.0)]
+        );
+    }
 }

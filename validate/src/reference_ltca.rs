@@ -212,6 +212,25 @@ pub struct PositionResult {
     /// Nodes whose unit-load columns this position computed.
     pub new_columns: usize,
     pub cpu_s: f64,
+    /// Where `cpu_s` went (None in results cached before it was recorded).
+    #[serde(default)]
+    pub time_split: Option<TimeSplit>,
+}
+
+/// Wall time of one position by part, s.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+pub struct TimeSplit {
+    /// Placing the bodies and building every constraint up to the search gap.
+    pub search_s: f64,
+    /// Unit-load vectors of new nodes (pruned forward solves).
+    pub forward_s: f64,
+    /// Constraint vectors and the condensed matrix W.
+    pub condensation_s: f64,
+    /// Dense active-set solves (both penalties, every torque).
+    pub contact_s: f64,
+    /// Loaded gaps of the constraints outside the working set (backward
+    /// solves on their paths).
+    pub outside_s: f64,
 }
 
 /// The pair in the reference model.
@@ -259,7 +278,10 @@ impl ReferencePair<'_> {
         torques: &[f64],
     ) -> Result<PositionResult, ReferenceError> {
         let t0 = std::time::Instant::now();
+        let mut split = TimeSplit::default();
+        let lap = std::time::Instant::now();
         let (cs, at) = self.constraints(phi)?;
+        split.search_s = lap.elapsed().as_secs_f64();
         let before = self.pinion.compliance.solves + self.wheel.compliance.solves;
         let g_min = cs.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
         let start: Vec<usize> = (0..cs.len())
@@ -270,7 +292,7 @@ impl ReferencePair<'_> {
             w: Vec::new(),
             y: Vec::new(),
         };
-        self.grow(&cs, &mut ws, &start)?;
+        self.grow(&cs, &mut ws, &start, &mut split)?;
         let scale = self.settings.penalty_factor_check / self.settings.penalty_factor;
         let ratio = self.pinion.frame.teeth as f64 / self.wheel.frame.teeth as f64;
         let mut loads = Vec::new();
@@ -301,10 +323,14 @@ impl ReferencePair<'_> {
                         v
                     })
                 };
+                let lap = std::time::Instant::now();
                 let s = solve(&sub, &ws.w, t, warm_of(&warm[0]).as_deref())?;
                 let sc = solve(&check, &ws.w, t, warm_of(&warm[1]).as_deref())?;
+                split.contact_s += lap.elapsed().as_secs_f64();
+                let lap = std::time::Instant::now();
                 let mut gaps =
                     self.outside_gaps(&cs, &ws, &[(&s.force, s.psi), (&sc.force, sc.psi)])?;
+                split.outside_s += lap.elapsed().as_secs_f64();
                 let mut add: Vec<usize> = gaps
                     .iter()
                     .flatten()
@@ -323,7 +349,7 @@ impl ReferencePair<'_> {
                 if add.is_empty() {
                     break (s, sc, gaps.swap_remove(0));
                 }
-                self.grow(&cs, &mut ws, &add)?;
+                self.grow(&cs, &mut ws, &add, &mut split)?;
             };
             let sub: Vec<Constraint> = ws.idx.iter().map(|&c| cs[c].clone()).collect();
             if k == 0 {
@@ -390,6 +416,7 @@ impl ReferencePair<'_> {
             new_columns: (self.pinion.compliance.solves + self.wheel.compliance.solves - before)
                 / 3,
             cpu_s: t0.elapsed().as_secs_f64(),
+            time_split: Some(split),
         })
     }
 
@@ -455,7 +482,9 @@ impl ReferencePair<'_> {
         cs: &[Constraint],
         ws: &mut WorkingSet,
         add: &[usize],
+        split: &mut TimeSplit,
     ) -> Result<(), ReferenceError> {
+        let lap = std::time::Instant::now();
         let mut add_y = Vec::with_capacity(add.len());
         for (body, m) in [(0, &mut *self.pinion), (1, &mut *self.wheel)] {
             let nodes: Vec<usize> = add
@@ -470,6 +499,8 @@ impl ReferencePair<'_> {
                 .collect();
             m.compliance.ensure(&nodes)?;
         }
+        split.forward_s += lap.elapsed().as_secs_f64();
+        let lap = std::time::Instant::now();
         for &c in add {
             add_y.push([
                 self.pinion.compliance.constraint_vector(&cs[c].terms, 0)?,
@@ -527,6 +558,7 @@ impl ReferencePair<'_> {
         ws.idx = idx;
         ws.w = w;
         ws.y = y;
+        split.condensation_s += lap.elapsed().as_secs_f64();
         Ok(())
     }
 

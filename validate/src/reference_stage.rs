@@ -511,6 +511,10 @@ pub fn run(
             }
             let t = sc.pinion_torque_nm.last().copied().unwrap_or(0.0);
             write_atomic(&odir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
+            write_atomic(
+                &odir.join(format!("pattern_{t}nm.vtu")),
+                pattern_vtu(&pts).as_bytes(),
+            )?;
             // Sizes and factoring times of this run's bodies, or of the run
             // that solved the positions (kept beside the position cache).
             let bodies_path = cache_dir.join("bodies.json");
@@ -585,6 +589,40 @@ pub fn run(
         )?;
     }
     Ok(all)
+}
+
+/// The pressure envelope on the pinion flank nodes (member frame, m) as a
+/// VTK unstructured grid of vertices with the point field `pressure_mpa`,
+/// for ParaView.
+pub fn pattern_vtu(pts: &[([f64; 3], f64)]) -> String {
+    let n = pts.len();
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n",
+    );
+    let _ = writeln!(s, "<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">");
+    s.push_str("<PointData Scalars=\"pressure_mpa\">\n<DataArray type=\"Float64\" Name=\"pressure_mpa\" format=\"ascii\">\n");
+    for (_, v) in pts {
+        let _ = writeln!(s, "{}", v * 1e-6);
+    }
+    s.push_str("</DataArray>\n</PointData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    for (p, _) in pts {
+        let _ = writeln!(s, "{} {} {}", p[0], p[1], p[2]);
+    }
+    s.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    for i in 0..n {
+        let _ = writeln!(s, "{i}");
+    }
+    s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    for i in 0..n {
+        let _ = writeln!(s, "{}", i + 1);
+    }
+    // VTK_VERTEX = 1.
+    s.push_str("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    for _ in 0..n {
+        s.push_str("1\n");
+    }
+    s.push_str("</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+    s
 }
 
 fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
