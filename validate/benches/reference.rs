@@ -166,12 +166,24 @@ fn main() {
         };
         let mut cpu = Vec::new();
         let mut new_nodes = Vec::new();
+        let mut split = [0.0; 5];
         let mut window_gb: f64 = 0.0;
         for i in 0..n {
             let phi = fp.roll_range[0] + direction * step * i as f64;
             let r = pair.position(phi, &sc.pinion_torque_nm).unwrap();
             cpu.push(r.cpu_s);
             new_nodes.push(r.new_columns);
+            if let (true, Some(t)) = (i > 0, r.time_split) {
+                for (a, b) in split.iter_mut().zip([
+                    t.search_s,
+                    t.forward_s,
+                    t.condensation_s,
+                    t.contact_s,
+                    t.outside_s,
+                ]) {
+                    *a += b / (n - 1) as f64;
+                }
+            }
             window_gb = window_gb
                 .max((pair.pinion.compliance.bytes() + pair.wheel.compliance.bytes()) as f64 / 1e9);
         }
@@ -194,7 +206,18 @@ fn main() {
             window_gb,
             peak_memory_gb()
         );
+        println!(
+            "  after the first, per position: search {:.2} s, forward solves {:.2} s, W {:.2} s, active-set solves {:.2} s, outside gaps {:.2} s",
+            split[0], split[1], split[2], split[3], split[4]
+        );
         sweeps.push(json!({
+            "time_split_s_after_first": {
+                "search": split[0],
+                "forward": split[1],
+                "condensation": split[2],
+                "contact": split[3],
+                "outside": split[4],
+            },
             "level": level,
             "dofs": [pair.pinion.compliance.dofs_free, pair.wheel.compliance.dofs_free],
             "read_and_factor_s": load_s,

@@ -1,9 +1,13 @@
-//! One elastic body's compliance at its contact nodes: the stiffness
-//! (supports clamped) is factored once; unit loads at a node (x, y, z of the
-//! body's own frame) are solved in column blocks when a contact first needs
-//! that node, and the responses are kept at every node of a fixed
-//! "universe" (the flank nodes that can ever touch), so that a node's
-//! columns serve every later position and load.
+//! One elastic body's compliance at its contact nodes by full solves: the
+//! stiffness (supports clamped) is factored once; unit loads at a node (x, y,
+//! z of the body's own frame) are solved (forward and backward) in column
+//! blocks when a contact first needs that node, and the responses are kept
+//! at every node of a fixed "universe".
+//!
+//! The reference sweeps use [`crate::path_compliance`] (pruned forward
+//! solves, the same C at about a hundredth of the cost); this
+//! straightforward form stays as the independent check it is compared with
+//! (`validate/tests/penalty_contact.rs`, `make bench`).
 
 use crate::penalty::{Compliance, ContactError};
 use fem::cholesky::Ordering;
@@ -63,16 +67,6 @@ impl BodyCompliance {
             factor_s: t.elapsed().as_secs_f64(),
             solve_s: 0.0,
         })
-    }
-
-    /// Keeps the responses at `universe` from now on, dropping the columns
-    /// computed so far (they were kept elsewhere). For a single position on
-    /// a fine mesh, where the responses at every flank node of the teeth
-    /// would not fit in memory.
-    pub fn set_universe(&mut self, universe: &[usize]) {
-        self.slot = universe.iter().enumerate().map(|(i, &n)| (n, i)).collect();
-        self.universe = universe.len();
-        self.columns.clear();
     }
 
     /// Whether `node`'s columns are available.

@@ -1,0 +1,103 @@
+//! The reference sweep's bookkeeping on the small scene's coarse (6 × 10)
+//! meshes: a sweep split into shards and collected equals the single run,
+//! `--compare-cache` accepts the cache it wrote, and refuses one whose
+//! value was changed.
+
+use preprocess::mesh_stage::{self, Level};
+use preprocess::scene::Scene;
+use std::path::Path;
+use validate::reference_ltca::{PositionResult, ReferenceSettings};
+use validate::reference_stage::{reference_dir, run, CacheComparison, StageOptions};
+
+fn options() -> StageOptions {
+    StageOptions {
+        level: "reduced".into(),
+        settings: ReferenceSettings {
+            penalty_factor: 100.0,
+            penalty_factor_check: 200.0,
+            start_band_m: 2e-6,
+            search_gap_m: 60e-6,
+        },
+        stride: 2,
+        stride_lightweight: None,
+        block: 96,
+        compare_cache: false,
+        shard: None,
+    }
+}
+
+/// TE columns of `te.csv` (every value after the header).
+fn te_values(out: &Path) -> Vec<f64> {
+    let text = std::fs::read_to_string(
+        reference_dir(out, "small", "reduced").join("standard_standard/te.csv"),
+    )
+    .unwrap();
+    text.lines()
+        .skip(1)
+        .flat_map(|l| {
+            l.split(',')
+                .map(|v| v.parse::<f64>().unwrap())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+#[test]
+fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let scene = Scene::load(&root.join("reference/scenes/small.toml")).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let meshes = tmp.path().join("meshes");
+    mesh_stage::run(&scene, &meshes, Level::Reduced).unwrap();
+
+    // One run over the whole sweep.
+    let single = tmp.path().join("single");
+    let a = run(&scene, &meshes, &single, &options()).unwrap();
+    let n = a[0].positions;
+    assert!(n >= 8, "{n} positions");
+
+    // Three shards, then a collecting run that solves nothing.
+    let sharded = tmp.path().join("sharded");
+    for k in 0..3 {
+        let opt = StageOptions {
+            shard: Some((k, 3)),
+            ..options()
+        };
+        assert!(run(&scene, &meshes, &sharded, &opt).unwrap().is_empty());
+    }
+    let b = run(&scene, &meshes, &sharded, &options()).unwrap();
+    assert_eq!(b[0].positions_reused, n, "every position from the shards");
+    let (ta, tb) = (te_values(&single), te_values(&sharded));
+    assert_eq!(ta.len(), tb.len());
+    let scale = ta.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    for (x, y) in ta.iter().zip(&tb) {
+        assert!((x - y).abs() <= 1e-12 * scale, "{x} vs {y}");
+    }
+
+    // The cache compared with positions solved anew.
+    let compare = StageOptions {
+        compare_cache: true,
+        ..options()
+    };
+    run(&scene, &meshes, &single, &compare).unwrap();
+    let odir = reference_dir(&single, "small", "reduced").join("standard_standard");
+    let c: CacheComparison =
+        serde_json::from_str(&std::fs::read_to_string(odir.join("compare_cache.json")).unwrap())
+            .unwrap();
+    assert_eq!(c.positions_compared, n);
+    assert!(c.worst() < 1e-12, "{c:?}");
+
+    // One cached TE changed by 1e-5: refused.
+    let cached = std::fs::read_dir(odir.join("positions"))
+        .unwrap()
+        .flat_map(|d| std::fs::read_dir(d.unwrap().path()).unwrap())
+        .map(|f| f.unwrap().path())
+        .find(|p| p.file_name().unwrap().to_string_lossy().starts_with("phi_"))
+        .unwrap();
+    let mut r: PositionResult =
+        serde_json::from_str(&std::fs::read_to_string(&cached).unwrap()).unwrap();
+    r.loads[0].te *= 1.0 + 1e-5;
+    std::fs::write(&cached, serde_json::to_string(&r).unwrap()).unwrap();
+    let err = run(&scene, &meshes, &single, &compare).unwrap_err();
+    assert!(err.to_string().contains("differ from the cache"), "{err}");
+}
