@@ -270,6 +270,12 @@ pub fn compare(
         }
     }
     let mut markdown = markdown(&rows, &rf);
+    for r in &rf {
+        let blank = format!("{}_{}", r.pinion_blank, r.wheel_blank);
+        if let Some(line) = pattern_peak(out, scene, &blank) {
+            let _ = writeln!(markdown, "{line}\n");
+        }
+    }
     if let Some(mu) = mb
         .iter()
         .map(|b| b.friction_coefficient)
@@ -319,6 +325,54 @@ pub fn compare(
         tradeoff_markdown(&mut markdown, &t);
     }
     Some(Comparison { rows, markdown })
+}
+
+/// Within this of the flank's unit outline (ξ, η ∈ [0, 1]) a pressure peak
+/// is edge contact.
+const EDGE_BAND: f64 = 0.03;
+
+/// Where the finest reference's pressure envelope (at the largest torque)
+/// peaks on the pinion flank, and whether that is on the flank's edge: one
+/// sentence, None without a pattern file.
+fn pattern_peak(out: &Path, scene: &str, blank: &str) -> Option<String> {
+    use crate::figures::{column, read_csv};
+    let dir = crate::reference_stage::finest_reference(out, scene, blank)?;
+    let file = std::fs::read_dir(&dir)
+        .ok()?
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .find(|p| {
+            p.extension().is_some_and(|x| x == "csv")
+                && p.file_name()
+                    .is_some_and(|n| n.to_string_lossy().starts_with("pattern_"))
+        })?;
+    let csv = read_csv(&file)?;
+    let (xi, eta, p) = (
+        column(&csv, "xi")?,
+        column(&csv, "eta")?,
+        column(&csv, "pressure_mpa")?,
+    );
+    let k = (0..p.len()).max_by(|&a, &b| p[a].total_cmp(&p[b]))?;
+    let edge = [
+        (eta[k] > 1.0 - EDGE_BAND, "the tip"),
+        (eta[k] < EDGE_BAND, "the flank's lower limit (root side)"),
+        (xi[k] < EDGE_BAND, "the toe"),
+        (xi[k] > 1.0 - EDGE_BAND, "the heel"),
+    ]
+    .into_iter()
+    .find(|e| e.0)
+    .map(|e| e.1);
+    let name = file.file_stem()?.to_string_lossy().into_owned();
+    Some(match edge {
+        Some(at) => format!(
+            "Contact pattern {} ({}): the reference's pressure peaks at {:.0} MPa on the flank's edge at {at} (ξ {:.3}, η {:.3}): edge contact, which the reduced model's slices on the smooth flank (Hertz per slice) do not resolve; its peak is not comparable there.",
+            blank.replace('_', " / "), name, p[k], xi[k], eta[k]
+        ),
+        None => format!(
+            "Contact pattern {} ({}): the reference's pressure peaks at {:.0} MPa inside the flank (ξ {:.3}, η {:.3}), away from its edges.",
+            blank.replace('_', " / "), name, p[k], xi[k], eta[k]
+        ),
+    })
 }
 
 /// Linear interpolation of (x, y) (x increasing) at `at`; None outside.

@@ -121,10 +121,15 @@ fn ramp(v: f64) -> RGBColor {
     RGBColor(c(a.1 .0, b.1 .0), c(a.1 .1, b.1 .1), c(a.1 .2, b.1 .2))
 }
 
-/// Cells of the contact-pattern map along the face (ξ) and the profile (η):
-/// about three flank nodes of the 35 × 75 reference mesh per cell and
-/// direction.
+/// Cells of the contact-pattern map along the face (ξ) and the profile (η)
+/// for the reference's nodes: about three flank nodes of the 35 × 75
+/// reference mesh per cell and direction.
 pub const PATTERN_CELLS: [usize; 2] = [50, 24];
+
+/// The same for the reduced model's slices, which sample the flank more
+/// sparsely (slices across the face, one contact line per position): half
+/// as many cells each way, so that neighbouring samples meet.
+pub const PATTERN_CELLS_SLICES: [usize; 2] = [25, 12];
 
 /// The pressure envelope on a grid of `cells` over the unit flank (ξ, η):
 /// each cell that holds points takes their largest pressure, as
@@ -211,12 +216,17 @@ pub fn pattern_figure(
         root.fill(&WHITE)?;
         let root = root.titled(&title, ("sans-serif", 20))?;
         let panels = root.split_evenly((1, 2));
-        for (area, (name, pts)) in panels.iter().zip([
+        for (area, (name, pts, cells)) in panels.iter().zip([
             (
                 format!("reduced model (LTCA slices), peak {peak_a:.0} MPa"),
                 &a,
+                PATTERN_CELLS_SLICES,
             ),
-            (format!("reference FE (nodes), peak {peak_b:.0} MPa"), &b),
+            (
+                format!("reference FE (nodes), peak {peak_b:.0} MPa"),
+                &b,
+                PATTERN_CELLS,
+            ),
         ]) {
             let mut chart = ChartBuilder::on(area)
                 .caption(&name, ("sans-serif", 16))
@@ -230,7 +240,7 @@ pub fn pattern_figure(
                 .y_desc("η (profile, root → tip)")
                 .draw()?;
             // The flank's outline and the envelope filled cell by cell.
-            chart.draw_series(envelope_cells(pts, PATTERN_CELLS).into_iter().map(
+            chart.draw_series(envelope_cells(pts, cells).into_iter().map(
                 |(x0, y0, x1, y1, p)| {
                     Rectangle::new([(x0, y0), (x1, y1)], ramp(p / p_max).filled())
                 },
