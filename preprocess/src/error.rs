@@ -51,6 +51,12 @@ pub enum GeometryError {
         cone_distance_mm: f64,
         height_mm: f64,
     },
+    #[error("{member} {flank} flank: no flank-fillet junction at cone distance {cone_distance_mm:.3} mm (the junction's cone distance did not converge)")]
+    NoFilletJunction {
+        member: &'static str,
+        flank: &'static str,
+        cone_distance_mm: f64,
+    },
     #[error("cannot write {path}: {message}")]
     Write { path: PathBuf, message: String },
     #[error(transparent)]

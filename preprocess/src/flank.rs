@@ -404,13 +404,26 @@ impl Flank {
     }
 
     /// Cutter arc length s of the fillet section whose junction with the flank
-    /// lies at cone distance `l` (secant iteration on the junction's L).
+    /// lies at cone distance `l`.
+    ///
+    /// A secant iteration on the L of the fillet surface at ψ = 0
+    /// ([`GeneratedFlank::eval_fillet`]) comes first. That point's normal is
+    /// taken from difference tangents, whose rounding moves the generated
+    /// junction by up to a few 1e-11 m in L (and ~1e-10 m in height) from one
+    /// s to the next: at the 1e-12 m tolerance the iteration can cycle between
+    /// two iterates on either side of the root (±2.7e-12 m at the toe of the
+    /// seed001_9x40 pinion's concave flank, ±1.2e-11 m on the seed002_9x37
+    /// wheel's convex flank). Where it has not converged after 30 steps, the
+    /// same junction is solved as the straight blade's point at the tangency
+    /// height with the blade's exact normal ([`GeneratedFlank::junction`]),
+    /// whose L is smooth in s, by Newton to the same tolerance.
     pub fn fillet_arc_at(&self, l: f64) -> Result<f64, GeometryError> {
         let lj = |s: f64| {
             let p = self.gen.eval_fillet(0.0, s);
             self.gen.frame.axial(&p.pos).0
         };
-        let mut s = self.solve_ld(l, self.bounds.low.at(l, self.bounds.rm))?[1];
+        let start = self.solve_ld(l, self.bounds.low.at(l, self.bounds.rm))?[1];
+        let mut s = start;
         for _ in 0..30 {
             let f = lj(s) - l;
             if f.abs() < 1e-12 {
@@ -419,11 +432,20 @@ impl Flank {
             let h = 1e-6;
             s -= f * h / (lj(s + h) - lj(s));
         }
-        Err(GeometryError::NoFlankPoint {
+        let lj = |s: f64| self.gen.frame.axial(&self.gen.junction(s).pos).0;
+        let mut s = start;
+        for _ in 0..30 {
+            let f = lj(s) - l;
+            if f.abs() < 1e-12 {
+                return Ok(s);
+            }
+            let h = 1e-6;
+            s -= f * 2.0 * h / (lj(s + h) - lj(s - h));
+        }
+        Err(GeometryError::NoFilletJunction {
             member: self.gen.member.name(),
             flank: self.gen.side.flank_name(self.gen.member),
             cone_distance_mm: l * 1e3,
-            height_mm: self.bounds.root.at(l, self.bounds.rm) * 1e3,
         })
     }
 

@@ -227,6 +227,14 @@ impl GeneratedFlank {
         centre[1] - self.tip.edge_radius * ns[1]
     }
 
+    /// The generated flank–fillet junction at arc length `s`: the straight
+    /// blade's point at the tangency height, with the blade's exact normal
+    /// (the same point as [`GeneratedFlank::eval_fillet`] at ψ = 0, whose
+    /// normal comes from difference tangents).
+    pub fn junction(&self, s: f64) -> RawPoint<f64> {
+        self.eval(self.tangency_height(s), s)
+    }
+
     /// Point of the edge-radius surface (crown frame, phase 0): ψ = 0 on the
     /// blade tangency, ψ = 1 on the tip; the circle arc turns from −n_s to −n_t.
     pub fn fillet_surface(&self, psi: f64, s: f64) -> [f64; 3] {
