@@ -27,9 +27,6 @@ pub enum Ordering {
 pub struct Factor {
     pub(crate) symbolic: SymbolicCholesky<usize>,
     pub(crate) values: Vec<f64>,
-    /// Supernodal elimination tree, for pruned solves (built by
-    /// [`Factor::new_supernodal`]).
-    pub(crate) tree: Option<crate::path_solve::Tree>,
 }
 
 impl Factor {
@@ -43,17 +40,14 @@ impl Factor {
         Factor::new_with(k, node_of, ordering, SupernodalThreshold::AUTO)
     }
 
-    /// As [`Factor::new`], always supernodal, with the supernodal
-    /// elimination tree kept for the pruned solves of
-    /// [`crate::path_solve`].
+    /// As [`Factor::new`], always supernodal: for the pruned solves of
+    /// [`crate::path_solve::PathFactor`].
     pub fn new_supernodal(
         k: &SparseColMat<usize, f64>,
         node_of: &[usize],
         ordering: Ordering,
     ) -> Result<Factor, FemError> {
-        let mut f = Factor::new_with(k, node_of, ordering, SupernodalThreshold::FORCE_SUPERNODAL)?;
-        f.tree = Some(crate::path_solve::Tree::new(&f)?);
-        Ok(f)
+        Factor::new_with(k, node_of, ordering, SupernodalThreshold::FORCE_SUPERNODAL)
     }
 
     fn new_with(
@@ -98,11 +92,7 @@ impl Factor {
                 Default::default(),
             )
             .map_err(|e| FemError::NotPositiveDefinite(format!("{e:?}")))?;
-        Ok(Factor {
-            symbolic,
-            values,
-            tree: None,
-        })
+        Ok(Factor { symbolic, values })
     }
 
     /// Number of rows.

@@ -17,6 +17,11 @@
 //! A supernode's parent is the supernode holding the first row of its
 //! off-diagonal pattern (faer does not expose the tree; its patterns give it).
 //! Vectors on whole supernodes are [`PathVec`]s.
+//!
+//! Solves that start at a given set of dofs (a body's contact nodes) never
+//! read the supernodes off their paths, so [`PathFactor`] keeps only those
+//! of L's values (a supernodal factor of a gear body whose contact teeth are
+//! a few of many keeps a fraction of them).
 
 use crate::{Factor, FemError};
 use faer::linalg::matmul::matmul;
@@ -42,7 +47,7 @@ pub struct Tree {
 }
 
 impl Tree {
-    pub(crate) fn new(f: &Factor) -> Result<Tree, FemError> {
+    fn new(f: &Factor) -> Result<Tree, FemError> {
         let sym = supernodal(f)?;
         let n = sym.nrows();
         let ns = sym.n_supernodes();
@@ -89,7 +94,13 @@ impl Tree {
 }
 
 fn supernodal(f: &Factor) -> Result<&SymbolicSupernodalCholesky<usize>, FemError> {
-    match f.symbolic.raw() {
+    raw_supernodal(&f.symbolic)
+}
+
+fn raw_supernodal(
+    s: &faer::sparse::linalg::cholesky::SymbolicCholesky<usize>,
+) -> Result<&SymbolicSupernodalCholesky<usize>, FemError> {
+    match s.raw() {
         SymbolicCholeskyRaw::Supernodal(s) => Ok(s),
         SymbolicCholeskyRaw::Simplicial(_) => Err(FemError::Factorization(
             "pruned solves need a supernodal factor (Factor::new_supernodal)".into(),
@@ -291,12 +302,76 @@ impl Compact {
     }
 }
 
-impl Factor {
-    /// The supernodal tree (factors built by [`Factor::new_supernodal`]).
-    pub fn tree(&self) -> Result<&Tree, FemError> {
-        self.tree.as_ref().ok_or_else(|| {
-            FemError::Factorization("pruned solves need Factor::new_supernodal".into())
+/// A supernodal Cholesky factor kept only on the elimination-tree paths of
+/// some dofs, for the pruned solves that start there.
+pub struct PathFactor {
+    symbolic: faer::sparse::linalg::cholesky::SymbolicCholesky<usize>,
+    tree: Tree,
+    /// Supernode → start of its values in `values` ([`usize::MAX`]: dropped).
+    offset: Vec<usize>,
+    values: Vec<f64>,
+    /// Stored values of the whole factor.
+    full_nnz: usize,
+}
+
+impl PathFactor {
+    /// Keeps the supernodes of `factor` (from [`Factor::new_supernodal`]) on
+    /// the paths of the free dofs `dofs`, and drops the rest.
+    pub fn new(factor: Factor, dofs: &[usize]) -> Result<PathFactor, FemError> {
+        let tree = Tree::new(&factor)?;
+        let keep = tree.paths(dofs);
+        let full_nnz = factor.values.len();
+        let Factor {
+            symbolic,
+            mut values,
+        } = factor;
+        let sym = raw_supernodal(&symbolic)?;
+        let cp = sym.col_ptr_for_val();
+        let mut offset = vec![usize::MAX; sym.n_supernodes()];
+        // Compacted in place (kept supernodes ascending, so every block moves
+        // towards the front): no second copy of the factor at any time.
+        let mut at = 0;
+        for &s in &keep {
+            let s = s as usize;
+            offset[s] = at;
+            values.copy_within(cp[s]..cp[s + 1], at);
+            at += cp[s + 1] - cp[s];
+        }
+        values.truncate(at);
+        values.shrink_to_fit();
+        Ok(PathFactor {
+            symbolic,
+            tree,
+            offset,
+            values,
+            full_nnz,
         })
+    }
+
+    /// The supernodal tree.
+    pub fn tree(&self) -> &Tree {
+        &self.tree
+    }
+
+    /// Values kept, and those of the whole factor.
+    pub fn nnz(&self) -> (usize, usize) {
+        (self.values.len(), self.full_nnz)
+    }
+
+    fn sym(&self) -> &SymbolicSupernodalCholesky<usize> {
+        raw_supernodal(&self.symbolic).expect("checked in PathFactor::new")
+    }
+
+    /// Errors unless the paths of `dofs` lie in the kept supernodes.
+    fn check(&self, dofs: impl Iterator<Item = usize>) -> Result<(), FemError> {
+        for d in dofs {
+            if self.offset[self.tree.supernode_of(d) as usize] == usize::MAX {
+                return Err(FemError::Factorization(format!(
+                    "dof {d} lies off the paths this factor keeps"
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// y = L⁻¹ P e_d for unit loads at free dofs, `ncols` per group (None:
@@ -311,8 +386,8 @@ impl Factor {
         groups: &[[Option<usize>; K]],
         block: usize,
     ) -> Result<Vec<PathVec>, FemError> {
-        let tree = self.tree()?;
-        let sym = supernodal(self)?;
+        self.check(groups.iter().flatten().flatten().copied())?;
+        let (tree, sym) = (&self.tree, self.sym());
         let out: Vec<Vec<PathVec>> = groups
             .par_chunks(block.max(1))
             .map(|chunk| self.forward_block(sym, tree, chunk))
@@ -442,8 +517,8 @@ impl Factor {
     ) -> MatRef<'a, f64> {
         let w = sym.supernode_end()[s] - sym.supernode_begin()[s];
         let p = sym.supernode(s).pattern().len();
-        let cp = sym.col_ptr_for_val();
-        MatRef::from_column_major_slice(&self.values[cp[s]..cp[s + 1]], w + p, w)
+        let o = self.offset[s];
+        MatRef::from_column_major_slice(&self.values[o..o + (w + p) * w], w + p, w)
     }
 
     /// x = L⁻ᵀ z for each single-column `z` (= L⁻¹ P f, e.g. a [`combine`]
@@ -451,8 +526,8 @@ impl Factor {
     /// `out[j][i]` = (K⁻¹ f_j) at `dofs[i]`. The backward solve runs over
     /// the supernodes on the paths of `dofs` alone.
     pub fn backward_at(&self, z: &[&PathVec], dofs: &[usize]) -> Result<Vec<Vec<f64>>, FemError> {
-        let tree = self.tree()?;
-        let sym = supernodal(self)?;
+        self.check(dofs.iter().copied())?;
+        let (tree, sym) = (&self.tree, self.sym());
         let begin = sym.supernode_begin();
         let need = tree.paths(dofs);
         let cmp = Compact::new(sym, &need);
@@ -518,7 +593,7 @@ mod tests {
     use crate::structured::mapped_block;
     use crate::{assemble, Dofs, Material};
 
-    fn body() -> (Factor, Dofs) {
+    fn body() -> (Factor, PathFactor, Dofs) {
         let b = mapped_block([3, 2, 4], |p| [p[0] * 0.03, p[1] * 0.02, p[2] * 0.04]);
         let fixed: Vec<(usize, f64)> = (0..b.mesh.nodes.len())
             .filter(|&n| b.mesh.nodes[n][2] < 1e-12)
@@ -531,17 +606,23 @@ mod tests {
         };
         let sys = assemble(&b.mesh, &mat, &dofs).unwrap();
         let f = Factor::new_supernodal(&sys.matrix, &dofs.node_of_free(), Ordering::Metis).unwrap();
-        (f, dofs)
+        let all: Vec<usize> = (0..dofs.n_free()).collect();
+        let p = PathFactor::new(
+            Factor::new_supernodal(&sys.matrix, &dofs.node_of_free(), Ordering::Metis).unwrap(),
+            &all,
+        )
+        .unwrap();
+        (f, p, dofs)
     }
 
     /// y_iᵀ y_j from pruned forward solves equals K⁻¹ from full solves.
     #[test]
     fn pruned_forward_solves_reproduce_the_inverse_stiffness() {
-        let (f, dofs) = body();
+        let (f, pf, dofs) = body();
         let n = dofs.n_free();
         let picks: Vec<usize> = (0..n).step_by(7).collect();
         let groups: Vec<[Option<usize>; 1]> = picks.iter().map(|&d| [Some(d)]).collect();
-        let y = f.forward_units(&groups, 5).unwrap();
+        let y = pf.forward_units(&groups, 5).unwrap();
         let refs: Vec<&PathVec> = y.iter().collect();
         let g = gram(&refs, &refs);
         let mut worst: f64 = 0.0;
@@ -565,17 +646,17 @@ mod tests {
     /// solve's displacements there, for a load combined from unit loads.
     #[test]
     fn backward_solve_on_paths_equals_full_solve_at_those_dofs() {
-        let (f, dofs) = body();
+        let (f, pf, dofs) = body();
         let n = dofs.n_free();
         let loads = [(3usize, 1.5), (40, -0.7), (n - 2, 2.0)];
         let groups: Vec<[Option<usize>; 3]> = vec![
             [Some(loads[0].0), None, Some(loads[1].0)],
             [Some(loads[2].0), None, None],
         ];
-        let y = f.forward_units(&groups, 1).unwrap();
+        let y = pf.forward_units(&groups, 1).unwrap();
         let z = combine(&[(&y[0], &[1.5, 0.0, -0.7]), (&y[1], &[2.0, 0.0, 0.0])]);
         let at: Vec<usize> = (0..n).step_by(11).collect();
-        let u = f.backward_at(&[&z], &at).unwrap();
+        let u = pf.backward_at(&[&z], &at).unwrap();
         let mut b = vec![0.0; n];
         for (d, v) in loads {
             b[d] += v;
@@ -590,5 +671,53 @@ mod tests {
                 x[d]
             );
         }
+    }
+
+    /// A factor kept on the paths of a few dofs gives the same vectors there
+    /// as the whole factor, holds fewer values, and refuses a dof off its
+    /// paths.
+    #[test]
+    fn factor_kept_on_a_few_paths_solves_those_alike_and_refuses_others() {
+        let (_, whole, dofs) = body();
+        let b = mapped_block([3, 2, 4], |p| [p[0] * 0.03, p[1] * 0.02, p[2] * 0.04]);
+        let fixed: Vec<(usize, f64)> = (0..b.mesh.nodes.len())
+            .filter(|&n| b.mesh.nodes[n][2] < 1e-12)
+            .flat_map(|n| (0..3).map(move |c| (3 * n + c, 0.0)))
+            .collect();
+        let d2 = Dofs::new(&b.mesh, &fixed).unwrap();
+        assert_eq!(d2.n_free(), dofs.n_free());
+        let sys = assemble(
+            &b.mesh,
+            &Material {
+                youngs_modulus_pa: 2.1e11,
+                poisson_ratio: 0.3,
+            },
+            &d2,
+        )
+        .unwrap();
+        let tree_first = whole.tree().supernode_of(0);
+        let few: Vec<usize> = (0..dofs.n_free())
+            .filter(|&d| whole.tree().supernode_of(d) == tree_first)
+            .collect();
+        let kept = PathFactor::new(
+            Factor::new_supernodal(&sys.matrix, &d2.node_of_free(), Ordering::Metis).unwrap(),
+            &few,
+        )
+        .unwrap();
+        let (k, full) = kept.nnz();
+        assert!(k < full, "kept {k} of {full}");
+        let groups: Vec<[Option<usize>; 1]> = few.iter().map(|&d| [Some(d)]).collect();
+        let a = whole.forward_units(&groups, 4).unwrap();
+        let b = kept.forward_units(&groups, 4).unwrap();
+        assert_eq!(a, b);
+        let off = (0..dofs.n_free())
+            .find(|&d| {
+                !kept
+                    .tree()
+                    .paths(&few)
+                    .contains(&kept.tree().supernode_of(d))
+            })
+            .expect("some dof lies off the kept paths");
+        assert!(kept.forward_units(&[[Some(off)]], 1).is_err());
     }
 }

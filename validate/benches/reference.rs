@@ -84,7 +84,7 @@ fn main() {
     let t = Instant::now();
     full.ensure(&nodes).unwrap();
     let full_s = t.elapsed().as_secs_f64();
-    let mut path = PathCompliance::new(&mesh.mesh, &mat, &fixed, BLOCK_PATH).unwrap();
+    let mut path = PathCompliance::new(&mesh.mesh, &mat, &fixed, &universe, BLOCK_PATH).unwrap();
     let t = Instant::now();
     path.ensure(&nodes).unwrap();
     let path_s = t.elapsed().as_secs_f64();
@@ -189,13 +189,18 @@ fn main() {
         }
         let warm = &cpu[1..];
         let warm_mean = warm.iter().sum::<f64>() / warm.len().max(1) as f64;
+        let gb = |m: &Member, k: usize| m.compliance.factor_nnz[k] as f64 * 8.0 / 1e9;
         println!(
-            "\n{level} level, standard pair, {} + {} dofs: read + factor {:.0} s ({:.0} + {:.0} s factoring)",
+            "\n{level} level, standard pair, {} + {} dofs: read + factor {:.0} s ({:.0} + {:.0} s factoring); factors {:.2} + {:.2} GB, kept on the contact nodes' paths {:.2} + {:.2} GB",
             pair.pinion.compliance.dofs_free,
             pair.wheel.compliance.dofs_free,
             load_s,
             pair.pinion.compliance.factor_s,
-            pair.wheel.compliance.factor_s
+            pair.wheel.compliance.factor_s,
+            gb(pair.pinion, 1),
+            gb(pair.wheel, 1),
+            gb(pair.pinion, 0),
+            gb(pair.wheel, 0)
         );
         println!(
             "  {n} positions: first {:.2} s ({} new nodes), then {:.2} s per position ({:.0} new nodes each); window {:.2} GB; peak memory {:.1} GB",
@@ -222,6 +227,8 @@ fn main() {
             "dofs": [pair.pinion.compliance.dofs_free, pair.wheel.compliance.dofs_free],
             "read_and_factor_s": load_s,
             "factor_s": [pair.pinion.compliance.factor_s, pair.wheel.compliance.factor_s],
+            "factor_gb": [gb(pair.pinion, 1), gb(pair.wheel, 1)],
+            "factor_kept_gb": [gb(pair.pinion, 0), gb(pair.wheel, 0)],
             "positions": n,
             "cpu_s_per_position": cpu,
             "new_nodes_per_position": new_nodes,

@@ -15,13 +15,13 @@
 
 use crate::penalty::{ContactError, Term};
 use fem::cholesky::Ordering;
-use fem::path_solve::{combine, PathVec};
+use fem::path_solve::{combine, PathFactor, PathVec};
 use fem::{assemble, Dofs, Factor, Material, TetMesh};
 use std::collections::{HashMap, HashSet};
 
 /// A factored body and the unit-load vectors of the nodes in use.
 pub struct PathCompliance {
-    factor: Factor,
+    factor: PathFactor,
     dofs: Dofs,
     /// Node → Y (three columns: unit loads along x, y, z).
     y: HashMap<usize, PathVec>,
@@ -33,6 +33,9 @@ pub struct PathCompliance {
     pub factor_s: f64,
     pub solve_s: f64,
     pub dofs_free: usize,
+    /// Values of the factor L kept (on the paths of the contact nodes) and
+    /// of the whole factor (8 bytes each).
+    pub factor_nnz: [usize; 2],
     /// Largest memory the kept vectors held, bytes.
     pub peak_bytes: usize,
     bytes: usize,
@@ -40,20 +43,34 @@ pub struct PathCompliance {
 
 impl PathCompliance {
     /// Assembles and factors the body with the `fixed` dofs (3 · node +
-    /// component) held at zero. Forward solves run `block` right-hand sides
-    /// (a third as many nodes) per block.
+    /// component) held at zero, and keeps the factor on the paths of the
+    /// `contact` nodes only (every node a constraint can name). Forward
+    /// solves run `block` right-hand sides (a third as many nodes) per block.
     pub fn new(
         mesh: &TetMesh,
         material: &Material,
         fixed: &[usize],
+        contact: &[usize],
         block: usize,
     ) -> Result<PathCompliance, ContactError> {
         let t = std::time::Instant::now();
         let fixed: Vec<(usize, f64)> = fixed.iter().map(|&d| (d, 0.0)).collect();
         let dofs = Dofs::new(mesh, &fixed)?;
-        let sys = assemble(mesh, material, &dofs)?;
-        let factor = Factor::new_supernodal(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?;
+        let factor = {
+            let sys = assemble(mesh, material, &dofs)?;
+            Factor::new_supernodal(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?
+        };
+        let keep: Vec<usize> = contact
+            .iter()
+            .flat_map(|&n| {
+                let dofs = &dofs;
+                (0..3).filter_map(move |c| dofs.free_index(3 * n + c))
+            })
+            .collect();
+        let factor = PathFactor::new(factor, &keep)?;
+        let (kept, full) = factor.nnz();
         Ok(PathCompliance {
+            factor_nnz: [kept, full],
             factor,
             dofs_free: dofs.n_free(),
             dofs,
@@ -95,7 +112,7 @@ impl PathCompliance {
             return Ok(());
         }
         let t = std::time::Instant::now();
-        let tree = self.factor.tree()?;
+        let tree = self.factor.tree();
         let key = |n: usize| {
             self.free(n)
                 .iter()

@@ -69,7 +69,11 @@ impl Member {
         if bore.is_empty() {
             return Err(ReferenceError::MissingGroup("bore".into()));
         }
-        let compliance = PathCompliance::new(&mesh.mesh, material, &clamped(&bore), block)?;
+        let mut contact: Vec<usize> = faces.iter().flatten().copied().collect();
+        contact.sort_unstable();
+        contact.dedup();
+        let compliance =
+            PathCompliance::new(&mesh.mesh, material, &clamped(&bore), &contact, block)?;
         let inward = nodal_normals(&mesh.mesh.nodes, &faces)
             .into_iter()
             .map(|(i, n)| (i, n.map(|c| -c)))

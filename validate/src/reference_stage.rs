@@ -400,6 +400,7 @@ pub fn run(
                         &pinion_teeth,
                         opt.block,
                     )?);
+                    report_factor("pinion", pinion.as_ref());
                 }
                 if wheel.is_none() {
                     eprintln!("reference: reading and factoring {}", wm.display());
@@ -411,6 +412,7 @@ pub fn run(
                         &wheel_teeth,
                         opt.block,
                     )?);
+                    report_factor("wheel", wheel.as_ref());
                     let pin = pinion.as_ref().expect("pinion factored above");
                     (rhs0, s0) = (pin.compliance.solves, pin.compliance.solve_s);
                 }
@@ -623,6 +625,20 @@ pub fn pattern_vtu(pts: &[([f64; 3], f64)]) -> String {
     }
     s.push_str("</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     s
+}
+
+/// Prints a factored body's size: dofs, factor values, the part kept.
+fn report_factor(name: &str, m: Option<&Member>) {
+    if let Some(c) = m.map(|m| &m.compliance) {
+        let gb = |n: usize| n as f64 * 8.0 / 1e9;
+        eprintln!(
+            "reference: {name}: {} dofs, factor {:.2} GB in {:.0} s, {:.2} GB kept on the contact nodes' paths",
+            c.dofs_free,
+            gb(c.factor_nnz[1]),
+            c.factor_s,
+            gb(c.factor_nnz[0])
+        );
+    }
 }
 
 fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {

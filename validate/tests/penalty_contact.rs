@@ -224,8 +224,9 @@ fn pruned_path_compliance_equals_full_solve_columns() {
     let w_full = condensed_matrix(&cs, &idx, &idx, &[&ca, &cb]).unwrap();
 
     // Blocks of 7 right-hand sides: several blocks, partial paths.
-    let mut pa = PathCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), 7).unwrap();
-    let mut pb = PathCompliance::new(&lower.mesh, &mat, &clamped(&clamp_lo), 7).unwrap();
+    let (near_a, near_b) = (contact_nodes(&cs, 0), contact_nodes(&cs, 1));
+    let mut pa = PathCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), &near_a, 7).unwrap();
+    let mut pb = PathCompliance::new(&lower.mesh, &mat, &clamped(&clamp_lo), &near_b, 7).unwrap();
     pa.ensure(&contact_nodes(&cs, 0)).unwrap();
     pb.ensure(&contact_nodes(&cs, 1)).unwrap();
     let y: Vec<[PathVec; 2]> = cs
