@@ -7,7 +7,7 @@
 //! radial; a point at cone distance L and height d above the pitch cone has
 //! z = L cos γ − d sin γ, ρ = L sin γ + d cos γ.
 
-use crate::design::{Member, PairData};
+use crate::design::{Member, MemberData, PairData};
 use crate::error::GeometryError;
 use crate::flank::Flank;
 use crate::generation::Side;
@@ -220,12 +220,76 @@ pub fn blank_shape(
 /// One tooth-space section: 3-D points (member frame) of its six edges, in
 /// order around the section: flank of the lower tooth from above the face
 /// cone to the fillet, its fillet to the root, the root between the two
-/// fillets, the upper tooth's fillet, its flank up to above the face cone
-/// (the sixth edge, closing over the top, is the straight line back).
+/// fillets, the upper tooth's fillet, its flank up to above the face cone,
+/// and the top back to the first point: the straight line (two points)
+/// where it clears the face cone, else out along the face cone's normal, an
+/// arc about the axis and back in (the corners and the
+/// [`SLOT_TOP_ARC_POINTS`] arc points between them, see [`slot_sections`]).
 #[derive(Debug, Clone, Serialize)]
 pub struct SlotSection {
     pub cone_distance: f64,
-    pub edges: [Vec<[f64; 3]>; 5],
+    pub edges: [Vec<[f64; 3]>; 6],
+}
+
+/// Points of a slot section's top arc about the axis (between the two
+/// raised corners, which it includes).
+pub const SLOT_TOP_ARC_POINTS: usize = 7;
+
+/// How far the flanks reach above the face cone, as a fraction of `top`,
+/// in slot sections closed with an arc over the top.
+pub const SLOT_FLANK_REACH_ARC_TOP: f64 = 1.0 / 12.0;
+
+/// Smallest clearance of a straight slot top over the face cone, as a
+/// fraction of the flanks' reach `top` above it: below it every section of
+/// the member closes over the top with an arc about the axis instead.
+pub const SLOT_TOP_MIN_CLEARANCE: f64 = 0.5;
+
+/// Signed distance (m) of `p` (member frame) from the face cone of `md`,
+/// positive outside the blank, in the meridian plane.
+pub fn face_cone_clearance(md: &MemberData, mean_cone_distance: f64, p: [f64; 3]) -> f64 {
+    let rm = mean_cone_distance;
+    let d = |l: f64| md.mean_addendum + (l - rm) * (md.face_angle - md.pitch_angle).tan();
+    let f0 = axial_point(rm, d(rm), md.pitch_angle);
+    let f1 = axial_point(2.0 * rm, d(2.0 * rm), md.pitch_angle);
+    let (tz, tr) = (f1[0] - f0[0], f1[1] - f0[1]);
+    let (z, r) = (p[2], p[0].hypot(p[1]));
+    ((r - f0[1]) * tz - (z - f0[0]) * tr) / tz.hypot(tr)
+}
+
+/// Smallest clearance (m) over the face cone of the polyline `pts`
+/// (each segment sampled at 20 points).
+pub fn polyline_clearance(md: &MemberData, mean_cone_distance: f64, pts: &[[f64; 3]]) -> f64 {
+    let mut worst = f64::INFINITY;
+    for w in pts.windows(2) {
+        for k in 0..=20 {
+            let t = k as f64 / 20.0;
+            let q = std::array::from_fn(|i| w[0][i] + t * (w[1][i] - w[0][i]));
+            worst = worst.min(face_cone_clearance(md, mean_cone_distance, q));
+        }
+    }
+    worst
+}
+
+/// The arc about the axis from `b` to `a` (azimuth, radius and axial
+/// position interpolated linearly, the short way round), `n` points.
+fn arc_about_axis(b: [f64; 3], a: [f64; 3], n: usize) -> Points {
+    let (ta, tb) = (a[1].atan2(a[0]), b[1].atan2(b[0]));
+    let dt = (ta - tb + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI)
+        - std::f64::consts::PI;
+    let (ra, rb) = (a[0].hypot(a[1]), b[0].hypot(b[1]));
+    (0..n)
+        .map(|k| {
+            let w = k as f64 / (n - 1) as f64;
+            if k == 0 {
+                return b;
+            }
+            if k == n - 1 {
+                return a;
+            }
+            let (t, r) = (tb + w * dt, rb + w * (ra - rb));
+            [r * t.cos(), r * t.sin(), b[2] + w * (a[2] - b[2])]
+        })
+        .collect()
 }
 
 /// Which flank side bounds the slot between tooth 0 and tooth 1 on each
@@ -287,7 +351,14 @@ fn flank_and_fillet(
 
 /// Slot sections between tooth 0 and tooth 1 of `m`, at `n` cone distances
 /// from `margin` before the toe to `margin` beyond the heel; the flanks reach
-/// `top` above the face cone.
+/// `top` above the face cone and the top closes with straight lines when
+/// every one clears the face cone by [`SLOT_TOP_MIN_CLEARANCE`] × `top`.
+/// Otherwise (a wide slot next to a narrow top land: on the 9-tooth pinions
+/// these chords dip up to 1 mm below the face cone at the heel, and the cut
+/// left a sliver of the blank floating in every slot) the flanks reach only
+/// [`SLOT_FLANK_REACH_ARC_TOP`] × `top` above it and every section closes
+/// out along the face cone's normal to `top` above it, across on an arc
+/// about the axis and back in.
 pub fn slot_sections(
     g: &PairGeometry,
     m: Member,
@@ -304,46 +375,80 @@ pub fn slot_sections(
         g.data.inner_cone_distance() - margin,
         g.data.outer_cone_distance() + margin,
     );
-    (0..n)
-        .map(|i| {
-            let l = l0 + (l1 - l0) * i as f64 / (n - 1) as f64;
-            let d_top = md.mean_addendum + (l - rm) * (md.face_angle - md.pitch_angle).tan() + top;
-            let (fl_a, fi_a) = flank_and_fillet(fa, l, d_top, 13, 7)?;
-            let (fl_b, fi_b) = flank_and_fillet(fb, l, d_top, 13, 7)?;
-            let fl_b: Vec<[f64; 3]> = fl_b.into_iter().map(|p| rot(p, pitch)).collect();
-            let fi_b: Vec<[f64; 3]> = fi_b.into_iter().map(|p| rot(p, pitch)).collect();
-            // Root between the fillet ends, on the root cone.
-            let (pa, pb) = (fi_a[fi_a.len() - 1], fi_b[fi_b.len() - 1]);
-            let (la, _) = fa.gen.frame.axial(&pa);
-            let (lb, _) = fa.gen.frame.axial(&pb);
-            let (ta, tb) = (pa[1].atan2(pa[0]), pb[1].atan2(pb[0]));
-            let tb = ta + (tb - ta).rem_euclid(2.0 * std::f64::consts::PI);
-            let root: Vec<[f64; 3]> = (0..5)
-                .map(|k| {
-                    let w = k as f64 / 4.0;
-                    let ll = la + w * (lb - la);
-                    let d = -md.mean_dedendum + (ll - rm) * (md.root_angle - md.pitch_angle).tan();
-                    let [z, r] = axial_point(ll, d, md.pitch_angle);
-                    let t = ta + w * (tb - ta);
-                    [r * t.cos(), r * t.sin(), z]
+    let build = |reach: f64| {
+        (0..n)
+            .map(|i| {
+                let l = l0 + (l1 - l0) * i as f64 / (n - 1) as f64;
+                let d_top =
+                    md.mean_addendum + (l - rm) * (md.face_angle - md.pitch_angle).tan() + reach;
+                let (fl_a, fi_a) = flank_and_fillet(fa, l, d_top, 13, 7)?;
+                let (fl_b, fi_b) = flank_and_fillet(fb, l, d_top, 13, 7)?;
+                let fl_b: Vec<[f64; 3]> = fl_b.into_iter().map(|p| rot(p, pitch)).collect();
+                let fi_b: Vec<[f64; 3]> = fi_b.into_iter().map(|p| rot(p, pitch)).collect();
+                // Root between the fillet ends, on the root cone.
+                let (pa, pb) = (fi_a[fi_a.len() - 1], fi_b[fi_b.len() - 1]);
+                let (la, _) = fa.gen.frame.axial(&pa);
+                let (lb, _) = fa.gen.frame.axial(&pb);
+                let (ta, tb) = (pa[1].atan2(pa[0]), pb[1].atan2(pb[0]));
+                let tb = ta + (tb - ta).rem_euclid(2.0 * std::f64::consts::PI);
+                let root: Vec<[f64; 3]> = (0..5)
+                    .map(|k| {
+                        let w = k as f64 / 4.0;
+                        let ll = la + w * (lb - la);
+                        let d =
+                            -md.mean_dedendum + (ll - rm) * (md.root_angle - md.pitch_angle).tan();
+                        let [z, r] = axial_point(ll, d, md.pitch_angle);
+                        let t = ta + w * (tb - ta);
+                        [r * t.cos(), r * t.sin(), z]
+                    })
+                    .collect();
+                let mut root = root;
+                root[0] = pa;
+                root[4] = pb;
+                // Shared section corners: the fillet starts exactly where its flank ends.
+                let mut fi_a = fi_a;
+                fi_a[0] = fl_a[0];
+                let mut fi_b = fi_b;
+                fi_b[0] = fl_b[0];
+                let mut e0 = fl_a;
+                e0.reverse();
+                let mut e3 = fi_b;
+                e3.reverse();
+                let close = vec![fl_b[fl_b.len() - 1], e0[0]];
+                Ok(SlotSection {
+                    cone_distance: l,
+                    edges: [e0, fi_a, root, e3, fl_b, close],
                 })
-                .collect();
-            let mut root = root;
-            root[0] = pa;
-            root[4] = pb;
-            // Shared section corners: the fillet starts exactly where its flank ends.
-            let mut fi_a = fi_a;
-            fi_a[0] = fl_a[0];
-            let mut fi_b = fi_b;
-            fi_b[0] = fl_b[0];
-            let mut e0 = fl_a;
-            e0.reverse();
-            let mut e3 = fi_b;
-            e3.reverse();
-            Ok(SlotSection {
-                cone_distance: l,
-                edges: [e0, fi_a, root, e3, fl_b],
             })
-        })
-        .collect()
+            .collect::<Result<Vec<_>, GeometryError>>()
+    };
+    let secs = build(top)?;
+    if secs
+        .iter()
+        .all(|s| polyline_clearance(md, rm, &s.edges[5]) >= SLOT_TOP_MIN_CLEARANCE * top)
+    {
+        return Ok(secs);
+    }
+    // The flanks reach only a little above the face cone (extended further,
+    // a narrow top land's flanks cross: by 5–7.5 mm at 0.6 m_n on the
+    // 9 × 40 pinion, and OCC's cut of such overlapping slots trimmed the
+    // teeth's top lands differently, tens of µm apart), then the top goes
+    // out along the face cone's normal by `top` and across on an arc about
+    // the axis.
+    let mut secs = build(SLOT_FLANK_REACH_ARC_TOP * top)?;
+    let (sg, cg) = md.face_angle.sin_cos();
+    let rise = (1.0 - SLOT_FLANK_REACH_ARC_TOP) * top;
+    for s in &mut secs {
+        let raise = |p: [f64; 3]| {
+            let r = p[0].hypot(p[1]);
+            let f = (r + rise * cg) / r;
+            [p[0] * f, p[1] * f, p[2] - rise * sg]
+        };
+        let [b, a] = [s.edges[5][0], s.edges[5][1]];
+        let mut top_edge = vec![b];
+        top_edge.extend(arc_about_axis(raise(b), raise(a), SLOT_TOP_ARC_POINTS));
+        top_edge.push(a);
+        s.edges[5] = top_edge;
+    }
+    Ok(secs)
 }

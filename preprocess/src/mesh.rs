@@ -231,7 +231,7 @@ fn add_slot(s: &Session, req: &MeshRequest) -> Result<DimTag, MeshError> {
         let mut curves = Vec::new();
         let mut first = None;
         let mut prev: Option<i32> = None;
-        for (e, &k) in sec.edges.iter().zip(&keep) {
+        for (e, &k) in sec.edges[..5].iter().zip(&keep) {
             let pts = thin(e, k);
             let mut tags = Vec::with_capacity(pts.len());
             for (i, p) in pts.iter().enumerate() {
@@ -249,10 +249,28 @@ fn add_slot(s: &Session, req: &MeshRequest) -> Result<DimTag, MeshError> {
             };
             curves.push(c.map_err(|e| gmsh_err(req, e))?);
         }
-        let close = s
-            .occ_add_line(prev.unwrap(), first.unwrap())
-            .map_err(|e| gmsh_err(req, e))?;
-        curves.push(close);
+        // The top: a straight line back, or out, across on an arc about the
+        // axis and back in.
+        let top = &sec.edges[5];
+        if top.len() > 2 {
+            let mut tags = Vec::with_capacity(top.len() - 2);
+            for p in &top[1..top.len() - 1] {
+                tags.push(point(s, *p).map_err(|e| gmsh_err(req, e))?);
+            }
+            let (rb, ra) = (tags[0], tags[tags.len() - 1]);
+            for c in [
+                s.occ_add_line(prev.unwrap(), rb),
+                s.occ_add_spline(&tags),
+                s.occ_add_line(ra, first.unwrap()),
+            ] {
+                curves.push(c.map_err(|e| gmsh_err(req, e))?);
+            }
+        } else {
+            let close = s
+                .occ_add_line(prev.unwrap(), first.unwrap())
+                .map_err(|e| gmsh_err(req, e))?;
+            curves.push(close);
+        }
         wires.push(
             s.occ_add_wire(&curves, true)
                 .map_err(|e| gmsh_err(req, e))?,
@@ -1050,6 +1068,22 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
     s.occ_synchronize().map_err(g)?;
     let time_cut = t_cut.elapsed().as_secs_f64();
     let mut vols: Vec<i32> = body.iter().filter(|d| d.0 == 3).map(|d| d.1).collect();
+    // A piece of the blank the slots left apart from the body would float
+    // free in the FE model (and broke the periodic sectors' meshing).
+    if vols.len() != 1 {
+        let volumes = vols
+            .iter()
+            .map(|&t| s.occ_get_mass(3, t))
+            .collect::<gmsh::Result<Vec<f64>>>()
+            .map_err(g)?;
+        return Err(other_err(
+            req,
+            format!(
+                "cutting the slots left {} solids (volumes {volumes:?} m³), not one body",
+                vols.len()
+            ),
+        ));
+    }
     if !req.periodic_teeth.is_empty() {
         vols = split_at_periodic_slots(&s, req, &shape, &vols)?;
     }

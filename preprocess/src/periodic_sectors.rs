@@ -545,7 +545,14 @@ mod tests {
             let p = [r * a.cos(), r * a.sin(), 0.05];
             SlotSection {
                 cone_distance: r,
-                edges: [vec![p], vec![p], vec![p, p, p, p, p], vec![p], vec![p]],
+                edges: [
+                    vec![p],
+                    vec![p],
+                    vec![p, p, p, p, p],
+                    vec![p],
+                    vec![p],
+                    vec![p, p],
+                ],
             }
         };
         let c = slot_centre(&[sec(179.0, 0.1), sec(181.0, 0.11), sec(183.0, 0.12)]);
