@@ -17,8 +17,8 @@ REF_STRIDE_LW ?= $(REF_STRIDE)
 # The fine reference at the white paper's mesh density (35 x 75 elements per
 # flank, `--level reference`), which judges the reduced model in the report:
 # every FINE_STRIDE-th position (FINE_STRIDE_LW for the lightweight wheel),
-# by default all of them (about 40 min and 14 GB on 2 cores; positions are
-# cached and resume). FINE=0 leaves it out.
+# by default all of them (about 25 min and 16 GB on 2 cores, 5 s per position;
+# positions are cached and a killed run resumes). FINE=0 leaves it out.
 FINE           ?= 1
 FINE_STRIDE    ?= 1
 FINE_STRIDE_LW ?= $(FINE_STRIDE)

@@ -6,10 +6,11 @@
 //!    pruned forward solves along each node's elimination-tree path
 //!    (`PathCompliance`), for the same nodes of one flank: time per
 //!    right-hand side.
-//! 2. Consecutive positions of the standard pair's sweep at the reduced
-//!    level (and, with `BENCH_FINE=1`, at the reference level, 35 × 75;
-//!    needs its meshes and about 12 GB): factor time, CPU per position over
-//!    the window (the first position pays for a cold window), peak memory.
+//! 2. Consecutive positions of the sweep of each wheel blank (the pinion
+//!    factored once for both, as in `validate reference`) at the reduced
+//!    level and, with `BENCH_FINE=1`, at the reference level (35 × 75; needs
+//!    its meshes): factor sizes and times, wall time per position (the first
+//!    pays for a cold window) and where it goes, peak memory.
 //!
 //! Target (issue 27): ≤ 30 s per position amortized over a reference-level
 //! sweep, peak ≤ 16 GB; the white paper's reference took 1,020–1,150 s per
@@ -18,7 +19,7 @@
 
 use preprocess::design::Member as Which;
 use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
-use preprocess::scene::Scene;
+use preprocess::scene::{Blank, Scene};
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -119,8 +120,6 @@ fn main() {
         start_band_m: 2e-6,
         search_gap_m: 60e-6,
     };
-    let (pinion_teeth, wheel_teeth) =
-        teeth_in_contact(&g, side, sc.rotation.mesh_cycles_standard, step);
     let mut levels = vec![("reduced", 12usize)];
     if std::env::var("BENCH_FINE").is_ok_and(|v| v == "1") {
         levels.push(("reference", 6));
@@ -129,112 +128,130 @@ fn main() {
     }
     let mut sweeps = Vec::new();
     for (level, n) in levels {
-        let msh = |m: &str| dir.join(format!("{m}_standard_{level}.msh"));
-        if !msh("pinion").exists() || !msh("wheel").exists() {
+        let msh = |m: &str, b: &str| dir.join(format!("{m}_{b}_{level}.msh"));
+        if !msh("pinion", "standard").exists() {
             println!(
                 "\n{level}: no meshes in {}; `preprocess mesh --level {level}` makes them",
                 dir.display()
             );
             continue;
         }
-        let t = Instant::now();
-        let mut pinion = Member::load(
-            &msh("pinion"),
-            &g,
-            Which::Pinion,
-            side,
-            &pinion_teeth,
-            BLOCK_PATH,
-        )
-        .unwrap();
-        let mut wheel = Member::load(
-            &msh("wheel"),
-            &g,
-            Which::Wheel,
-            side,
-            &wheel_teeth,
-            BLOCK_PATH,
-        )
-        .unwrap();
-        let load_s = t.elapsed().as_secs_f64();
-        let mut pair = ReferencePair {
-            pinion: &mut pinion,
-            wheel: &mut wheel,
-            flanks: fp,
-            direction,
-            settings,
-        };
-        let mut cpu = Vec::new();
-        let mut new_nodes = Vec::new();
-        let mut split = [0.0; 5];
-        let mut window_gb: f64 = 0.0;
-        for i in 0..n {
-            let phi = fp.roll_range[0] + direction * step * i as f64;
-            let r = pair.position(phi, &sc.pinion_torque_nm).unwrap();
-            cpu.push(r.cpu_s);
-            new_nodes.push(r.new_columns);
-            if let (true, Some(t)) = (i > 0, r.time_split) {
-                for (a, b) in split.iter_mut().zip([
-                    t.search_s,
-                    t.forward_s,
-                    t.condensation_s,
-                    t.contact_s,
-                    t.outside_s,
-                ]) {
-                    *a += b / (n - 1) as f64;
-                }
-            }
-            window_gb = window_gb
-                .max((pair.pinion.compliance.bytes() + pair.wheel.compliance.bytes()) as f64 / 1e9);
-        }
-        let warm = &cpu[1..];
-        let warm_mean = warm.iter().sum::<f64>() / warm.len().max(1) as f64;
         let gb = |m: &Member, k: usize| m.compliance.factor_nnz[k] as f64 * 8.0 / 1e9;
-        println!(
-            "\n{level} level, standard pair, {} + {} dofs: read + factor {:.0} s ({:.0} + {:.0} s factoring); factors {:.2} + {:.2} GB, kept on the contact nodes' paths {:.2} + {:.2} GB",
-            pair.pinion.compliance.dofs_free,
-            pair.wheel.compliance.dofs_free,
-            load_s,
-            pair.pinion.compliance.factor_s,
-            pair.wheel.compliance.factor_s,
-            gb(pair.pinion, 1),
-            gb(pair.wheel, 1),
-            gb(pair.pinion, 0),
-            gb(pair.wheel, 0)
-        );
-        println!(
-            "  {n} positions: first {:.2} s ({} new nodes), then {:.2} s per position ({:.0} new nodes each); window {:.2} GB; peak memory {:.1} GB",
-            cpu[0],
-            new_nodes[0],
-            warm_mean,
-            new_nodes[1..].iter().sum::<usize>() as f64 / warm.len().max(1) as f64,
-            window_gb,
-            peak_memory_gb()
-        );
-        println!(
-            "  after the first, per position: search {:.2} s, forward solves {:.2} s, W {:.2} s, active-set solves {:.2} s, outside gaps {:.2} s",
-            split[0], split[1], split[2], split[3], split[4]
-        );
-        sweeps.push(json!({
-            "time_split_s_after_first": {
-                "search": split[0],
-                "forward": split[1],
-                "condensation": split[2],
-                "contact": split[3],
-                "outside": split[4],
-            },
-            "level": level,
-            "dofs": [pair.pinion.compliance.dofs_free, pair.wheel.compliance.dofs_free],
-            "read_and_factor_s": load_s,
-            "factor_s": [pair.pinion.compliance.factor_s, pair.wheel.compliance.factor_s],
-            "factor_gb": [gb(pair.pinion, 1), gb(pair.wheel, 1)],
-            "factor_kept_gb": [gb(pair.pinion, 0), gb(pair.wheel, 0)],
-            "positions": n,
-            "cpu_s_per_position": cpu,
-            "new_nodes_per_position": new_nodes,
-            "cpu_s_per_position_after_first": warm_mean,
-            "window_gb": window_gb,
-        }));
+        // The pinion is factored once for both wheel blanks, as in the stage.
+        let mut pinion: Option<Member> = None;
+        for (blank, wb) in [
+            ("standard", Blank::Standard),
+            ("lightweight", Blank::Lightweight),
+        ] {
+            if !msh("wheel", blank).exists() {
+                continue;
+            }
+            let (pinion_teeth, _) =
+                teeth_in_contact(&g, side, sc.rotation.mesh_cycles(Blank::Lightweight), step);
+            let (_, wheel_teeth) = teeth_in_contact(&g, side, sc.rotation.mesh_cycles(wb), step);
+            let t = Instant::now();
+            let pinion = pinion.get_or_insert_with(|| {
+                Member::load(
+                    &msh("pinion", "standard"),
+                    &g,
+                    Which::Pinion,
+                    side,
+                    &pinion_teeth,
+                    BLOCK_PATH,
+                )
+                .unwrap()
+            });
+            let mut wheel = Member::load(
+                &msh("wheel", blank),
+                &g,
+                Which::Wheel,
+                side,
+                &wheel_teeth,
+                BLOCK_PATH,
+            )
+            .unwrap();
+            let load_s = t.elapsed().as_secs_f64();
+            let mut pair = ReferencePair {
+                pinion,
+                wheel: &mut wheel,
+                flanks: fp,
+                direction,
+                settings,
+            };
+            let mut cpu = Vec::new();
+            let mut new_nodes = Vec::new();
+            let mut split = [0.0; 5];
+            let mut window_gb: f64 = 0.0;
+            for i in 0..n {
+                let phi = fp.roll_range[0] + direction * step * i as f64;
+                let r = pair.position(phi, &sc.pinion_torque_nm).unwrap();
+                cpu.push(r.cpu_s);
+                new_nodes.push(r.new_columns);
+                if let (true, Some(t)) = (i > 0, r.time_split) {
+                    for (a, b) in split.iter_mut().zip([
+                        t.search_s,
+                        t.forward_s,
+                        t.condensation_s,
+                        t.contact_s,
+                        t.outside_s,
+                    ]) {
+                        *a += b / (n - 1) as f64;
+                    }
+                }
+                window_gb = window_gb.max(
+                    (pair.pinion.compliance.bytes() + pair.wheel.compliance.bytes()) as f64 / 1e9,
+                );
+            }
+            let warm = &cpu[1..];
+            let warm_mean = warm.iter().sum::<f64>() / warm.len().max(1) as f64;
+            println!(
+                "\n{level} level, standard pinion / {blank} wheel, {} + {} dofs: read + factor {:.0} s ({:.0} + {:.0} s factoring); factors {:.2} + {:.2} GB, kept on the contact nodes' paths {:.2} + {:.2} GB",
+                pair.pinion.compliance.dofs_free,
+                pair.wheel.compliance.dofs_free,
+                load_s,
+                pair.pinion.compliance.factor_s,
+                pair.wheel.compliance.factor_s,
+                gb(pair.pinion, 1),
+                gb(pair.wheel, 1),
+                gb(pair.pinion, 0),
+                gb(pair.wheel, 0)
+            );
+            println!(
+                "  {n} positions: first {:.2} s ({} new nodes), then {:.2} s per position ({:.0} new nodes each); window {:.2} GB; peak memory so far {:.1} GB",
+                cpu[0],
+                new_nodes[0],
+                warm_mean,
+                new_nodes[1..].iter().sum::<usize>() as f64 / warm.len().max(1) as f64,
+                window_gb,
+                peak_memory_gb()
+            );
+            println!(
+                "  after the first, per position: search {:.2} s, forward solves {:.2} s, W {:.2} s, active-set solves {:.2} s, outside gaps {:.2} s",
+                split[0], split[1], split[2], split[3], split[4]
+            );
+            sweeps.push(json!({
+                "level": level,
+                "wheel_blank": blank,
+                "time_split_s_after_first": {
+                    "search": split[0],
+                    "forward": split[1],
+                    "condensation": split[2],
+                    "contact": split[3],
+                    "outside": split[4],
+                },
+                "dofs": [pair.pinion.compliance.dofs_free, pair.wheel.compliance.dofs_free],
+                "read_and_factor_s": load_s,
+                "factor_s": [pair.pinion.compliance.factor_s, pair.wheel.compliance.factor_s],
+                "factor_gb": [gb(pair.pinion, 1), gb(pair.wheel, 1)],
+                "factor_kept_gb": [gb(pair.pinion, 0), gb(pair.wheel, 0)],
+                "positions": n,
+                "cpu_s_per_position": cpu,
+                "new_nodes_per_position": new_nodes,
+                "cpu_s_per_position_after_first": warm_mean,
+                "window_gb": window_gb,
+                "peak_memory_gb_so_far": peak_memory_gb(),
+            }));
+        }
     }
     let out = json!({
         "machine_cores": cores,
