@@ -31,6 +31,14 @@ pub struct BodyCompliance {
     pub dofs_free: usize,
 }
 
+/// The distinct nodes of `nodes` that are not `known`, ascending.
+pub(crate) fn missing(nodes: &[usize], known: impl Fn(usize) -> bool) -> Vec<usize> {
+    let mut todo: Vec<usize> = nodes.iter().copied().filter(|&n| !known(n)).collect();
+    todo.sort_unstable();
+    todo.dedup();
+    todo
+}
+
 /// The dofs of `nodes`, all three components (a clamped support).
 pub fn clamped(nodes: &[usize]) -> Vec<usize> {
     nodes
@@ -81,13 +89,7 @@ impl BodyCompliance {
 
     /// Computes the columns of the listed nodes that are missing.
     pub fn ensure(&mut self, nodes: &[usize]) -> Result<(), ContactError> {
-        let mut todo: Vec<usize> = nodes
-            .iter()
-            .copied()
-            .filter(|n| !self.columns.contains_key(n))
-            .collect();
-        todo.sort_unstable();
-        todo.dedup();
+        let todo = missing(nodes, |n| self.columns.contains_key(&n));
         if todo.is_empty() {
             return Ok(());
         }

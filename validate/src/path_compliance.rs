@@ -101,13 +101,7 @@ impl PathCompliance {
     /// Computes the vectors of the listed nodes that are missing, in blocks
     /// of nodes that are neighbours in the elimination tree.
     pub fn ensure(&mut self, nodes: &[usize]) -> Result<(), ContactError> {
-        let mut todo: Vec<usize> = nodes
-            .iter()
-            .copied()
-            .filter(|n| !self.y.contains_key(n))
-            .collect();
-        todo.sort_unstable();
-        todo.dedup();
+        let mut todo = crate::body_compliance::missing(nodes, |n| self.y.contains_key(&n));
         if todo.is_empty() {
             return Ok(());
         }

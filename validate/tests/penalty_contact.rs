@@ -76,18 +76,32 @@ fn crowned_block_pair() -> (Block, Block, Vec<usize>, Vec<usize>, Vec<Constraint
 /// the condensed penalty solution equals the solution of the assembled
 /// system (both bodies' stiffness plus the penalty terms, rigid coordinate
 /// included, active set iterated by semismooth Newton) within 1e-6.
+/// Both bodies' full-solve columns at every contact node (responses kept
+/// at every node) and the condensed matrix W of all constraints.
+fn full_columns(
+    upper: &Block,
+    lower: &Block,
+    clamp_up: &[usize],
+    clamp_lo: &[usize],
+    cs: &[Constraint],
+) -> (BodyCompliance, BodyCompliance, Vec<f64>) {
+    let mat = Material::STEEL;
+    let all_up: Vec<usize> = (0..upper.mesh.nodes.len()).collect();
+    let all_lo: Vec<usize> = (0..lower.mesh.nodes.len()).collect();
+    let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamped(clamp_up), &all_up, 8).unwrap();
+    let mut cb = BodyCompliance::new(&lower.mesh, &mat, &clamped(clamp_lo), &all_lo, 8).unwrap();
+    ca.ensure(&contact_nodes(cs, 0)).unwrap();
+    cb.ensure(&contact_nodes(cs, 1)).unwrap();
+    let idx: Vec<usize> = (0..cs.len()).collect();
+    let w = condensed_matrix(cs, &idx, &idx, &[&ca, &cb]).unwrap();
+    (ca, cb, w)
+}
+
 #[test]
 fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
     let mat = Material::STEEL;
     let (upper, lower, clamp_up, clamp_lo, cs) = crowned_block_pair();
-    let all_up: Vec<usize> = (0..upper.mesh.nodes.len()).collect();
-    let all_lo: Vec<usize> = (0..lower.mesh.nodes.len()).collect();
-    let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), &all_up, 8).unwrap();
-    let mut cb = BodyCompliance::new(&lower.mesh, &mat, &clamped(&clamp_lo), &all_lo, 8).unwrap();
-    ca.ensure(&contact_nodes(&cs, 0)).unwrap();
-    cb.ensure(&contact_nodes(&cs, 1)).unwrap();
-    let idx: Vec<usize> = (0..cs.len()).collect();
-    let w = condensed_matrix(&cs, &idx, &idx, &[&ca, &cb]).unwrap();
+    let (ca, cb, w) = full_columns(&upper, &lower, &clamp_up, &clamp_lo, &cs);
     let q = 4e4;
     let s = solve(&cs, &w, q, None).unwrap();
     let n_active = s.active.iter().filter(|&&x| x).count();
@@ -214,14 +228,7 @@ fn condensed_contact_equals_the_assembled_penalty_fe_solution() {
 fn pruned_path_compliance_equals_full_solve_columns() {
     let mat = Material::STEEL;
     let (upper, lower, clamp_up, clamp_lo, cs) = crowned_block_pair();
-    let all_up: Vec<usize> = (0..upper.mesh.nodes.len()).collect();
-    let all_lo: Vec<usize> = (0..lower.mesh.nodes.len()).collect();
-    let mut ca = BodyCompliance::new(&upper.mesh, &mat, &clamped(&clamp_up), &all_up, 8).unwrap();
-    let mut cb = BodyCompliance::new(&lower.mesh, &mat, &clamped(&clamp_lo), &all_lo, 8).unwrap();
-    ca.ensure(&contact_nodes(&cs, 0)).unwrap();
-    cb.ensure(&contact_nodes(&cs, 1)).unwrap();
-    let idx: Vec<usize> = (0..cs.len()).collect();
-    let w_full = condensed_matrix(&cs, &idx, &idx, &[&ca, &cb]).unwrap();
+    let (ca, cb, w_full) = full_columns(&upper, &lower, &clamp_up, &clamp_lo, &cs);
 
     // Blocks of 7 right-hand sides: several blocks, partial paths.
     let (near_a, near_b) = (contact_nodes(&cs, 0), contact_nodes(&cs, 1));
