@@ -13,6 +13,7 @@ pub mod comparison;
 pub mod contact_pairs;
 pub mod contact_surface;
 pub mod convergence;
+pub mod differences;
 pub mod figures;
 pub mod line_load;
 pub mod path_compliance;
