@@ -6,24 +6,11 @@
 //! Targets (issue 4): all three members ≤ 10 min with peak memory ≤ 12 GB;
 //! a second run with nothing changed ≤ 10 s. Results in `bench/stiffness.json`.
 
+use preprocess::output::peak_memory_gb;
 use preprocess::scene::Scene;
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
-
-/// Peak resident memory of this process (VmHWM), GB.
-fn peak_memory_gb() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|v| v.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kb| kb / 1024.0 / 1024.0)
-}
 
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");

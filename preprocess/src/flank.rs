@@ -423,24 +423,25 @@ impl Flank {
             self.gen.frame.axial(&p.pos).0
         };
         let start = self.solve_ld(l, self.bounds.low.at(l, self.bounds.rm))?[1];
-        let mut s = start;
-        for _ in 0..30 {
-            let f = lj(s) - l;
-            if f.abs() < 1e-12 {
-                return Ok(s);
+        // s ← s − step(s, f) until |L(s) − l| < 1e-12 m, 30 steps at most.
+        let converge = |lj: &dyn Fn(f64) -> f64, step: &dyn Fn(f64, f64) -> f64| {
+            let mut s = start;
+            for _ in 0..30 {
+                let f = lj(s) - l;
+                if f.abs() < 1e-12 {
+                    return Some(s);
+                }
+                s -= step(s, f);
             }
-            let h = 1e-6;
-            s -= f * h / (lj(s + h) - lj(s));
+            None
+        };
+        let h = 1e-6;
+        if let Some(s) = converge(&lj, &|s, f| f * h / (lj(s + h) - lj(s))) {
+            return Ok(s);
         }
         let lj = |s: f64| self.gen.frame.axial(&self.gen.junction(s).pos).0;
-        let mut s = start;
-        for _ in 0..30 {
-            let f = lj(s) - l;
-            if f.abs() < 1e-12 {
-                return Ok(s);
-            }
-            let h = 1e-6;
-            s -= f * 2.0 * h / (lj(s + h) - lj(s - h));
+        if let Some(s) = converge(&lj, &|s, f| f * 2.0 * h / (lj(s + h) - lj(s - h))) {
+            return Ok(s);
         }
         Err(GeometryError::NoFilletJunction {
             member: self.gen.member.name(),

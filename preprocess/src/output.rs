@@ -38,3 +38,18 @@ pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), GeometryEr
     let text = serde_json::to_string_pretty(value).map_err(|e| write_err(path, e))?;
     write_atomic(path, text.as_bytes())
 }
+
+/// Peak resident memory of this process (VmHWM from /proc), GiB; NaN where
+/// /proc is not there. For benchmarks.
+pub fn peak_memory_gb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|v| v.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0 / 1024.0)
+}

@@ -18,6 +18,7 @@
 //! (`make preprocess`; `preprocess mesh --level reference` for the fine part).
 
 use preprocess::design::Member as Which;
+use preprocess::output::peak_memory_gb;
 use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use preprocess::scene::{Blank, Scene};
 use serde_json::json;
@@ -26,20 +27,6 @@ use std::time::Instant;
 use validate::body_compliance::{clamped, BodyCompliance};
 use validate::path_compliance::PathCompliance;
 use validate::reference_ltca::{Member, ReferencePair, ReferenceSettings};
-
-/// Peak resident memory of this process (VmHWM), GB.
-fn peak_memory_gb() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|v| v.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kb| kb / 1024.0 / 1024.0)
-}
 
 /// Flank nodes loaded per solve comparison.
 const NODES: usize = 96;
