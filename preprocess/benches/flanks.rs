@@ -2,11 +2,12 @@
 //! on the white-paper pair, written as JSON (`bench/flanks.json`) and a table.
 //! Target (issue 2): UTCA over 2 mesh cycles at 0.1° in under 100 ms.
 
-use preprocess::design::{load_pair, Member};
-use preprocess::flank_stage::{flank_grid, roll_surface, sweep};
-use preprocess::generation::Side;
-use preprocess::pair::PairGeometry;
-use preprocess::scene::UtcaSettings;
+use geometry::design::{load_pair, Member};
+use geometry::generation::Side;
+use geometry::pair::PairGeometry;
+use geometry::scene::UtcaSettings;
+use geometry::utca::{roll_surface, sweep};
+use preprocess::flank_stage::flank_grid;
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
@@ -122,6 +123,6 @@ fn main() {
     let dir = root.join("bench");
     std::fs::create_dir_all(&dir).unwrap();
     let json = serde_json::json!({ "machine": machine, "results": out });
-    preprocess::output::write_json(&dir.join("flanks.json"), &json).unwrap();
+    formats::output::write_json(&dir.join("flanks.json"), &json).unwrap();
     println!("\nwritten to bench/flanks.json");
 }

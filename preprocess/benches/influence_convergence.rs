@@ -7,10 +7,10 @@
 //! much more. Meshes and files go to `meshes/default/` and are reused there.
 //! Results in `bench/influence_convergence.json`.
 
+use formats::stiffness_file;
+use geometry::scene::Scene;
 use preprocess::field_convergence::diagonal_change;
 use preprocess::mesh_stage::Level;
-use preprocess::scene::Scene;
-use preprocess::stiffness_file;
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -70,7 +70,7 @@ fn main() {
     println!("\nr = (C_medium - C_reduced) / C_medium; interior: without the root row and the toe and heel columns; {wall:.0} s (files reused where present)");
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
-    preprocess::output::write_json(
+    formats::output::write_json(
         &out.join("influence_convergence.json"),
         &json!({"reduced_elements": [lr.profile, lr.face], "medium_elements": [lm.profile, lm.face],
                 "bound_percent": 100.0 * BOUND, "results": rows, "wall_s": wall}),

@@ -3,12 +3,12 @@
 //! `BENCH_REFERENCE=1`). Results in `bench/mesh.json` and a table.
 //! Targets (issue 3): reduced level ≤ 30 s, reference level ≤ 3 min per member.
 
-use preprocess::design::Member;
-use preprocess::gear_body::BlankDimensions;
+use geometry::design::Member;
+use geometry::gear_body::BlankDimensions;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, Scene};
+use geometry::teeth::{periodic_teeth, refined_teeth};
 use preprocess::mesh::{mesh_member, MeshRequest};
-use preprocess::mesh_stage::{periodic_teeth, refined_teeth};
-use preprocess::pair::PairGeometry;
-use preprocess::scene::{Blank, Scene};
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -89,6 +89,6 @@ fn main() {
     }
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
-    preprocess::output::write_json(&out.join("mesh.json"), &json!({"results": rows})).unwrap();
+    formats::output::write_json(&out.join("mesh.json"), &json!({"results": rows})).unwrap();
     println!("\nwritten to bench/mesh.json");
 }

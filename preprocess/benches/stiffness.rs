@@ -6,8 +6,8 @@
 //! Targets (issue 4): all three members ≤ 10 min with peak memory ≤ 12 GB;
 //! a second run with nothing changed ≤ 10 s. Results in `bench/stiffness.json`.
 
-use preprocess::output::peak_memory_gb;
-use preprocess::scene::Scene;
+use formats::output::peak_memory_gb;
+use geometry::scene::Scene;
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -100,11 +100,16 @@ fn main() {
     );
     let mut symmetry = Vec::new();
     for member in [
-        preprocess::design::Member::Pinion,
-        preprocess::design::Member::Wheel,
+        geometry::design::Member::Pinion,
+        geometry::design::Member::Wheel,
     ] {
-        let t = preprocess::stiffness_stage::tooth_to_tooth(&scene, tmp.path(), member, "reduced")
-            .expect("tooth-to-tooth");
+        let t = preprocess::stiffness_stage::tooth_to_tooth(
+            &scene,
+            tmp.path(),
+            member,
+            formats::paths::MeshLevel::Reduced,
+        )
+        .expect("tooth-to-tooth");
         println!(
             "{:<8} {:>26} {:>14.3} {:>12} {:>15.3} {:>15.3} {:>12} {:>16.3}",
             t.member,
@@ -120,7 +125,7 @@ fn main() {
     }
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
-    preprocess::output::write_json(
+    formats::output::write_json(
         &out.join("stiffness.json"),
         &json!({"results": rows, "tooth_to_tooth": symmetry, "all_members_s": cold, "peak_memory_gb": peak, "reuse_s": warm,
                 "targets": {"all_members_s": 600.0, "peak_memory_gb": 12.0, "reuse_s": 10.0, "tooth_to_tooth_max": 0.005}}),

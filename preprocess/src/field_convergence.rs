@@ -9,7 +9,7 @@
 //! reduced-order mesh and a mesh twice as fine while the total field changes
 //! much more.
 
-use crate::stiffness_file::StiffnessData;
+use formats::stiffness_file::StiffnessData;
 use serde::Serialize;
 
 /// Why two stiffness files cannot be compared.

@@ -1,20 +1,30 @@
 //! The `preprocess flanks` stage: flank grids, UTCA, plots and summary of a
 //! design or scene file, written into one output directory.
 
-use crate::design::{load_pair, Member, PairData};
-use crate::direct::contact_ellipse;
-use crate::error::{GeometryError, InputError};
-use crate::flank::Flank;
-use crate::generation::Side;
-use crate::output::write_json;
-use crate::pair::{pinion_direction, FlankPair, PairGeometry};
-use crate::plots;
-use crate::scene::{Scene, UtcaSettings};
-use crate::utca::{run, LineGrid, RollSurface, Utca};
+use formats::output::write_json;
+use geometry::design::{load_pair, Member, PairData};
+use geometry::direct::contact_ellipse;
+use geometry::error::{GeometryError, InputError};
+use geometry::flank::Flank;
+use geometry::generation::Side;
+use geometry::pair::{pinion_direction, FlankPair, PairGeometry};
+use geometry::scene::{Scene, UtcaSettings};
+use geometry::utca::{roll_surface, sweep, Utca};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// Failures of the flank stage: geometry, or an output file.
+#[derive(Debug, thiserror::Error)]
+pub enum FlankStageError {
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+    #[error(transparent)]
+    Write(#[from] formats::output::WriteError),
+    #[error(transparent)]
+    Plot(#[from] charts::PlotError),
+}
 
 /// What the stage needs from a design or scene file.
 #[derive(Debug, Clone)]
@@ -24,20 +34,6 @@ pub struct FlankInput {
     pub pair: PairData,
     pub side: Side,
     pub utca: UtcaSettings,
-}
-
-impl Default for UtcaSettings {
-    fn default() -> Self {
-        UtcaSettings {
-            step_deg: 0.1,
-            mesh_cycles: 2.0,
-            face_samples: 41,
-            profile_samples: 41,
-            marking_compound_um: 6.3,
-            flank_grid_profile: 36,
-            flank_grid_face: 76,
-        }
-    }
 }
 
 /// Reads a scene file (it has a `design` key) or a design file (drive side, default settings).
@@ -237,33 +233,8 @@ pub struct Timing {
     pub plots: f64,
 }
 
-/// Tabulated surface of roll angles of a flank pair at the scene's sampling.
-pub fn roll_surface(fp: &FlankPair, s: &UtcaSettings) -> Result<RollSurface, GeometryError> {
-    RollSurface::new(
-        fp,
-        LineGrid {
-            n_face: s.face_samples,
-            n_profile: s.profile_samples,
-        },
-    )
-}
-
-/// UTCA over the scene's sweep, starting where tooth 0 enters the active region.
-pub fn sweep(fp: &FlankPair, pair: &PairData, rs: &RollSurface, s: &UtcaSettings) -> Utca {
-    let step = s.step_deg.to_radians();
-    let n = (s.mesh_cycles * pair.mesh_cycle() / step).round() as usize + 1;
-    run(
-        fp,
-        rs,
-        fp.roll_range[0],
-        step,
-        n,
-        pinion_direction(pair, fp.side),
-    )
-}
-
 /// Runs the stage and writes `flanks.json`, `utca.json`, `summary.json` and SVG plots into `out`.
-pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, GeometryError> {
+pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStageError> {
     let mut timing = Timing::default();
     let t = Instant::now();
     let g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
@@ -313,7 +284,7 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, Geometr
     let report = utca_report(fp, pair, &u, s)?;
     timing.ellipses = t.elapsed().as_secs_f64();
 
-    std::fs::create_dir_all(out).map_err(|e| GeometryError::Write {
+    std::fs::create_dir_all(out).map_err(|e| formats::output::WriteError {
         path: out.to_path_buf(),
         message: e.to_string(),
     })?;
@@ -402,8 +373,8 @@ fn utca_report(
     })
 }
 
-fn map_of(g: &FlankGrid, value: &[f64]) -> plots::FlankMap {
-    plots::FlankMap {
+fn map_of(g: &FlankGrid, value: &[f64]) -> charts::FlankMap {
+    charts::FlankMap {
         n_face: g.n_face,
         n_profile: g.n_profile,
         x: g.cone_distance_mm.clone(),
@@ -427,22 +398,22 @@ fn write_plots(
     grids: &[FlankGrid],
     r: &UtcaReport,
     side: Side,
-) -> Result<(), plots::PlotError> {
+) -> Result<(), charts::PlotError> {
     let pg = &grids[side.index()];
     let flank = pg.flank;
-    plots::flank_map(
+    charts::flank_map(
         &out.join("ease_off.svg"),
         &format!("Pinion {flank} flank: ease-off (normal deviation from conjugate)"),
         &map_of(pg, &pg.ease_off_um),
         "ease-off [um]",
     )?;
-    plots::flank_map(
+    charts::flank_map(
         &out.join("roll_angles.svg"),
         &format!("Pinion {flank} flank: surface of roll angles"),
         &map_of(pg, &pg.pinion_roll_deg),
         "pinion roll angle [deg]",
     )?;
-    let mut series = vec![plots::Series {
+    let mut series = vec![charts::Series {
         name: "unloaded TE".into(),
         x: r.pinion_rotation_deg.clone(),
         y: r.te_urad.clone(),
@@ -455,7 +426,7 @@ fn write_plots(
             .cloned()
             .unzip();
         if x.len() > 1 {
-            series.push(plots::Series {
+            series.push(charts::Series {
                 name: "single tooth pair".into(),
                 x,
                 y,
@@ -463,7 +434,7 @@ fn write_plots(
             });
         }
     }
-    plots::te_curve(
+    charts::te_curve(
         &out.join("te.svg"),
         &format!(
             "Unloaded transmission error ({} side), ptp {:.1} urad",
@@ -481,25 +452,25 @@ fn write_plots(
         .map(|p| (p.cone_distance_mm, p.height_mm))
         .collect();
     let every = (r.path.len() / 12).max(1);
-    let ellipses: Vec<plots::Ellipse> = r
+    let ellipses: Vec<charts::Ellipse> = r
         .path
         .iter()
         .step_by(every)
         .filter(|p| p.ellipse_semi_axes_mm.iter().all(|a| a.is_finite()))
-        .map(|p| plots::Ellipse {
+        .map(|p| charts::Ellipse {
             center: (p.cone_distance_mm, p.height_mm),
             semi_axes: (p.ellipse_semi_axes_mm[0], p.ellipse_semi_axes_mm[1]),
             angle_rad: p.ellipse_major_dir[1].atan2(p.ellipse_major_dir[0]),
         })
         .collect();
-    plots::contact_path(
+    charts::contact_path(
         &out.join("contact_path.svg"),
         &format!(
             "Pinion {flank} flank: path of contact and {} um contact ellipses",
             r.marking_compound_um
         ),
         &outline(&fp.pinion),
-        &[plots::PathSeries {
+        &[charts::PathSeries {
             name: "path of contact".into(),
             points: path_pts,
         }],
@@ -529,13 +500,13 @@ fn write_plots(
                 let (_, d) = f.bounds.from_unit(0.5, k as f64 / 30.0);
                 f.at(l, d).ok().map(|p| section(p.pos))
             }));
-            curves.push(plots::PathSeries {
+            curves.push(charts::PathSeries {
                 name: format!("{} {}", m.name(), s.flank_name(m)),
                 points: pts,
             });
         }
     }
-    plots::tooth_section(
+    charts::tooth_section(
         &out.join("tooth_section.svg"),
         "Tooth sections with root fillets at the mean cone distance (wheel shifted by 25 mm)",
         &curves,

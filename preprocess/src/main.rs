@@ -78,7 +78,7 @@ fn main() -> anyhow::Result<()> {
             println!("  written to {}", out.display());
         }
         Cmd::Mesh { scene, level, out } => {
-            let s = preprocess::scene::Scene::load(&scene)?;
+            let s = geometry::scene::Scene::load(&scene)?;
             let reports = preprocess::mesh_stage::run(&s, &out, level)?;
             for r in &reports {
                 let flank = r
@@ -109,7 +109,7 @@ fn main() -> anyhow::Result<()> {
             meshes,
             level,
         } => {
-            let s = preprocess::scene::Scene::load(&scene)?;
+            let s = geometry::scene::Scene::load(&scene)?;
             for r in preprocess::stiffness_stage::run_level(&s, &meshes, level)? {
                 match (&r.stats, r.reused) {
                     (_, true) => println!("{} {} {}: reused {}", r.member, r.blank, r.level, r.path.display()),

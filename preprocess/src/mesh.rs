@@ -12,18 +12,18 @@
 //! ([`crate::periodic_sectors`]), so that the compliance solved on one tooth
 //! holds for the others up to the far body's mesh.
 
-use crate::design::Member;
-use crate::error::GeometryError;
-use crate::gear_body::{
-    blank_shape, revolution_volume, slot_sections, BlankDimensions, BlankShape, SlotSection,
-};
-use crate::generation::Side;
-use crate::pair::PairGeometry;
 use crate::periodic_sectors::{
     add_slot_surface, align_mid_edge_nodes, copy_deviation, copy_master_tets, polar_extent,
     set_periodic_faces, slot_centre, split, Sector,
 };
-use crate::scene::{Blank, FlankElements};
+use geometry::design::Member;
+use geometry::error::GeometryError;
+use geometry::gear_body::{
+    blank_shape, revolution_volume, slot_sections, BlankDimensions, BlankShape, SlotSection,
+};
+use geometry::generation::Side;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, FlankElements};
 use gmsh::{DimTag, Session};
 use serde::Serialize;
 use std::path::{Path, PathBuf};

@@ -1,12 +1,15 @@
 //! The `preprocess mesh` stage: every member × blank × mesh level of a scene
 //! into `meshes/<scene>/`: `.msh` (4.1), `.vtu` (meshio) and a report.
 
-use crate::design::Member;
-use crate::gear_body::BlankDimensions;
 use crate::mesh::{mesh_member, MeshError, MeshReport, MeshRequest};
-use crate::output::write_json;
-use crate::pair::{opposite_teeth_in_contact, teeth_in_contact, PairGeometry};
-use crate::scene::{Blank, FlankElements, LoadedScene};
+use formats::manifest::{BodyProperties, Manifest, MeshEntry, MeshInputs};
+use formats::output::write_json;
+use formats::paths::{self, MeshLevel};
+use geometry::design::Member;
+use geometry::gear_body::BlankDimensions;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, LoadedScene};
+use geometry::teeth::{opposite_refined_teeth, periodic_teeth, refined_teeth};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
@@ -84,95 +87,6 @@ pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> Result<(), String> {
     std::fs::rename(&tmp, vtu).map_err(|e| format!("cannot rename {}: {e}", tmp.display()))
 }
 
-/// Teeth of `member` whose loaded flank the scene brings into contact: the
-/// wheel blank sets the rotation range (the pinion takes the longest of the
-/// scene's wheel blanks).
-pub fn refined_teeth(
-    g: &PairGeometry,
-    sc: &crate::scene::Scene,
-    member: Member,
-    blank: Blank,
-) -> Vec<usize> {
-    refined_teeth_on(g, sc, member, blank, sc.loaded_flank)
-}
-
-/// The tooth whose flank the influence solves of an axisymmetric (standard)
-/// blank load: the middle one of the refined teeth.
-pub fn solved_tooth(refined: &[usize]) -> Option<usize> {
-    refined.get(refined.len() / 2).copied()
-}
-
-/// Teeth meshed as periodic sectors (rotated copies of the solved tooth's
-/// sector, [`crate::periodic_sectors`]): on a standard blank the solved tooth
-/// first, then every other refined tooth whose opposite flank is refined
-/// alike; none on a lightweight blank (its holes break the symmetry) or
-/// with fewer than two such teeth.
-pub fn periodic_teeth(blank: Blank, refined: &[usize], opposite: &[usize]) -> Vec<usize> {
-    let Some(master) = solved_tooth(refined) else {
-        return Vec::new();
-    };
-    if blank != Blank::Standard {
-        return Vec::new();
-    }
-    let alike = |t: usize| opposite.contains(&t) == opposite.contains(&master);
-    let mut out = vec![master];
-    out.extend(refined.iter().copied().filter(|&t| t != master && alike(t)));
-    if out.len() < 2 {
-        out.clear();
-    }
-    out
-}
-
-/// Teeth whose opposite (coast) flank is refined: those the same rotation
-/// brings into contact on that side, when the scene asks for coast-side
-/// contact; none otherwise.
-pub fn opposite_refined_teeth(
-    g: &PairGeometry,
-    sc: &crate::scene::Scene,
-    member: Member,
-    blank: Blank,
-) -> Vec<usize> {
-    if sc.multibody.coast_contact {
-        refined_teeth_on(g, sc, member, blank, sc.loaded_flank.other())
-    } else {
-        Vec::new()
-    }
-}
-
-/// Teeth of `member` whose `side` flank the scene's rotation brings into contact.
-pub fn refined_teeth_on(
-    g: &PairGeometry,
-    sc: &crate::scene::Scene,
-    member: Member,
-    blank: Blank,
-    side: crate::generation::Side,
-) -> Vec<usize> {
-    // A standard pinion's loads repeat from tooth to tooth: its range is the
-    // loaded sweep's. A lightweight wheel needs every tooth a run-up meets.
-    let cycles_of = |b: Blank| sc.rotation.mesh_cycles(b);
-    let cycles = match member {
-        Member::Wheel => sc.contact_mesh_cycles(blank, g.data.mesh_cycle()),
-        Member::Pinion => sc
-            .blanks
-            .wheel
-            .iter()
-            .map(|&b| cycles_of(b))
-            .fold(0.0, f64::max),
-    };
-    let step = sc.rotation.step_deg.to_radians();
-    // The opposite flanks are numbered as the body's teeth over the loaded
-    // side's sweep (both sides share the pinion angle).
-    let (pt, wt) = if side == sc.loaded_flank {
-        teeth_in_contact(g, side, cycles, step)
-    } else {
-        opposite_teeth_in_contact(g, sc.loaded_flank, cycles, step)
-    };
-    match member {
-        Member::Pinion => pt,
-        Member::Wheel => wt,
-    }
-}
-
 /// Meshes every member × blank × level of the scene into `root/<scene>/`.
 pub fn run(
     scene: &LoadedScene,
@@ -183,14 +97,11 @@ pub fn run(
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dims = BlankDimensions::resolve(&sc.blank_dimensions, &g.data);
     let dir = root.join(&sc.name);
-    let levels: Vec<(&str, FlankElements)> = match level {
-        Level::Reduced => vec![("reduced", sc.mesh.reduced_order)],
-        Level::Reference => vec![("reference", sc.mesh.reference)],
-        Level::Medium => vec![("medium", sc.mesh.medium())],
-        Level::Both => vec![
-            ("reduced", sc.mesh.reduced_order),
-            ("reference", sc.mesh.reference),
-        ],
+    let levels: Vec<MeshLevel> = match level {
+        Level::Reduced => vec![MeshLevel::Reduced],
+        Level::Reference => vec![MeshLevel::Reference],
+        Level::Medium => vec![MeshLevel::Medium],
+        Level::Both => vec![MeshLevel::Reduced, MeshLevel::Reference],
     };
     let design_text = std::fs::read_to_string(&scene.design_path)?;
     let mut reports = Vec::new();
@@ -203,7 +114,8 @@ pub fn run(
             let refined = refined_teeth(&g, sc, member, blank);
             let opposite = opposite_refined_teeth(&g, sc, member, blank);
             let periodic = periodic_teeth(blank, &refined, &opposite);
-            for &(name, lv) in &levels {
+            for &level in &levels {
+                let (name, lv) = (level.name(), sc.mesh.elements(level));
                 let req = MeshRequest {
                     scene: &sc.name,
                     geom: &g,
@@ -217,13 +129,8 @@ pub fn run(
                     opposite_refined_teeth: opposite.clone(),
                     periodic_teeth: periodic.clone(),
                 };
-                let stem = format!(
-                    "{}_{}_{}",
-                    member.name(),
-                    format!("{blank:?}").to_lowercase(),
-                    name
-                );
-                let msh = dir.join(format!("{stem}.msh"));
+                let stem = paths::mesh_stem(member, blank, level);
+                let msh = paths::msh(&dir, &stem);
                 let vtu = dir.join(format!("{stem}.vtu"));
                 let report_path = dir.join(format!("{stem}.report.json"));
                 let inputs_path = dir.join(format!("{stem}.inputs.json"));
@@ -240,8 +147,23 @@ pub fn run(
                 let cached = std::fs::read_to_string(&report_path)
                     .ok()
                     .and_then(|t| serde_json::from_str::<MeshReport>(&t).ok());
+                let record = |stem: &str| {
+                    let entry_inputs =
+                        MeshInputs::of_scene(scene, &g, &design_text, member, blank, lv);
+                    record_mesh(
+                        &dir,
+                        stem,
+                        member,
+                        blank,
+                        level,
+                        entry_inputs,
+                        &inputs.hash,
+                        &g,
+                    )
+                };
                 if let (true, Some(r)) = (unchanged, cached) {
                     eprintln!("{stem}: inputs unchanged, reusing {}", msh.display());
+                    record(&stem)?;
                     reports.push(r);
                     continue;
                 }
@@ -249,9 +171,58 @@ pub fn run(
                 convert_to_vtu(&msh, &vtu).map_err(anyhow::Error::msg)?;
                 write_json(&report_path, &report)?;
                 write_json(&inputs_path, &inputs)?;
+                record(&stem)?;
                 reports.push(report);
             }
         }
     }
     Ok(reports)
+}
+
+/// Writes the manifest entry of the mesh `stem` (its inputs, the hash of
+/// its `.msh`, its mass properties integrated over the mesh), unless the
+/// manifest already holds one from the same inputs and file.
+#[allow(clippy::too_many_arguments)]
+fn record_mesh(
+    dir: &Path,
+    stem: &str,
+    member: Member,
+    blank: Blank,
+    level: MeshLevel,
+    inputs: MeshInputs,
+    inputs_hash: &str,
+    g: &PairGeometry,
+) -> anyhow::Result<()> {
+    let msh = paths::msh(dir, stem);
+    let msh_sha256 = formats::manifest::sha256_file(&msh)
+        .map_err(|e| anyhow::anyhow!("reading {}: {e}", msh.display()))?;
+    let current = Manifest::read(dir)
+        .ok()
+        .and_then(|m| m.meshes.get(stem).cloned());
+    if current.is_some_and(|e| {
+        e.inputs_hash == inputs_hash && e.msh_sha256 == msh_sha256 && e.inputs == inputs
+    }) {
+        return Ok(());
+    }
+    let body = crate::body_mesh::read(&msh)
+        .map_err(|e| anyhow::anyhow!("reading {}: {e}", msh.display()))?;
+    let density = g.data.member(member).density;
+    let entry = MeshEntry {
+        member,
+        blank,
+        level,
+        inputs,
+        inputs_hash: inputs_hash.into(),
+        msh_sha256,
+        body: BodyProperties {
+            volume_m3: body.mesh.volume(),
+            density_kg_m3: density,
+            polar_moment_kgm2: body.mesh.polar_moment(density),
+        },
+        stiffness: Default::default(),
+    };
+    Manifest::update(dir, |m| {
+        m.meshes.insert(stem.into(), entry);
+    })?;
+    Ok(())
 }

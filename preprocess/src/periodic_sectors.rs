@@ -14,7 +14,7 @@
 //! replaced by the master's, rotated, and after second order its mid-edge
 //! nodes are put at the master's, rotated.
 
-use crate::gear_body::SlotSection;
+use geometry::gear_body::SlotSection;
 use gmsh::{DimTag, Session};
 use std::collections::HashMap;
 

@@ -4,43 +4,22 @@
 //! their inputs are unchanged.
 
 use crate::body_mesh;
-use crate::design::Member;
-use crate::generation::Side;
-use crate::influence::{compute, FlankGrid, GridSize, Influence, InfluenceRequest, InfluenceStats};
-use crate::mesh_stage::{
-    opposite_refined_teeth, periodic_teeth, refined_teeth_on, solved_tooth, Level,
-};
-use crate::output::write_json;
-use crate::pair::PairGeometry;
-use crate::scene::{Blank, LoadedScene};
-use crate::stiffness_file::{self, StiffnessData, StiffnessFileError, STIFFNESS_SCHEMA};
+use crate::influence::{compute, FlankGrid, Influence, InfluenceRequest, InfluenceStats};
+use crate::mesh_stage::Level;
 use anyhow::Context;
+use formats::manifest::{Manifest, StiffnessEntry};
+use formats::output::write_json;
+use formats::paths::{self, MeshLevel};
+use formats::stiffness_file::{
+    self, StiffnessConfig, StiffnessData, StiffnessFileError, STIFFNESS_SCHEMA,
+};
+use formats::stiffness_plan;
+use geometry::design::Member;
+use geometry::generation::Side;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, LoadedScene};
 use serde::Serialize;
-use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
-
-/// Everything besides the mesh that determines a stiffness file.
-#[derive(Debug, Clone, Serialize)]
-pub struct StiffnessConfig {
-    pub schema: u32,
-    pub member: String,
-    pub blank: String,
-    pub level: String,
-    pub loaded_flank: String,
-    pub grid: GridSize,
-    pub load_radius_m: f64,
-    pub offsets: Vec<i32>,
-    pub solved_teeth: Vec<usize>,
-    pub axisymmetric: bool,
-    pub youngs_modulus_pa: f64,
-    pub poisson_ratio: f64,
-    pub clamped_groups: Vec<String>,
-    /// How the local (near-load) field is computed ([`crate::influence::local_model`]).
-    pub local_model: String,
-    /// Hash of the mesh inputs (from `<stem>.inputs.json`) and of the mesh file.
-    pub mesh_inputs_hash: String,
-    pub mesh_file_sha256: String,
-}
 
 /// What one member × blank produced.
 #[derive(Debug, Clone, Serialize)]
@@ -61,8 +40,7 @@ pub struct StiffnessReport {
 
 /// SHA-256 of a file's bytes, hex.
 pub fn sha256_file(path: &Path) -> anyhow::Result<String> {
-    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
-    Ok(format!("{:x}", Sha256::digest(&bytes)))
+    formats::manifest::sha256_file(path).with_context(|| format!("reading {}", path.display()))
 }
 
 /// Computes (or reuses) the stiffness files of the scene at the reduced level.
@@ -81,9 +59,9 @@ pub fn run_level(
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dir = root.join(&sc.name);
     let level = match level {
-        Level::Reduced => "reduced",
-        Level::Medium => "medium",
-        Level::Reference => "reference",
+        Level::Reduced => MeshLevel::Reduced,
+        Level::Medium => MeshLevel::Medium,
+        Level::Reference => MeshLevel::Reference,
         Level::Both => {
             anyhow::bail!("stiffness files are made one mesh level at a time, not `both`")
         }
@@ -105,7 +83,7 @@ pub fn run_level(
 
 /// The flanks that get stiffness files: the loaded one, and the opposite
 /// one when the scene asks for coast-side contact.
-pub fn stiffness_sides(sc: &crate::scene::Scene) -> Vec<Side> {
+pub fn stiffness_sides(sc: &geometry::scene::Scene) -> Vec<Side> {
     if sc.multibody.coast_contact {
         vec![sc.loaded_flank, sc.loaded_flank.other()]
     } else {
@@ -144,7 +122,7 @@ pub fn request<'a>(
     let md = g.data.member(member);
     InfluenceRequest {
         body,
-        material: md.material(),
+        material: crate::influence::fe_material(md.material()),
         teeth: md.teeth as usize,
         loaded: &config.loaded_flank,
         opposite: side.other().flank_name(member),
@@ -158,34 +136,29 @@ pub fn request<'a>(
 }
 
 /// The stiffness file of `member` × `blank` for loads on its `side` flank
-/// that `scene` needs (the mesh must exist, since its SHA-256 is part of the
-/// hash). The loaded side's file is `<member>_<blank>_<level>.stiffness.h5`,
-/// the opposite side's `<member>_<blank>_<level>_<side>.stiffness.h5`.
+/// that `scene` needs ([`formats::stiffness_plan::plan`]), its config
+/// completed with the mesh's hashes and the local model (the mesh must
+/// exist, since its SHA-256 is part of the hash).
 pub fn planned(
     scene: &LoadedScene,
     g: &PairGeometry,
     dir: &Path,
     member: Member,
     blank: Blank,
-    level: &str,
+    level: MeshLevel,
     side: Side,
 ) -> anyhow::Result<Planned> {
     let sc = &scene.scene;
-    let blank_name = format!("{blank:?}").to_lowercase();
-    let mesh_stem = format!("{}_{blank_name}_{level}", member.name());
-    let stem = if side == sc.loaded_flank {
-        mesh_stem.clone()
-    } else {
-        format!("{mesh_stem}_{}", side.name())
-    };
-    let msh = dir.join(format!("{mesh_stem}.msh"));
-    let inputs = dir.join(format!("{mesh_stem}.inputs.json"));
+    let plan = stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
+    let msh = paths::msh(dir, &plan.mesh_stem);
+    let inputs = dir.join(format!("{}.inputs.json", plan.mesh_stem));
     if !msh.exists() {
         anyhow::bail!(
-            "scene {}: no mesh {} for the {} ({blank_name} blank); run `preprocess mesh {}` first",
+            "scene {}: no mesh {} for the {} ({} blank); run `preprocess mesh {}` first",
             sc.name,
             msh.display(),
             member.name(),
+            blank.name(),
             scene.path.display()
         );
     }
@@ -193,70 +166,21 @@ pub fn planned(
         &std::fs::read_to_string(&inputs)
             .with_context(|| format!("reading {}", inputs.display()))?,
     )?;
-    let md = g.data.member(member);
-    let st = &sc.stiffness;
-    let grid = GridSize {
-        profile: if st.grid_profile == 0 {
-            sc.mesh.reduced_order.profile as usize
-        } else {
-            st.grid_profile
-        },
-        face: if st.grid_face == 0 {
-            sc.mesh.reduced_order.face as usize
-        } else {
-            st.grid_face
-        },
-    };
-    let flank = g.flank(member, side);
-    let fg = FlankGrid::new(flank, grid)?;
-    let (sf, sp) = fg.spacing();
-    let refined = refined_teeth_on(g, sc, member, blank, side);
-    let axisymmetric = blank == Blank::Standard;
-    // The mesh's periodic master (refined on both flanks with coast-side
-    // contact), where this side is refined on it: the teeth around it are
-    // its sector turned, so its loads hold for them by rotation.
-    let periodic = periodic_teeth(
-        blank,
-        &refined_teeth_on(g, sc, member, blank, sc.loaded_flank),
-        &opposite_refined_teeth(g, sc, member, blank),
-    );
-    let solved_teeth = if axisymmetric {
-        match periodic.first() {
-            Some(&m) if refined.contains(&m) => vec![m],
-            _ => solved_tooth(&refined).into_iter().collect(),
-        }
-    } else {
-        refined.clone()
-    };
-    let r = st.response_teeth as i32;
     let config = StiffnessConfig {
-        schema: STIFFNESS_SCHEMA,
-        member: member.name().into(),
-        blank: blank_name.clone(),
-        level: level.into(),
-        loaded_flank: side.flank_name(member).into(),
-        grid,
-        load_radius_m: st.load_radius_factor * sf.max(sp),
-        offsets: (-r..=r).collect(),
-        solved_teeth,
-        axisymmetric,
-        youngs_modulus_pa: md.youngs_modulus,
-        poisson_ratio: md.poisson_ratio,
-        clamped_groups: vec!["bore".into()],
         local_model: crate::influence::local_model(crate::influence::FILLET_RISE),
         mesh_inputs_hash: mesh_inputs["hash"].as_str().unwrap_or_default().to_string(),
         mesh_file_sha256: sha256_file(&msh)?,
+        ..plan.config
     };
-    let config_json = serde_json::to_string(&config)?;
-    let hash = format!("{:x}", Sha256::digest(config_json.as_bytes()));
+    let (config_json, hash) = config.json_and_hash();
     Ok(Planned {
-        path: dir.join(format!("{stem}.stiffness.h5")),
-        stem,
+        path: plan.path,
+        stem: plan.stem,
         msh,
         config,
         config_json,
         hash,
-        grid: fg,
+        grid: plan.grid,
     })
 }
 
@@ -299,14 +223,14 @@ fn run_one(
     dir: &Path,
     member: Member,
     blank: Blank,
-    level: &str,
+    level: MeshLevel,
     side: Side,
 ) -> anyhow::Result<StiffnessReport> {
     let t0 = std::time::Instant::now();
     let sc = &scene.scene;
     let md = g.data.member(member);
     let st = &sc.stiffness;
-    let blank_name = format!("{blank:?}").to_lowercase();
+    let blank_name = blank.name().to_string();
     let Planned {
         stem,
         msh,
@@ -321,12 +245,13 @@ fn run_one(
     if path.exists() {
         // A full read also catches truncated data, not only a stale header.
         match stiffness_file::read(&path, Some(&hash)) {
-            Ok(_) => {
+            Ok(d) => {
                 eprintln!("{stem}: inputs unchanged, reusing {}", path.display());
+                record(dir, level, member, blank, &stem, &hash, &d.solved_teeth)?;
                 return Ok(StiffnessReport {
                     member: member.name().into(),
                     blank: blank_name,
-                    level: level.into(),
+                    level: level.name().into(),
                     path,
                     reused: true,
                     replaced_because: None,
@@ -385,15 +310,16 @@ fn run_one(
         config: config_json,
         member: member.name().into(),
         blank: blank_name.clone(),
-        level: level.into(),
+        level: level.name().into(),
         ..stiffness_data(&fg, inf, md.teeth as usize, axisymmetric)
     };
     std::fs::create_dir_all(dir)?;
     stiffness_file::write(&path, &data)?;
+    record(dir, level, member, blank, &stem, &hash, &data.solved_teeth)?;
     let report = StiffnessReport {
         member: member.name().into(),
         blank: blank_name,
-        level: level.into(),
+        level: level.name().into(),
         path: path.clone(),
         reused: false,
         replaced_because,
@@ -404,6 +330,41 @@ fn run_one(
     };
     write_json(&dir.join(format!("{stem}.stiffness.json")), &report)?;
     Ok(report)
+}
+
+/// Lists the stiffness file `stem` (hash `hash`) under its mesh in the
+/// folder's manifest.
+fn record(
+    dir: &Path,
+    level: MeshLevel,
+    member: Member,
+    blank: Blank,
+    stem: &str,
+    hash: &str,
+    solved: &[u32],
+) -> anyhow::Result<()> {
+    let path = paths::stiffness_h5(dir, stem);
+    let entry = StiffnessEntry {
+        file: format!("{stem}.stiffness.h5"),
+        input_hash: hash.into(),
+        sha256: sha256_file(&path)?,
+        solved_teeth: solved.iter().map(|&t| t as usize).collect(),
+    };
+    let mesh_stem = paths::mesh_stem(member, blank, level);
+    let mut missing = false;
+    Manifest::update(dir, |m| match m.meshes.get_mut(&mesh_stem) {
+        Some(e) => {
+            e.stiffness.insert(stem.into(), entry);
+        }
+        None => missing = true,
+    })?;
+    if missing {
+        anyhow::bail!(
+            "{}: no entry for the mesh {mesh_stem}; run `preprocess mesh` on the scene",
+            paths::manifest(dir).display()
+        );
+    }
+    Ok(())
 }
 
 /// Rotational symmetry of a standard blank on its own mesh: the diagonal
@@ -435,18 +396,18 @@ pub fn tooth_to_tooth(
     scene: &LoadedScene,
     root: &Path,
     member: Member,
-    level: &str,
+    level: MeshLevel,
 ) -> anyhow::Result<ToothToTooth> {
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dir = root.join(&sc.name);
     let side = sc.loaded_flank;
     let p = planned(scene, &g, &dir, member, Blank::Standard, level, side)?;
-    let refined = refined_teeth_on(&g, sc, member, Blank::Standard, side);
-    let opposite = opposite_refined_teeth(&g, sc, member, Blank::Standard);
+    let refined = geometry::teeth::refined_teeth_on(&g, sc, member, Blank::Standard, side);
+    let opposite = geometry::teeth::opposite_refined_teeth(&g, sc, member, Blank::Standard);
     let a = p.config.solved_teeth[0];
     let z = g.data.member(member).teeth as usize;
-    let mut teeth = periodic_teeth(Blank::Standard, &refined, &opposite);
+    let mut teeth = geometry::teeth::periodic_teeth(Blank::Standard, &refined, &opposite);
     if teeth.len() < 2 {
         let b = [(a + 1) % z, (a + z - 1) % z]
             .into_iter()
@@ -496,7 +457,7 @@ pub fn tooth_to_tooth(
     let (gm, ga, gw) = change(&inf.global);
     Ok(ToothToTooth {
         member: member.name().into(),
-        level: level.into(),
+        level: level.name().into(),
         teeth: teeth.clone(),
         total_max_abs: tm,
         total_mean_abs: ta,

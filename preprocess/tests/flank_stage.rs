@@ -1,5 +1,6 @@
 //! The `preprocess flanks` stage end to end on the small scene.
 
+#[path = "../../geometry/tests/common/mod.rs"]
 mod common;
 
 use preprocess::flank_stage::{load_input, run_stage};

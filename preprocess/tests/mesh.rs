@@ -2,16 +2,17 @@
 //! holes, failures, determinism. The pinion of the small scene is meshed once
 //! and shared by the tests of this binary.
 
+#[path = "../../geometry/tests/common/mod.rs"]
 mod common;
 
 use fem::tet10::volume as tet10_volume;
-use preprocess::design::Member;
-use preprocess::gear_body::{BlankDimensions, BlankDimensionsMm};
-use preprocess::generation::Side;
+use geometry::design::Member;
+use geometry::gear_body::{BlankDimensions, BlankDimensionsMm};
+use geometry::generation::Side;
+use geometry::pair::{teeth_in_contact, PairGeometry};
+use geometry::scene::{Blank, FlankElements, LoadedScene, Scene};
+use geometry::teeth::{opposite_refined_teeth, periodic_teeth, refined_teeth};
 use preprocess::mesh::{mesh_member, MeshReport, MeshRequest};
-use preprocess::mesh_stage::{opposite_refined_teeth, periodic_teeth, refined_teeth};
-use preprocess::pair::{teeth_in_contact, PairGeometry};
-use preprocess::scene::{Blank, FlankElements, LoadedScene, Scene};
 use std::path::PathBuf;
 use std::sync::OnceLock;
 

@@ -4,7 +4,7 @@
 //! Run with `cargo test --release -p preprocess --test reference_designs -- --nocapture`
 //! to see the derived numbers.
 
-use preprocess::design::{load_pair, min_cutter_radius, Hand, Member, PairData};
+use geometry::design::{load_pair, min_cutter_radius, Hand, Member, PairData};
 use std::path::{Path, PathBuf};
 
 const REFERENCE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../reference");
@@ -42,7 +42,7 @@ fn every_reference_design_file_loads_and_passes_its_checks() {
             Err(e) => failures.push(e.to_string()),
         }
         // The tooth checks too: top land and undercut on the generated flanks.
-        if let Err(e) = preprocess::pair::PairGeometry::from_design_file(path) {
+        if let Err(e) = geometry::pair::PairGeometry::from_design_file(path) {
             failures.push(e.to_string());
         }
     }
@@ -464,10 +464,10 @@ fn seed_pairs_match_their_published_data() {
 /// it at the stored roll angle, at its stored (L, d)), every fillet section
 /// joins its flank column, and the UTCA has a finite transmission error.
 fn flanks_and_utca_of(file: &str) {
+    use geometry::generation::{rot_z, Side};
+    use geometry::pair::PairGeometry;
     use nalgebra::Vector3;
     use preprocess::flank_stage::{load_input, run_stage};
-    use preprocess::generation::{rot_z, Side};
-    use preprocess::pair::PairGeometry;
     use serde_json::Value;
 
     let path = Path::new(REFERENCE).join(file);

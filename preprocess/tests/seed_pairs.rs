@@ -7,16 +7,17 @@
 //! The meshes go to `<target>/tmp/seed_pairs/`, where the solver's seed-pair
 //! tests reuse them (their inputs unchanged).
 
+#[path = "../../geometry/tests/common/mod.rs"]
 mod common;
 
-use preprocess::design::{load_pair, Member};
-use preprocess::gear_body::{
+use geometry::design::{load_pair, Member};
+use geometry::gear_body::{
     face_cone_clearance, polyline_clearance, slot_sections, SLOT_FLANK_REACH_ARC_TOP,
     SLOT_TOP_MIN_CLEARANCE,
 };
+use geometry::scene::Scene;
 use preprocess::mesh::MeshReport;
 use preprocess::mesh_stage::Level;
-use preprocess::scene::Scene;
 use std::path::PathBuf;
 
 const DESIGNS: [&str; 5] = [

@@ -4,20 +4,21 @@
 //! spike after the local subtraction, and rotational symmetry of a standard
 //! blank.
 
+#[path = "../../geometry/tests/common/mod.rs"]
 mod common;
 
+use formats::stiffness_file::{self, StiffnessData, StiffnessFileError};
+use geometry::design::Member;
+use geometry::gear_body::{BlankDimensions, BlankDimensionsMm};
+use geometry::generation::Side;
+use geometry::pair::{teeth_in_contact, PairGeometry};
+use geometry::scene::{Blank, FlankElements};
+use geometry::teeth::periodic_teeth;
 use preprocess::body_mesh::{self, BodyMesh};
-use preprocess::design::Member;
-use preprocess::gear_body::{BlankDimensions, BlankDimensionsMm};
-use preprocess::generation::Side;
 use preprocess::influence::{
     compute, half_tooth, local_supports, rotate_z, FlankGrid, GridSize, Influence, InfluenceRequest,
 };
 use preprocess::mesh::{mesh_member, MeshRequest};
-use preprocess::mesh_stage::periodic_teeth;
-use preprocess::pair::{teeth_in_contact, PairGeometry};
-use preprocess::scene::{Blank, FlankElements};
-use preprocess::stiffness_file::{self, StiffnessData, StiffnessFileError};
 use std::sync::OnceLock;
 
 fn synthetic() -> StiffnessData {
@@ -188,7 +189,7 @@ fn fields() -> &'static (BodyMesh, Vec<usize>, Influence) {
         let inf = compute(
             &InfluenceRequest {
                 body: &body,
-                material: md.material(),
+                material: preprocess::influence::fe_material(md.material()),
                 teeth: md.teeth as usize,
                 loaded: "concave",
                 opposite: "convex",
@@ -228,7 +229,7 @@ fn local_field_does_not_depend_on_how_far_the_half_tooth_reaches_into_the_fillet
     let local = |rise: f64| {
         let req = InfluenceRequest {
             body,
-            material: md.material(),
+            material: preprocess::influence::fe_material(md.material()),
             teeth: md.teeth as usize,
             loaded: "concave",
             opposite: "convex",
@@ -443,7 +444,7 @@ fn lightweight_wheel_compliance_varies_with_order_three_around_the_wheel() {
     let inf = compute(
         &InfluenceRequest {
             body: &body,
-            material: md.material(),
+            material: preprocess::influence::fe_material(md.material()),
             teeth: z,
             loaded: flank,
             opposite,

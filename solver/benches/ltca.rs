@@ -6,10 +6,10 @@
 //! slices). Target (issue 5): quasi-static LTCA ≤ 2 ms per position.
 //! Results in `bench/ltca.json`.
 
-use preprocess::design::Member;
-use preprocess::flank_stage::roll_surface;
-use preprocess::pair::PairGeometry;
-use preprocess::scene::{Blank, Scene};
+use geometry::design::Member;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, Scene};
+use geometry::utca::roll_surface;
 use serde_json::json;
 use solver::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run, Sweep};
@@ -154,7 +154,7 @@ fn main() {
     println!("\ntarget: <= 2 ms per position (one torque); white paper, Table 5: 0.6-0.9 s CPU per multibody step");
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
-    preprocess::output::write_json(
+    formats::output::write_json(
         &out.join("ltca.json"),
         &json!({"machine": format!("{cores} cores, {}", std::env::consts::ARCH), "sweeps": rows,
                 "slice_convergence": {"reference_slices": 160, "te_mean_urad": m_ref * 1e6, "te_ptp_urad": ptp_ref * 1e6, "cases": conv},

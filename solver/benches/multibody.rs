@@ -5,10 +5,10 @@
 //! the run-up's time per step next to the white paper's ~0.4 s CPU per step
 //! (its Table 6). Results in `bench/multibody.json`.
 
-use preprocess::design::Member;
-use preprocess::flank_stage::roll_surface;
-use preprocess::pair::PairGeometry;
-use preprocess::scene::{Blank, Scene};
+use geometry::design::Member;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, Scene};
+use geometry::utca::roll_surface;
 use serde_json::json;
 use solver::compliance::PairCompliance;
 use solver::dynamic_stage::inertia;
@@ -29,7 +29,7 @@ fn main() {
     let load = |m: Member| {
         let (c, plan) = member_compliance(&scene, &g, &dir, m, Blank::Standard)
             .expect("meshes/default: run `make preprocess` first");
-        (c, inertia(&scene, &g, &plan.msh, m).unwrap().0)
+        (c, inertia(&scene, &g, &dir, &plan, m).unwrap().0)
     };
     let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
     let pc = PairCompliance { pinion, wheel };
@@ -131,7 +131,7 @@ fn main() {
     }
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
-    preprocess::output::write_json(
+    formats::output::write_json(
         &out.join("multibody.json"),
         &json!({"machine": format!("{cores} cores, {}", std::env::consts::ARCH),
             "case": "10 rpm wheel, standard blanks, default scene, 2 mesh cycles; error = max |TE_MB - TE_LTCA| over the LTCA positions, % of the LTCA's ptp",

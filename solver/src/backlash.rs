@@ -27,7 +27,7 @@
 
 use crate::mesh_table::{MeshState, MeshTable};
 use crate::SolverError;
-use preprocess::pair::{FlankPair, OppositePlacement};
+use geometry::pair::{FlankPair, OppositePlacement};
 
 /// Angular backlash B = d_d (o_d − o_c) of the conjugate flanks at the
 /// wheel, reduced to the nearest wheel pitch, rad: how far the wheel turns

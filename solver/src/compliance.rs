@@ -11,8 +11,8 @@
 
 use crate::interp::{grid_weights, Weights};
 use crate::SolverError;
-use fem::Material;
-use preprocess::stiffness_file::StiffnessData;
+use formats::stiffness_file::StiffnessData;
+use geometry::Material;
 
 /// One member's influence data, ready for interpolation.
 #[derive(Debug, Clone)]
@@ -28,7 +28,7 @@ pub struct MemberCompliance {
     global: Vec<f64>,
     depth: Vec<f64>,
     /// Body tooth of pair-numbering tooth t: t + tooth_shift (the coast
-    /// model's wheel, see `preprocess::pair::OppositePlacement`).
+    /// model's wheel, see `geometry::pair::OppositePlacement`).
     tooth_shift: i64,
     pub material: Material,
 }

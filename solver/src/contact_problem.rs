@@ -290,7 +290,7 @@ impl ContactProblem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use fem::Material;
+    use geometry::Material;
 
     const STEEL: Material = Material::STEEL;
 

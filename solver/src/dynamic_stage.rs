@@ -22,12 +22,14 @@ use crate::multibody::{
 };
 use crate::spectrum::{plot, resample, stft, OrderLine};
 use anyhow::Context;
-use preprocess::design::Member;
-use preprocess::flank_stage::roll_surface;
-use preprocess::output::{write_atomic, write_json};
-use preprocess::pair::{pinion_direction, PairGeometry};
-use preprocess::plots::{te_curve, Series};
-use preprocess::scene::{Blank, LoadedScene};
+use charts::{te_curve, Series};
+use formats::manifest::Manifest;
+use formats::output::{write_atomic, write_json};
+use formats::stiffness_plan::StiffnessPlan;
+use geometry::design::Member;
+use geometry::pair::{pinion_direction, PairGeometry};
+use geometry::scene::{Blank, LoadedScene};
+use geometry::utca::roll_surface;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -181,11 +183,14 @@ fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
     out
 }
 
-/// Polar moment of a member: the scene's value, or ∫ρr² dV over its mesh `msh`.
+/// Polar moment of a member: the scene's value, or ∫ρr² dV over the mesh
+/// that `plan`'s stiffness file is computed on (the mesh stage's value in the
+/// folder's manifest).
 pub fn inertia(
     scene: &LoadedScene,
     g: &PairGeometry,
-    msh: &Path,
+    dir: &Path,
+    plan: &StiffnessPlan,
     member: Member,
 ) -> anyhow::Result<(f64, &'static str)> {
     let mb = &scene.scene.multibody;
@@ -196,12 +201,18 @@ pub fn inertia(
     if let Some(j) = given {
         return Ok((j, "scene"));
     }
-    let body = preprocess::body_mesh::read(msh)
-        .map_err(|e| anyhow::anyhow!("reading {}: {e}", msh.display()))?;
-    Ok((
-        body.mesh.polar_moment(g.data.member(member).density),
-        "mesh",
-    ))
+    let manifest = Manifest::read(dir)?;
+    let body = manifest.mesh(dir, &plan.mesh_stem)?.body;
+    let density = g.data.member(member).density;
+    if body.density_kg_m3 != density {
+        anyhow::bail!(
+            "{}: the {} mesh's polar moment is for density {} kg/m³, the design says {density} kg/m³; run `preprocess mesh`",
+            formats::paths::manifest(dir).display(),
+            plan.mesh_stem,
+            body.density_kg_m3
+        );
+    }
+    Ok((body.polar_moment_kgm2, "mesh"))
 }
 
 /// Runs the multibody analyses of the scene.
@@ -224,10 +235,10 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let mut all = Vec::new();
     for &pb in &sc.blanks.pinion {
         let (pin, pin_plan) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
-        let (j1, src1) = inertia(scene, &g, &pin_plan.msh, Member::Pinion)?;
+        let (j1, src1) = inertia(scene, &g, &dir, &pin_plan, Member::Pinion)?;
         for &wb in &sc.blanks.wheel {
             let (whl, whl_plan) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
-            let (j2, src2) = inertia(scene, &g, &whl_plan.msh, Member::Wheel)?;
+            let (j2, src2) = inertia(scene, &g, &dir, &whl_plan, Member::Wheel)?;
             let pc = PairCompliance {
                 pinion: pin.clone(),
                 wheel: whl,
@@ -478,7 +489,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
 fn run_up(
     table: &MeshTable,
     inertia: [f64; 2],
-    mb: &preprocess::scene::MultibodySettings,
+    mb: &geometry::scene::MultibodySettings,
     odir: &Path,
     scheme: Scheme,
     control: &dyn Fn(f64) -> StepControl,
@@ -624,7 +635,7 @@ fn rattle(
     coast: &Coast,
     inertia: [f64; 2],
     damping: f64,
-    mb: &preprocess::scene::MultibodySettings,
+    mb: &geometry::scene::MultibodySettings,
     odir: &Path,
     scheme: Scheme,
     control: &dyn Fn(f64) -> StepControl,

@@ -12,8 +12,8 @@ use crate::cpu_clock::timed;
 use crate::slices::{pair_slices, Slice};
 use crate::weber_banaschek::{contact_modulus, half_width, LineContact};
 use crate::SolverError;
-use preprocess::pair::{pairs_in_contact, FlankPair};
-use preprocess::utca::RollSurface;
+use geometry::pair::{pairs_in_contact, FlankPair};
+use geometry::utca::RollSurface;
 use rayon::prelude::*;
 use serde::Serialize;
 

@@ -7,14 +7,15 @@
 use crate::compliance::{MemberCompliance, PairCompliance};
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
 use anyhow::Context;
-use preprocess::design::Member;
-use preprocess::flank_stage::roll_surface;
-use preprocess::generation::Side;
-use preprocess::output::{write_atomic, write_json};
-use preprocess::pair::{pinion_direction, PairGeometry};
-use preprocess::scene::{Blank, LoadedScene};
-use preprocess::stiffness_file;
-use preprocess::stiffness_stage::{planned, Planned};
+use formats::output::{write_atomic, write_json};
+use formats::paths::MeshLevel;
+use formats::stiffness_file;
+use formats::stiffness_plan::{self, StiffnessPlan};
+use geometry::design::Member;
+use geometry::generation::Side;
+use geometry::pair::{pinion_direction, PairGeometry};
+use geometry::scene::{Blank, LoadedScene};
+use geometry::utca::roll_surface;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -98,7 +99,7 @@ pub fn member_compliance(
     dir: &Path,
     member: Member,
     blank: Blank,
-) -> anyhow::Result<(MemberCompliance, Planned)> {
+) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
     member_compliance_on(scene, g, dir, member, blank, scene.scene.loaded_flank)
 }
 
@@ -111,9 +112,10 @@ pub fn member_compliance_on(
     member: Member,
     blank: Blank,
     side: Side,
-) -> anyhow::Result<(MemberCompliance, Planned)> {
-    let p = planned(scene, g, dir, member, blank, "reduced", side)?;
-    let data = stiffness_file::read(&p.path, Some(&p.hash)).with_context(|| {
+) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
+    let level = MeshLevel::Reduced;
+    let p = stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
+    let data = stiffness_plan::check(scene, g, dir, &p, member, blank, level).with_context(|| {
         format!(
             "scene {}: stiffness file of the {} ({blank:?} blank, {} flank) is missing or stale; run `preprocess stiffness {}`",
             scene.scene.name,
@@ -130,14 +132,14 @@ pub fn member_compliance_on(
 
 /// Both members' compliance for loads on the coast (opposite) flanks, the
 /// wheel's teeth numbered as the coast model's (see
-/// `preprocess::pair::OppositePlacement`); also their plans.
+/// `geometry::pair::OppositePlacement`); also their plans.
 pub fn coast_compliance(
     scene: &LoadedScene,
     g: &PairGeometry,
     dir: &Path,
     pb: Blank,
     wb: Blank,
-) -> anyhow::Result<(PairCompliance, [Planned; 2])> {
+) -> anyhow::Result<(PairCompliance, [StiffnessPlan; 2])> {
     let side = scene.scene.loaded_flank;
     let (pin, pin_plan) = member_compliance_on(scene, g, dir, Member::Pinion, pb, side.other())?;
     let (whl, whl_plan) = member_compliance_on(scene, g, dir, Member::Wheel, wb, side.other())?;
@@ -264,7 +266,7 @@ fn coast_loads(
     scene: &LoadedScene,
     g: &PairGeometry,
     dir: &Path,
-    crs: &preprocess::utca::RollSurface,
+    crs: &geometry::utca::RollSurface,
     pb: Blank,
     wb: Blank,
     sweep: &Sweep,

@@ -48,7 +48,7 @@ enum Cmd {
 fn main() -> anyhow::Result<()> {
     match Cli::parse().cmd {
         Cmd::Plan { scene, out } => {
-            let s = preprocess::scene::Scene::load(&scene)?;
+            let s = geometry::scene::Scene::load(&scene)?;
             let plans = solver::plan::plan(&s)?;
             for p in &plans {
                 let (lo, hi) = p.positions.iter().fold((usize::MAX, 0), |(a, b), q| {
@@ -60,11 +60,11 @@ fn main() -> anyhow::Result<()> {
                 );
             }
             if let Some(o) = out {
-                preprocess::output::write_json(&o, &plans)?;
+                formats::output::write_json(&o, &plans)?;
             }
         }
         Cmd::Dynamic { scene, meshes, out } => {
-            let s = preprocess::scene::Scene::load(&scene)?;
+            let s = geometry::scene::Scene::load(&scene)?;
             let res = solver::dynamic_stage::run(&s, &meshes, &out)?;
             for b in &res {
                 for q in &b.quasi_static {
@@ -76,7 +76,7 @@ fn main() -> anyhow::Result<()> {
             }
         }
         Cmd::Ltca { scene, meshes, out } => {
-            let s = preprocess::scene::Scene::load(&scene)?;
+            let s = geometry::scene::Scene::load(&scene)?;
             let res = solver::ltca_stage::run(&s, &meshes, &out)?;
             for b in &res {
                 println!(

@@ -29,9 +29,9 @@ use crate::compliance::PairCompliance;
 use crate::contact_problem::ContactProblem;
 use crate::ltca::{assemble, geometry, Assembled, Geometry};
 use crate::SolverError;
-use preprocess::generation::MemberFrame;
-use preprocess::pair::FlankPair;
-use preprocess::utca::RollSurface;
+use geometry::generation::MemberFrame;
+use geometry::pair::FlankPair;
+use geometry::utca::RollSurface;
 use rayon::prelude::*;
 
 /// Where and how finely the table is computed.

@@ -1,9 +1,9 @@
 //! Which tooth pairs can be in contact at each position of a scene's sweep.
 
-use preprocess::error::GeometryError;
-use preprocess::generation::Side;
-use preprocess::pair::{pairs_in_contact, pinion_direction, PairGeometry};
-use preprocess::scene::{Blank, LoadedScene};
+use geometry::error::GeometryError;
+use geometry::generation::Side;
+use geometry::pair::{pairs_in_contact, pinion_direction, PairGeometry};
+use geometry::scene::{Blank, LoadedScene};
 use serde::Serialize;
 
 /// Tooth pairs (pinion tooth j with wheel tooth −j) that can touch at one position.

@@ -2,7 +2,7 @@
 //! cut into slices across the face width.
 //!
 //! The unloaded contact comes from the surface of roll angles (see
-//! [`preprocess::utca`]): a pinion point p of tooth pair j touches when the
+//! [`geometry::utca`]): a pinion point p of tooth pair j touches when the
 //! wheel lags the conjugate position by
 //!
 //!   lag(p) = [E(p) + ½ K(p) (φ₁ + jτ − φ(p))²] / λ₂(p),
@@ -17,10 +17,10 @@
 //! with vanishing load the element reproduces the UTCA exactly.
 
 use crate::weber_banaschek::LineContact;
-use fem::Material;
-use preprocess::flank::Flank;
-use preprocess::pair::FlankPair;
-use preprocess::utca::{LineSearch, RollSurface};
+use geometry::flank::Flank;
+use geometry::pair::FlankPair;
+use geometry::utca::{LineSearch, RollSurface};
+use geometry::Material;
 use serde::Serialize;
 
 /// One slice of one tooth pair.
@@ -79,10 +79,7 @@ const NEWTON_STOP: f64 = 1e-3;
 type Curvature = (f64, [f64; 3]);
 
 /// A flank point and the Jacobian of (L, d) there.
-type NewtonPoint = (
-    preprocess::flank::FlankPoint,
-    Option<nalgebra::Matrix2<f64>>,
-);
+type NewtonPoint = (geometry::flank::FlankPoint, Option<nalgebra::Matrix2<f64>>);
 
 struct Column<'a> {
     fp: &'a FlankPair,
@@ -112,7 +109,7 @@ impl Column<'_> {
         .ok()
     }
 
-    fn eval(&self, eta: f64) -> Option<(f64, preprocess::flank::FlankPoint)> {
+    fn eval(&self, eta: f64) -> Option<(f64, geometry::flank::FlankPoint)> {
         if !(0.0..=1.0).contains(&eta) {
             return None;
         }
@@ -345,7 +342,7 @@ type End = (f64, Option<f64>);
 struct ColumnMin {
     eta: f64,
     lag: f64,
-    point: preprocess::flank::FlankPoint,
+    point: geometry::flank::FlankPoint,
     curvature: Option<Curvature>,
 }
 
@@ -568,7 +565,7 @@ pub fn friction_levers(fp: &FlankPair, pos: [f64; 3], normal: [f64; 3], phi: f64
 /// over the short distance); the column crosses the
 /// contact line `line` at angle γ, so across the line κ = that / sin²γ.
 fn separation_curvature(
-    p: &preprocess::flank::FlankPoint,
+    p: &geometry::flank::FlankPoint,
     h: f64,
     dr: [f64; 3],
     line: [f64; 3],
@@ -580,11 +577,7 @@ fn separation_curvature(
 
 /// Relative normal curvature across the contact line `line` from the two
 /// flanks' principal curvatures (convex positive): κ₁(t₁) + κ₂(t₂), t = n × line.
-pub fn geometric_curvature(
-    fp: &FlankPair,
-    p: &preprocess::flank::FlankPoint,
-    line: [f64; 3],
-) -> f64 {
+pub fn geometric_curvature(fp: &FlankPair, p: &geometry::flank::FlankPoint, line: [f64; 3]) -> f64 {
     let w = fp.wheel.eval_uv(p.uv[0], p.uv[1]);
     let q = fp.wheel.eval_uv(p.uv[0] + 1e-6, p.uv[1]);
     let r = fp.pinion.eval_uv(p.uv[0] + 1e-6, p.uv[1]);
@@ -610,10 +603,10 @@ pub fn geometric_curvature(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use preprocess::design::load_pair;
-    use preprocess::generation::Side;
-    use preprocess::pair::PairGeometry;
-    use preprocess::utca::LineGrid;
+    use geometry::design::load_pair;
+    use geometry::generation::Side;
+    use geometry::pair::PairGeometry;
+    use geometry::utca::LineGrid;
 
     /// The column search is a local method started from the tabulated
     /// surface of roll angles. Started instead from η = 0, 0.1, …, 1 on the

@@ -154,7 +154,7 @@ pub fn plot(
         }
         root.present()?;
     }
-    preprocess::output::write_atomic(path, svg.as_bytes())?;
+    formats::output::write_atomic(path, svg.as_bytes())?;
     Ok(())
 }
 

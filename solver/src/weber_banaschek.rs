@@ -16,7 +16,7 @@
 //! w = w₁(h₁) + w₂(h₂), with b = √(4qρ/(πE*)), 1/E* = Σ (1 − νᵢ²)/Eᵢ and ρ the
 //! relative radius of curvature across the contact line.
 
-use fem::Material;
+use geometry::Material;
 
 /// Plane-strain compliance (1 − ν²)/E of a body, 1/Pa.
 pub fn plane_strain_compliance(m: Material) -> f64 {

@@ -17,10 +17,10 @@
 //! step. Results in `bench/reference.json`. Meshes come from `meshes/default/`
 //! (`make preprocess`; `preprocess mesh --level reference` for the fine part).
 
-use preprocess::design::Member as Which;
-use preprocess::output::peak_memory_gb;
-use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
-use preprocess::scene::{Blank, Scene};
+use formats::output::peak_memory_gb;
+use geometry::design::Member as Which;
+use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
+use geometry::scene::{Blank, Scene};
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -51,7 +51,7 @@ fn main() {
     let pm = dir.join("pinion_standard_reduced.msh");
     let mesh = preprocess::body_mesh::read(&pm)
         .expect("meshes/default/pinion_standard_reduced.msh: run `make preprocess` first");
-    let mat = g.data.member(Which::Pinion).material();
+    let mat = preprocess::influence::fe_material(g.data.member(Which::Pinion).material());
     let fixed = clamped(&mesh.group_nodes("bore"));
     let (teeth, _) = teeth_in_contact(&g, side, sc.rotation.mesh_cycles_standard, step);
     let flank = mesh.group(&format!(
@@ -253,6 +253,6 @@ fn main() {
         "sweeps": sweeps,
         "peak_memory_gb": peak_memory_gb(),
     });
-    preprocess::output::write_json(&root.join("bench/reference.json"), &out).unwrap();
+    formats::output::write_json(&root.join("bench/reference.json"), &out).unwrap();
     println!("\nwritten to bench/reference.json");
 }

@@ -10,10 +10,10 @@
 use crate::reference_ltca::{Member, ReferencePair, ReferenceSettings};
 use crate::reference_stage::REFERENCE_SCHEMA;
 use anyhow::Context;
-use preprocess::design::Member as Which;
-use preprocess::output::write_json;
-use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
-use preprocess::scene::{Blank, LoadedScene};
+use formats::output::write_json;
+use geometry::design::Member as Which;
+use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
+use geometry::scene::{Blank, LoadedScene};
 use preprocess::stiffness_stage::sha256_file;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
@@ -315,7 +315,7 @@ fn reduced_model_te(
 ) -> anyhow::Result<Vec<f64>> {
     let sc = &scene.scene;
     let fp = g.side(sc.loaded_flank);
-    let rs = preprocess::flank_stage::roll_surface(fp, &sc.utca)?;
+    let rs = geometry::utca::roll_surface(fp, &sc.utca)?;
     let dir = meshes.join(&sc.name);
     let load = |m| solver::ltca_stage::member_compliance(scene, g, &dir, m, Blank::Standard);
     let pc = solver::compliance::PairCompliance {

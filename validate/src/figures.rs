@@ -6,8 +6,8 @@
 //! Inputs are the stages' CSV files under `<out>/<scene>/`; a missing file
 //! leaves its figure out.
 
+use charts::{te_curve, Series};
 use plotters::prelude::*;
-use preprocess::plots::{te_curve, Series};
 use std::path::Path;
 
 /// A figure for the report: title and SVG text.

@@ -1,8 +1,8 @@
 //! Validation: independent checks of each stage against reference methods,
 //! and the reports that put them side by side.
 //!
-//! - The unloaded TCA (surface of roll angles, [`preprocess::utca`]) against
-//!   the direct geometric contact search ([`preprocess::direct`]), and the
+//! - The unloaded TCA (surface of roll angles, [`geometry::utca`]) against
+//!   the direct geometric contact search ([`geometry::direct`]), and the
 //!   unloaded TE against the white paper's 1 N·m value.
 //! - The reference loaded TCA: both FE bodies in penalty contact
 //!   ([`reference_ltca`], [`reference_stage`]), and its comparison with the

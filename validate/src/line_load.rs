@@ -316,22 +316,22 @@ pub struct LineLoad {
 /// Runs the study on the scene's standard pinion: its reduced-level
 /// stiffness file against its fine meshes.
 pub fn run(
-    scene: &preprocess::scene::LoadedScene,
+    scene: &geometry::scene::LoadedScene,
     meshes: &std::path::Path,
     out: &std::path::Path,
     study: &LineLoadStudy,
 ) -> anyhow::Result<LineLoad> {
     use anyhow::Context;
-    use preprocess::design::Member;
+    use geometry::design::Member;
     let sc = &scene.scene;
-    let g = preprocess::pair::PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let g = geometry::pair::PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;
     let flank = g.flank(Member::Pinion, side);
     let flank_name = side.flank_name(Member::Pinion);
     let material = g.data.member(Member::Pinion).material();
     let dir = meshes.join(&sc.name);
     let sf = dir.join("pinion_standard_reduced.stiffness.h5");
-    let data = preprocess::stiffness_file::read(&sf, None).with_context(|| {
+    let data = formats::stiffness_file::read(&sf, None).with_context(|| {
         format!(
             "scene {}: reading {}; run `preprocess stiffness {}`",
             sc.name,
@@ -396,7 +396,7 @@ pub fn run(
             let p = flank.at_unit(data.xi[j], eta0)?;
             Ok((p.pos, p.normal.map(|c| -c)))
         })
-        .collect::<Result<_, preprocess::error::GeometryError>>()?;
+        .collect::<Result<_, geometry::error::GeometryError>>()?;
     let forces: Vec<f64> = col_len.iter().map(|l| study.q * l).collect();
     let mut levels = Vec::new();
     for level in &study.levels {
@@ -431,7 +431,11 @@ pub fn run(
             .map(|d| (d, 0.0))
             .collect();
         let dofs = fem::Dofs::new(&body.mesh, &fixed)?;
-        let sys = fem::assemble(&body.mesh, &material, &dofs)?;
+        let sys = fem::assemble(
+            &body.mesh,
+            &preprocess::influence::fe_material(material),
+            &dofs,
+        )?;
         let factor = fem::Factor::new(
             &sys.matrix,
             &dofs.node_of_free(),
@@ -532,7 +536,7 @@ pub fn run(
     };
     let target = out.join(&sc.name).join("reference");
     std::fs::create_dir_all(&target)?;
-    preprocess::output::write_json(&target.join("line_load.json"), &result)?;
+    formats::output::write_json(&target.join("line_load.json"), &result)?;
     Ok(result)
 }
 

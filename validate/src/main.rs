@@ -191,7 +191,7 @@ fn main() -> anyhow::Result<()> {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
             let published = validate::published::te_ptp_1nm(&input.design_path);
-            let sc = preprocess::scene::Scene::load(&scene).ok();
+            let sc = geometry::scene::Scene::load(&scene).ok();
             let loaded = out.as_ref().zip(sc.as_ref()).and_then(|(o, sc)| {
                 let wp = input.design_path.file_stem()? == "white_paper_20x43";
                 let pub_dir = input.design_path.parent()?.join("published");
@@ -260,7 +260,7 @@ fn main() -> anyhow::Result<()> {
             }
             let shard = shard.map(|s| parse_shard(&s)).transpose()?;
             let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
-            let sc = preprocess::scene::Scene::load(&scene)?;
+            let sc = geometry::scene::Scene::load(&scene)?;
             let opt = validate::reference_stage::StageOptions {
                 level,
                 settings,
@@ -281,7 +281,7 @@ fn main() -> anyhow::Result<()> {
             if let Some(n) = slices.iter().find(|n| !(4..=400).contains(*n)) {
                 anyhow::bail!("--slices {n}: must lie in [4, 400] (as ltca.slices)");
             }
-            let sc = preprocess::scene::Scene::load(&scene)?;
+            let sc = geometry::scene::Scene::load(&scene)?;
             let pts = validate::tradeoff::run(&sc, &meshes, &out, &slices)?;
             for p in &pts {
                 println!(
@@ -307,7 +307,7 @@ fn main() -> anyhow::Result<()> {
             block,
         } => {
             let settings = penalty_settings(penalty, penalty_check, 2.0, 60.0)?;
-            let sc = preprocess::scene::Scene::load(&scene)?;
+            let sc = geometry::scene::Scene::load(&scene)?;
             let torques_nm = if torque_nm.is_empty() {
                 sc.scene.pinion_torque_nm.clone()
             } else {
@@ -367,7 +367,7 @@ fn main() -> anyhow::Result<()> {
                     "--line-load-n-per-mm {line_load_n_per_mm}: must be a positive number"
                 );
             }
-            let sc = preprocess::scene::Scene::load(&scene)?;
+            let sc = geometry::scene::Scene::load(&scene)?;
             let study = validate::line_load::LineLoadStudy {
                 levels,
                 half_widths: half_width_mm.iter().map(|b| b * 1e-3).collect(),

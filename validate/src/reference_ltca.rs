@@ -20,10 +20,10 @@ use crate::contact_surface::{nodal_normals, orient_outward, smoothed_pressure};
 use crate::path_compliance::PathCompliance;
 use crate::penalty::{carried_load, nodal_normal_forces, solve, Constraint, ContactError};
 use fem::path_solve::{combine, gram, PathVec};
+use geometry::generation::{rot_z, MemberFrame};
+use geometry::pair::FlankPair;
 use nalgebra::Vector3;
 use preprocess::body_mesh::BodyMesh;
-use preprocess::generation::{rot_z, MemberFrame};
-use preprocess::pair::FlankPair;
 use serde::{Deserialize, Serialize};
 use std::collections::{HashMap, HashSet};
 
@@ -92,9 +92,9 @@ impl Member {
     /// material and loaded flank (`side`) from the pair geometry.
     pub fn load(
         path: &std::path::Path,
-        g: &preprocess::pair::PairGeometry,
-        which: preprocess::design::Member,
-        side: preprocess::generation::Side,
+        g: &geometry::pair::PairGeometry,
+        which: geometry::design::Member,
+        side: geometry::generation::Side,
         teeth: &[usize],
         block: usize,
     ) -> Result<Member, ReferenceError> {
@@ -103,13 +103,13 @@ impl Member {
             message,
         })?;
         let frame = match which {
-            preprocess::design::Member::Pinion => g.frames[0],
-            preprocess::design::Member::Wheel => g.frames[1],
+            geometry::design::Member::Pinion => g.frames[0],
+            geometry::design::Member::Wheel => g.frames[1],
         };
         Member::new(
             mesh,
             frame,
-            &g.data.member(which).material(),
+            &preprocess::influence::fe_material(g.data.member(which).material()),
             side.flank_name(which),
             teeth,
             block,

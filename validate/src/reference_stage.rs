@@ -7,10 +7,10 @@
 
 use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
 use anyhow::Context;
-use preprocess::design::Member as Which;
-use preprocess::output::{write_atomic, write_json};
-use preprocess::pair::{pinion_direction, teeth_in_contact, PairGeometry};
-use preprocess::scene::{Blank, LoadedScene};
+use formats::output::{write_atomic, write_json};
+use geometry::design::Member as Which;
+use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
+use geometry::scene::{Blank, LoadedScene};
 use preprocess::stiffness_stage::sha256_file;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
@@ -212,15 +212,15 @@ pub struct UnloadedCheck {
 /// reference.
 pub fn utca_at(
     scene: &LoadedScene,
-    fp: &preprocess::pair::FlankPair,
+    fp: &geometry::pair::FlankPair,
     start: f64,
     step: f64,
     n: usize,
     direction: f64,
-) -> anyhow::Result<preprocess::utca::Utca> {
+) -> anyhow::Result<geometry::utca::Utca> {
     let input = preprocess::flank_stage::load_input(&scene.path)?;
-    let rs = preprocess::flank_stage::roll_surface(fp, &input.utca)?;
-    Ok(preprocess::utca::run(fp, &rs, start, step, n, direction))
+    let rs = geometry::utca::roll_surface(fp, &input.utca)?;
+    Ok(geometry::utca::run(fp, &rs, start, step, n, direction))
 }
 
 fn unloaded_check(res: &[PositionResult], utca: &[f64]) -> UnloadedCheck {
@@ -688,7 +688,7 @@ fn write_te_csv(
     path: &Path,
     res: &[PositionResult],
     utca: &[f64],
-    flank: &preprocess::flank::Flank,
+    flank: &geometry::flank::Flank,
     start: f64,
     direction: f64,
 ) -> anyhow::Result<()> {

@@ -2,8 +2,7 @@
 //! `reports/summary.json`, written atomically.
 
 use crate::utca_check::UtcaCheck;
-use preprocess::error::GeometryError;
-use preprocess::output::{write_atomic, write_json};
+use formats::output::{write_atomic, write_json, WriteError};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -140,7 +139,7 @@ pub fn write(
     plots_dir: &Path,
     loaded: Option<&crate::comparison::Comparison>,
     figures: &[crate::figures::Figure],
-) -> Result<(), GeometryError> {
+) -> Result<(), WriteError> {
     let mut md = markdown(c, published, loaded);
     if !figures.is_empty() {
         md.push_str("\n## Loaded TE and contact pattern figures\n\n");

@@ -11,12 +11,12 @@
 
 use crate::reference_stage::BlankSummary as Reference;
 use anyhow::Context;
-use preprocess::design::Member;
-use preprocess::flank_stage::roll_surface;
-use preprocess::output::write_json;
-use preprocess::pair::{pinion_direction, PairGeometry};
-use preprocess::plots::{te_curve, Series};
-use preprocess::scene::{Blank, LoadedScene};
+use charts::{te_curve, Series};
+use formats::output::write_json;
+use geometry::design::Member;
+use geometry::pair::{pinion_direction, PairGeometry};
+use geometry::scene::{Blank, LoadedScene};
+use geometry::utca::roll_surface;
 use serde::{Deserialize, Serialize};
 use solver::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run as run_sweep, Sweep};

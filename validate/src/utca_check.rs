@@ -1,10 +1,11 @@
 //! Cross-check of the fast UTCA against the direct contact search.
 
-use preprocess::direct::direct_te;
-use preprocess::error::GeometryError;
-use preprocess::flank_stage::{roll_surface, sweep, FlankInput};
-use preprocess::pair::{pinion_direction, PairGeometry};
-use preprocess::utca::{LineGrid, RollSurface};
+use geometry::direct::direct_te;
+use geometry::error::GeometryError;
+use geometry::pair::{pinion_direction, PairGeometry};
+use geometry::utca::{roll_surface, sweep};
+use geometry::utca::{LineGrid, RollSurface};
+use preprocess::flank_stage::FlankInput;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -35,7 +36,19 @@ pub struct UtcaCheck {
 
 /// Runs the fast UTCA over the scene's sweep and the direct search at
 /// `positions` equally spaced positions of the first mesh cycle.
-pub fn check(input: &FlankInput, positions: usize) -> Result<UtcaCheck, GeometryError> {
+/// Why the UTCA check could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum UtcaCheckError {
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+    #[error("{}: the direct contact search found no contact at step {step}", .design.display())]
+    NoContact {
+        design: std::path::PathBuf,
+        step: usize,
+    },
+}
+
+pub fn check(input: &FlankInput, positions: usize) -> Result<UtcaCheck, UtcaCheckError> {
     let g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
     let pair = &g.data;
     let fp = g.side(input.side);
@@ -58,11 +71,12 @@ pub fn check(input: &FlankInput, positions: usize) -> Result<UtcaCheck, Geometry
     let mut min_gap = f64::INFINITY;
     let t = Instant::now();
     for k in (0..=per_cycle.min(u.te.len() - 1)).step_by(stride) {
-        let d =
-            direct_te(fp, &coarse, u.pinion_angle[k], dir).ok_or_else(|| GeometryError::Write {
-                path: input.design_path.clone(),
-                message: format!("direct contact search found no contact at step {k}"),
-            })?;
+        let d = direct_te(fp, &coarse, u.pinion_angle[k], dir).ok_or_else(|| {
+            UtcaCheckError::NoContact {
+                design: input.design_path.clone(),
+                step: k,
+            }
+        })?;
         min_gap = min_gap.min(d.min_node_gap);
         rows.push(Row {
             pinion_rotation_deg: (u.pinion_angle[k] - u.pinion_angle[0]).abs().to_degrees(),

@@ -3,8 +3,8 @@
 //! `--compare-cache` accepts the cache it wrote, and refuses one whose
 //! value was changed.
 
+use geometry::scene::Scene;
 use preprocess::mesh_stage::{self, Level};
-use preprocess::scene::Scene;
 use std::path::Path;
 use validate::reference_ltca::{PositionResult, ReferenceSettings};
 use validate::reference_stage::{reference_dir, run, CacheComparison, StageOptions};

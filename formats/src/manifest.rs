@@ -1,0 +1,229 @@
+//! The manifest of a mesh folder (`meshes/<scene>/manifest.json`): for every
+//! body mesh, the inputs it was made from, the hash of its `.msh`, the body's
+//! mass properties, and the stiffness files computed on it. The mesh stage
+//! writes a body's entry, the stiffness stage adds its files; the solver
+//! reads nothing else besides the stiffness files themselves.
+//!
+//! Updates are read-modify-write with an atomic replace
+//! ([`crate::output::write_atomic`]); the stages of one scene run one after
+//! the other.
+
+use crate::output::{write_json, WriteError};
+use crate::paths::{self, MeshLevel};
+use geometry::design::Member;
+use geometry::gear_body::{Blank, BlankDimensions};
+use geometry::generation::Side;
+use geometry::pair::PairGeometry;
+use geometry::scene::{FlankElements, LoadedScene};
+use geometry::teeth::{opposite_refined_teeth, periodic_teeth, refined_teeth};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Bumped whenever the manifest's layout or meaning changes.
+pub const MANIFEST_SCHEMA: u32 = 1;
+
+/// Errors reading a manifest or finding what it should hold.
+#[derive(Debug, thiserror::Error)]
+pub enum ManifestError {
+    #[error("{}: no manifest; run `preprocess mesh` on the scene first", .path.display())]
+    Missing { path: PathBuf },
+    #[error("{}: {message}", .path.display())]
+    Unreadable { path: PathBuf, message: String },
+    #[error("{}: schema {found}, this build reads {MANIFEST_SCHEMA}; run `preprocess mesh` again", .path.display())]
+    Schema { path: PathBuf, found: u32 },
+    #[error("{}: no entry `{stem}`; run `preprocess {stage}` on the scene", .path.display())]
+    NoEntry {
+        path: PathBuf,
+        stem: String,
+        stage: &'static str,
+    },
+    #[error(transparent)]
+    Write(#[from] WriteError),
+}
+
+/// The manifest of one mesh folder.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    pub schema: u32,
+    /// Body meshes by stem ([`paths::mesh_stem`]).
+    pub meshes: BTreeMap<String, MeshEntry>,
+}
+
+impl Default for Manifest {
+    fn default() -> Self {
+        Manifest {
+            schema: MANIFEST_SCHEMA,
+            meshes: BTreeMap::new(),
+        }
+    }
+}
+
+/// One body mesh and what was computed on it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshEntry {
+    pub member: Member,
+    pub blank: Blank,
+    pub level: MeshLevel,
+    pub inputs: MeshInputs,
+    /// The mesh stage's hash of its inputs (it includes its own schema).
+    pub inputs_hash: String,
+    /// SHA-256 of the `.msh` file.
+    pub msh_sha256: String,
+    pub body: BodyProperties,
+    /// Stiffness files on this mesh, by stem ([`paths::stiffness_stem`]).
+    #[serde(default)]
+    pub stiffness: BTreeMap<String, StiffnessEntry>,
+}
+
+/// The scene's fields a body mesh depends on, in plain values, so a reader
+/// can say which one changed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshInputs {
+    /// SHA-256 of the design file's text.
+    pub design_sha256: String,
+    /// The resolved blank dimensions (SI), as the mesh stage hashes them.
+    pub blank_dimensions: serde_json::Value,
+    pub flank_elements: FlankElements,
+    pub loaded_flank: Side,
+    pub refined_teeth: Vec<usize>,
+    pub opposite_refined_teeth: Vec<usize>,
+    pub periodic_teeth: Vec<usize>,
+}
+
+/// Mass properties of a body, integrated over its mesh by the mesh stage.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyProperties {
+    pub volume_m3: f64,
+    pub density_kg_m3: f64,
+    /// ∫ ρ (x² + y²) dV about the member axis, kg·m².
+    pub polar_moment_kgm2: f64,
+}
+
+/// One stiffness file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StiffnessEntry {
+    /// File name in the folder.
+    pub file: String,
+    /// The file's `input_hash` attribute.
+    pub input_hash: String,
+    /// SHA-256 of the file's bytes.
+    pub sha256: String,
+    pub solved_teeth: Vec<usize>,
+}
+
+/// SHA-256 of a file's bytes, hex.
+pub fn sha256_file(path: &Path) -> std::io::Result<String> {
+    Ok(format!("{:x}", Sha256::digest(std::fs::read(path)?)))
+}
+
+/// SHA-256 of a text, hex.
+pub fn sha256_text(text: &str) -> String {
+    format!("{:x}", Sha256::digest(text.as_bytes()))
+}
+
+impl MeshInputs {
+    /// What a body mesh of `member` × `blank` at `elements` per flank needs
+    /// from `scene` (design text `design_text`).
+    pub fn of_scene(
+        scene: &LoadedScene,
+        g: &PairGeometry,
+        design_text: &str,
+        member: Member,
+        blank: Blank,
+        elements: FlankElements,
+    ) -> MeshInputs {
+        let sc = &scene.scene;
+        let dims = BlankDimensions::resolve(&sc.blank_dimensions, &g.data);
+        let refined = refined_teeth(g, sc, member, blank);
+        let opposite = opposite_refined_teeth(g, sc, member, blank);
+        let periodic = periodic_teeth(blank, &refined, &opposite);
+        MeshInputs {
+            design_sha256: sha256_text(design_text),
+            blank_dimensions: serde_json::to_value(&dims).unwrap_or_default(),
+            flank_elements: elements,
+            loaded_flank: sc.loaded_flank,
+            refined_teeth: refined,
+            opposite_refined_teeth: opposite,
+            periodic_teeth: periodic,
+        }
+    }
+
+    /// The fields that differ from the scene's, each as `field: manifest vs scene`.
+    pub fn differences(&self, scene: &MeshInputs) -> Vec<String> {
+        field_differences(self, scene, "in the manifest", "for the scene")
+    }
+}
+
+impl Manifest {
+    /// Reads `<dir>/manifest.json`.
+    pub fn read(dir: &Path) -> Result<Manifest, ManifestError> {
+        let path = paths::manifest(dir);
+        let text = std::fs::read_to_string(&path).map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => ManifestError::Missing { path: path.clone() },
+            _ => ManifestError::Unreadable {
+                path: path.clone(),
+                message: e.to_string(),
+            },
+        })?;
+        let schema = serde_json::from_str::<serde_json::Value>(&text)
+            .ok()
+            .and_then(|v| v.get("schema").and_then(|s| s.as_u64()));
+        if let Some(found) = schema.filter(|&s| s != MANIFEST_SCHEMA as u64) {
+            return Err(ManifestError::Schema {
+                path,
+                found: found as u32,
+            });
+        }
+        serde_json::from_str(&text).map_err(|e| ManifestError::Unreadable {
+            path,
+            message: e.to_string(),
+        })
+    }
+
+    /// Reads the manifest (an empty one if there is none or it is of
+    /// another schema), applies `change` and writes it back atomically.
+    pub fn update(dir: &Path, change: impl FnOnce(&mut Manifest)) -> Result<(), ManifestError> {
+        let mut m = match Manifest::read(dir) {
+            Ok(m) => m,
+            Err(ManifestError::Missing { .. } | ManifestError::Schema { .. }) => {
+                Manifest::default()
+            }
+            Err(e) => return Err(e),
+        };
+        change(&mut m);
+        Ok(write_json(&paths::manifest(dir), &m)?)
+    }
+
+    /// The entry of the mesh `stem`.
+    pub fn mesh(&self, dir: &Path, stem: &str) -> Result<&MeshEntry, ManifestError> {
+        self.meshes.get(stem).ok_or_else(|| ManifestError::NoEntry {
+            path: paths::manifest(dir),
+            stem: stem.into(),
+            stage: "mesh",
+        })
+    }
+}
+
+/// The top-level fields in which two values' JSON forms differ, each as
+/// `field: <a> <a_is> , <b> <b_is>`.
+pub fn field_differences<T: Serialize>(a: &T, b: &T, a_is: &str, b_is: &str) -> Vec<String> {
+    let (a, b) = (
+        serde_json::to_value(a).unwrap_or_default(),
+        serde_json::to_value(b).unwrap_or_default(),
+    );
+    let (Some(a), Some(b)) = (a.as_object(), b.as_object()) else {
+        return vec!["(not comparable)".into()];
+    };
+    let null = serde_json::Value::Null;
+    a.iter()
+        .filter(|(k, v)| b.get(*k) != Some(*v))
+        .map(|(k, v)| format!("{k}: {v} {a_is}, {} {b_is}", b.get(k).unwrap_or(&null)))
+        .collect()
+}

@@ -1,0 +1,337 @@
+//! Stiffness files: one HDF5 file per member × blank × mesh level holding the
+//! contact grid and the compliance blocks of the reduced model.
+//!
+//! Layout (schema [`STIFFNESS_SCHEMA`]); every dataset carries a `units`
+//! attribute and the root carries `schema_version`, `input_hash` (SHA-256 of
+//! everything that determines the content) and `config` (JSON):
+//!
+//! | dataset | shape | content |
+//! |---|---|---|
+//! | `grid/xi`, `grid/eta` | face, profile | normalised flank parameters of the grid |
+//! | `grid/position` | points × 3 | tooth 0, member frame (m) |
+//! | `grid/normal` | points × 3 | outward unit normal |
+//! | `grid/lever` | points | moment arm about the member axis of a unit force along −n (m) |
+//! | `teeth/solved`, `teeth/offsets` | s, o | loaded teeth; responding teeth relative to them |
+//! | `grid/depth_h` | s × points | mid-surface depth h of each point (m) |
+//! | `compliance/total`, `compliance/global` | s × o × points × points | normal approach at point j of tooth solved+offset under a unit load at point i (m/N) |
+//! | `compliance/local` | s × points × points | the near-load part on the loaded tooth (m/N) |
+//!
+//! Point index = i_face · profile + i_profile.
+
+use std::path::{Path, PathBuf};
+
+/// Bumped whenever the file layout or its meaning changes.
+pub const STIFFNESS_SCHEMA: u32 = 1;
+
+/// Everything besides the mesh that determines a stiffness file.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StiffnessConfig {
+    pub schema: u32,
+    pub member: String,
+    pub blank: String,
+    pub level: String,
+    pub loaded_flank: String,
+    pub grid: geometry::contact_grid::GridSize,
+    pub load_radius_m: f64,
+    pub offsets: Vec<i32>,
+    pub solved_teeth: Vec<usize>,
+    pub axisymmetric: bool,
+    pub youngs_modulus_pa: f64,
+    pub poisson_ratio: f64,
+    pub clamped_groups: Vec<String>,
+    /// How the local (near-load) field is computed (the stiffness stage's `influence::local_model`).
+    pub local_model: String,
+    /// Hash of the mesh inputs (from `<stem>.inputs.json`) and of the mesh file.
+    pub mesh_inputs_hash: String,
+    pub mesh_file_sha256: String,
+}
+
+impl StiffnessConfig {
+    /// The config as the file stores it (JSON) and its SHA-256, the file's
+    /// `input_hash`.
+    pub fn json_and_hash(&self) -> (String, String) {
+        let json = serde_json::to_string(self).expect("a config serializes");
+        let hash = crate::manifest::sha256_text(&json);
+        (json, hash)
+    }
+}
+
+/// Errors reading or writing a stiffness file.
+#[derive(Debug, thiserror::Error)]
+pub enum StiffnessFileError {
+    #[error("stiffness file {path}: {message}")]
+    Hdf5 { path: PathBuf, message: String },
+    #[error("stiffness file {path}: schema version {found}, this program reads {expected}")]
+    Schema {
+        path: PathBuf,
+        found: u32,
+        expected: u32,
+    },
+    #[error("stiffness file {path}: input hash {found} does not match the current inputs ({expected}); it was made for other inputs")]
+    Hash {
+        path: PathBuf,
+        found: String,
+        expected: String,
+    },
+    #[error("stiffness file {path}: dataset {dataset} has {found} values, expected {expected}")]
+    Shape {
+        path: PathBuf,
+        dataset: String,
+        found: usize,
+        expected: usize,
+    },
+}
+
+/// The content of a stiffness file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StiffnessData {
+    pub input_hash: String,
+    /// The producing configuration as JSON.
+    pub config: String,
+    pub member: String,
+    pub blank: String,
+    pub level: String,
+    pub teeth: usize,
+    /// True when one tooth's fields stand for all (axisymmetric blank).
+    pub axisymmetric: bool,
+    pub grid_profile: usize,
+    pub grid_face: usize,
+    pub xi: Vec<f64>,
+    pub eta: Vec<f64>,
+    pub position: Vec<f64>,
+    pub normal: Vec<f64>,
+    pub lever: Vec<f64>,
+    pub solved_teeth: Vec<u32>,
+    pub offsets: Vec<i32>,
+    pub depth_h: Vec<f64>,
+    pub total: Vec<f64>,
+    pub local: Vec<f64>,
+    pub global: Vec<f64>,
+}
+
+impl StiffnessData {
+    pub fn points(&self) -> usize {
+        self.grid_profile * self.grid_face
+    }
+
+    /// Global compliance (m/N): load at point i of solved tooth s, response at
+    /// point j of tooth solved[s] + offsets[o].
+    pub fn global_at(&self, s: usize, o: usize, i: usize, j: usize) -> f64 {
+        let np = self.points();
+        self.global[((s * self.offsets.len() + o) * np + i) * np + j]
+    }
+}
+
+fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> StiffnessFileError + '_ {
+    move |e| StiffnessFileError::Hdf5 {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    }
+}
+
+/// Opens HDF5 files without HDF5's `flock` file locking. The lock belongs to
+/// the open file description, so a subprocess forked by another thread while
+/// a file is open (gmsh, meshio, python) inherits it and keeps the file locked
+/// after we have closed it. Writes are atomic by rename, so the lock protects
+/// nothing here.
+pub fn h5() -> hdf5::FileBuilder {
+    let mut b = hdf5::File::with_options();
+    b.fapl().file_locking(false);
+    b
+}
+
+/// Writes a float dataset of `shape` with a `units` attribute.
+pub fn write_dataset(
+    f: &hdf5::File,
+    name: &str,
+    shape: &[usize],
+    v: &[f64],
+    units: &str,
+) -> hdf5::Result<()> {
+    let ds = f.new_dataset::<f64>().shape(shape.to_vec()).create(name)?;
+    ds.write_raw(v)?;
+    ds.new_attr::<hdf5::types::VarLenUnicode>()
+        .create("units")?
+        .write_scalar(&vlu(units))
+}
+
+fn vlu(s: &str) -> hdf5::types::VarLenUnicode {
+    s.parse().expect("no NUL in attribute text")
+}
+
+/// Writes `data` to `path` atomically (temporary file in the same directory, then rename).
+pub fn write(path: &Path, data: &StiffnessData) -> Result<(), StiffnessFileError> {
+    let tmp = path.with_extension("tmp.h5");
+    let r = write_to(&tmp, data).and_then(|_| {
+        std::fs::rename(&tmp, path).map_err(|e| StiffnessFileError::Hdf5 {
+            path: path.to_path_buf(),
+            message: format!("cannot rename {}: {e}", tmp.display()),
+        })
+    });
+    if r.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    r
+}
+
+fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
+    let e = h5err(path);
+    let f = h5().create(path).map_err(&e)?;
+    let sattr = |loc: &hdf5::Location, name: &str, v: &str| -> hdf5::Result<()> {
+        loc.new_attr::<hdf5::types::VarLenUnicode>()
+            .create(name)?
+            .write_scalar(&vlu(v))
+    };
+    f.new_attr::<u32>()
+        .create("schema_version")
+        .and_then(|a| a.write_scalar(&STIFFNESS_SCHEMA))
+        .map_err(&e)?;
+    for (k, v) in [
+        ("input_hash", d.input_hash.as_str()),
+        ("config", d.config.as_str()),
+        ("member", d.member.as_str()),
+        ("blank", d.blank.as_str()),
+        ("level", d.level.as_str()),
+        (
+            "producer",
+            concat!("preprocess ", env!("CARGO_PKG_VERSION")),
+        ),
+    ] {
+        sattr(&f, k, v).map_err(&e)?;
+    }
+    for (k, v) in [
+        ("teeth", d.teeth as u32),
+        ("axisymmetric", d.axisymmetric as u32),
+        ("grid_profile", d.grid_profile as u32),
+        ("grid_face", d.grid_face as u32),
+    ] {
+        f.new_attr::<u32>()
+            .create(k)
+            .and_then(|a| a.write_scalar(&v))
+            .map_err(&e)?;
+    }
+    let np = d.points();
+    let ns = d.solved_teeth.len();
+    let no = d.offsets.len();
+    let put = |name: &str, shape: &[usize], v: &[f64], units: &str| {
+        write_dataset(&f, name, shape, v, units)
+    };
+    f.create_group("grid").map_err(&e)?;
+    f.create_group("teeth").map_err(&e)?;
+    f.create_group("compliance").map_err(&e)?;
+    put("grid/xi", &[d.grid_face], &d.xi, "1").map_err(&e)?;
+    put("grid/eta", &[d.grid_profile], &d.eta, "1").map_err(&e)?;
+    put("grid/position", &[np, 3], &d.position, "m").map_err(&e)?;
+    put("grid/normal", &[np, 3], &d.normal, "1").map_err(&e)?;
+    put("grid/lever", &[np], &d.lever, "m").map_err(&e)?;
+    put("grid/depth_h", &[ns, np], &d.depth_h, "m").map_err(&e)?;
+    put("compliance/total", &[ns, no, np, np], &d.total, "m/N").map_err(&e)?;
+    put("compliance/local", &[ns, np, np], &d.local, "m/N").map_err(&e)?;
+    put("compliance/global", &[ns, no, np, np], &d.global, "m/N").map_err(&e)?;
+    f.new_dataset::<u32>()
+        .shape([ns])
+        .create("teeth/solved")
+        .and_then(|ds| ds.write_raw(&d.solved_teeth[..]))
+        .map_err(&e)?;
+    f.new_dataset::<i32>()
+        .shape([no])
+        .create("teeth/offsets")
+        .and_then(|ds| ds.write_raw(&d.offsets[..]))
+        .map_err(&e)?;
+    f.flush().map_err(&e)?;
+    // Close now (not when the last handle drops) so the file can be renamed
+    // and reopened at once.
+    f.close().map_err(&e)?;
+    Ok(())
+}
+
+/// Reads the schema version and input hash only.
+fn read_header(path: &Path) -> Result<(u32, String), StiffnessFileError> {
+    let e = h5err(path);
+    let f = h5().open(path).map_err(&e)?;
+    let schema: u32 = f
+        .attr("schema_version")
+        .and_then(|a| a.read_scalar())
+        .map_err(&e)?;
+    let hash: hdf5::types::VarLenUnicode = f
+        .attr("input_hash")
+        .and_then(|a| a.read_scalar())
+        .map_err(&e)?;
+    Ok((schema, hash.as_str().to_string()))
+}
+
+/// Reads a stiffness file, checking its schema and, if given, its input hash.
+pub fn read(path: &Path, expected_hash: Option<&str>) -> Result<StiffnessData, StiffnessFileError> {
+    let (schema, hash) = read_header(path)?;
+    if schema != STIFFNESS_SCHEMA {
+        return Err(StiffnessFileError::Schema {
+            path: path.to_path_buf(),
+            found: schema,
+            expected: STIFFNESS_SCHEMA,
+        });
+    }
+    if let Some(x) = expected_hash {
+        if x != hash {
+            return Err(StiffnessFileError::Hash {
+                path: path.to_path_buf(),
+                found: hash,
+                expected: x.to_string(),
+            });
+        }
+    }
+    let e = h5err(path);
+    let f = h5().open(path).map_err(&e)?;
+    let s = |k: &str| -> Result<String, StiffnessFileError> {
+        let v: hdf5::types::VarLenUnicode = f.attr(k).and_then(|a| a.read_scalar()).map_err(&e)?;
+        Ok(v.as_str().to_string())
+    };
+    let u = |k: &str| -> Result<usize, StiffnessFileError> {
+        Ok(f.attr(k).and_then(|a| a.read_scalar::<u32>()).map_err(&e)? as usize)
+    };
+    let grid_profile = u("grid_profile")?;
+    let grid_face = u("grid_face")?;
+    let solved_teeth: Vec<u32> = f
+        .dataset("teeth/solved")
+        .and_then(|d| d.read_raw())
+        .map_err(&e)?;
+    let offsets: Vec<i32> = f
+        .dataset("teeth/offsets")
+        .and_then(|d| d.read_raw())
+        .map_err(&e)?;
+    let np = grid_profile * grid_face;
+    let (ns, no) = (solved_teeth.len(), offsets.len());
+    let get = |name: &str, expected: usize| -> Result<Vec<f64>, StiffnessFileError> {
+        let v: Vec<f64> = f.dataset(name).and_then(|d| d.read_raw()).map_err(&e)?;
+        if v.len() != expected {
+            return Err(StiffnessFileError::Shape {
+                path: path.to_path_buf(),
+                dataset: name.into(),
+                found: v.len(),
+                expected,
+            });
+        }
+        Ok(v)
+    };
+    Ok(StiffnessData {
+        input_hash: hash,
+        config: s("config")?,
+        member: s("member")?,
+        blank: s("blank")?,
+        level: s("level")?,
+        teeth: u("teeth")?,
+        axisymmetric: u("axisymmetric")? != 0,
+        grid_profile,
+        grid_face,
+        xi: get("grid/xi", grid_face)?,
+        eta: get("grid/eta", grid_profile)?,
+        position: get("grid/position", 3 * np)?,
+        normal: get("grid/normal", 3 * np)?,
+        lever: get("grid/lever", np)?,
+        depth_h: get("grid/depth_h", ns * np)?,
+        total: get("compliance/total", ns * no * np * np)?,
+        local: get("compliance/local", ns * np * np)?,
+        global: get("compliance/global", ns * no * np * np)?,
+        solved_teeth,
+        offsets,
+    })
+}

@@ -1,0 +1,187 @@
+//! What a scene asks of a stiffness file, from the scene alone: its name, its
+//! contact grid and the fields of its `config` that the scene determines. The
+//! stiffness stage completes the config with the mesh's hashes and the FE
+//! local model and writes the file; readers check a file against the same
+//! plan ([`check`]) using the mesh folder's [`Manifest`].
+
+use crate::manifest::{field_differences, Manifest, ManifestError, MeshInputs};
+use crate::paths::{self, MeshLevel};
+use crate::stiffness_file::{
+    self, StiffnessConfig, StiffnessData, StiffnessFileError, STIFFNESS_SCHEMA,
+};
+use geometry::contact_grid::{FlankGrid, GridSize};
+use geometry::design::Member;
+use geometry::error::GeometryError;
+use geometry::gear_body::Blank;
+use geometry::generation::Side;
+use geometry::pair::PairGeometry;
+use geometry::scene::LoadedScene;
+use geometry::teeth::{opposite_refined_teeth, periodic_teeth, refined_teeth_on, solved_tooth};
+use std::path::{Path, PathBuf};
+
+/// A stiffness file as the scene plans it.
+#[derive(Debug, Clone)]
+pub struct StiffnessPlan {
+    /// The file's stem ([`paths::stiffness_stem`]).
+    pub stem: String,
+    /// The stem of the body mesh it is computed on.
+    pub mesh_stem: String,
+    pub path: PathBuf,
+    pub grid: FlankGrid,
+    /// `local_model`, `mesh_inputs_hash` and `mesh_file_sha256` are left
+    /// empty: the mesh and the FE model supply them.
+    pub config: StiffnessConfig,
+}
+
+/// The stiffness file of `member` × `blank` at `level` for loads on its
+/// `side` flank, in the mesh folder `dir`.
+pub fn plan(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+    level: MeshLevel,
+    side: Side,
+) -> Result<StiffnessPlan, GeometryError> {
+    let sc = &scene.scene;
+    let stem = paths::stiffness_stem(member, blank, level, side, sc.loaded_flank);
+    let md = g.data.member(member);
+    let st = &sc.stiffness;
+    let grid = GridSize {
+        profile: if st.grid_profile == 0 {
+            sc.mesh.reduced_order.profile as usize
+        } else {
+            st.grid_profile
+        },
+        face: if st.grid_face == 0 {
+            sc.mesh.reduced_order.face as usize
+        } else {
+            st.grid_face
+        },
+    };
+    let fg = FlankGrid::new(g.flank(member, side), grid)?;
+    let (sf, sp) = fg.spacing();
+    let refined = refined_teeth_on(g, sc, member, blank, side);
+    let axisymmetric = blank == Blank::Standard;
+    // The mesh's periodic master (refined on both flanks with coast-side
+    // contact), where this side is refined on it: the teeth around it are
+    // its sector turned, so its loads hold for them by rotation.
+    let periodic = periodic_teeth(
+        blank,
+        &refined_teeth_on(g, sc, member, blank, sc.loaded_flank),
+        &opposite_refined_teeth(g, sc, member, blank),
+    );
+    let solved_teeth = if axisymmetric {
+        match periodic.first() {
+            Some(&m) if refined.contains(&m) => vec![m],
+            _ => solved_tooth(&refined).into_iter().collect(),
+        }
+    } else {
+        refined.clone()
+    };
+    let r = st.response_teeth as i32;
+    let config = StiffnessConfig {
+        schema: STIFFNESS_SCHEMA,
+        member: member.name().into(),
+        blank: blank.name().into(),
+        level: level.name().into(),
+        loaded_flank: side.flank_name(member).into(),
+        grid,
+        load_radius_m: st.load_radius_factor * sf.max(sp),
+        offsets: (-r..=r).collect(),
+        solved_teeth,
+        axisymmetric,
+        youngs_modulus_pa: md.youngs_modulus,
+        poisson_ratio: md.poisson_ratio,
+        clamped_groups: vec!["bore".into()],
+        local_model: String::new(),
+        mesh_inputs_hash: String::new(),
+        mesh_file_sha256: String::new(),
+    };
+    Ok(StiffnessPlan {
+        path: paths::stiffness_h5(dir, &stem),
+        mesh_stem: paths::mesh_stem(member, blank, level),
+        stem,
+        grid: fg,
+        config,
+    })
+}
+
+/// Why a stiffness file cannot serve a scene.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckError {
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+    #[error(transparent)]
+    Manifest(#[from] ManifestError),
+    #[error("{}: cannot read the design file: {message}", .path.display())]
+    Design { path: PathBuf, message: String },
+    #[error("{stem}: the mesh was made from other scene inputs ({}); run `preprocess mesh` and `preprocess stiffness`", .fields.join("; "))]
+    StaleMesh { stem: String, fields: Vec<String> },
+    #[error("{stem}: no stiffness file in the manifest; run `preprocess stiffness`")]
+    NoStiffness { stem: String },
+    #[error("{stem}: the stiffness file was made for other inputs ({}); run `preprocess stiffness`", .fields.join("; "))]
+    StaleStiffness { stem: String, fields: Vec<String> },
+    #[error(transparent)]
+    File(#[from] StiffnessFileError),
+}
+
+/// Reads the stiffness file `plan` names and checks that it serves the scene:
+/// the folder's manifest says its mesh was made from the scene's current
+/// inputs (`design_text` is the design file's text) and lists this file;
+/// the file's config equals the plan's (completed with the mesh's hashes
+/// from the manifest and the file's own local model), and its hash is the
+/// manifest's. Every mismatch is named by field.
+pub fn check(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    plan: &StiffnessPlan,
+    member: Member,
+    blank: Blank,
+    level: MeshLevel,
+) -> Result<StiffnessData, CheckError> {
+    let design_text =
+        std::fs::read_to_string(&scene.design_path).map_err(|e| CheckError::Design {
+            path: scene.design_path.clone(),
+            message: e.to_string(),
+        })?;
+    let manifest = Manifest::read(dir)?;
+    let mesh = manifest.mesh(dir, &plan.mesh_stem)?;
+    let elements = scene.scene.mesh.elements(level);
+    let wanted = MeshInputs::of_scene(scene, g, &design_text, member, blank, elements);
+    let fields = mesh.inputs.differences(&wanted);
+    if !fields.is_empty() {
+        return Err(CheckError::StaleMesh {
+            stem: plan.mesh_stem.clone(),
+            fields,
+        });
+    }
+    let entry = mesh
+        .stiffness
+        .get(&plan.stem)
+        .ok_or_else(|| CheckError::NoStiffness {
+            stem: plan.stem.clone(),
+        })?;
+    let data = stiffness_file::read(&plan.path, Some(&entry.input_hash))?;
+    let found: StiffnessConfig =
+        serde_json::from_str(&data.config).map_err(|e| CheckError::StaleStiffness {
+            stem: plan.stem.clone(),
+            fields: vec![format!("config unreadable: {e}")],
+        })?;
+    let expected = StiffnessConfig {
+        local_model: found.local_model.clone(),
+        mesh_inputs_hash: mesh.inputs_hash.clone(),
+        mesh_file_sha256: mesh.msh_sha256.clone(),
+        ..plan.config.clone()
+    };
+    let fields = field_differences(&found, &expected, "in the file", "for the scene");
+    if !fields.is_empty() {
+        return Err(CheckError::StaleStiffness {
+            stem: plan.stem.clone(),
+            fields,
+        });
+    }
+    Ok(data)
+}

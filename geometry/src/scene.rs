@@ -1,0 +1,625 @@
+//! Scene files: what one run needs. Every stage reads the same scene.
+
+use crate::design::{load_pair, PairData};
+use crate::error::InputError;
+use crate::generation::Side;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+pub use crate::gear_body::Blank;
+
+/// Top level of a scene file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Name used in output paths.
+    pub name: String,
+    /// Design file, relative to the scene file.
+    pub design: PathBuf,
+    /// Loaded flank side: "drive" (pinion concave) or "coast".
+    pub loaded_flank: Side,
+    /// Blank variants per member; every listed combination is analysed.
+    pub blanks: Blanks,
+    /// Pinion torques, N·m.
+    pub pinion_torque_nm: Vec<f64>,
+    pub rotation: Rotation,
+    pub mesh: MeshLevels,
+    pub utca: UtcaSettings,
+    pub analyses: Analyses,
+    /// Blank dimensions; missing values get defaults from the design.
+    #[serde(default)]
+    pub blank_dimensions: crate::gear_body::BlankDimensionsMm,
+    /// FE influence fields (stiffness files); defaults when absent.
+    #[serde(default)]
+    pub stiffness: StiffnessSettings,
+    /// Loaded TCA with the reduced model; defaults when absent.
+    #[serde(default)]
+    pub ltca: LtcaSettings,
+    /// Multibody runs (quasi-static and run-up); defaults when absent.
+    #[serde(default)]
+    pub multibody: MultibodySettings,
+}
+
+/// Settings of the multibody runs (`solver dynamic`): rigid pinion and
+/// wheel on revolute joints, coupled by the contact element.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct MultibodySettings {
+    /// Quasi-static run: imposed wheel speed (rpm) with each scene torque on
+    /// the pinion, over the LTCA's rotation range; largest step (s).
+    pub quasi_static_wheel_rpm: f64,
+    pub quasi_static_max_step_s: f64,
+    /// Run-up: pinion speed ramp (rpm) over `runup_time_s` with
+    /// `runup_pinion_torque_nm` resisted at the wheel; largest step (s); the
+    /// wheel blanks run up (each needs stiffness data of every wheel tooth
+    /// the run-up turns through).
+    pub runup_rpm: [f64; 2],
+    pub runup_time_s: f64,
+    pub runup_pinion_torque_nm: f64,
+    pub runup_max_step_s: f64,
+    pub runup_wheel_blanks: Vec<Blank>,
+    /// Damping ratio of the torsional mesh mode (viscous, on the wheel lag).
+    pub damping_ratio: f64,
+    /// Spectral radius at infinity of the generalized-α scheme, in [0, 1].
+    pub rho_inf: f64,
+    /// Local error tolerance of the step control on the TE, µrad.
+    pub te_tolerance_urad: f64,
+    /// Contact-element table: pinion rotation step (deg), lag nodes, and the
+    /// largest pinion torque covered as a multiple of the largest scene torque.
+    pub table_step_deg: f64,
+    pub table_lag_nodes: usize,
+    pub table_torque_factor: f64,
+    /// Polar moments of inertia, kg·m²; computed from the body meshes when absent.
+    pub pinion_inertia_kgm2: Option<f64>,
+    pub wheel_inertia_kgm2: Option<f64>,
+    /// Coast-flank contact in the multibody element: the coast flanks of the
+    /// teeth that can touch are refined in the meshes too and get their own
+    /// stiffness files, and the element carries both flank pairs with the
+    /// backlash between them (tooth separation, coast-side impacts, rattle);
+    /// `solver ltca` also runs the scene's loads on the coast flanks. With a
+    /// lightweight wheel, every wheel tooth whose coast flank the runs meet
+    /// is solved (the rattle run's rotation included).
+    pub coast_contact: bool,
+    /// Rattle run (needs `coast_contact`): the pinion turns at
+    /// `rattle_pinion_rpm` with a speed fluctuation of relative amplitude
+    /// `rattle_speed_fluctuation` at `rattle_frequency_hz`; the wheel is
+    /// free, braked only by `rattle_wheel_drag_nm`; for `rattle_time_s` (0:
+    /// no rattle run) with steps up to `rattle_max_step_s`.
+    pub rattle_pinion_rpm: f64,
+    pub rattle_speed_fluctuation: f64,
+    pub rattle_frequency_hz: f64,
+    pub rattle_wheel_drag_nm: f64,
+    pub rattle_time_s: f64,
+    pub rattle_max_step_s: f64,
+}
+
+impl Default for MultibodySettings {
+    fn default() -> Self {
+        MultibodySettings {
+            quasi_static_wheel_rpm: 10.0,
+            quasi_static_max_step_s: 1e-3,
+            runup_rpm: [0.0, 1000.0],
+            runup_time_s: 0.15,
+            runup_pinion_torque_nm: 300.0,
+            runup_max_step_s: 1e-5,
+            runup_wheel_blanks: vec![Blank::Standard],
+            damping_ratio: 0.05,
+            rho_inf: 0.9,
+            te_tolerance_urad: 1e-3,
+            table_step_deg: 0.125,
+            table_lag_nodes: 96,
+            table_torque_factor: 2.0,
+            pinion_inertia_kgm2: None,
+            wheel_inertia_kgm2: None,
+            coast_contact: false,
+            rattle_pinion_rpm: 300.0,
+            rattle_speed_fluctuation: 0.05,
+            rattle_frequency_hz: 40.0,
+            rattle_wheel_drag_nm: 0.0,
+            rattle_time_s: 0.0,
+            rattle_max_step_s: 1e-5,
+        }
+    }
+}
+
+impl Scene {
+    /// Mesh cycles through which the scene's analyses turn a wheel blank:
+    /// the loaded sweep, or for a lightweight blank that runs up, the run-up
+    /// where it is longer (1 cycle margin). A standard blank's stiffness
+    /// repeats from tooth to tooth, so its run-up reuses the sweep's teeth.
+    pub fn contact_mesh_cycles(&self, wheel: Blank, mesh_cycle_rad: f64) -> f64 {
+        let sweep = self.rotation.mesh_cycles(wheel);
+        if wheel == Blank::Lightweight && self.analyses.multibody {
+            let mb = &self.multibody;
+            let mut cycles = sweep;
+            if mb.runup_wheel_blanks.contains(&wheel) {
+                cycles = cycles.max(mb.runup_rotation() / mesh_cycle_rad + 1.0);
+            }
+            if mb.coast_contact && mb.rattle_time_s > 0.0 {
+                cycles = cycles.max(mb.rattle_rotation() / mesh_cycle_rad + 1.0);
+            }
+            cycles
+        } else {
+            sweep
+        }
+    }
+}
+
+impl MultibodySettings {
+    /// Pinion rotation of the run-up, rad.
+    pub fn runup_rotation(&self) -> f64 {
+        let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
+        0.5 * (w(self.runup_rpm[0]) + w(self.runup_rpm[1])) * self.runup_time_s
+    }
+
+    /// Largest pinion rotation of the rattle run, rad: the mean speed with
+    /// the fluctuation's amplitude added throughout.
+    pub fn rattle_rotation(&self) -> f64 {
+        self.rattle_pinion_rpm * std::f64::consts::PI / 30.0
+            * (1.0 + self.rattle_speed_fluctuation.abs())
+            * self.rattle_time_s
+    }
+}
+
+/// Settings of the loaded TCA (the contact element).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct LtcaSettings {
+    /// Slices across the face width per tooth pair.
+    pub slices: usize,
+    /// Coulomb friction coefficient μ between the flanks, in the loaded TCA
+    /// and the multibody element (0: frictionless, as in the white paper).
+    pub friction_coefficient: f64,
+}
+
+impl Default for LtcaSettings {
+    fn default() -> Self {
+        LtcaSettings {
+            slices: 30,
+            friction_coefficient: 0.0,
+        }
+    }
+}
+
+/// Settings of the FE influence fields written to the stiffness files.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct StiffnessSettings {
+    /// Contact grid points along the profile × face width of each loaded
+    /// flank; 0 means "the reduced-order mesh level".
+    pub grid_profile: usize,
+    pub grid_face: usize,
+    /// Radius of the distributed unit load, as a fraction of the largest grid spacing.
+    pub load_radius_factor: f64,
+    /// Responding teeth on each side of the loaded one.
+    pub response_teeth: usize,
+    /// Right-hand sides per sequential solve block (two blocks run in parallel).
+    pub solve_block: usize,
+}
+
+impl Default for StiffnessSettings {
+    fn default() -> Self {
+        StiffnessSettings {
+            grid_profile: 0,
+            grid_face: 0,
+            load_radius_factor: 0.75,
+            response_teeth: 2,
+            solve_block: 16,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Blanks {
+    pub pinion: Vec<Blank>,
+    pub wheel: Vec<Blank>,
+}
+
+/// Rotation range of the loaded analyses.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rotation {
+    /// Mesh cycles for a standard wheel blank.
+    pub mesh_cycles_standard: f64,
+    /// Mesh cycles for a lightweight wheel blank.
+    pub mesh_cycles_lightweight: f64,
+    /// Pinion rotation step, degrees.
+    pub step_deg: f64,
+}
+
+impl Rotation {
+    /// Mesh cycles of the loaded sweep for a wheel blank.
+    pub fn mesh_cycles(&self, wheel: Blank) -> f64 {
+        match wheel {
+            Blank::Standard => self.mesh_cycles_standard,
+            Blank::Lightweight => self.mesh_cycles_lightweight,
+        }
+    }
+}
+
+/// Elements along the active profile × along the face width of a loaded flank.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FlankElements {
+    pub profile: u32,
+    pub face: u32,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshLevels {
+    pub reduced_order: FlankElements,
+    pub reference: FlankElements,
+    /// The level between them for mesh-convergence studies; default: the
+    /// geometric mean of the two, per direction (the same refinement ratio
+    /// from reduced to medium as from medium to reference).
+    #[serde(default)]
+    pub medium: Option<FlankElements>,
+}
+
+impl MeshLevels {
+    /// Elements per flank at `level`.
+    pub fn elements(&self, level: MeshLevel) -> FlankElements {
+        match level {
+            MeshLevel::Reduced => self.reduced_order,
+            MeshLevel::Medium => self.medium(),
+            MeshLevel::Reference => self.reference,
+        }
+    }
+
+    /// The medium level, given or the geometric mean.
+    pub fn medium(&self) -> FlankElements {
+        self.medium.unwrap_or_else(|| {
+            let g = |a: u32, b: u32| ((a as f64 * b as f64).sqrt().round() as u32).max(1);
+            FlankElements {
+                profile: g(self.reduced_order.profile, self.reference.profile),
+                face: g(self.reduced_order.face, self.reference.face),
+            }
+        })
+    }
+}
+
+/// A mesh density of the scene (`[mesh]` table).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MeshLevel {
+    /// The reduced model's meshes (`[mesh] reduced_order`).
+    Reduced,
+    /// Between reduced and reference (mesh-convergence studies).
+    Medium,
+    /// The fine reference (`[mesh] reference`).
+    Reference,
+}
+
+impl MeshLevel {
+    /// Finest first: the order in which the report looks for a reference.
+    pub const FINEST_FIRST: [MeshLevel; 3] =
+        [MeshLevel::Reference, MeshLevel::Medium, MeshLevel::Reduced];
+
+    /// The level's name in file names and summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshLevel::Reduced => "reduced",
+            MeshLevel::Medium => "medium",
+            MeshLevel::Reference => "reference",
+        }
+    }
+
+    /// The level of a name ([`MeshLevel::name`]); `None` for any other text.
+    pub fn from_name(name: &str) -> Option<MeshLevel> {
+        Self::FINEST_FIRST.into_iter().find(|l| l.name() == name)
+    }
+}
+
+/// Unloaded TCA settings.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UtcaSettings {
+    /// Pinion rotation step, degrees.
+    pub step_deg: f64,
+    /// Mesh cycles swept.
+    pub mesh_cycles: f64,
+    /// Samples across the face width along each contact line.
+    pub face_samples: usize,
+    /// Profile nodes of the tabulated surface of roll angles.
+    pub profile_samples: usize,
+    /// Separation that marks the contact pattern (marking compound), µm.
+    pub marking_compound_um: f64,
+    /// Flank grid written for meshing: points along profile × face.
+    pub flank_grid_profile: usize,
+    pub flank_grid_face: usize,
+}
+
+/// Which analyses the run performs.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Analyses {
+    pub utca: bool,
+    pub mesh: bool,
+    pub stiffness: bool,
+    pub ltca: bool,
+    pub multibody: bool,
+    pub reference: bool,
+}
+
+/// A scene with its design loaded and checked.
+#[derive(Debug, Clone)]
+pub struct LoadedScene {
+    pub path: PathBuf,
+    pub scene: Scene,
+    pub design_path: PathBuf,
+    pub pair: PairData,
+}
+
+impl Scene {
+    pub fn load(path: &Path) -> Result<LoadedScene, InputError> {
+        let text = std::fs::read_to_string(path).map_err(|e| InputError::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        let scene: Scene = toml::from_str(&text).map_err(|e| InputError::parse(path, &text, &e))?;
+        scene.check(path)?;
+        let design_path = path.parent().unwrap_or(Path::new(".")).join(&scene.design);
+        let pair = load_pair(&design_path)?;
+        Ok(LoadedScene {
+            path: path.to_path_buf(),
+            scene,
+            design_path,
+            pair,
+        })
+    }
+
+    fn check(&self, path: &Path) -> Result<(), InputError> {
+        let fail = |field: &str, value: String, limit: &str| InputError::Invalid {
+            path: path.to_path_buf(),
+            field: field.into(),
+            value,
+            limit: limit.into(),
+        };
+        let r = &self.rotation;
+        for (f, v) in [
+            ("rotation.mesh_cycles_standard", r.mesh_cycles_standard),
+            (
+                "rotation.mesh_cycles_lightweight",
+                r.mesh_cycles_lightweight,
+            ),
+            ("utca.mesh_cycles", self.utca.mesh_cycles),
+        ] {
+            if !(v > 0.0 && v <= 100.0) {
+                return Err(fail(f, v.to_string(), "must lie in (0, 100]"));
+            }
+        }
+        for (f, v) in [
+            ("rotation.step_deg", r.step_deg),
+            ("utca.step_deg", self.utca.step_deg),
+        ] {
+            if !(v > 0.0 && v <= 5.0) {
+                return Err(fail(f, v.to_string(), "must lie in (0, 5]"));
+            }
+        }
+        for (f, v) in [
+            ("utca.face_samples", self.utca.face_samples),
+            ("utca.profile_samples", self.utca.profile_samples),
+            ("utca.flank_grid_profile", self.utca.flank_grid_profile),
+            ("utca.flank_grid_face", self.utca.flank_grid_face),
+        ] {
+            if !(5..=1000).contains(&v) {
+                return Err(fail(f, v.to_string(), "must lie in [5, 1000]"));
+            }
+        }
+        for (f, e) in [
+            ("mesh.reduced_order", self.mesh.reduced_order),
+            ("mesh.reference", self.mesh.reference),
+            ("mesh.medium", self.mesh.medium()),
+        ] {
+            for (k, v) in [("profile", e.profile), ("face", e.face)] {
+                if !(1..=500).contains(&v) {
+                    return Err(fail(
+                        &format!("{f}.{k}"),
+                        v.to_string(),
+                        "must lie in [1, 500]",
+                    ));
+                }
+            }
+        }
+        if !(self.utca.marking_compound_um > 0.0 && self.utca.marking_compound_um < 100.0) {
+            return Err(fail(
+                "utca.marking_compound_um",
+                self.utca.marking_compound_um.to_string(),
+                "must lie in (0, 100)",
+            ));
+        }
+        for (i, t) in self.pinion_torque_nm.iter().enumerate() {
+            if !(t.is_finite() && *t >= 0.0) {
+                return Err(fail(
+                    &format!("pinion_torque_nm[{i}]"),
+                    t.to_string(),
+                    "must be >= 0",
+                ));
+            }
+        }
+        let st = &self.stiffness;
+        for (f, v) in [
+            ("stiffness.grid_profile", st.grid_profile),
+            ("stiffness.grid_face", st.grid_face),
+        ] {
+            if v != 0 && !(2..=200).contains(&v) {
+                return Err(fail(
+                    f,
+                    v.to_string(),
+                    "must be 0 (mesh level) or lie in [2, 200]",
+                ));
+            }
+        }
+        if !(st.load_radius_factor >= 0.25 && st.load_radius_factor <= 3.0) {
+            return Err(fail(
+                "stiffness.load_radius_factor",
+                st.load_radius_factor.to_string(),
+                "must lie in [0.25, 3]",
+            ));
+        }
+        if st.response_teeth > 5 {
+            return Err(fail(
+                "stiffness.response_teeth",
+                st.response_teeth.to_string(),
+                "must be <= 5",
+            ));
+        }
+        if !(1..=256).contains(&st.solve_block) {
+            return Err(fail(
+                "stiffness.solve_block",
+                st.solve_block.to_string(),
+                "must lie in [1, 256]",
+            ));
+        }
+        let mu = self.ltca.friction_coefficient;
+        if !(0.0..=0.5).contains(&mu) {
+            return Err(fail(
+                "ltca.friction_coefficient",
+                mu.to_string(),
+                "must lie in [0, 0.5]",
+            ));
+        }
+        if !(4..=400).contains(&self.ltca.slices) {
+            return Err(fail(
+                "ltca.slices",
+                self.ltca.slices.to_string(),
+                "must lie in [4, 400]",
+            ));
+        }
+        let mb = &self.multibody;
+        for (f, v, lo, hi) in [
+            (
+                "multibody.quasi_static_wheel_rpm",
+                mb.quasi_static_wheel_rpm,
+                1e-3,
+                1e4,
+            ),
+            (
+                "multibody.quasi_static_max_step_s",
+                mb.quasi_static_max_step_s,
+                1e-8,
+                1.0,
+            ),
+            ("multibody.runup_time_s", mb.runup_time_s, 1e-4, 100.0),
+            (
+                "multibody.runup_pinion_torque_nm",
+                mb.runup_pinion_torque_nm,
+                0.0,
+                1e6,
+            ),
+            ("multibody.runup_max_step_s", mb.runup_max_step_s, 1e-8, 1.0),
+            ("multibody.damping_ratio", mb.damping_ratio, 0.0, 10.0),
+            ("multibody.rho_inf", mb.rho_inf, 0.0, 1.0),
+            (
+                "multibody.te_tolerance_urad",
+                mb.te_tolerance_urad,
+                1e-9,
+                100.0,
+            ),
+            ("multibody.table_step_deg", mb.table_step_deg, 1e-3, 2.0),
+            (
+                "multibody.table_torque_factor",
+                mb.table_torque_factor,
+                1.0,
+                100.0,
+            ),
+        ] {
+            if !(v >= lo && v <= hi) {
+                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
+            }
+        }
+        for (f, v) in [
+            ("multibody.runup_rpm[0]", mb.runup_rpm[0]),
+            ("multibody.runup_rpm[1]", mb.runup_rpm[1]),
+        ] {
+            if !(0.0..=1e5).contains(&v) {
+                return Err(fail(f, v.to_string(), "must lie in [0, 100000]"));
+            }
+        }
+        if !(8..=2000).contains(&mb.table_lag_nodes) {
+            return Err(fail(
+                "multibody.table_lag_nodes",
+                mb.table_lag_nodes.to_string(),
+                "must lie in [8, 2000]",
+            ));
+        }
+        for (f, v) in [
+            ("multibody.pinion_inertia_kgm2", mb.pinion_inertia_kgm2),
+            ("multibody.wheel_inertia_kgm2", mb.wheel_inertia_kgm2),
+        ] {
+            if let Some(j) = v {
+                if !(j > 0.0 && j.is_finite()) {
+                    return Err(fail(f, j.to_string(), "must be finite and > 0"));
+                }
+            }
+        }
+        for (f, v, lo, hi) in [
+            (
+                "multibody.rattle_pinion_rpm",
+                mb.rattle_pinion_rpm,
+                0.0,
+                1e5,
+            ),
+            (
+                "multibody.rattle_speed_fluctuation",
+                mb.rattle_speed_fluctuation,
+                0.0,
+                1.0,
+            ),
+            (
+                "multibody.rattle_frequency_hz",
+                mb.rattle_frequency_hz,
+                0.0,
+                1e5,
+            ),
+            (
+                "multibody.rattle_wheel_drag_nm",
+                mb.rattle_wheel_drag_nm,
+                0.0,
+                1e4,
+            ),
+            ("multibody.rattle_time_s", mb.rattle_time_s, 0.0, 100.0),
+            (
+                "multibody.rattle_max_step_s",
+                mb.rattle_max_step_s,
+                1e-8,
+                1.0,
+            ),
+        ] {
+            if !(v >= lo && v <= hi) {
+                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
+            }
+        }
+        if mb.rattle_time_s > 0.0 && !mb.coast_contact {
+            return Err(fail(
+                "multibody.rattle_time_s",
+                mb.rattle_time_s.to_string(),
+                "must be 0 unless multibody.coast_contact = true (rattle needs both flanks)",
+            ));
+        }
+        if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {
+            return Err(fail(
+                "blanks",
+                "[]".into(),
+                "each member needs at least one blank",
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl Default for UtcaSettings {
+    fn default() -> Self {
+        UtcaSettings {
+            step_deg: 0.1,
+            mesh_cycles: 2.0,
+            face_samples: 41,
+            profile_samples: 41,
+            marking_compound_um: 6.3,
+            flank_grid_profile: 36,
+            flank_grid_face: 76,
+        }
+    }
+}
