@@ -7,6 +7,7 @@
 //! - [`stiffness_file`]: the HDF5 stiffness files (schema, config, input hash);
 //! - [`stiffness_plan`]: what a scene asks of a stiffness file, and the
 //!   readers' check of a file against it;
+//! - [`summaries`]: the solver's stage summaries, shared by writer and readers;
 //! - [`output`]: the one atomic write (temporary file + rename) every stage uses.
 
 pub mod manifest;
@@ -14,3 +15,4 @@ pub mod output;
 pub mod paths;
 pub mod stiffness_file;
 pub mod stiffness_plan;
+pub mod summaries;

@@ -84,7 +84,7 @@ pub struct MeshEntry {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshInputs {
-    /// SHA-256 of the design file's text.
+    /// SHA-256 of the design file's geometry text ([`geometry::design::geometry_text`]).
     pub design_sha256: String,
     /// The resolved blank dimensions (SI), as the mesh stage hashes them.
     pub blank_dimensions: serde_json::Value,
@@ -130,7 +130,7 @@ pub fn sha256_text(text: &str) -> String {
 
 impl MeshInputs {
     /// What a body mesh of `member` × `blank` at `elements` per flank needs
-    /// from `scene` (design text `design_text`).
+    /// from `scene` (`design_text`: the design file's geometry text).
     pub fn of_scene(
         scene: &LoadedScene,
         g: &PairGeometry,

@@ -26,7 +26,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| write_err(dir, e))?;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| write_err(path, format!("cannot create {}: {e}", dir.display())))?;
     let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| write_err(path, e))?;
     tmp.write_all(bytes).map_err(|e| write_err(path, e))?;
     tmp.as_file().sync_all().map_err(|e| write_err(path, e))?;

@@ -129,7 +129,7 @@ pub enum CheckError {
 
 /// Reads the stiffness file `plan` names and checks that it serves the scene:
 /// the folder's manifest says its mesh was made from the scene's current
-/// inputs (`design_text` is the design file's text) and lists this file;
+/// inputs and lists this file;
 /// the file's config equals the plan's (completed with the mesh's hashes
 /// from the manifest and the file's own local model), and its hash is the
 /// manifest's. Every mismatch is named by field.
@@ -142,8 +142,9 @@ pub fn check(
     blank: Blank,
     level: MeshLevel,
 ) -> Result<StiffnessData, CheckError> {
-    let design_text =
-        std::fs::read_to_string(&scene.design_path).map_err(|e| CheckError::Design {
+    let design_text = std::fs::read_to_string(&scene.design_path)
+        .map(|t| geometry::design::geometry_text(&t))
+        .map_err(|e| CheckError::Design {
             path: scene.design_path.clone(),
             message: e.to_string(),
         })?;

@@ -36,6 +36,49 @@ pub struct DesignFile {
     pub cutter: CutterDesign,
     #[serde(default)]
     pub ease_off: EaseOffDesign,
+    /// Published results this pair is compared with. Not part of the
+    /// geometry: [`geometry_text`] leaves this table out of what the meshes
+    /// and stiffness files are hashed from.
+    #[serde(default)]
+    pub published: PublishedDesign,
+}
+
+/// Files of published results for this pair (TOML, paths relative to the
+/// design file), for the report's comparison.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PublishedDesign {
+    /// Loaded TE per blank and load (mean and peak-to-peak, multibody and
+    /// NLFEA), e.g. the white paper's Tables 3–4.
+    #[serde(default)]
+    pub loaded_te: Option<PathBuf>,
+    /// Run time per step or position, e.g. the white paper's Table 5.
+    #[serde(default)]
+    pub cpu: Option<PathBuf>,
+}
+
+/// The design file's text without its `[published]` table: what the pair's
+/// geometry and material are read from (the hash of the meshes' inputs).
+/// The table and the blank lines before it are cut up to the next table
+/// header or the end, so adding it leaves the hash of a file unchanged.
+pub fn geometry_text(text: &str) -> String {
+    let lines: Vec<&str> = text.split_inclusive('\n').collect();
+    let Some(start) = lines.iter().position(|l| l.trim() == "[published]") else {
+        return text.to_string();
+    };
+    let end = (start + 1..lines.len())
+        .find(|&i| lines[i].trim_start().starts_with('['))
+        .unwrap_or(lines.len());
+    let mut keep = start;
+    while keep > 0 && lines[keep - 1].trim().is_empty() {
+        keep -= 1;
+    }
+    let mut out: String = lines[..keep].concat();
+    if end < lines.len() {
+        out.push('\n');
+        out.push_str(&lines[end..].concat());
+    }
+    out
 }
 
 /// Data common to both members.
@@ -158,6 +201,8 @@ pub struct PairData {
     pub cutter_radius: f64,
     pub edge_radius: f64,
     pub ease_off: EaseOffDesign,
+    /// Published results, paths resolved against the design file's folder.
+    pub published: PublishedDesign,
 }
 
 /// One member, SI.
@@ -280,6 +325,13 @@ impl DesignFile {
             cutter_radius: mm(self.cutter.radius_mm),
             edge_radius: mm(self.cutter.edge_radius_mm),
             ease_off: self.ease_off.clone(),
+            published: {
+                let dir = path.parent().unwrap_or(Path::new("."));
+                PublishedDesign {
+                    loaded_te: self.published.loaded_te.as_ref().map(|f| dir.join(f)),
+                    cpu: self.published.cpu.as_ref().map(|f| dir.join(f)),
+                }
+            },
         };
         check_derived(&pair, path)?;
         Ok(pair)

@@ -331,16 +331,37 @@ pub struct UtcaSettings {
     pub flank_grid_face: usize,
 }
 
-/// Which analyses the run performs.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// Which analyses the run performs. Every stage asks these before it
+/// computes anything: meshes and stiffness files are made only when an
+/// analysis needs them ([`Analyses::needs_mesh`], [`Analyses::needs_stiffness`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Analyses {
+    /// Flank grids, unloaded TCA and their plots (`preprocess flanks`).
     pub utca: bool,
-    pub mesh: bool,
-    pub stiffness: bool,
+    /// Quasi-static loaded TCA of the reduced model (`solver ltca`).
     pub ltca: bool,
+    /// Multibody runs: 10 rpm, run-up, rattle (`solver dynamic`).
     pub multibody: bool,
+    /// The FE reference in penalty contact and its studies (`validate reference`, `validate tradeoff`).
     pub reference: bool,
+}
+
+impl Analyses {
+    /// Whether an analysis needs body meshes of `level`: the reduced level
+    /// for the reduced model's stiffness files and the reduced-level
+    /// reference; finer levels for the reference only.
+    pub fn needs_mesh(&self, level: MeshLevel) -> bool {
+        match level {
+            MeshLevel::Reduced => self.needs_stiffness() || self.reference,
+            MeshLevel::Medium | MeshLevel::Reference => self.reference,
+        }
+    }
+
+    /// Whether an analysis needs the reduced model's stiffness files.
+    pub fn needs_stiffness(&self) -> bool {
+        self.ltca || self.multibody
+    }
 }
 
 /// A scene with its design loaded and checked.

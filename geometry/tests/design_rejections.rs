@@ -195,3 +195,22 @@ fn missing_design_file_names_the_path() {
         "{msg}"
     );
 }
+
+/// The `[published]` table names files of results, not geometry: cutting it
+/// gives back the design text it was appended to, byte for byte, and a
+/// table after it is kept.
+#[test]
+fn published_table_is_not_part_of_the_geometry_text() {
+    let base = "name = \"x\"\n\n[pair]\na = 1\n";
+    let with = format!("{base}\n[published]\n# note\nloaded_te = \"t.toml\"\n");
+    assert_eq!(geometry::design::geometry_text(&with), base);
+    let middle = "name = \"x\"\n\n[published]\ncpu = \"c.toml\"\n\n[pair]\na = 1\n";
+    assert_eq!(
+        geometry::design::geometry_text(middle),
+        "name = \"x\"\n\n[pair]\na = 1\n"
+    );
+    assert_eq!(geometry::design::geometry_text(base), base);
+    let wp = std::fs::read_to_string(common::reference("white_paper_20x43.toml")).unwrap();
+    assert!(wp.contains("[published]"));
+    assert!(!geometry::design::geometry_text(&wp).contains("published/"));
+}

@@ -34,6 +34,8 @@ pub struct FlankInput {
     pub pair: PairData,
     pub side: Side,
     pub utca: UtcaSettings,
+    /// Whether the scene asks for the UTCA (`[analyses] utca`; a design file alone does).
+    pub wanted: bool,
 }
 
 /// Reads a scene file (it has a `design` key) or a design file (drive side, default settings).
@@ -53,6 +55,7 @@ pub fn load_input(path: &Path) -> Result<FlankInput, InputError> {
             pair: s.pair,
             side: s.scene.loaded_flank,
             utca: s.scene.utca,
+            wanted: s.scene.analyses.utca,
         })
     } else {
         let pair = load_pair(path)?;
@@ -62,6 +65,7 @@ pub fn load_input(path: &Path) -> Result<FlankInput, InputError> {
             pair,
             side: Side::Drive,
             utca: UtcaSettings::default(),
+            wanted: true,
         })
     }
 }
@@ -231,6 +235,16 @@ pub struct Timing {
     pub utca: f64,
     pub ellipses: f64,
     pub plots: f64,
+}
+
+/// Runs the stage when the input asks for the UTCA ([`FlankInput::wanted`]);
+/// `Ok(None)` and nothing written otherwise.
+pub fn run(input: &FlankInput, out: &Path) -> Result<Option<FlankSummary>, FlankStageError> {
+    if !input.wanted {
+        eprintln!("scene {}: `[analyses] utca = false`; skipped", input.name);
+        return Ok(None);
+    }
+    run_stage(input, out).map(Some)
 }
 
 /// Runs the stage and writes `flanks.json`, `utca.json`, `summary.json` and SVG plots into `out`.

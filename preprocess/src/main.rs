@@ -54,8 +54,11 @@ fn main() -> anyhow::Result<()> {
     match cli.cmd {
         Cmd::Flanks { input, out } => {
             let inp = preprocess::flank_stage::load_input(&input)?;
-            let s = preprocess::flank_stage::run_stage(&inp, &out)
-                .with_context(|| format!("preprocess flanks {}", input.display()))?;
+            let Some(s) = preprocess::flank_stage::run(&inp, &out)
+                .with_context(|| format!("preprocess flanks {}", input.display()))?
+            else {
+                return Ok(());
+            };
             println!(
                 "{}: {} flank, mesh cycle {:.3} deg, contact ratio {:.3}, unloaded TE {:.2} urad peak-to-peak (mean {:.2}), {} positions at {:.3} ms each",
                 s.name,

@@ -103,7 +103,19 @@ pub fn run(
         Level::Medium => vec![MeshLevel::Medium],
         Level::Both => vec![MeshLevel::Reduced, MeshLevel::Reference],
     };
-    let design_text = std::fs::read_to_string(&scene.design_path)?;
+    // Only the levels an analysis of the scene needs (`[analyses]`).
+    let (levels, unasked): (Vec<MeshLevel>, Vec<MeshLevel>) =
+        levels.into_iter().partition(|&l| sc.analyses.needs_mesh(l));
+    for l in unasked {
+        eprintln!(
+            "scene {}: no analysis needs {} meshes; skipped",
+            sc.name,
+            l.name()
+        );
+    }
+    // The geometry's text: a `[published]` table does not change a mesh.
+    let design_text =
+        geometry::design::geometry_text(&std::fs::read_to_string(&scene.design_path)?);
     let mut reports = Vec::new();
     for member in [Member::Pinion, Member::Wheel] {
         let blanks = match member {

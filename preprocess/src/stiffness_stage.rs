@@ -55,6 +55,13 @@ pub fn run_level(
     root: &Path,
     level: Level,
 ) -> anyhow::Result<Vec<StiffnessReport>> {
+    if !scene.scene.analyses.needs_stiffness() {
+        eprintln!(
+            "scene {}: neither ltca nor multibody asked, no stiffness files; skipped",
+            scene.scene.name
+        );
+        return Ok(Vec::new());
+    }
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dir = root.join(&sc.name);

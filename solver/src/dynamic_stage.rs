@@ -30,88 +30,11 @@ use geometry::design::Member;
 use geometry::pair::{pinion_direction, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
-use serde::Serialize;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
-/// One quasi-static run.
-#[derive(Debug, Clone, Serialize)]
-pub struct QuasiStaticSummary {
-    pub torque_nm: f64,
-    /// TE sampled at the LTCA's positions.
-    pub te_mean_urad: f64,
-    pub te_ptp_urad: f64,
-    pub steps: usize,
-    pub rejected_steps: usize,
-    pub cpu_s: f64,
-    pub cpu_s_per_step: f64,
-}
-
-/// The run-up.
-#[derive(Debug, Clone, Serialize)]
-pub struct RunupSummary {
-    pub pinion_torque_nm: f64,
-    pub rpm: [f64; 2],
-    pub sim_time_s: f64,
-    pub max_step_s: f64,
-    pub steps: usize,
-    pub rejected_steps: usize,
-    pub cpu_s: f64,
-    pub cpu_s_per_step: f64,
-    /// Dynamic minus quasi-static TE: extremes over the run, µrad.
-    pub te_dynamic_minus_static_urad: [f64; 2],
-}
-
-/// Summary of one pinion × wheel blank.
-#[derive(Debug, Clone, Serialize)]
-pub struct DynamicSummary {
-    pub pinion_blank: Blank,
-    pub wheel_blank: Blank,
-    pub inertia_kgm2: [f64; 2],
-    /// "scene" or "mesh" (∫ρr² dV over the body mesh).
-    pub inertia_source: String,
-    pub damping_nm_s_per_rad: f64,
-    /// Coulomb friction coefficient of the flanks.
-    pub friction_coefficient: f64,
-    pub table_positions: usize,
-    pub table_lag_nodes: usize,
-    pub table_build_s: f64,
-    pub table_cpu_s_per_position: f64,
-    pub quasi_static: Vec<QuasiStaticSummary>,
-    pub runup: Option<RunupSummary>,
-    /// With coast-side contact: the conjugate flanks' angular backlash at
-    /// the wheel and the free play between drive and coast contact over a
-    /// mesh cycle (min, max), µrad, and the rattle run.
-    pub backlash_urad: Option<f64>,
-    pub free_play_urad: Option<[f64; 2]>,
-    pub rattle: Option<RattleSummary>,
-    pub dir: PathBuf,
-}
-
-/// The rattle run: fluctuating pinion speed, free wheel.
-#[derive(Debug, Clone, Serialize)]
-pub struct RattleSummary {
-    pub pinion_rpm: f64,
-    pub speed_fluctuation: f64,
-    pub frequency_hz: f64,
-    pub wheel_drag_nm: f64,
-    pub sim_time_s: f64,
-    pub steps: usize,
-    pub rejected_steps: usize,
-    pub cpu_s: f64,
-    pub cpu_s_per_step: f64,
-    /// Contacts begun on the drive and on the coast flanks.
-    pub drive_impacts: usize,
-    pub coast_impacts: usize,
-    /// Share of the time in drive contact, coast contact and free flight.
-    pub time_share_drive_coast_free: [f64; 3],
-    /// Extremes of the pinion mesh torque, N·m (negative: coast side).
-    pub mesh_torque_min_max_nm: [f64; 2],
-    /// Extremes of the wheel lag, µrad, and of the wheel speed, rpm.
-    pub te_min_max_urad: [f64; 2],
-    pub wheel_rpm_min_max: [f64; 2],
-}
+pub use formats::summaries::{DynamicSummary, QuasiStaticSummary, RattleSummary, RunupSummary};
 
 struct Trace {
     t: Vec<f64>,
@@ -217,6 +140,13 @@ pub fn inertia(
 
 /// Runs the multibody analyses of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<DynamicSummary>> {
+    if !scene.scene.analyses.multibody {
+        eprintln!(
+            "scene {}: `[analyses] multibody = false`, no multibody runs; skipped",
+            scene.scene.name
+        );
+        return Ok(Vec::new());
+    }
     let sc = &scene.scene;
     let mb = &sc.multibody;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;

@@ -16,70 +16,11 @@ use geometry::generation::Side;
 use geometry::pair::{pinion_direction, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
-use serde::Serialize;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
-/// Per-torque summary.
-#[derive(Debug, Clone, Serialize)]
-pub struct LoadSummary {
-    pub torque_nm: f64,
-    pub te_mean_urad: f64,
-    pub te_ptp_urad: f64,
-    /// Geometry + compliance + contact solve of one position at this torque, s.
-    pub cpu_s_per_position: f64,
-    /// Contact solve alone, s per position.
-    pub solve_s_per_position: f64,
-    pub max_pressure_mpa: f64,
-    pub mesh_stiffness_mean_nm_per_rad: f64,
-    /// Largest torque share of one tooth pair over the sweep.
-    pub max_pair_share: f64,
-    /// Mean torque driving the wheel, N·m; the mesh efficiency is this ·
-    /// z₁/z₂ / torque (one without friction, to the ease-off's departure
-    /// from conjugate levers).
-    pub wheel_torque_mean_nm: f64,
-}
-
-/// Summary of one pinion × wheel blank combination.
-#[derive(Debug, Clone, Serialize)]
-pub struct BlankSummary {
-    pub pinion_blank: Blank,
-    pub wheel_blank: Blank,
-    pub positions: usize,
-    pub step_deg: f64,
-    pub mesh_cycles: f64,
-    pub slices_per_pair: usize,
-    /// Coulomb friction coefficient of the flanks.
-    pub friction_coefficient: f64,
-    pub utca_te_mean_urad: f64,
-    pub utca_te_ptp_urad: f64,
-    pub stiffness_files: Vec<PathBuf>,
-    pub wall_s: f64,
-    pub loads: Vec<LoadSummary>,
-    pub dir: PathBuf,
-    /// With coast-side contact (`multibody.coast_contact`): the same loads
-    /// on the coast flanks.
-    pub coast: Option<CoastSummary>,
-}
-
-/// The coast flanks under the scene's loads: the pinion driving the other
-/// way over the same pinion angles (the sweep run backwards), each coast
-/// flank with its own body tooth's compliance. TEs are the coast side's
-/// lags (positive, as on the drive side); the drive side's lag at coast
-/// contact is −backlash − TE.
-#[derive(Debug, Clone, Serialize)]
-pub struct CoastSummary {
-    /// Angular backlash B of the conjugate flanks at the wheel, µrad.
-    pub backlash_urad: f64,
-    /// Body wheel tooth of the coast model's tooth k: k + this.
-    pub wheel_tooth_shift: i64,
-    pub utca_te_mean_urad: f64,
-    pub utca_te_ptp_urad: f64,
-    pub stiffness_files: Vec<PathBuf>,
-    pub loads: Vec<LoadSummary>,
-    pub dir: PathBuf,
-}
+pub use formats::summaries::{BlankSummary, CoastSummary, LoadSummary};
 
 /// The coast side's sweep over the pinion angles of the loaded side's
 /// `sweep`, backwards (in the coast side's driving direction).
@@ -171,6 +112,13 @@ pub fn scene_sweep(scene: &LoadedScene, g: &PairGeometry, wheel: Blank) -> Sweep
 
 /// Runs the LTCA of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<BlankSummary>> {
+    if !scene.scene.analyses.ltca {
+        eprintln!(
+            "scene {}: `[analyses] ltca = false`, no loaded TCA; skipped",
+            scene.scene.name
+        );
+        return Ok(Vec::new());
+    }
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;

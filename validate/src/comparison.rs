@@ -3,28 +3,11 @@
 //! the white paper's Tables 3–5, our way, from the stages' `summary.json`
 //! files, with the published values beside them.
 
+use formats::summaries::DynamicSummary;
+use geometry::design::PublishedDesign;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
-use std::path::Path;
-
-#[derive(Deserialize)]
-struct MbLoad {
-    torque_nm: f64,
-    te_mean_urad: f64,
-    te_ptp_urad: f64,
-    steps: usize,
-    cpu_s: f64,
-    cpu_s_per_step: f64,
-}
-
-#[derive(Deserialize)]
-struct MbBlank {
-    pinion_blank: String,
-    wheel_blank: String,
-    #[serde(default)]
-    friction_coefficient: f64,
-    quasi_static: Vec<MbLoad>,
-}
+use std::path::{Path, PathBuf};
 
 #[derive(Deserialize)]
 struct PubTe {
@@ -107,39 +90,74 @@ pub struct Comparison {
     pub markdown: String,
 }
 
-fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Option<T> {
-    serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
+/// A stage's output that exists but cannot be read as this build's type:
+/// written by another version, or a field renamed. The report fails rather
+/// than leaving a table out.
+#[derive(Debug, thiserror::Error)]
+pub enum ComparisonError {
+    #[error("{}: {message}; run the stage that writes it again", .path.display())]
+    Unreadable { path: PathBuf, message: String },
+    #[error(transparent)]
+    Published(#[from] crate::published::PublishedError),
+}
+
+/// Reads a stage's JSON output: `Ok(None)` when the file is not there (the
+/// stage has not run), an error when it is there and does not parse.
+pub fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<Option<T>, ComparisonError> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => {
+            return Err(ComparisonError::Unreadable {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            })
+        }
+    };
+    serde_json::from_str(&text)
+        .map(Some)
+        .map_err(|e| ComparisonError::Unreadable {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
 }
 
 /// Builds the comparison from `<out>/<scene>/{multibody,reference}/summary.json`;
-/// `published_dir` holds the white paper's tables (used when `white_paper`);
-/// `meshes` is the mesh root, to tell whether the convergence study was
-/// computed on today's meshes. None when either stage has not run.
+/// `published` names the design's published tables; `meshes` is the mesh
+/// root, to tell whether the convergence study was computed on today's
+/// meshes. `Ok(None)` when either stage has not run.
 pub fn compare(
     out: &Path,
     scene: &str,
-    published_dir: &Path,
-    white_paper: bool,
+    published: &PublishedDesign,
     meshes: &Path,
-) -> Option<Comparison> {
-    let mb: Vec<MbBlank> = read(&out.join(scene).join("multibody/summary.json"))?;
+) -> Result<Option<Comparison>, ComparisonError> {
+    let Some(mb) = read::<Vec<DynamicSummary>>(&out.join(scene).join("multibody/summary.json"))?
+    else {
+        return Ok(None);
+    };
     // Every blank combination's own summary (runs of different scenes or
     // strides may have written them), per mesh level.
-    let summaries = |level: &str| -> Vec<crate::reference_stage::BlankSummary> {
-        std::fs::read_dir(crate::reference_stage::reference_dir(out, scene, level))
-            .map(|d| {
-                d.filter_map(|e| e.ok())
-                    .filter_map(|e| read(&e.path().join("summary.json")))
-                    .collect()
-            })
-            .unwrap_or_default()
-    };
+    let summaries =
+        |level: &str| -> Result<Vec<crate::reference_stage::BlankSummary>, ComparisonError> {
+            let mut v = Vec::new();
+            if let Ok(d) =
+                std::fs::read_dir(crate::reference_stage::reference_dir(out, scene, level))
+            {
+                let mut dirs: Vec<PathBuf> = d.filter_map(|e| e.ok()).map(|e| e.path()).collect();
+                dirs.sort();
+                for p in dirs {
+                    v.extend(read(&p.join("summary.json"))?);
+                }
+            }
+            Ok(v)
+        };
     // The finest level of each blank combination judges the reduced model;
     // the reduced level's, when finer ones exist, is the second column.
-    let reduced_level = summaries("reduced");
+    let reduced_level = summaries("reduced")?;
     let mut rf: Vec<crate::reference_stage::BlankSummary> = Vec::new();
     for level in crate::reference_stage::LEVELS_FINEST_FIRST {
-        for r in summaries(level) {
+        for r in summaries(level)? {
             if !rf
                 .iter()
                 .any(|q| q.pinion_blank == r.pinion_blank && q.wheel_blank == r.wheel_blank)
@@ -151,31 +169,23 @@ pub fn compare(
     // Standard wheel first, as in the white paper's tables.
     rf.sort_by_key(|r| (r.pinion_blank.clone(), r.wheel_blank != "standard"));
     if rf.is_empty() {
-        return None;
+        return Ok(None);
     }
-    let pub_te: Option<PubTables> = white_paper
-        .then(|| {
-            toml::from_str(
-                &std::fs::read_to_string(published_dir.join("white_paper_tables3_4_te.toml"))
-                    .ok()?,
-            )
-            .ok()
-        })
-        .flatten();
-    let pub_cpu: Option<PubCpuTable> = white_paper
-        .then(|| {
-            toml::from_str(
-                &std::fs::read_to_string(published_dir.join("white_paper_table5_cpu.toml")).ok()?,
-            )
-            .ok()
-        })
-        .flatten();
+    let pub_te: Option<PubTables> = published
+        .loaded_te
+        .as_deref()
+        .map(crate::published::read_toml)
+        .transpose()?;
+    let pub_cpu: Option<PubCpuTable> = published
+        .cpu
+        .as_deref()
+        .map(crate::published::read_toml)
+        .transpose()?;
     let mut rows = Vec::new();
     for r in &rf {
-        let Some(m) = mb
-            .iter()
-            .find(|m| m.pinion_blank == r.pinion_blank && m.wheel_blank == r.wheel_blank)
-        else {
+        let Some(m) = mb.iter().find(|m| {
+            m.pinion_blank.name() == r.pinion_blank && m.wheel_blank.name() == r.wheel_blank
+        }) else {
             continue;
         };
         for l in &r.loads {
@@ -270,13 +280,14 @@ pub fn compare(
         }
     }
     let conv_path = out.join(scene).join("reference/convergence.json");
-    let conv = read::<crate::convergence::Convergence>(&conv_path);
+    // An unreadable study is reported below as written by an older version.
+    let conv = read::<crate::convergence::Convergence>(&conv_path).unwrap_or(None);
     let conv_current = conv
         .as_ref()
         .filter(|c| c.stale_levels(&meshes.join(scene)).is_empty());
     let mut markdown = markdown(&rows, &rf, conv_current);
     let line_load =
-        read::<crate::line_load::LineLoad>(&out.join(scene).join("reference/line_load.json"))
+        read::<crate::line_load::LineLoad>(&out.join(scene).join("reference/line_load.json"))?
             .filter(|l| l.current(&meshes.join(scene)));
     crate::differences::breakdown(&mut markdown, &rows, &rf, conv_current, line_load.as_ref());
     for r in &rf {
@@ -315,7 +326,7 @@ pub fn compare(
         }
     }
     let ll_path = out.join(scene).join("reference/line_load.json");
-    if let Some(l) = read::<crate::line_load::LineLoad>(&ll_path) {
+    if let Some(l) = read::<crate::line_load::LineLoad>(&ll_path)? {
         if l.current(&meshes.join(scene)) {
             l.markdown(&mut markdown);
         } else {
@@ -327,11 +338,11 @@ pub fn compare(
         }
     }
     if let Some(t) =
-        read::<Vec<crate::tradeoff::Point>>(&out.join(scene).join("reference/tradeoff.json"))
+        read::<Vec<crate::tradeoff::Point>>(&out.join(scene).join("reference/tradeoff.json"))?
     {
         tradeoff_markdown(&mut markdown, &t);
     }
-    Some(Comparison { rows, markdown })
+    Ok(Some(Comparison { rows, markdown }))
 }
 
 /// Linear interpolation of (x, y) (x increasing) at `at`; None outside.
@@ -590,5 +601,34 @@ mod tests {
         assert_eq!(interpolate(&x, &y, 3.0), Some(7.0));
         assert_eq!(interpolate(&x, &y, 3.5), None);
         assert_eq!(interpolate(&x, &y, -0.1), None);
+    }
+}
+
+#[cfg(test)]
+mod read_tests {
+    use super::*;
+
+    /// A summary that is there but does not parse as this build's type (a
+    /// field renamed by another version) is an error naming the file, not a
+    /// missing table.
+    #[test]
+    fn summary_with_a_renamed_field_is_an_error_not_a_missing_table() {
+        let dir = tempfile::tempdir().unwrap();
+        let mb = dir.path().join("s/multibody");
+        std::fs::create_dir_all(&mb).unwrap();
+        assert!(
+            compare(dir.path(), "s", &PublishedDesign::default(), dir.path())
+                .unwrap()
+                .is_none()
+        );
+        std::fs::write(
+            mb.join("summary.json"),
+            r#"[{"pinion_blank": "standard", "wheel_blank": "standard", "quasi_static_renamed": []}]"#,
+        )
+        .unwrap();
+        let err = compare(dir.path(), "s", &PublishedDesign::default(), dir.path())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("multibody/summary.json"), "{err}");
     }
 }

@@ -190,13 +190,17 @@ fn main() -> anyhow::Result<()> {
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
-            let published = validate::published::te_ptp_1nm(&input.design_path);
+            let published = validate::published::te_ptp_1nm(&input.pair.published)?;
             let sc = geometry::scene::Scene::load(&scene).ok();
-            let loaded = out.as_ref().zip(sc.as_ref()).and_then(|(o, sc)| {
-                let wp = input.design_path.file_stem()? == "white_paper_20x43";
-                let pub_dir = input.design_path.parent()?.join("published");
-                validate::comparison::compare(o, &sc.scene.name, &pub_dir, wp, &meshes)
-            });
+            let loaded = match (out.as_ref(), sc.as_ref()) {
+                (Some(o), Some(sc)) => validate::comparison::compare(
+                    o,
+                    &sc.scene.name,
+                    &input.pair.published,
+                    &meshes,
+                )?,
+                _ => None,
+            };
             let mut figures = Vec::new();
             if let (Some(o), Some(sc)) = (&out, &sc) {
                 std::fs::create_dir_all(&reports)?;

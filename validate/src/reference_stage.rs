@@ -251,6 +251,13 @@ pub fn run(
     out: &Path,
     opt: &StageOptions,
 ) -> anyhow::Result<Vec<BlankSummary>> {
+    if !scene.scene.analyses.reference {
+        eprintln!(
+            "scene {}: `[analyses] reference = false`, no reference FE; skipped",
+            scene.scene.name
+        );
+        return Ok(Vec::new());
+    }
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;

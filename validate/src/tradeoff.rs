@@ -56,6 +56,13 @@ pub fn run(
     out: &Path,
     slices: &[usize],
 ) -> anyhow::Result<Vec<Point>> {
+    if !scene.scene.analyses.reference {
+        eprintln!(
+            "scene {}: `[analyses] reference = false`, no trade-off study; skipped",
+            scene.scene.name
+        );
+        return Ok(Vec::new());
+    }
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;

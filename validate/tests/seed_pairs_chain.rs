@@ -65,6 +65,19 @@ fn runs_flanks_to_multibody(name: &str) {
         );
     }
     assert_eq!(dynamic[0].quasi_static.len(), torques.len());
+    // The summaries the report reads are the writer's own type: what the
+    // stages wrote reads back equal (a renamed or dropped field fails here).
+    let stage = out.join(&scene.scene.name);
+    let read_ltca: Vec<formats::summaries::BlankSummary> =
+        validate::comparison::read(&stage.join("ltca/summary.json"))
+            .unwrap()
+            .expect("ltca/summary.json written");
+    assert_eq!(read_ltca, ltca, "{name}: ltca/summary.json");
+    let read_dynamic: Vec<formats::summaries::DynamicSummary> =
+        validate::comparison::read(&stage.join("multibody/summary.json"))
+            .unwrap()
+            .expect("multibody/summary.json written");
+    assert_eq!(read_dynamic, dynamic, "{name}: multibody/summary.json");
 }
 
 #[test]
