@@ -12,6 +12,7 @@
 
 pub mod assembly;
 pub mod cholesky;
+pub mod clamped;
 pub mod cut_cell;
 pub mod error;
 pub mod material;
@@ -24,6 +25,7 @@ pub mod tri6;
 
 pub use assembly::{assemble, assemble_with, Assembled, Dofs};
 pub use cholesky::Factor;
+pub use clamped::{clamp_nodes, ClampedBody, Factorization};
 pub use error::FemError;
 pub use material::Material;
 pub use mesh::TetMesh;

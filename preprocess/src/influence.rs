@@ -15,7 +15,7 @@
 
 use crate::body_mesh::BodyMesh;
 use fem::cholesky::Ordering;
-use fem::{assemble, tri6, Dofs, Factor, Material, TetMesh};
+use fem::{clamp_nodes, tri6, ClampedBody, Dofs, Factor, Factorization, Material, TetMesh};
 pub use geometry::contact_grid::{rotate_z, FlankGrid, GridSize};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -297,19 +297,17 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
     let mut fixed = Vec::new();
     for g in fixed_groups {
         group(req.body, g)?;
-        for n in req.body.group_nodes(g) {
-            fixed.extend((0..3).map(|c| (3 * n + c, 0.0)));
-        }
+        fixed.extend(clamp_nodes(&req.body.group_nodes(g)));
     }
-    let t = Instant::now();
-    let dofs = Dofs::new(mesh, &fixed)?;
-    let sys = assemble(mesh, &req.material, &dofs)?;
-    stats.assemble_s = t.elapsed().as_secs_f64();
+    let ClampedBody {
+        dofs,
+        factor,
+        assemble_s,
+        factor_s,
+    } = ClampedBody::new(mesh, &req.material, &fixed, Factorization::Auto)?;
+    stats.assemble_s = assemble_s;
     stats.dofs = dofs.n_free();
-    let t = Instant::now();
-    let factor = Factor::new(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?;
-    drop(sys);
-    stats.factor_s = t.elapsed().as_secs_f64();
+    stats.factor_s = factor_s;
     stats.factor_nnz = factor.factor_nnz();
 
     let z = req.teeth as i64;

@@ -10,8 +10,7 @@
 //! (`validate/tests/penalty_contact.rs`, `make bench`).
 
 use crate::penalty::{Compliance, ContactError};
-use fem::cholesky::Ordering;
-use fem::{assemble, Dofs, Factor, Material, TetMesh};
+use fem::{ClampedBody, Dofs, Factor, Factorization, Material, TetMesh};
 use std::collections::HashMap;
 
 /// A factored body and the columns computed so far.
@@ -39,13 +38,7 @@ pub(crate) fn missing(nodes: &[usize], known: impl Fn(usize) -> bool) -> Vec<usi
     todo
 }
 
-/// The dofs of `nodes`, all three components (a clamped support).
-pub fn clamped(nodes: &[usize]) -> Vec<usize> {
-    nodes
-        .iter()
-        .flat_map(|&n| (0..3).map(move |c| 3 * n + c))
-        .collect()
-}
+pub use fem::clamp_nodes as clamped;
 
 impl BodyCompliance {
     /// Assembles and factors the body with the `fixed` dofs (3 · node +
@@ -59,10 +52,8 @@ impl BodyCompliance {
         block: usize,
     ) -> Result<BodyCompliance, ContactError> {
         let t = std::time::Instant::now();
-        let fixed: Vec<(usize, f64)> = fixed.iter().map(|&d| (d, 0.0)).collect();
-        let dofs = Dofs::new(mesh, &fixed)?;
-        let sys = assemble(mesh, material, &dofs)?;
-        let factor = Factor::new(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?;
+        let ClampedBody { dofs, factor, .. } =
+            ClampedBody::new(mesh, material, fixed, Factorization::Auto)?;
         Ok(BodyCompliance {
             factor,
             dofs_free: dofs.n_free(),

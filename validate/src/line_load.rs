@@ -426,20 +426,11 @@ pub fn run(
             anyhow::bail!("{}: no face group tooth0_{flank_name}", path.display());
         }
         let t = std::time::Instant::now();
-        let fixed: Vec<(usize, f64)> = crate::body_compliance::clamped(&body.group_nodes("bore"))
-            .into_iter()
-            .map(|d| (d, 0.0))
-            .collect();
-        let dofs = fem::Dofs::new(&body.mesh, &fixed)?;
-        let sys = fem::assemble(
+        let fem::ClampedBody { dofs, factor, .. } = fem::ClampedBody::new(
             &body.mesh,
             &preprocess::influence::fe_material(material),
-            &dofs,
-        )?;
-        let factor = fem::Factor::new(
-            &sys.matrix,
-            &dofs.node_of_free(),
-            fem::cholesky::Ordering::Metis,
+            &fem::clamp_nodes(&body.group_nodes("bore")),
+            fem::Factorization::Auto,
         )?;
         let factor_s = t.elapsed().as_secs_f64();
         let surface = MasterSurface::new(body.mesh.nodes.clone(), faces.to_vec());

@@ -14,9 +14,8 @@
 //! without their backward half or responses kept over every flank node.
 
 use crate::penalty::{ContactError, Term};
-use fem::cholesky::Ordering;
 use fem::path_solve::{combine, PathFactor, PathVec};
-use fem::{assemble, Dofs, Factor, Material, TetMesh};
+use fem::{ClampedBody, Dofs, Factorization, Material, TetMesh};
 use std::collections::{HashMap, HashSet};
 
 /// A factored body and the unit-load vectors of the nodes in use.
@@ -54,12 +53,8 @@ impl PathCompliance {
         block: usize,
     ) -> Result<PathCompliance, ContactError> {
         let t = std::time::Instant::now();
-        let fixed: Vec<(usize, f64)> = fixed.iter().map(|&d| (d, 0.0)).collect();
-        let dofs = Dofs::new(mesh, &fixed)?;
-        let factor = {
-            let sys = assemble(mesh, material, &dofs)?;
-            Factor::new_supernodal(&sys.matrix, &dofs.node_of_free(), Ordering::Metis)?
-        };
+        let ClampedBody { dofs, factor, .. } =
+            ClampedBody::new(mesh, material, fixed, Factorization::Supernodal)?;
         let keep: Vec<usize> = contact
             .iter()
             .flat_map(|&n| {
