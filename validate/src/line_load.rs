@@ -330,15 +330,23 @@ pub fn run(
     let flank_name = side.flank_name(Member::Pinion);
     let material = g.data.member(Member::Pinion).material();
     let dir = meshes.join(&sc.name);
-    let sf = dir.join("pinion_standard_reduced.stiffness.h5");
-    let data = formats::stiffness_file::read(&sf, None).with_context(|| {
-        format!(
-            "scene {}: reading {}; run `preprocess stiffness {}`",
-            sc.name,
-            sf.display(),
-            scene.path.display()
-        )
-    })?;
+    // The standard pinion's stiffness file, checked against the scene as
+    // the solver checks it (manifest, config, hash).
+    let (blank, level) = (
+        geometry::scene::Blank::Standard,
+        formats::paths::MeshLevel::Reduced,
+    );
+    let plan =
+        formats::stiffness_plan::plan(scene, &g, &dir, Member::Pinion, blank, level, side)?;
+    let data = formats::stiffness_plan::check(scene, &g, &dir, &plan, Member::Pinion, blank, level)
+        .with_context(|| {
+            format!(
+                "scene {}: stiffness file {}; run `preprocess stiffness {}`",
+                sc.name,
+                plan.path.display(),
+                scene.path.display()
+            )
+        })?;
     let (np, nf) = (data.grid_profile, data.grid_face);
     let row = study.row.unwrap_or(np / 2);
     if row >= np {
@@ -514,7 +522,7 @@ pub fn run(
     let result = LineLoad {
         member: "pinion".into(),
         flank: flank_name.into(),
-        stiffness_file: sf.display().to_string(),
+        stiffness_file: plan.path.display().to_string(),
         stiffness_mesh_sha256: preprocess::stiffness_stage::sha256_file(
             &dir.join("pinion_standard_reduced.msh"),
         )?,
