@@ -2,7 +2,7 @@
 
 use geometry::error::GeometryError;
 use geometry::generation::Side;
-use geometry::pair::{pairs_in_contact, pinion_direction, PairGeometry};
+use geometry::pair::{pairs_in_contact, pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use serde::Serialize;
 
@@ -20,10 +20,12 @@ pub struct Plan {
     pub loaded_flank: Side,
     pub mesh_cycles: f64,
     pub positions: Vec<Position>,
-    /// Distinct pinion teeth that ever touch (the flanks that need stiffness data).
-    pub pinion_teeth: Vec<i32>,
-    /// Distinct wheel teeth that ever touch.
-    pub wheel_teeth: Vec<i32>,
+    /// Distinct pinion teeth (mod z₁) that ever touch: the flanks that need
+    /// stiffness data ([`teeth_in_contact`], the one rule the mesh and
+    /// stiffness stages use too).
+    pub pinion_teeth: Vec<usize>,
+    /// Distinct wheel teeth (mod z₂) that ever touch.
+    pub wheel_teeth: Vec<usize>,
 }
 
 /// Plans every wheel blank of the scene.
@@ -34,7 +36,6 @@ pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
     let tau = g.data.mesh_cycle();
     let dir = pinion_direction(&g.data, side);
     let step = scene.scene.rotation.step_deg.to_radians();
-    let z2 = g.data.members[1].teeth as i32;
     Ok(scene
         .scene
         .blanks
@@ -52,25 +53,13 @@ pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
                     }
                 })
                 .collect();
-            let mut pinion_teeth: Vec<i32> = positions
-                .iter()
-                .flat_map(|p| p.tooth_pairs.clone())
-                .collect();
-            pinion_teeth.sort();
-            pinion_teeth.dedup();
-            let mut wheel_teeth: Vec<i32> =
-                pinion_teeth.iter().map(|j| (-j).rem_euclid(z2)).collect();
-            wheel_teeth.sort();
-            wheel_teeth.dedup();
+            let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
             Plan {
                 blank,
                 loaded_flank: side,
                 mesh_cycles: cycles,
                 positions,
-                pinion_teeth: pinion_teeth
-                    .iter()
-                    .map(|j| j.rem_euclid(g.data.members[0].teeth as i32))
-                    .collect(),
+                pinion_teeth,
                 wheel_teeth,
             }
         })
