@@ -227,3 +227,86 @@ pub fn field_differences<T: Serialize>(a: &T, b: &T, a_is: &str, b_is: &str) -> 
         .map(|(k, v)| format!("{k}: {v} {a_is}, {} {b_is}", b.get(k).unwrap_or(&null)))
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inputs() -> MeshInputs {
+        MeshInputs {
+            design_sha256: "d".into(),
+            blank_dimensions: serde_json::json!({"pinion_bore_radius": 0.0127}),
+            flank_elements: FlankElements {
+                profile: 6,
+                face: 10,
+            },
+            loaded_flank: Side::Drive,
+            refined_teeth: vec![0, 1, 19],
+            opposite_refined_teeth: vec![],
+            periodic_teeth: vec![0, 1, 19],
+        }
+    }
+
+    #[test]
+    fn manifest_reads_back_what_update_wrote() {
+        let dir = tempfile::tempdir().unwrap();
+        assert!(matches!(
+            Manifest::read(dir.path()),
+            Err(ManifestError::Missing { .. })
+        ));
+        let entry = MeshEntry {
+            member: Member::Pinion,
+            blank: Blank::Standard,
+            level: MeshLevel::Reduced,
+            inputs: inputs(),
+            inputs_hash: "h".into(),
+            msh_sha256: "m".into(),
+            body: BodyProperties {
+                volume_m3: 1.5e-4,
+                density_kg_m3: 7850.0,
+                polar_moment_kgm2: 1.0 / 3.0 * 1e-3,
+            },
+            stiffness: BTreeMap::new(),
+        };
+        Manifest::update(dir.path(), |m| {
+            m.meshes
+                .insert("pinion_standard_reduced".into(), entry.clone());
+        })
+        .unwrap();
+        let m = Manifest::read(dir.path()).unwrap();
+        assert_eq!(
+            m.mesh(dir.path(), "pinion_standard_reduced").unwrap(),
+            &entry
+        );
+        assert!(matches!(
+            m.mesh(dir.path(), "wheel_standard_reduced"),
+            Err(ManifestError::NoEntry { .. })
+        ));
+    }
+
+    #[test]
+    fn changed_mesh_inputs_are_named_by_field() {
+        let mut scene = inputs();
+        scene.refined_teeth.push(2);
+        scene.flank_elements.face = 20;
+        let d = inputs().differences(&scene);
+        assert_eq!(d.len(), 2, "{d:?}");
+        assert!(
+            d[0].starts_with("flank_elements") && d[1].starts_with("refined_teeth"),
+            "{d:?}"
+        );
+        assert!(inputs().differences(&inputs()).is_empty());
+    }
+
+    #[test]
+    fn manifest_of_another_schema_is_refused_by_number() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            paths::manifest(dir.path()),
+            r#"{"schema": 999, "meshes": {}}"#,
+        )
+        .unwrap();
+        let e = Manifest::read(dir.path()).unwrap_err();
+        assert!(matches!(e, ManifestError::Schema { found: 999, .. }), "{e}");
+    }
+}

@@ -41,6 +41,37 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
     Ok(())
 }
 
+/// Has `write` make the file `path` through a temporary path beside it (for
+/// writers that open the file themselves: HDF5, gmsh, meshio), then renames
+/// it onto `path`; on failure the temporary file is removed and `path` is
+/// left as it was. `write`'s error is returned as it is; a failed rename
+/// becomes `E` through [`WriteError`].
+pub fn write_via<E: From<WriteError>>(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), E>,
+) -> Result<(), E> {
+    // Hidden, per process, and ending in the file's own name (writers such
+    // as meshio choose the format by the extension).
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(
+        ".tmp.{}.{}",
+        std::process::id(),
+        name.as_deref().unwrap_or("out")
+    ));
+    let r = write(&tmp).and_then(|()| {
+        std::fs::rename(&tmp, path).map_err(|e| {
+            E::from(write_err(
+                path,
+                format!("cannot rename {}: {e}", tmp.display()),
+            ))
+        })
+    });
+    if r.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    r
+}
+
 /// Writes a value as pretty JSON, atomically.
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), WriteError> {
     let text = serde_json::to_string_pretty(value).map_err(|e| write_err(path, e))?;
@@ -60,4 +91,28 @@ pub fn peak_memory_gb() -> f64 {
             })
         })
         .map_or(f64::NAN, |kb| kb / 1024.0 / 1024.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn write_via_renames_on_success_and_leaves_nothing_on_failure() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.vtu");
+        write_via(&path, |tmp| -> Result<(), WriteError> {
+            assert!(tmp.to_string_lossy().ends_with(".vtu"), "{}", tmp.display());
+            std::fs::write(tmp, "new").map_err(|e| write_err(tmp, e))
+        })
+        .unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+        let r = write_via(&path, |tmp| -> Result<(), WriteError> {
+            std::fs::write(tmp, "half").unwrap();
+            Err(write_err(tmp, "the writer failed"))
+        });
+        assert!(r.is_err());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
 }

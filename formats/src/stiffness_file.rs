@@ -80,6 +80,8 @@ pub enum StiffnessFileError {
         found: usize,
         expected: usize,
     },
+    #[error(transparent)]
+    Write(#[from] crate::output::WriteError),
 }
 
 /// The content of a stiffness file.
@@ -161,17 +163,7 @@ fn vlu(s: &str) -> hdf5::types::VarLenUnicode {
 
 /// Writes `data` to `path` atomically (temporary file in the same directory, then rename).
 pub fn write(path: &Path, data: &StiffnessData) -> Result<(), StiffnessFileError> {
-    let tmp = path.with_extension("tmp.h5");
-    let r = write_to(&tmp, data).and_then(|_| {
-        std::fs::rename(&tmp, path).map_err(|e| StiffnessFileError::Hdf5 {
-            path: path.to_path_buf(),
-            message: format!("cannot rename {}: {e}", tmp.display()),
-        })
-    });
-    if r.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    r
+    crate::output::write_via(path, |tmp| write_to(tmp, data))
 }
 
 fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {

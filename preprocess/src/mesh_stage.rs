@@ -67,24 +67,24 @@ pub fn meshio_command() -> (PathBuf, PathBuf) {
 }
 
 /// Converts a .msh into a .vtu with meshio, atomically.
-pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> Result<(), String> {
-    let tmp = vtu.with_extension("tmp.vtu");
+pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> anyhow::Result<()> {
     let (py, script) = meshio_command();
-    let out = std::process::Command::new(&py)
-        .arg(&script)
-        .arg(msh)
-        .arg(&tmp)
-        .output()
-        .map_err(|e| format!("cannot run {}: {e}", py.display()))?;
-    if !out.status.success() {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(format!(
-            "meshio conversion of {} failed: {}",
-            msh.display(),
-            String::from_utf8_lossy(&out.stderr)
-        ));
-    }
-    std::fs::rename(&tmp, vtu).map_err(|e| format!("cannot rename {}: {e}", tmp.display()))
+    formats::output::write_via(vtu, |tmp| {
+        let out = std::process::Command::new(&py)
+            .arg(&script)
+            .arg(msh)
+            .arg(tmp)
+            .output()
+            .map_err(|e| anyhow::anyhow!("cannot run {}: {e}", py.display()))?;
+        if !out.status.success() {
+            anyhow::bail!(
+                "meshio conversion of {} failed: {}",
+                msh.display(),
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        Ok(())
+    })
 }
 
 /// Meshes every member × blank × level of the scene into `root/<scene>/`.
@@ -180,7 +180,7 @@ pub fn run(
                     continue;
                 }
                 let report = mesh_member(&req, &msh).map_err(|e: MeshError| anyhow::anyhow!(e))?;
-                convert_to_vtu(&msh, &vtu).map_err(anyhow::Error::msg)?;
+                convert_to_vtu(&msh, &vtu)?;
                 write_json(&report_path, &report)?;
                 write_json(&inputs_path, &inputs)?;
                 record(&stem)?;

@@ -21,6 +21,7 @@ pub mod ltca;
 pub mod ltca_stage;
 pub mod mesh_table;
 pub mod multibody;
+pub mod time_step;
 pub mod plan;
 pub mod slices;
 pub mod spectrum;

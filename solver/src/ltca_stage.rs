@@ -346,7 +346,10 @@ fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow:
 
 /// Sweep arrays as HDF5 (written to a temporary file, then renamed).
 fn write_h5(path: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Result<()> {
-    let tmp = path.with_extension("tmp.h5");
+    formats::output::write_via(path, |tmp| write_h5_to(tmp, res, torques))
+}
+
+fn write_h5_to(tmp: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Result<()> {
     let np = res.len();
     let nl = torques.len();
     let per_load = |f: &dyn Fn(&crate::ltca::PositionLoad) -> f64| -> Vec<f64> {
@@ -388,6 +391,5 @@ fn write_h5(path: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Res
         )?;
         f.close()?;
     }
-    std::fs::rename(&tmp, path).with_context(|| format!("renaming {}", tmp.display()))?;
     Ok(())
 }

@@ -1,0 +1,297 @@
+//! Time stepping of the multibody model ([`crate::multibody::Model`]): the
+//! two implicit one-step schemes (generalized-α; the energy-conserving
+//! midpoint rule with a discrete gradient), both solved by Newton with the
+//! contact element's tangent, and the step control around them.
+
+use crate::multibody::{Contact, Model, State};
+use crate::SolverError;
+
+/// Integrates from `s` to `t_end`, calling `record` with the start and after
+/// every accepted step; returns the final state and the number of steps.
+pub fn integrate(
+    m: &Model,
+    s: State,
+    integ: &mut Integrator,
+    t_end: f64,
+    mut record: impl FnMut(&State) -> Result<(), SolverError>,
+) -> Result<(State, usize), SolverError> {
+    let mut s = s;
+    record(&s)?;
+    let mut steps = 0;
+    while s.t < t_end * (1.0 - 1e-12) {
+        s = integ.step(m, &s, t_end)?;
+        record(&s)?;
+        steps += 1;
+    }
+    Ok((s, steps))
+}
+
+/// The time integration scheme.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scheme {
+    /// Generalized-α with spectral radius at infinity ρ∞ ∈ [0, 1].
+    GeneralizedAlpha { rho_inf: f64 },
+    /// Energy-conserving midpoint rule with a discrete gradient.
+    EnergyConserving,
+}
+
+/// Step control.
+#[derive(Debug, Clone, Copy)]
+pub struct StepControl {
+    /// Largest and smallest step, s.
+    pub max_step: f64,
+    pub min_step: f64,
+    /// Local error tolerance on the wheel lag, rad.
+    pub tolerance: f64,
+}
+
+/// Integrator state carried from step to step.
+#[derive(Debug, Clone, Copy)]
+pub struct Integrator {
+    pub scheme: Scheme,
+    pub control: StepControl,
+    /// Step to try next, s.
+    pub h: f64,
+    pub rejected: usize,
+    pub newton_iterations: usize,
+}
+
+impl Integrator {
+    pub fn new(scheme: Scheme, control: StepControl) -> Self {
+        Integrator {
+            scheme,
+            control,
+            h: control.max_step,
+            rejected: 0,
+            newton_iterations: 0,
+        }
+    }
+
+    /// One accepted step from `s` (retrying smaller steps as needed), not
+    /// past `t_end`.
+    pub fn step(&mut self, m: &Model, s: &State, t_end: f64) -> Result<State, SolverError> {
+        loop {
+            let h = self.h.min(t_end - s.t).max(0.0);
+            if h <= 0.0 {
+                return Ok(*s);
+            }
+            let trial = match self.scheme {
+                Scheme::GeneralizedAlpha { rho_inf } => alpha_step(m, s, h, rho_inf),
+                Scheme::EnergyConserving => midpoint_step(m, s, h),
+            };
+            let (next, iters) = match trial {
+                Ok(x) => x,
+                Err(e) => {
+                    if h <= self.control.min_step {
+                        return Err(e);
+                    }
+                    self.rejected += 1;
+                    self.h = (0.25 * h).max(self.control.min_step);
+                    continue;
+                }
+            };
+            self.newton_iterations += iters;
+            // Local error: corrector − Taylor predictor, on θ.
+            let r = m.table.ratio;
+            let pred = |i: usize| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
+            let err = (r * (next.q[0] - pred(0)) - (next.q[1] - pred(1))).abs();
+            let ratio = err / self.control.tolerance;
+            let grow = if ratio > 0.0 {
+                (0.9 * ratio.powf(-1.0 / 3.0)).clamp(0.2, 2.0)
+            } else {
+                2.0
+            };
+            if ratio > 1.0 && h > self.control.min_step {
+                self.rejected += 1;
+                self.h = (h * grow).max(self.control.min_step);
+                continue;
+            }
+            self.h = (h * grow).min(self.control.max_step);
+            return Ok(next);
+        }
+    }
+}
+
+/// Solves the 1 × 1 or 2 × 2 system J x = b on the free coordinates.
+fn solve_free(jac: [[f64; 2]; 2], b: [f64; 2], free: [bool; 2]) -> Option<[f64; 2]> {
+    match free {
+        [true, true] => {
+            let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+            if det.abs() < f64::MIN_POSITIVE || !det.is_finite() {
+                return None;
+            }
+            Some([
+                (jac[1][1] * b[0] - jac[0][1] * b[1]) / det,
+                (jac[0][0] * b[1] - jac[1][0] * b[0]) / det,
+            ])
+        }
+        [true, false] => Some([b[0] / jac[0][0], 0.0]),
+        [false, true] => Some([0.0, b[1] / jac[1][1]]),
+        [false, false] => Some([0.0, 0.0]),
+    }
+}
+
+/// Imposed coordinate of the driven member at t (absolute).
+fn imposed_at(m: &Model, s0: &State, t: f64) -> Option<(usize, [f64; 3])> {
+    m.imposed(t).map(|(i, [ang, w, a])| {
+        let [ang_now, _, _] = m.imposed(s0.t).unwrap().1;
+        (i, [s0.q[i] + ang - ang_now, w, a])
+    })
+}
+
+const NEWTON_MAX: usize = 25;
+
+/// Newton converges when the update is a few ulps of the coordinates.
+fn converged(dx: [f64; 2], q: [f64; 2]) -> bool {
+    dx[0].abs().max(dx[1].abs()) <= 1e-15 * (1.0 + q[0].abs().max(q[1].abs()))
+}
+
+/// Generalized-α step (Chung & Hulbert 1993): Newton on q_{n+1}.
+fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), SolverError> {
+    let am = (2.0 * rho - 1.0) / (rho + 1.0);
+    let af = rho / (rho + 1.0);
+    let gamma = 0.5 - am + af;
+    let beta = 0.25 * (1.0 - am + af).powi(2);
+    let free = m.drive.free();
+    let ext = m.drive.torques();
+    let t1 = s.t + h;
+    let mut q = [0, 1].map(|i| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i]);
+    let fixed = imposed_at(m, s, t1);
+    let kin = |q: [f64; 2]| -> ([f64; 2], [f64; 2]) {
+        let mut a = [0.0; 2];
+        let mut v = [0.0; 2];
+        for i in 0..2 {
+            a[i] = (q[i] - s.q[i] - h * s.v[i] - h * h * (0.5 - beta) * s.a[i]) / (beta * h * h);
+            v[i] = s.v[i] + h * ((1.0 - gamma) * s.a[i] + gamma * a[i]);
+        }
+        if let Some((i, [_, w, acc])) = fixed {
+            a[i] = acc;
+            v[i] = w;
+        }
+        (v, a)
+    };
+    if let Some((i, [x, _, _])) = fixed {
+        q[i] = x;
+    }
+    for it in 1..=NEWTON_MAX {
+        let (v, a) = kin(q);
+        let qm = [0, 1].map(|i| (1.0 - af) * q[i] + af * s.q[i]);
+        let vm = [0, 1].map(|i| (1.0 - af) * v[i] + af * s.v[i]);
+        let Contact {
+            force: qc,
+            stiffness: k,
+            damping: d,
+            ..
+        } = m.contact(qm, vm)?;
+        let mut res = [0.0; 2];
+        let mut jac = [[0.0; 2]; 2];
+        for i in 0..2 {
+            let am_i = (1.0 - am) * a[i] + am * s.a[i];
+            res[i] = m.inertia[i] * am_i - ext[i] - qc[i];
+            for j in 0..2 {
+                jac[i][j] = (1.0 - af) * (k[i][j] + d[i][j] * gamma / (beta * h));
+            }
+            jac[i][i] += m.inertia[i] * (1.0 - am) / (beta * h * h);
+        }
+        let dx =
+            solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
+        for i in 0..2 {
+            if free[i] {
+                q[i] += dx[i];
+            }
+        }
+        if converged(dx, q) {
+            let (v, a) = kin(q);
+            return Ok((State { t: t1, q, v, a }, it));
+        }
+    }
+    Err(SolverError::NotConverged {
+        what: "generalized-α Newton".into(),
+        iterations: NEWTON_MAX,
+    })
+}
+
+/// Coordinate-wise discrete gradient of V between q and q'; `g_mid`, the
+/// gradient at the midpoint, stands in where a coordinate does not move.
+fn discrete_gradient(
+    m: &Model,
+    q: [f64; 2],
+    qn: [f64; 2],
+    g_mid: [f64; 2],
+) -> Result<[f64; 2], SolverError> {
+    let v = |a: [f64; 2]| m.potential(a);
+    let corner = [qn[0], q[1]];
+    let g0 = if (qn[0] - q[0]).abs() > 1e-10 {
+        (v(corner)? - v(q)?) / (qn[0] - q[0])
+    } else {
+        g_mid[0]
+    };
+    let g1 = if (qn[1] - q[1]).abs() > 1e-10 {
+        (v(qn)? - v(corner)?) / (qn[1] - q[1])
+    } else {
+        g_mid[1]
+    };
+    Ok([g0, g1])
+}
+
+/// Energy-conserving midpoint step: Newton on q_{n+1} with the midpoint tangent.
+fn midpoint_step(m: &Model, s: &State, h: f64) -> Result<(State, usize), SolverError> {
+    let free = m.drive.free();
+    let ext = m.drive.torques();
+    let t1 = s.t + h;
+    let fixed = imposed_at(m, s, t1);
+    let mut q = [0, 1].map(|i| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i]);
+    if let Some((i, [x, _, _])) = fixed {
+        q[i] = x;
+    }
+    let vel = |q: [f64; 2]| -> [f64; 2] {
+        let mut v = [0, 1].map(|i| 2.0 * (q[i] - s.q[i]) / h - s.v[i]);
+        if let Some((i, [_, w, _])) = fixed {
+            v[i] = w;
+        }
+        v
+    };
+    for it in 1..=NEWTON_MAX {
+        let v = vel(q);
+        let qm = [0, 1].map(|i| 0.5 * (q[i] + s.q[i]));
+        let vm = [0, 1].map(|i| 0.5 * (v[i] + s.v[i]));
+        let Contact {
+            force: qc,
+            stiffness: k,
+            damping: d,
+            mesh,
+            ..
+        } = m.contact(qm, vm)?;
+        let g = discrete_gradient(m, s.q, q, mesh.grad)?;
+        let mut res = [0.0; 2];
+        let mut jac = [[0.0; 2]; 2];
+        for i in 0..2 {
+            // Damping part of the midpoint forces, without the potential.
+            let damp = qc[i] + mesh.grad[i];
+            res[i] = m.inertia[i] * (v[i] - s.v[i]) / h - ext[i] + g[i] - damp;
+            for j in 0..2 {
+                jac[i][j] = 0.5 * k[i][j] + d[i][j] / h;
+            }
+            jac[i][i] += 2.0 * m.inertia[i] / (h * h);
+        }
+        let dx =
+            solve_free(jac, res.map(|x| -x), free).ok_or(SolverError::Singular { slices: 0 })?;
+        for i in 0..2 {
+            if free[i] {
+                q[i] += dx[i];
+            }
+        }
+        if converged(dx, q) {
+            let v = vel(q);
+            let mut a = [0, 1].map(|i| (v[i] - s.v[i]) / h);
+            if let Some((i, [_, _, acc])) = fixed {
+                a[i] = acc;
+            }
+            return Ok((State { t: t1, q, v, a }, it));
+        }
+    }
+    Err(SolverError::NotConverged {
+        what: "energy-conserving midpoint Newton".into(),
+        iterations: NEWTON_MAX,
+    })
+}
