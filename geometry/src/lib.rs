@@ -17,6 +17,7 @@ pub mod generation;
 pub mod material;
 pub mod minimize;
 pub mod pair;
+pub mod placement;
 pub mod scene;
 pub mod teeth;
 pub mod utca;

@@ -157,11 +157,11 @@ fn separation_growth(fp: &FlankPair, uv: [f64; 2], roll: f64) -> f64 {
     let delta = 0.05f64.to_radians();
     let g = |d: f64| {
         let phi = roll + d;
-        let at = crate::direct::Placement {
+        let at = crate::placement::Placement {
             pinion: phi,
             wheel: fp.conjugate_wheel_angle(phi),
         };
-        crate::direct::gap(fp, at, 0, uv, uv).map_or(f64::NAN, |x| x.0)
+        crate::placement::gap(fp, at, 0, uv, uv).map_or(f64::NAN, |x| x.0)
     };
     let k = (g(delta) + g(-delta) - 2.0 * g(0.0)) / (delta * delta);
     if k.is_finite() {

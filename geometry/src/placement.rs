@@ -1,0 +1,87 @@
+//! Both flanks placed at their rotations, and the signed normal gap between
+//! a pinion point and the wheel flank (closest point by Gauss–Newton on the
+//! wheel's generating parameters). The UTCA's separation growth and the
+//! direct contact search both measure gaps with these.
+
+use crate::flank::Flank;
+use crate::pair::FlankPair;
+use nalgebra::{Matrix3x2, Vector3};
+
+/// Pinion and wheel rotations, rad.
+#[derive(Debug, Clone, Copy)]
+pub struct Placement {
+    pub pinion: f64,
+    pub wheel: f64,
+}
+
+impl FlankPair {
+    /// Wheel rotation of conjugate contact for pinion rotation `phi1`.
+    pub fn conjugate_wheel_angle(&self, phi1: f64) -> f64 {
+        let z1 = self.pinion.gen.frame.teeth as f64;
+        let z2 = self.wheel.gen.frame.teeth as f64;
+        -(z1 / z2) * phi1 + self.wheel_offset
+    }
+
+    /// Placement with the wheel lagging by `te` (wheel rad) when the pinion
+    /// turns in direction `direction`.
+    pub fn placement(&self, phi1: f64, te: f64, direction: f64) -> Placement {
+        Placement {
+            pinion: phi1,
+            wheel: self.conjugate_wheel_angle(phi1) + direction * te,
+        }
+    }
+}
+
+/// Closest point of `flank` (unmodified, member frame) to `q`: generating
+/// parameters and signed gap along the flank's outward normal.
+pub fn project(flank: &Flank, q: &Vector3<f64>, start: [f64; 2]) -> Option<([f64; 2], f64)> {
+    let [mut u, mut v] = start;
+    let h = 1e-7;
+    for _ in 0..30 {
+        let w = Vector3::from(flank.gen.eval(u, v).pos);
+        let wu = (Vector3::from(flank.gen.eval(u + h, v).pos) - w) / h;
+        let wv = (Vector3::from(flank.gen.eval(u, v + h).pos) - w) / h;
+        let j = Matrix3x2::from_columns(&[wu, wv]);
+        let r = q - w;
+        let step = (j.transpose() * j).try_inverse()? * (j.transpose() * r);
+        u += step[0];
+        v += step[1];
+        if step.norm() < 1e-13 {
+            break;
+        }
+    }
+    let raw = flank.gen.eval(u, v);
+    let gap = (q - Vector3::from(raw.pos)).dot(&Vector3::from(raw.normal));
+    Some(([u, v], gap))
+}
+
+/// Signed gap between pinion tooth `j` at pinion parameters `uv` and wheel
+/// tooth −j (positive = open), and the wheel parameters of the closest point.
+pub fn gap(
+    fp: &FlankPair,
+    at: Placement,
+    j: i32,
+    uv: [f64; 2],
+    start: [f64; 2],
+) -> Option<(f64, [f64; 2])> {
+    let f1 = &fp.pinion.gen.frame;
+    let f2 = &fp.wheel.gen.frame;
+    let p = Vector3::from(fp.pinion.eval_uv(uv[0], uv[1]).pos);
+    let x = f1.to_fixed(&p, at.pinion + j as f64 * f1.pitch());
+    let q = f2.to_member(&x, at.wheel - j as f64 * f2.pitch());
+    project(&fp.wheel, &q, start).map(|(w, g)| (g, w))
+}
+
+/// As [`gap`], but `None` unless the closest wheel point lies on the wheel
+/// flank (within its blank bounds): other points cannot touch.
+pub fn gap_on_flank(
+    fp: &FlankPair,
+    at: Placement,
+    j: i32,
+    uv: [f64; 2],
+    start: [f64; 2],
+) -> Option<(f64, [f64; 2])> {
+    let (g, w) = gap(fp, at, j, uv, start)?;
+    let (l, d) = fp.wheel.ld(w[0], w[1]);
+    fp.wheel.bounds.contains(l, d, 1e-9).then_some((g, w))
+}
