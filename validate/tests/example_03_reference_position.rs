@@ -1,0 +1,130 @@
+//! Example 03 (`examples/03_reference_position/`): one position of the
+//! reference FE LTCA (both bodies as tet10 FE bodies, two-pass penalty
+//! contact) on the coarse 6 × 10 reduced-level meshes of the example's
+//! scene, made by the mesh stage into a temporary folder: the loaded TE and
+//! the torque balance at the sweep's first position against
+//! `examples/03_reference_position/golden.json`. `BLESS=1` rewrites it.
+//!
+//! Tolerance: relative 1e-9 on TE, pressure and the unloaded TE (absolute
+//! 1e-9 µrad); the torque balance (zero to solver rounding, ~1e-13) is held
+//! to an absolute 1e-9. Repeated runs on the same machine agree within it
+//! (the meshes, gmsh and OCC, are deterministic for the same inputs).
+
+#[path = "../../examples/golden.rs"]
+mod golden;
+
+use geometry::scene::Scene;
+use golden::Quantity;
+use preprocess::mesh_stage::{self, Level};
+use validate::reference_ltca::ReferenceSettings;
+use validate::reference_stage::{run, StageOptions};
+
+const REL: f64 = 1e-9;
+
+#[test]
+fn example_03_reference_position_matches_its_golden_output() {
+    let t0 = std::time::Instant::now();
+    let dir = golden::example_dir(env!("CARGO_MANIFEST_DIR"), "03_reference_position");
+    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let meshes = tmp.path().join("meshes");
+    mesh_stage::run(&scene, &meshes, Level::Reduced).unwrap();
+    let t_mesh = t0.elapsed().as_secs_f64();
+
+    // The settings of `validate reference` (its command-line defaults); a
+    // stride beyond the sweep leaves its first position only.
+    let opt = StageOptions {
+        level: "reduced".into(),
+        settings: ReferenceSettings {
+            penalty_factor: 100.0,
+            penalty_factor_check: 200.0,
+            start_band_m: 2e-6,
+            search_gap_m: 60e-6,
+        },
+        stride: 10_000,
+        stride_lightweight: None,
+        block: 96,
+        compare_cache: false,
+        shard: None,
+    };
+    let out = tmp.path().join("out");
+    let res = run(&scene, &meshes, &out, &opt).unwrap();
+    eprintln!(
+        "example 03: meshes {t_mesh:.1} s, reference position {:.1} s",
+        t0.elapsed().as_secs_f64() - t_mesh
+    );
+    assert_eq!(res.len(), 1, "one pinion x wheel blank");
+    let b = &res[0];
+    assert_eq!(b.positions, 1, "one position");
+    assert_eq!(b.loads.len(), scene.scene.pinion_torque_nm.len());
+
+    let mut q = vec![
+        Quantity::new("dofs.pinion", b.dofs[0] as f64, "", 0.0, 0.0),
+        Quantity::new("dofs.wheel", b.dofs[1] as f64, "", 0.0, 0.0),
+        Quantity::new(
+            "unloaded.reference_te_urad",
+            b.unloaded.reference_te_mean_urad,
+            "urad",
+            REL,
+            1e-9,
+        ),
+        Quantity::new(
+            "unloaded.utca_te_urad",
+            b.unloaded.utca_te_mean_urad,
+            "urad",
+            REL,
+            1e-9,
+        ),
+    ];
+    for l in &b.loads {
+        let t = l.torque_nm;
+        // One position: the mean is the TE there, the peak-to-peak zero.
+        assert_eq!(l.te_ptp_urad, 0.0);
+        q.push(Quantity::new(
+            format!("{t}nm.te_urad"),
+            l.te_mean_urad,
+            "urad",
+            REL,
+            1e-9,
+        ));
+        q.push(Quantity::new(
+            format!("{t}nm.te_difference_at_penalty_check_urad"),
+            l.penalty_difference_max_urad,
+            "urad",
+            REL,
+            1e-9,
+        ));
+        q.push(Quantity::new(
+            format!("{t}nm.max_pressure_mpa"),
+            l.max_pressure_mpa,
+            "MPa",
+            REL,
+            0.0,
+        ));
+        // |Σ forces × levers − torque| / torque: the contact forces carry the torque.
+        assert!(
+            l.torque_balance_max < 1e-8,
+            "{t} N m: torque balance {:e}",
+            l.torque_balance_max
+        );
+        q.push(Quantity::new(
+            format!("{t}nm.torque_balance"),
+            l.torque_balance_max,
+            "",
+            0.0,
+            1e-9,
+        ));
+        if let Some(m) = l.search_margin_min_um {
+            assert!(
+                m > 0.0,
+                "{t} N m: search margin {m} um: the search range was too small"
+            );
+        }
+    }
+
+    golden::check(
+        &dir.join("golden.json"),
+        "examples/03_reference_position: preprocess::mesh_stage::run (reduced level) then validate::reference_stage::run at the first position of examples/03_reference_position/scene.toml (test validate/tests/example_03_reference_position.rs)",
+        &q,
+    );
+}
