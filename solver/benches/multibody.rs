@@ -15,7 +15,8 @@ use solver::dynamic_stage::inertia;
 use solver::ltca::{mean_ptp, run};
 use solver::ltca_stage::{member_compliance, scene_sweep};
 use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{integrate, interpolate, wheel_driven, Integrator, Scheme, StepControl};
+use solver::multibody::{interpolate, wheel_driven};
+use solver::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::path::Path;
 use std::time::Instant;
 

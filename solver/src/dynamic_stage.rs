@@ -17,9 +17,9 @@ use crate::ltca::mean_ptp;
 use crate::ltca_stage::{coast_compliance, member_compliance, scene_sweep};
 use crate::mesh_table::{MeshTable, TableSpec};
 use crate::multibody::{
-    integrate, interpolate, wheel_driven, Drive, Fluctuation, Impacts, Integrator, Model, Ramp,
-    Scheme, State, StepControl,
+    interpolate, wheel_driven, Drive, Fluctuation, Impacts, Model, Ramp, State,
 };
+use crate::time_step::{integrate, Integrator, Scheme, StepControl};
 use crate::spectrum::{plot, resample, stft, OrderLine};
 use anyhow::Context;
 use charts::{te_curve, Series};

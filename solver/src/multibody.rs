@@ -28,7 +28,6 @@
 
 use crate::backlash::Coast;
 use crate::mesh_table::{MeshState, MeshTable};
-pub use crate::time_step::{integrate, Integrator, Scheme, StepControl};
 use crate::SolverError;
 
 /// A speed ramp: linear from `from` to `to` (rad/s) over `duration` (s), then constant.

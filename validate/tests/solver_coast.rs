@@ -14,9 +14,8 @@ use solver::compliance::PairCompliance;
 use solver::ltca::Sweep;
 use solver::ltca_stage::coast_sweep;
 use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{
-    integrate, Drive, Fluctuation, Impacts, Integrator, Model, Scheme, State, StepControl,
-};
+use solver::multibody::{Drive, Fluctuation, Impacts, Model, State};
+use solver::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::sync::OnceLock;
 
 /// Circular backlash at the wheel's mean pitch radius: the normal backlash

@@ -222,9 +222,8 @@ fn relative_curvature_from_the_separation_field_matches_the_flanks_principal_cur
 // Multibody: the contact element as the force element between rigid bodies.
 
 use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{
-    integrate, interpolate, wheel_driven, Drive, Integrator, Model, Scheme, State, StepControl,
-};
+use solver::multibody::{interpolate, wheel_driven, Drive, Model, State};
+use solver::time_step::{integrate, Integrator, Scheme, StepControl};
 
 const TABLE_SLICES: usize = 20;
 /// Polar moments of inertia of the test bodies, kg·m² (test values; the
