@@ -12,7 +12,7 @@ use std::path::Path;
 /// than the reduced level).
 pub fn breakdown(
     s: &mut String,
-    rows: &[crate::comparison::Row],
+    rows: &[crate::comparison_row::Row],
     rf: &[crate::reference_stage::BlankSummary],
     conv: Option<&crate::convergence::Convergence>,
     line_load: Option<&crate::line_load::LineLoad>,

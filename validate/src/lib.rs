@@ -10,6 +10,7 @@
 
 pub mod body_compliance;
 pub mod comparison;
+pub mod comparison_row;
 pub mod contact_pairs;
 pub mod contact_surface;
 pub mod convergence;
