@@ -11,7 +11,13 @@ use std::path::{Path, PathBuf};
 
 /// A body's files: `<member>_<blank>_<level>`.
 pub fn mesh_stem(member: Member, blank: Blank, level: MeshLevel) -> String {
-    format!("{}_{}_{}", member.name(), blank.name(), level.name())
+    stem_named(member, blank, level.name())
+}
+
+/// [`mesh_stem`] with the level given by its name, as the studies'
+/// `--levels` options take it.
+pub fn stem_named(member: Member, blank: Blank, level: &str) -> String {
+    format!("{}_{}_{level}", member.name(), blank.name())
 }
 
 /// The stiffness file's stem for loads on the `side` flank: the mesh stem

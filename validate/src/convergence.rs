@@ -89,9 +89,9 @@ impl Convergence {
         self.levels
             .iter()
             .filter(|l| {
-                let now = ["pinion", "wheel"].map(|m| {
-                    sha256_file(&scene_meshes.join(format!("{m}_standard_{}.msh", l.level)))
-                        .unwrap_or_default()
+                let now = [Which::Pinion, Which::Wheel].map(|m| {
+                    let stem = formats::paths::stem_named(m, Blank::Standard, &l.level);
+                    sha256_file(&formats::paths::msh(scene_meshes, &stem)).unwrap_or_default()
                 });
                 now != l.mesh_sha256 || now.iter().any(|h| h.is_empty())
             })
@@ -181,9 +181,8 @@ pub fn run(
             other => anyhow::bail!("--levels: unknown level {other} (reduced, medium, reference)"),
         };
         let msh = |m: Which| {
-            meshes
-                .join(&sc.name)
-                .join(format!("{}_standard_{level}.msh", m.name()))
+            let stem = formats::paths::stem_named(m, Blank::Standard, level);
+            formats::paths::msh(&meshes.join(&sc.name), &stem)
         };
         let (pm, wm) = (msh(Which::Pinion), msh(Which::Wheel));
         for p in [&pm, &wm] {

@@ -336,8 +336,7 @@ pub fn run(
         geometry::scene::Blank::Standard,
         formats::paths::MeshLevel::Reduced,
     );
-    let plan =
-        formats::stiffness_plan::plan(scene, &g, &dir, Member::Pinion, blank, level, side)?;
+    let plan = formats::stiffness_plan::plan(scene, &g, &dir, Member::Pinion, blank, level, side)?;
     let data = formats::stiffness_plan::check(scene, &g, &dir, &plan, Member::Pinion, blank, level)
         .with_context(|| {
             format!(
@@ -414,7 +413,10 @@ pub fn run(
             "reference" => sc.mesh.reference,
             other => anyhow::bail!("--levels: unknown level {other} (reduced, medium, reference)"),
         };
-        let path = dir.join(format!("pinion_standard_{level}.msh"));
+        let path = formats::paths::msh(
+            &dir,
+            &formats::paths::stem_named(Member::Pinion, geometry::scene::Blank::Standard, level),
+        );
         if !path.exists() {
             anyhow::bail!(
                 "scene {}: no mesh {}; run `preprocess mesh {} --level {level}`",
@@ -523,9 +525,10 @@ pub fn run(
         member: "pinion".into(),
         flank: flank_name.into(),
         stiffness_file: plan.path.display().to_string(),
-        stiffness_mesh_sha256: preprocess::stiffness_stage::sha256_file(
-            &dir.join("pinion_standard_reduced.msh"),
-        )?,
+        stiffness_mesh_sha256: preprocess::stiffness_stage::sha256_file(&formats::paths::msh(
+            &dir,
+            &plan.mesh_stem,
+        ))?,
         line_load_n_per_m: study.q,
         profile_row: row,
         eta: eta0,
@@ -543,17 +546,17 @@ impl LineLoad {
     /// Whether the meshes under `scene_meshes` are still the ones the study
     /// ran on.
     pub fn current(&self, scene_meshes: &std::path::Path) -> bool {
-        let same = |file: String, hash: &str| {
-            preprocess::stiffness_stage::sha256_file(&scene_meshes.join(file))
+        let same = |level: &str, hash: &str| {
+            let stem = formats::paths::stem_named(
+                geometry::design::Member::Pinion,
+                geometry::scene::Blank::Standard,
+                level,
+            );
+            preprocess::stiffness_stage::sha256_file(&formats::paths::msh(scene_meshes, &stem))
                 .is_ok_and(|h| h == hash)
         };
-        same(
-            "pinion_standard_reduced.msh".into(),
-            &self.stiffness_mesh_sha256,
-        ) && self
-            .levels
-            .iter()
-            .all(|l| same(format!("pinion_standard_{}.msh", l.level), &l.mesh_sha256))
+        same("reduced", &self.stiffness_mesh_sha256)
+            && self.levels.iter().all(|l| same(&l.level, &l.mesh_sha256))
     }
 
     /// The report's section.

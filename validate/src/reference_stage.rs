@@ -241,7 +241,7 @@ fn unloaded_check(res: &[PositionResult], utca: &[f64]) -> UnloadedCheck {
 }
 
 fn blank_name(b: Blank) -> String {
-    format!("{b:?}").to_lowercase()
+    b.name().to_string()
 }
 
 /// Runs the reference LTCA of the scene.
@@ -266,8 +266,9 @@ pub fn run(
     let step = sc.rotation.step_deg.to_radians();
     let dir = meshes.join(&sc.name);
     let cycles = |wb: Blank| sc.rotation.mesh_cycles(wb);
-    let msh =
-        |m: Which, b: Blank| dir.join(format!("{}_{}_{}.msh", m.name(), blank_name(b), opt.level));
+    let msh = |m: Which, b: Blank| {
+        formats::paths::msh(&dir, &formats::paths::stem_named(m, b, &opt.level))
+    };
     let mut pinion_teeth = std::collections::BTreeSet::new();
     for &wb in &sc.blanks.wheel {
         pinion_teeth.extend(teeth_in_contact(&g, side, cycles(wb), step).0);
