@@ -19,10 +19,11 @@ use crate::mesh_table::{MeshTable, TableSpec};
 use crate::multibody::{
     interpolate, wheel_driven, Drive, Fluctuation, Impacts, Model, Ramp, State,
 };
-use crate::time_step::{integrate, Integrator, Scheme, StepControl};
 use crate::spectrum::{plot, resample, stft, OrderLine};
+use crate::time_step::{integrate, Integrator, Scheme, StepControl};
 use anyhow::Context;
 use charts::{te_curve, Series};
+use formats::columns::{PINION_ROTATION_DEG, PINION_RPM, TE_URAD, TIME_S};
 use formats::manifest::Manifest;
 use formats::output::{write_atomic, write_json};
 use formats::stiffness_plan::StiffnessPlan;
@@ -75,9 +76,14 @@ fn record(
 }
 
 fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
-    let mut out = String::from(
-        "time_s,pinion_rotation_deg,pinion_rpm,te_urad,pinion_mesh_torque_nm,wheel_mesh_torque_nm,wheel_bearing_fx_n,wheel_bearing_fy_n,wheel_bearing_fz_n",
-    );
+    let mut out = [
+        TIME_S,
+        PINION_ROTATION_DEG,
+        PINION_RPM,
+        TE_URAD,
+        "pinion_mesh_torque_nm,wheel_mesh_torque_nm,wheel_bearing_fx_n,wheel_bearing_fy_n,wheel_bearing_fz_n",
+    ]
+    .join(",");
     if statics.is_some() {
         out.push_str(",te_quasi_static_urad");
     }

@@ -7,6 +7,7 @@
 use crate::compliance::{MemberCompliance, PairCompliance};
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
 use anyhow::Context;
+use formats::columns::{te_at_urad, PINION_ROTATION_DEG, UTCA_TE_URAD};
 use formats::output::{write_atomic, write_json};
 use formats::paths::MeshLevel;
 use formats::stiffness_file;
@@ -288,9 +289,9 @@ pub fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummar
 }
 
 fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Result<()> {
-    let mut te = String::from("pinion_rotation_deg,utca_te_urad");
-    for t in torques {
-        write!(te, ",te_{t}nm_urad")?;
+    let mut te = format!("{PINION_ROTATION_DEG},{UTCA_TE_URAD}");
+    for &t in torques {
+        write!(te, ",{}", te_at_urad(t))?;
     }
     te.push('\n');
     // The torque driving the wheel (normal and friction forces).

@@ -326,8 +326,9 @@ fn multibody_at(out: &Path, scene: &str, dir: &Path, blank: &str, t: f64) -> Opt
             .join(format!("quasi_static_{t}nm.csv")),
     )?;
     let rf = read_csv(&dir.join("te.csv"))?;
-    let (x, y) = (column(&mb, "pinion_rotation_deg")?, column(&mb, "te_urad")?);
-    let v: Vec<f64> = column(&rf, "pinion_rotation_deg")?
+    use formats::columns::{PINION_ROTATION_DEG, TE_URAD};
+    let (x, y) = (column(&mb, PINION_ROTATION_DEG)?, column(&mb, TE_URAD)?);
+    let v: Vec<f64> = column(&rf, PINION_ROTATION_DEG)?
         .iter()
         .map(|&a| interpolate(x, y, a))
         .collect::<Option<_>>()?;

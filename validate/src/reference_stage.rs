@@ -7,6 +7,7 @@
 
 use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
 use anyhow::Context;
+use formats::columns;
 use formats::output::{write_atomic, write_json};
 use geometry::design::Member as Which;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
@@ -513,7 +514,12 @@ pub fn run(
             }
             let mut pts: Vec<([f64; 3], f64)> = envelope.into_values().collect();
             pts.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
-            let mut csv = String::from("x_m,y_m,z_m,xi,eta,pressure_mpa\n");
+            let mut csv = format!(
+                "x_m,y_m,z_m,{},{},{}\n",
+                columns::XI,
+                columns::ETA,
+                columns::PRESSURE_MPA
+            );
             for (p, v) in &pts {
                 let (l, d) = fp.pinion.gen.frame.axial(p);
                 let (xi, eta) = fp.pinion.bounds.to_unit(l, d);
@@ -700,11 +706,14 @@ fn write_te_csv(
     start: f64,
     direction: f64,
 ) -> anyhow::Result<()> {
-    let mut s =
-        String::from("pinion_rotation_deg,utca_te_urad,te_unloaded_urad,unloaded_xi,unloaded_eta");
+    let mut s = format!(
+        "{},{},te_unloaded_urad,unloaded_xi,unloaded_eta",
+        columns::PINION_ROTATION_DEG,
+        columns::UTCA_TE_URAD
+    );
     if let Some(r) = res.first() {
         for l in &r.loads {
-            write!(s, ",te_{}nm_urad", l.torque_nm)?;
+            write!(s, ",{}", columns::te_at_urad(l.torque_nm))?;
         }
     }
     s.push('\n');
