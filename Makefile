@@ -63,7 +63,7 @@ validate: solve
 	  $(BIN)/preprocess mesh $(SCENE) --level reference --out meshes && \
 	  $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) --level reference \
 	    --stride $(FINE_STRIDE) --stride-lightweight $(FINE_STRIDE_LW); fi
-	$(BIN)/validate utca $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
+	$(BIN)/validate report $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
 
 # Mesh convergence of the reference (three mesh levels at one position and
 # torque; the reference level needs ~10 GB and about half an hour), and the

@@ -101,7 +101,12 @@ pub fn compare(
             if let Ok(d) =
                 std::fs::read_dir(crate::reference_stage::reference_dir(out, scene, level))
             {
-                let mut dirs: Vec<PathBuf> = d.filter_map(|e| e.ok()).map(|e| e.path()).collect();
+                // One folder per blank pair (the studies' JSON files sit beside them).
+            let mut dirs: Vec<PathBuf> = d
+                .filter_map(|e| e.ok())
+                .map(|e| e.path())
+                .filter(|p| p.is_dir())
+                .collect();
                 dirs.sort();
                 for p in dirs {
                     v.extend(read(&p.join("summary.json"))?);

@@ -4,14 +4,109 @@
 //! the largest torque of both methods on the pinion flank (its Figure 12).
 //!
 //! Inputs are the stages' CSV files under `<out>/<scene>/`; a missing file
-//! leaves its figure out.
+//! leaves its figure out. [`report_figures`] gathers every figure of the
+//! report, sorted by the section that shows it.
 
 use charts::{te_curve, Series};
 use plotters::prelude::*;
 use std::path::Path;
 
-/// A figure for the report: title and SVG text.
-pub type Figure = (String, String);
+/// A figure of the report: its title, its file in the report directory
+/// (linked from `report.md`) and the SVG text (inline in `report.html`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    pub title: String,
+    pub file: String,
+    pub svg: String,
+}
+
+/// The report's figures by the section that shows them.
+#[derive(Debug, Clone, Default)]
+pub struct ReportFigures {
+    /// Loaded TE against pinion rotation, per load (ascending) and blank
+    /// combination (standard wheel first).
+    pub loaded_te: Vec<Figure>,
+    /// Contact patterns at [`ReportFigures::pattern_torque_nm`].
+    pub patterns: Vec<Figure>,
+    pub pattern_torque_nm: Option<f64>,
+    /// The reduced model's error to the reference against its run time.
+    pub tradeoff: Option<Figure>,
+    /// The flank stage's plots: unloaded TE, path of contact, ease-off.
+    pub unloaded: Vec<Figure>,
+}
+
+impl ReportFigures {
+    /// Every figure.
+    pub fn all(&self) -> impl Iterator<Item = &Figure> {
+        self.loaded_te
+            .iter()
+            .chain(&self.patterns)
+            .chain(&self.tradeoff)
+            .chain(&self.unloaded)
+    }
+}
+
+/// The flank stage's plots that the report shows, copied from `flanks`
+/// into `reports` (so that `report.md` links them next to it).
+pub const UNLOADED_PLOTS: [(&str, &str, &str); 3] = [
+    ("Unloaded transmission error", "te.svg", "unloaded_te.svg"),
+    ("Path of contact", "contact_path.svg", "contact_path.svg"),
+    ("Ease-off", "ease_off.svg", "ease_off.svg"),
+];
+
+/// A figure from an SVG file `from`, copied to `reports/<file>`; None when
+/// `from` cannot be read or the copy cannot be written.
+pub fn copied(title: &str, from: &Path, reports: &Path, file: &str) -> Option<Figure> {
+    let svg = std::fs::read_to_string(from).ok()?;
+    formats::output::write_atomic(&reports.join(file), svg.as_bytes()).ok()?;
+    Some(Figure {
+        title: title.into(),
+        file: file.into(),
+        svg,
+    })
+}
+
+/// Every figure of the report: the flank stage's plots from `flanks`, and,
+/// with the stages' output root `out` and the scene, the loaded TE curves,
+/// the contact patterns at the largest torque and the run-time trade-off.
+/// SVG files are written to (or copied into) `reports`.
+pub fn report_figures(
+    out: Option<&Path>,
+    scene: Option<&geometry::scene::Scene>,
+    flanks: &Path,
+    reports: &Path,
+) -> ReportFigures {
+    // The plots below write into it.
+    let _ = std::fs::create_dir_all(reports);
+    let mut f = ReportFigures {
+        unloaded: UNLOADED_PLOTS
+            .iter()
+            .filter_map(|(title, from, to)| copied(title, &flanks.join(from), reports, to))
+            .collect(),
+        ..Default::default()
+    };
+    let (Some(o), Some(s)) = (out, scene) else {
+        return f;
+    };
+    f.loaded_te = te_figures(o, &s.name, reports, &s.pinion_torque_nm);
+    f.tradeoff = copied(
+        "Reduced model: error to the reference against run time",
+        &o.join(&s.name).join("reference/tradeoff.svg"),
+        reports,
+        "tradeoff.svg",
+    );
+    if let Some(&t) = s.pinion_torque_nm.last() {
+        for wb in &s.blanks.wheel {
+            for pb in &s.blanks.pinion {
+                let blank = format!("{pb:?}_{wb:?}").to_lowercase();
+                f.patterns
+                    .extend(pattern_figure(o, &s.name, &blank, t, reports));
+            }
+        }
+        f.pattern_torque_nm = (!f.patterns.is_empty()).then_some(t);
+    }
+    f
+}
 
 /// A CSV file's header and columns (non-numeric cells become NaN).
 pub type Csv = (Vec<String>, Vec<Vec<f64>>);
@@ -38,7 +133,8 @@ pub fn column<'a>(csv: &'a Csv, name: &str) -> Option<&'a [f64]> {
 
 /// TE against rotation for every blank combination with a reference run and
 /// every torque: one SVG per blank and torque, written to `reports` as
-/// `te_loaded_<blanks>_<T>nm.svg`.
+/// `te_loaded_<blanks>_<T>nm.svg`; by torque, then blank combination with
+/// the standard wheel first (side by side in the report).
 pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> Vec<Figure> {
     let mut figs = Vec::new();
     let mut blanks: Vec<String> = crate::reference_stage::LEVELS_FINEST_FIRST
@@ -51,20 +147,23 @@ pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> V
         .filter(|e| e.path().join("te.csv").exists())
         .filter_map(|e| e.file_name().into_string().ok())
         .collect();
-    blanks.sort();
+    blanks.sort_by_key(|b| (!b.ends_with("_standard"), b.clone()));
     blanks.dedup();
-    for blank in blanks {
-        // The finest level's sweep.
-        let Some(reference) = crate::reference_stage::finest_reference(out, scene, &blank)
-            .and_then(|d| read_csv(&d.join("te.csv")))
-        else {
-            continue;
-        };
-        for &t in torques {
+    // The finest level's sweep of each.
+    let references: Vec<(String, Csv)> = blanks
+        .into_iter()
+        .filter_map(|blank| {
+            let csv = crate::reference_stage::finest_reference(out, scene, &blank)
+                .and_then(|d| read_csv(&d.join("te.csv")))?;
+            Some((blank, csv))
+        })
+        .collect();
+    for &t in torques {
+        for (blank, reference) in &references {
             let mb_path = out
                 .join(scene)
                 .join("multibody")
-                .join(&blank)
+                .join(blank)
                 .join(format!("quasi_static_{t}nm.csv"));
             let mut series = Vec::new();
             if let Some(mb) = read_csv(&mb_path) {
@@ -80,8 +179,8 @@ pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> V
                 }
             }
             if let (Some(x), Some(y)) = (
-                column(&reference, "pinion_rotation_deg"),
-                column(&reference, &format!("te_{t}nm_urad")),
+                column(reference, "pinion_rotation_deg"),
+                column(reference, &format!("te_{t}nm_urad")),
             ) {
                 series.push(Series {
                     name: "reference FE contact".into(),
@@ -97,7 +196,11 @@ pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> V
             let title = format!("Loaded TE, {} blanks, {t} N·m", blank.replace('_', " / "));
             if te_curve(&file, &title, "pinion rotation (deg)", "TE (µrad)", &series).is_ok() {
                 if let Ok(svg) = std::fs::read_to_string(&file) {
-                    figs.push((title, svg));
+                    figs.push(Figure {
+                        title,
+                        file: format!("te_loaded_{blank}_{t}nm.svg"),
+                        svg,
+                    });
                 }
             }
         }
@@ -206,7 +309,8 @@ pub fn pattern_figure(
     }
     let peak = |v: &[(f64, f64, f64)]| v.iter().map(|p| p.2).fold(0.0, f64::max);
     let (peak_a, peak_b) = (peak(&a), peak(&b));
-    let file = reports.join(format!("pattern_{blank}_{t}nm.svg"));
+    let name = format!("pattern_{blank}_{t}nm.svg");
+    let file = reports.join(&name);
     let title = format!(
         "Contact pattern at {t} N·m, {} blanks (pressure envelope, one colour scale 0 – {p_max:.0} MPa, from 2 %; frame: the flank)",
         blank.replace('_', " / ")
@@ -254,7 +358,11 @@ pub fn pattern_figure(
         Ok(())
     };
     draw().ok()?;
-    Some((title, std::fs::read_to_string(&file).ok()?))
+    Some(Figure {
+        svg: std::fs::read_to_string(&file).ok()?,
+        title,
+        file: name,
+    })
 }
 
 #[cfg(test)]

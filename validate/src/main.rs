@@ -17,8 +17,11 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Unloaded TCA against the direct contact search and the published 1 N·m TE.
-    Utca {
+    /// The whole validation report: loaded TE against the reference and the
+    /// published tables, run times, unloaded TCA, the UTCA cross-check and
+    /// the method notes (report.md, report.html, summary.json, results.md
+    /// and the SVG figures), and the results table in the README.
+    Report {
         /// Scene or design file.
         scene: PathBuf,
         /// Output directory of `preprocess flanks` (for the plots).
@@ -37,6 +40,23 @@ enum Cmd {
         /// Mesh root (for the convergence study's mesh check).
         #[arg(long, default_value = "meshes")]
         meshes: PathBuf,
+        /// README whose text between `<!-- results:begin -->` and
+        /// `<!-- results:end -->` is replaced by the results table (left
+        /// alone without both markers).
+        #[arg(long, default_value = "README.md")]
+        readme: PathBuf,
+    },
+    /// UTCA cross-check: the surface of roll angles against the direct
+    /// contact search over one mesh cycle.
+    Utca {
+        /// Scene or design file.
+        scene: PathBuf,
+        /// Positions per mesh cycle for the direct search.
+        #[arg(long, default_value_t = 12)]
+        positions: usize,
+        /// Writes the comparison as JSON to this file.
+        #[arg(long)]
+        out_json: Option<PathBuf>,
     },
     /// Reference loaded TCA: fine FE bodies in penalty contact.
     Reference {
@@ -180,13 +200,14 @@ fn penalty_settings(
 
 fn main() -> anyhow::Result<()> {
     match Cli::parse().cmd {
-        Cmd::Utca {
+        Cmd::Report {
             scene,
             flanks,
             reports,
             positions,
             out,
             meshes,
+            readme,
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
@@ -201,45 +222,63 @@ fn main() -> anyhow::Result<()> {
                 )?,
                 _ => None,
             };
-            let mut figures = Vec::new();
-            if let (Some(o), Some(sc)) = (&out, &sc) {
-                std::fs::create_dir_all(&reports)?;
-                let s = &sc.scene;
-                figures = validate::figures::te_figures(o, &s.name, &reports, &s.pinion_torque_nm);
-                let tr = o.join(&s.name).join("reference/tradeoff.svg");
-                if let Ok(svg) = std::fs::read_to_string(&tr) {
-                    figures.push((
-                        "Reduced model: error to the reference against run time".into(),
-                        svg,
-                    ));
-                }
-                if let Some(&t) = s.pinion_torque_nm.last() {
-                    for wb in &s.blanks.wheel {
-                        for pb in &s.blanks.pinion {
-                            let blank = format!("{pb:?}_{wb:?}").to_lowercase();
-                            figures.extend(validate::figures::pattern_figure(
-                                o, &s.name, &blank, t, &reports,
-                            ));
-                        }
-                    }
-                }
-            }
-            validate::report::write(
+            let figures = validate::figures::report_figures(
+                out.as_deref(),
+                sc.as_ref().map(|s| &s.scene),
+                &flanks,
+                &reports,
+            );
+            let written = validate::report::write(
                 &reports,
                 &c,
                 published.as_ref(),
-                &flanks,
                 loaded.as_ref(),
                 &figures,
+                &readme,
             )?;
             println!(
-                "UTCA cross-check: {} positions, max |fast - direct| = {:.4} urad, TE ptp {:.2} urad{}; reports in {}",
+                "report of scene {}: {} loaded TE rows, {} figures; reports in {}{}",
+                c.name,
+                loaded.as_ref().map_or(0, |l| l.rows.len()),
+                figures.all().count(),
+                reports.display(),
+                if written.readme_updated {
+                    format!("; results table in {}", readme.display())
+                } else {
+                    String::new()
+                }
+            );
+        }
+        Cmd::Utca {
+            scene,
+            positions,
+            out_json,
+        } => {
+            let input = preprocess::flank_stage::load_input(&scene)?;
+            let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
+            println!("pinion rotation, deg | fast TE, urad | direct TE, urad | difference, urad");
+            for r in &c.rows {
+                println!(
+                    "{:20.2} | {:13.4} | {:15.4} | {:+16.4}",
+                    r.pinion_rotation_deg, r.fast_te_urad, r.direct_te_urad, r.difference_urad
+                );
+            }
+            println!(
+                "UTCA cross-check, scene {} ({} flank): {} positions, max |fast - direct| = {:.4} urad, smallest gap {:.2e} um; TE ptp {:.2} urad, mean {:.2} urad; {:.3} ms/position (direct search {:.1} ms)",
+                c.name,
+                c.side,
                 c.rows.len(),
                 c.max_abs_difference_urad,
+                c.min_gap_um,
                 c.fast_te_ptp_urad,
-                published.map(|p| format!(" (published {:.1} at 1 N m)", p.value)).unwrap_or_default(),
-                reports.display()
+                c.fast_te_mean_urad,
+                c.fast_ms_per_position,
+                c.direct_ms_per_position
             );
+            if let Some(p) = out_json {
+                formats::output::write_json(&p, &c)?;
+                println!("written {}", p.display());
+            }
         }
         Cmd::Reference {
             scene,

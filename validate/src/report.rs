@@ -1,6 +1,17 @@
-//! `reports/report.md`, a self-contained `reports/report.html` and
-//! `reports/summary.json`, written atomically.
+//! `reports/report.md`, a self-contained `reports/report.html`,
+//! `reports/summary.json` and `reports/results.md`, written atomically.
+//!
+//! The report opens with what a reader came for, the loaded TE of the
+//! reduced model against the reference FE contact and the white paper's
+//! Tables 3 and 4, with its figures; then run times; then the details: the
+//! unloaded TCA, the cross-check of the surface of roll angles and the
+//! method notes. Each figure stands under the section that discusses it.
 
+pub mod html;
+pub mod layout;
+pub mod results;
+
+use crate::figures::{Figure, ReportFigures};
 use crate::utca_check::UtcaCheck;
 use formats::output::{write_atomic, write_json, WriteError};
 use serde::Serialize;
@@ -24,13 +35,41 @@ pub struct Summary<'a> {
     pub te_ptp_difference_percent: Option<f64>,
 }
 
-fn markdown(
-    c: &UtcaCheck,
-    published: Option<&Published>,
-    loaded: Option<&crate::comparison::Comparison>,
-) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "# Validation report: scene `{}`\n", c.name);
+/// Figure lines `![title](file)` of `figs`: one after the other (side by
+/// side in the HTML) when `side_by_side`, else each a block of its own
+/// (the column's width).
+fn figure_lines(s: &mut String, figs: &[Figure], side_by_side: bool) {
+    for f in figs {
+        // `]` would end the caption early.
+        let _ = writeln!(s, "![{}]({})", f.title.replace(['[', ']'], ""), f.file);
+        if !side_by_side {
+            s.push('\n');
+        }
+    }
+    if side_by_side && !figs.is_empty() {
+        s.push('\n');
+    }
+}
+
+/// `md` with `figs` before its first table (after the text that introduces
+/// them), or at its end when it has no table.
+fn figures_before_table(md: &str, figs: &[Figure]) -> String {
+    let mut figure_md = String::new();
+    figure_lines(&mut figure_md, figs, false);
+    let blocks = layout::blocks(md);
+    let Some(k) = blocks.iter().position(|b| b[0].starts_with('|')) else {
+        return format!("{md}{figure_md}");
+    };
+    format!(
+        "{}{figure_md}{}",
+        layout::join(&blocks[..k]),
+        layout::join(&blocks[k..])
+    )
+}
+
+/// The unloaded TCA: TE, contact ratio, run time, the published value where
+/// there is one, and the flank stage's plots.
+fn unloaded_section(s: &mut String, c: &UtcaCheck, published: Option<&Published>, figs: &[Figure]) {
     let _ = writeln!(s, "## Unloaded tooth contact ({} flank)\n", c.side);
     let _ = writeln!(s, "| quantity | this toolkit | published |");
     let _ = writeln!(s, "|---|---|---|");
@@ -58,6 +97,18 @@ fn markdown(
         "| run time per position | {:.3} ms (surface of roll angles) | direct search {:.1} ms |\n",
         c.fast_ms_per_position, c.direct_ms_per_position
     );
+    if let Some(p) = published {
+        let _ = writeln!(
+            s,
+            "The peak-to-peak row is a calibration, not a validation. The white paper does not publish this pair's ease-off (crowning, motion error); it was chosen so that the unloaded TE comes out at the published {:.1} µrad peak-to-peak at 1 N·m, so agreement here shows the ease-off does what it was chosen for and says nothing yet about the TCA. The independent checks of the unloaded TCA are the direct contact search below and the reference FE's unloaded run in the loaded-TE section above.\n",
+            p.value
+        );
+    }
+    figure_lines(s, figs, true);
+}
+
+/// The cross-check of the surface of roll angles against the direct search.
+fn roll_surface_section(s: &mut String, c: &UtcaCheck) {
     let _ = writeln!(
         s,
         "## Surface of roll angles against the direct contact search\n\nThe fast UTCA finds contact through the tabulated surface of roll angles; the reference places both flanks, projects every pinion point onto the wheel flank and minimises the gap. Largest difference: **{:.4} µrad**; smallest gap on the active flanks at the reference TE: {:.2e} µm (no penetration).\n",
@@ -75,93 +126,110 @@ fn markdown(
             r.pinion_rotation_deg, r.fast_te_urad, r.direct_te_urad, r.difference_urad
         );
     }
-    match loaded {
-        Some(cmp) => {
-            s.push('\n');
-            s.push_str(&cmp.markdown);
-        }
+    s.push('\n');
+}
+
+/// The whole report as markdown.
+pub fn markdown(
+    c: &UtcaCheck,
+    published: Option<&Published>,
+    loaded: Option<&crate::comparison::Comparison>,
+    figs: &ReportFigures,
+) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# Validation report: scene `{}`\n", c.name);
+    let _ = writeln!(
+        s,
+        "First the loaded transmission error (TE) of the reduced model against the reference FE contact and the white paper's Tables 3 and 4, with the TE curves and contact patterns; then the run times. The details follow: the unloaded TCA, the cross-check of its surface of roll angles, and the notes on the reference's mesh convergence and the line-load check.\n"
+    );
+    let parts = loaded.map(|l| layout::split(&l.markdown));
+    match &parts {
+        Some(p) => s.push_str(&p.te),
         None => {
             let _ = writeln!(
                 s,
-                "\n## Loaded TCA\n\nNo comparison: run `solver dynamic` and `validate reference` first (`make validate REFERENCE=1` does)."
+                "## Loaded TCA\n\nNo comparison: run `solver dynamic` and `validate reference` first (`make validate REFERENCE=1` does).\n"
             );
         }
+    }
+    if !figs.loaded_te.is_empty() {
+        let _ = writeln!(
+            s,
+            "TE against pinion rotation per load: the reduced model's multibody run at 10 rpm (solid) against the reference FE contact (dashed), as in the white paper's Figures 10 and 11; standard wheel blank first.\n"
+        );
+        figure_lines(&mut s, &figs.loaded_te, true);
+    }
+    if let Some(p) = &parts {
+        s.push_str(&p.discussion);
+    }
+    let pattern_text = parts.as_ref().map_or("", |p| p.patterns.as_str());
+    if !figs.patterns.is_empty() || !pattern_text.is_empty() {
+        match figs.pattern_torque_nm {
+            Some(t) => {
+                let _ = writeln!(s, "### Contact pattern at {t} N·m\n");
+            }
+            None => {
+                let _ = writeln!(s, "### Contact pattern\n");
+            }
+        }
+        s.push_str(pattern_text);
+        if !figs.patterns.is_empty() {
+            let _ = writeln!(
+                s,
+                "Pressure envelope over all positions on the pinion flank (ξ along the face, η up the profile): the reduced model's slices on the left, the reference FE's nodes on the right, one colour scale per figure.\n"
+            );
+            figure_lines(&mut s, &figs.patterns, false);
+        }
+    }
+    if let Some(p) = &parts {
+        s.push_str(&p.run_time);
+    }
+    let tradeoff = parts.as_ref().map_or("", |p| p.tradeoff.as_str());
+    match &figs.tradeoff {
+        Some(f) => s.push_str(&figures_before_table(tradeoff, std::slice::from_ref(f))),
+        None => s.push_str(tradeoff),
+    }
+    unloaded_section(&mut s, c, published, &figs.unloaded);
+    roll_surface_section(&mut s, c);
+    if let Some(p) = &parts {
+        s.push_str(&p.details);
+    }
+    while s.ends_with("\n\n") {
+        s.pop();
     }
     s
 }
 
-fn html(md: &str, svgs: &[(String, String)]) -> String {
-    let mut body = String::new();
-    for line in md.lines() {
-        let esc = line
-            .replace('&', "&amp;")
-            .replace('<', "&lt;")
-            .replace('>', "&gt;");
-        if let Some(h) = esc.strip_prefix("## ") {
-            let _ = writeln!(body, "<h2>{h}</h2>");
-        } else if let Some(h) = esc.strip_prefix("# ") {
-            let _ = writeln!(body, "<h1>{h}</h1>");
-        } else if esc.starts_with('|') {
-            if esc.starts_with("|---") {
-                continue;
-            }
-            let cells: Vec<&str> = esc.trim_matches('|').split('|').map(str::trim).collect();
-            let _ = writeln!(
-                body,
-                "<tr>{}</tr>",
-                cells
-                    .iter()
-                    .map(|c| format!("<td>{c}</td>"))
-                    .collect::<String>()
-            );
-        } else if !esc.is_empty() {
-            let _ = writeln!(body, "<p>{}</p>", esc.replace("**", ""));
-        }
-    }
-    let body = body
-        .replace("</p>\n<tr>", "</p>\n<table><tr>")
-        .replace("</tr>\n<h", "</tr></table>\n<h")
-        .replace("</tr>\n<p", "</tr></table>\n<p");
-    let mut out = String::from("<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>Validation report</title><style>body{font-family:sans-serif;max-width:1100px;margin:auto}table{border-collapse:collapse}td{border:1px solid #ccc;padding:2px 8px}</style></head><body>\n");
-    out.push_str(&body);
-    for (title, svg) in svgs {
-        let _ = writeln!(out, "<h2>{title}</h2>\n{svg}");
-    }
-    out.push_str("</body></html>\n");
-    out
+/// What [`write`] did besides the report files.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Written {
+    /// The README had the results markers and now holds the results table.
+    pub readme_updated: bool,
 }
 
-/// Writes the three report files into `dir`; `plots_dir` holds the SVG plots of the flank stage.
+/// Writes `report.md`, `report.html`, `summary.json` and `results.md` into
+/// `dir` (the figures' SVG files are there already, see
+/// [`crate::figures::report_figures`]), and the results table into the
+/// README at `readme` between its markers (when it has them and there is a
+/// loaded comparison).
 pub fn write(
     dir: &Path,
     c: &UtcaCheck,
     published: Option<&Published>,
-    plots_dir: &Path,
     loaded: Option<&crate::comparison::Comparison>,
-    figures: &[crate::figures::Figure],
-) -> Result<(), WriteError> {
-    let mut md = markdown(c, published, loaded);
-    if !figures.is_empty() {
-        md.push_str("\n## Loaded TE and contact pattern figures\n\n");
-        for (t, _) in figures {
-            let _ = writeln!(md, "- {t} (SVG in report.html)");
-        }
-    }
+    figures: &ReportFigures,
+    readme: &Path,
+) -> Result<Written, WriteError> {
+    let md = markdown(c, published, loaded, figures);
     write_atomic(&dir.join("report.md"), md.as_bytes())?;
-    let mut svgs: Vec<(String, String)> = [
-        ("Unloaded transmission error", "te.svg"),
-        ("Path of contact", "contact_path.svg"),
-        ("Ease-off", "ease_off.svg"),
-    ]
-    .iter()
-    .filter_map(|(t, f)| {
-        std::fs::read_to_string(plots_dir.join(f))
-            .ok()
-            .map(|s| (t.to_string(), s))
-    })
-    .collect();
-    svgs.extend(figures.iter().cloned());
-    write_atomic(&dir.join("report.html"), html(&md, &svgs).as_bytes())?;
+    let inline = |file: &str| -> Option<String> {
+        figures
+            .all()
+            .find(|f| f.file == file)
+            .map(|f| f.svg.clone())
+    };
+    let page = html::page(&format!("Validation report: {}", c.name), &md, &inline);
+    write_atomic(&dir.join("report.html"), page.as_bytes())?;
     let summary = Summary {
         utca: c,
         loaded_te: loaded.map(|l| l.rows.as_slice()),
@@ -169,5 +237,10 @@ pub fn write(
         te_ptp_difference_percent: published
             .map(|p| (c.fast_te_ptp_urad - p.value) / p.value * 100.0),
     };
-    write_json(&dir.join("summary.json"), &summary)
+    write_json(&dir.join("summary.json"), &summary)?;
+    let rows = loaded.map_or(&[][..], |l| l.rows.as_slice());
+    let table = results::markdown(&c.name, rows, &results::Stamp::now());
+    write_atomic(&dir.join("results.md"), table.as_bytes())?;
+    let readme_updated = !rows.is_empty() && results::update_readme(readme, &table)?;
+    Ok(Written { readme_updated })
 }

@@ -39,7 +39,7 @@ fn te_and_pattern_figures_from_stage_outputs() {
     );
     let te = validate::figures::te_figures(&out, "demo", &reports, &[300.0, 500.0]);
     assert_eq!(te.len(), 1, "one figure: 500 N·m has no data");
-    let svg = &te[0].1;
+    let svg = &te[0].svg;
     assert!(svg.contains("multibody 10 rpm") && svg.contains("reference FE contact"));
     assert!(reports
         .join("te_loaded_standard_standard_300nm.svg")
@@ -47,9 +47,9 @@ fn te_and_pattern_figures_from_stage_outputs() {
     let pat = validate::figures::pattern_figure(&out, "demo", "standard_standard", 300.0, &reports)
         .expect("pattern figure");
     assert!(
-        pat.0.contains("1200 MPa"),
+        pat.title.contains("1200 MPa"),
         "colour scale up to the largest pressure: {}",
-        pat.0
+        pat.title
     );
     assert!(validate::figures::pattern_figure(
         &out,
