@@ -1,27 +1,22 @@
 //! Validation: independent checks of each stage against reference methods,
-//! and the reports that put them side by side.
+//! and the report that puts them side by side. Three parts, apart:
 //!
-//! - The unloaded TCA (surface of roll angles, [`geometry::utca`]) against
-//!   the direct geometric contact search ([`geometry::direct`]), and the
-//!   unloaded TE against the white paper's 1 N·m value.
-//! - The reference loaded TCA: both FE bodies in penalty contact
-//!   ([`reference_ltca`], [`reference_stage`]), and its comparison with the
-//!   reduced model ([`comparison`], [`figures`], [`report`]).
+//! - [`reference`]: the reference FE (both bodies in penalty contact,
+//!   condensed onto the contact nodes) and its `validate reference` stage;
+//! - [`studies`]: the UTCA cross-check, mesh convergence, the line-load
+//!   check and the run-time/error trade-off;
+//! - [`report`]: the comparison with the reduced model and the published
+//!   values, the figures and the report files (`validate report`).
+//!
+//! The modules are also re-exported at the crate root (`validate::reference_stage`, ...).
 
-pub mod body_compliance;
-pub mod comparison;
-pub mod comparison_row;
-pub mod contact_pairs;
-pub mod contact_surface;
-pub mod convergence;
-pub mod differences;
-pub mod figures;
-pub mod line_load;
-pub mod path_compliance;
-pub mod penalty;
-pub mod published;
-pub mod reference_ltca;
-pub mod reference_stage;
+pub mod reference;
 pub mod report;
-pub mod tradeoff;
-pub mod utca_check;
+pub mod studies;
+
+pub use reference::{
+    body_compliance, contact_pairs, contact_surface, path_compliance, penalty, reference_ltca,
+    reference_stage,
+};
+pub use report::{comparison, comparison_row, differences, figures, published};
+pub use studies::{convergence, line_load, tradeoff, utca_check};

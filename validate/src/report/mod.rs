@@ -7,8 +7,13 @@
 //! unloaded TCA, the cross-check of the surface of roll angles and the
 //! method notes. Each figure stands under the section that discusses it.
 
+pub mod comparison;
+pub mod comparison_row;
+pub mod differences;
+pub mod figures;
 pub mod html;
 pub mod layout;
+pub mod published;
 pub mod results;
 
 use crate::figures::{Figure, ReportFigures};
