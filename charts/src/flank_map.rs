@@ -208,7 +208,7 @@ pub fn flank_map(
                     .map(|q| (((p.0 - q.0).pow(2) + (p.1 - q.1).pow(2)) as f64).sqrt())
                     .fold(f64::INFINITY, f64::min);
                 let score = near.min(3.0 * border);
-                if best.map_or(true, |(_, s)| score > s) {
+                if best.is_none_or(|(_, s)| score > s) {
                     best = Some((p, score));
                 }
             }

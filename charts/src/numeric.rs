@@ -41,7 +41,7 @@ pub fn nice_ticks(lo: f64, hi: f64, n: usize) -> Vec<f64> {
         if t == 0.0 {
             t = 0.0; // no negative zero
         }
-        if ticks.last().map_or(true, |&p| t > p) {
+        if ticks.last().is_none_or(|&p| t > p) {
             ticks.push(t);
         }
     }

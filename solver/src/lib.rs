@@ -21,10 +21,10 @@ pub mod ltca;
 pub mod ltca_stage;
 pub mod mesh_table;
 pub mod multibody;
-pub mod time_step;
 pub mod plan;
 pub mod slices;
 pub mod spectrum;
+pub mod time_step;
 pub mod weber_banaschek;
 
 /// Errors of the contact element and the LTCA.

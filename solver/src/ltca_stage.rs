@@ -360,7 +360,7 @@ fn write_h5_to(tmp: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::R
             .collect()
     };
     {
-        let f = stiffness_file::h5().create(&tmp)?;
+        let f = stiffness_file::h5().create(tmp)?;
         let put = |name: &str, shape: Vec<usize>, v: &[f64], units: &str| {
             stiffness_file::write_dataset(&f, name, &shape, v, units)
         };

@@ -102,11 +102,11 @@ pub fn compare(
                 std::fs::read_dir(crate::reference_stage::reference_dir(out, scene, level))
             {
                 // One folder per blank pair (the studies' JSON files sit beside them).
-            let mut dirs: Vec<PathBuf> = d
-                .filter_map(|e| e.ok())
-                .map(|e| e.path())
-                .filter(|p| p.is_dir())
-                .collect();
+                let mut dirs: Vec<PathBuf> = d
+                    .filter_map(|e| e.ok())
+                    .map(|e| e.path())
+                    .filter(|p| p.is_dir())
+                    .collect();
                 dirs.sort();
                 for p in dirs {
                     v.extend(read(&p.join("summary.json"))?);
