@@ -1,26 +1,25 @@
-//! Writes the mesh file: gmsh writes MSH 4.1 (ASCII) itself, to a temporary
-//! name next to the target that is then renamed over it, so that no partial
-//! file remains.
+//! Writes the mesh file: gmsh writes MSH 4.1 (ASCII) itself, through
+//! [`formats::output::write_via`] (a temporary name beside the target, then
+//! renamed over it), so that no partial file remains.
 
 use super::request::{gmsh_err, other_err, MeshError, MeshRequest};
+use formats::output::{write_via, WriteError};
 use gmsh::Session;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// Writes the current mesh to `out` (`.<stem>.tmp.msh` in the same
-/// directory, renamed to `out`), creating the directory.
+/// Writes the current mesh to `out`, creating the directory.
 pub(super) fn write_msh(s: &Session, req: &MeshRequest, out: &Path) -> Result<(), MeshError> {
     let g = |e| gmsh_err(req, e);
     let dir = out.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir)
         .map_err(|e| other_err(req, format!("cannot create {}: {e}", dir.display())))?;
-    let tmp: PathBuf = dir.join(format!(
-        ".{}.tmp.msh",
-        out.file_stem().and_then(|x| x.to_str()).unwrap_or("mesh")
-    ));
     s.option_set_number("Mesh.MshFileVersion", 4.1).map_err(g)?;
     s.option_set_number("Mesh.Binary", 0.0).map_err(g)?;
-    s.write(&tmp).map_err(g)?;
-    std::fs::rename(&tmp, out)
-        .map_err(|e| other_err(req, format!("cannot rename {}: {e}", tmp.display())))?;
-    Ok(())
+    write_via(out, |tmp| {
+        s.write(tmp).map_err(|e| WriteError {
+            path: out.to_path_buf(),
+            message: format!("gmsh: {e}"),
+        })
+    })
+    .map_err(|e| other_err(req, e.to_string()))
 }
