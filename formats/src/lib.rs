@@ -8,13 +8,18 @@
 //! - [`stiffness_file`]: the HDF5 stiffness files (schema, config, input hash);
 //! - [`stiffness_plan`]: what a scene asks of a stiffness file, and the
 //!   readers' check of a file against it;
+//! - [`stiffness_sense`]: the physical sense of a stiffness file's numbers;
 //! - [`summaries`]: the solver's stage summaries, shared by writer and readers;
-//! - [`output`]: the one atomic write (temporary file + rename) every stage uses.
+//! - [`output`]: the one atomic write (temporary file + rename) every stage uses;
+//! - [`result_set`]: a stage's output directory written as one set (lock,
+//!   staging sibling, commit by rename, `run.json`).
 
 pub mod columns;
 pub mod manifest;
 pub mod output;
 pub mod paths;
+pub mod result_set;
 pub mod stiffness_file;
 pub mod stiffness_plan;
+pub mod stiffness_sense;
 pub mod summaries;

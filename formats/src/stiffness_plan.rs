@@ -125,6 +125,14 @@ pub enum CheckError {
     StaleStiffness { stem: String, fields: Vec<String> },
     #[error(transparent)]
     File(#[from] StiffnessFileError),
+    #[error("{}: changed since the stiffness stage wrote it (SHA-256 {found}, the manifest lists {listed}); run `preprocess stiffness` again", .path.display())]
+    Changed {
+        path: PathBuf,
+        found: String,
+        listed: String,
+    },
+    #[error("{}: {problem}; the file is damaged: delete it and run `preprocess stiffness` again", .path.display())]
+    Nonsense { path: PathBuf, problem: String },
 }
 
 /// Reads the stiffness file `plan` names and checks that it serves the scene:
@@ -165,7 +173,28 @@ pub fn check(
         .ok_or_else(|| CheckError::NoStiffness {
             stem: plan.stem.clone(),
         })?;
+    // The file is the one the stiffness stage listed (not replaced or
+    // damaged since), and its numbers make physical sense.
+    let sha = crate::manifest::sha256_file(&plan.path).map_err(|e| {
+        CheckError::File(StiffnessFileError::Hdf5 {
+            path: plan.path.clone(),
+            message: e.to_string(),
+        })
+    })?;
+    if sha != entry.sha256 {
+        return Err(CheckError::Changed {
+            path: plan.path.clone(),
+            found: sha,
+            listed: entry.sha256.clone(),
+        });
+    }
     let data = stiffness_file::read(&plan.path, Some(&entry.input_hash))?;
+    if let Some(problem) = crate::stiffness_sense::first_problem(&data) {
+        return Err(CheckError::Nonsense {
+            path: plan.path.clone(),
+            problem,
+        });
+    }
     let found: StiffnessConfig =
         serde_json::from_str(&data.config).map_err(|e| CheckError::StaleStiffness {
             stem: plan.stem.clone(),

@@ -155,7 +155,8 @@ pub fn run(
                     .and_then(|t| serde_json::from_str::<Inputs>(&t).ok())
                     .is_some_and(|i| i == inputs)
                     && msh.exists()
-                    && vtu.exists();
+                    && vtu.exists()
+                    && mesh_intact(&dir, &stem);
                 let cached = std::fs::read_to_string(&report_path)
                     .ok()
                     .and_then(|t| serde_json::from_str::<MeshReport>(&t).ok());
@@ -237,4 +238,23 @@ fn record_mesh(
         m.meshes.insert(stem.into(), entry);
     })?;
     Ok(())
+}
+
+/// Whether the `.msh` of `stem` is the file the mesh stage wrote: its
+/// SHA-256 equals the manifest's (a truncated or replaced mesh is not
+/// reused). A mesh the manifest does not list yet (made before manifests
+/// existed) counts as intact and is listed when reused.
+pub fn mesh_intact(dir: &Path, stem: &str) -> bool {
+    let Some(entry) = Manifest::read(dir)
+        .ok()
+        .and_then(|m| m.meshes.get(stem).cloned())
+    else {
+        return true;
+    };
+    let intact =
+        formats::manifest::sha256_file(&paths::msh(dir, stem)).is_ok_and(|h| h == entry.msh_sha256);
+    if !intact {
+        eprintln!("{stem}: the mesh file is not the one the manifest lists (changed or damaged); meshing again");
+    }
+    intact
 }

@@ -173,10 +173,46 @@ pub fn planned(
         &std::fs::read_to_string(&inputs)
             .with_context(|| format!("reading {}", inputs.display()))?,
     )?;
+    // The mesh must be the scene's current one, and intact: what the mesh
+    // stage recorded for it in the manifest.
+    let mesh_sha256 = sha256_file(&msh)?;
+    let manifest = Manifest::read(dir)?;
+    let entry = manifest.mesh(dir, &plan.mesh_stem)?;
+    let design_text = geometry::design::geometry_text(
+        &std::fs::read_to_string(&scene.design_path)
+            .with_context(|| format!("reading {}", scene.design_path.display()))?,
+    );
+    let wanted = formats::manifest::MeshInputs::of_scene(
+        scene,
+        g,
+        &design_text,
+        member,
+        blank,
+        sc.mesh.elements(level),
+    );
+    let changed = entry.inputs.differences(&wanted);
+    if !changed.is_empty() {
+        anyhow::bail!(
+            "scene {}: the mesh {} was made from other inputs ({}); run `preprocess mesh {}` first",
+            sc.name,
+            msh.display(),
+            changed.join("; "),
+            scene.path.display()
+        );
+    }
+    if entry.msh_sha256 != mesh_sha256 {
+        anyhow::bail!(
+            "scene {}: {} changed since the mesh stage wrote it (SHA-256 {mesh_sha256}, the manifest lists {}); run `preprocess mesh {}` again",
+            sc.name,
+            msh.display(),
+            entry.msh_sha256,
+            scene.path.display()
+        );
+    }
     let config = StiffnessConfig {
         local_model: crate::influence::local_model(crate::influence::FILLET_RISE),
         mesh_inputs_hash: mesh_inputs["hash"].as_str().unwrap_or_default().to_string(),
-        mesh_file_sha256: sha256_file(&msh)?,
+        mesh_file_sha256: mesh_sha256,
         ..plan.config
     };
     let (config_json, hash) = config.json_and_hash();
@@ -251,7 +287,16 @@ fn run_one(
     let mut replaced_because = None;
     if path.exists() {
         // A full read also catches truncated data, not only a stale header.
-        match stiffness_file::read(&path, Some(&hash)) {
+        let read = stiffness_file::read(&path, Some(&hash)).and_then(|d| {
+            match formats::stiffness_sense::first_problem(&d) {
+                None => Ok(d),
+                Some(problem) => Err(StiffnessFileError::Hdf5 {
+                    path: path.clone(),
+                    message: problem,
+                }),
+            }
+        });
+        match read {
             Ok(d) => {
                 eprintln!("{stem}: inputs unchanged, reusing {}", path.display());
                 record(dir, level, member, blank, &stem, &hash, &d.solved_teeth)?;
