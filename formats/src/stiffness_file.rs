@@ -249,8 +249,27 @@ fn read_header(path: &Path) -> Result<(u32, String), StiffnessFileError> {
         .attr("input_hash")
         .and_then(|a| a.read_scalar())
         .map_err(&e)?;
-    Ok((schema, hash.as_str().to_string()))
+    Ok((schema, utf8(path, "input_hash", &hash)?))
 }
+
+/// The text of a string attribute, refused unless it is UTF-8 (the HDF5
+/// type does not check what a damaged file holds).
+fn utf8(
+    path: &Path,
+    name: &str,
+    v: &hdf5::types::VarLenUnicode,
+) -> Result<String, StiffnessFileError> {
+    std::str::from_utf8(v.as_bytes())
+        .map(str::to_string)
+        .map_err(|err| StiffnessFileError::Hdf5 {
+            path: path.to_path_buf(),
+            message: format!("attribute {name} is not UTF-8 text: {err}"),
+        })
+}
+
+/// Largest number of values of one dataset the reader accepts before
+/// reading it: a damaged header can claim any size.
+const MAX_DATASET_VALUES: usize = 1 << 31;
 
 /// Reads a stiffness file, checking its schema and, if given, its input hash.
 pub fn read(path: &Path, expected_hash: Option<&str>) -> Result<StiffnessData, StiffnessFileError> {
@@ -275,35 +294,59 @@ pub fn read(path: &Path, expected_hash: Option<&str>) -> Result<StiffnessData, S
     let f = h5().open(path).map_err(&e)?;
     let s = |k: &str| -> Result<String, StiffnessFileError> {
         let v: hdf5::types::VarLenUnicode = f.attr(k).and_then(|a| a.read_scalar()).map_err(&e)?;
-        Ok(v.as_str().to_string())
+        utf8(path, k, &v)
     };
     let u = |k: &str| -> Result<usize, StiffnessFileError> {
         Ok(f.attr(k).and_then(|a| a.read_scalar::<u32>()).map_err(&e)? as usize)
     };
+    let shape_err = |dataset: &str, found: usize, expected: usize| StiffnessFileError::Shape {
+        path: path.to_path_buf(),
+        dataset: dataset.into(),
+        found,
+        expected,
+    };
+    // Every dataset's size is compared with the header before it is read,
+    // so a damaged size is refused instead of allocated.
+    let dataset = |name: &str,
+                   expected: Option<usize>|
+     -> Result<hdf5::Dataset, StiffnessFileError> {
+        let ds = f.dataset(name).map_err(&e)?;
+        let found = ds.size();
+        match expected {
+            Some(n) if found != n => Err(shape_err(name, found, n)),
+            None if found > MAX_DATASET_VALUES => Err(shape_err(name, found, MAX_DATASET_VALUES)),
+            _ => Ok(ds),
+        }
+    };
     let grid_profile = u("grid_profile")?;
     let grid_face = u("grid_face")?;
-    let solved_teeth: Vec<u32> = f
-        .dataset("teeth/solved")
-        .and_then(|d| d.read_raw())
-        .map_err(&e)?;
-    let offsets: Vec<i32> = f
-        .dataset("teeth/offsets")
-        .and_then(|d| d.read_raw())
-        .map_err(&e)?;
-    let np = grid_profile * grid_face;
+    let solved_teeth: Vec<u32> = dataset("teeth/solved", None)?.read_raw().map_err(&e)?;
+    let offsets: Vec<i32> = dataset("teeth/offsets", None)?.read_raw().map_err(&e)?;
     let (ns, no) = (solved_teeth.len(), offsets.len());
-    let get = |name: &str, expected: usize| -> Result<Vec<f64>, StiffnessFileError> {
-        let v: Vec<f64> = f.dataset(name).and_then(|d| d.read_raw()).map_err(&e)?;
-        if v.len() != expected {
-            return Err(StiffnessFileError::Shape {
+    // Sizes from the header, refused when they overflow or exceed what a
+    // reader accepts.
+    let size = |name: &str, factors: &[usize]| -> Result<usize, StiffnessFileError> {
+        factors
+            .iter()
+            .try_fold(1usize, |a, &b| a.checked_mul(b))
+            .filter(|&n| n <= MAX_DATASET_VALUES)
+            .ok_or_else(|| StiffnessFileError::Hdf5 {
                 path: path.to_path_buf(),
-                dataset: name.into(),
-                found: v.len(),
-                expected,
-            });
+                message: format!(
+                    "dataset {name}: the header's sizes {factors:?} (grid_profile = {grid_profile}, grid_face = {grid_face}, {ns} solved teeth, {no} offsets) give more than {MAX_DATASET_VALUES} values"
+                ),
+            })
+    };
+    let np = size("grid", &[grid_profile, grid_face])?;
+    let get = |name: &str, expected: usize| -> Result<Vec<f64>, StiffnessFileError> {
+        let v: Vec<f64> = dataset(name, Some(expected))?.read_raw().map_err(&e)?;
+        if v.len() != expected {
+            return Err(shape_err(name, v.len(), expected));
         }
         Ok(v)
     };
+    let n_total = size("compliance/total", &[ns, no, np, np])?;
+    let n_local = size("compliance/local", &[ns, np, np])?;
     Ok(StiffnessData {
         input_hash: hash,
         config: s("config")?,
@@ -316,13 +359,13 @@ pub fn read(path: &Path, expected_hash: Option<&str>) -> Result<StiffnessData, S
         grid_face,
         xi: get("grid/xi", grid_face)?,
         eta: get("grid/eta", grid_profile)?,
-        position: get("grid/position", 3 * np)?,
-        normal: get("grid/normal", 3 * np)?,
+        position: get("grid/position", size("grid/position", &[3, np])?)?,
+        normal: get("grid/normal", size("grid/normal", &[3, np])?)?,
         lever: get("grid/lever", np)?,
-        depth_h: get("grid/depth_h", ns * np)?,
-        total: get("compliance/total", ns * no * np * np)?,
-        local: get("compliance/local", ns * np * np)?,
-        global: get("compliance/global", ns * no * np * np)?,
+        depth_h: get("grid/depth_h", size("grid/depth_h", &[ns, np])?)?,
+        total: get("compliance/total", n_total)?,
+        local: get("compliance/local", n_local)?,
+        global: get("compliance/global", n_total)?,
         solved_teeth,
         offsets,
     })

@@ -103,8 +103,22 @@ impl Bicubic {
         }
     }
 
-    /// Interpolates along y in every row, then along x.
+    /// Whether the grid can be interpolated: at least 2 nodes each way and
+    /// one row of values per x node with one value per y node (what the
+    /// design checks ensure for a loaded design).
+    fn is_grid(&self) -> bool {
+        self.x.len() >= 2
+            && self.y.len() >= 2
+            && self.z.len() == self.x.len()
+            && self.z.iter().all(|r| r.len() == self.y.len())
+    }
+
+    /// Interpolates along y in every row, then along x; NaN (not a panic)
+    /// for a grid that [`Bicubic::is_grid`] refuses.
     pub fn value<D: Scalar>(&self, x: D, y: D) -> D {
+        if !self.is_grid() {
+            return D::from(f64::NAN);
+        }
         let j = cell(&self.y, y.re());
         let col: Vec<D> = self
             .z

@@ -21,12 +21,45 @@ pub enum InputError {
 }
 
 impl InputError {
+    /// Reads a text file: an unreadable file is [`InputError::Io`], bytes
+    /// that are not UTF-8 are [`InputError::Parse`] with the line and column
+    /// of the first bad byte.
+    pub fn read_text(path: &Path) -> Result<String, Self> {
+        let bytes = std::fs::read(path).map_err(|e| InputError::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        String::from_utf8(bytes).map_err(|e| {
+            let bytes = e.as_bytes();
+            let at = e.utf8_error().valid_up_to();
+            let before = &bytes[..at];
+            let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+            let col = at
+                - before
+                    .iter()
+                    .rposition(|&b| b == b'\n')
+                    .map_or(0, |i| i + 1)
+                + 1;
+            InputError::Parse {
+                path: path.to_path_buf(),
+                message: format!(
+                    "line {line}, column {col}: not UTF-8 text (byte 0x{:02x})",
+                    bytes[at]
+                ),
+            }
+        })
+    }
+
     /// A TOML parse error with its line and column.
     pub fn parse(path: &Path, text: &str, e: &toml::de::Error) -> Self {
         let at = e
             .span()
             .map(|s| {
-                let before = &text[..s.start.min(text.len())];
+                let mut end = s.start.min(text.len());
+                while !text.is_char_boundary(end) {
+                    end -= 1;
+                }
+                let before = &text[..end];
                 let line = before.matches('\n').count() + 1;
                 let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
                 format!("line {line}, column {col}: ")

@@ -482,11 +482,23 @@ impl Flank {
 /// Principal curvatures from the first and second derivatives of a
 /// parametrisation: shape operator S = I⁻¹ II with the outward normal; the
 /// curvature is reported positive for a convex surface (κ = −eig S).
+///
+/// Where the derivatives are not finite or the parametrisation is singular
+/// (no Cholesky factor of I), the curvatures and directions are NaN rather
+/// than a panic. A non-finite ease-off (a NaN in a topography grid) was the
+/// way there from an input; the design checks refuse it at load.
 pub fn curvature_from_derivatives(
     d1: [[f64; 3]; 2],
     d2: [[f64; 3]; 3],
     n_out: &Vector3<f64>,
 ) -> Curvature {
+    let undefined = Curvature {
+        k: [f64::NAN; 2],
+        dir: [[f64::NAN; 3]; 2],
+    };
+    if d1.iter().chain(d2.iter()).flatten().any(|x| !x.is_finite()) {
+        return undefined;
+    }
     let ru = Vector3::from(d1[0]);
     let rv = Vector3::from(d1[1]);
     let mut n = ru.cross(&rv).normalize();
@@ -501,8 +513,12 @@ pub fn curvature_from_derivatives(
         Vector3::from(d2[2]).dot(&n),
     );
     // Symmetric form: I^{-1/2} II I^{-1/2} via Cholesky I = C Cᵀ.
-    let c = first.cholesky().expect("regular parametrisation").l();
-    let ci = c.try_inverse().expect("regular parametrisation");
+    let Some(c) = first.cholesky().map(|c| c.l()) else {
+        return undefined;
+    };
+    let Some(ci) = c.try_inverse() else {
+        return undefined;
+    };
     let m = ci * second * ci.transpose();
     let eig = m.symmetric_eigen();
     let mut out = Curvature {

@@ -8,6 +8,7 @@
 
 pub mod contact_grid;
 pub mod design;
+pub mod design_file;
 pub mod direct;
 pub mod ease_off;
 pub mod error;
@@ -19,6 +20,7 @@ pub mod minimize;
 pub mod pair;
 pub mod placement;
 pub mod scene;
+pub mod scene_checks;
 pub mod teeth;
 pub mod utca;
 

@@ -278,7 +278,7 @@ impl PairGeometry {
     /// Loads a design file, builds the pair and runs the tooth checks
     /// (top land at toe, mean and heel; undercut), naming the file on failure.
     pub fn from_design_file(path: &std::path::Path) -> Result<Self, GeometryError> {
-        let data = crate::design::load_pair(path)?;
+        let data = crate::design_file::load_pair(path)?;
         PairGeometry::build(&data, Some(path))
     }
 

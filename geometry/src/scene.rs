@@ -1,6 +1,7 @@
 //! Scene files: what one run needs. Every stage reads the same scene.
 
-use crate::design::{load_pair, PairData};
+use crate::design::PairData;
+use crate::design_file::load_pair;
 use crate::error::InputError;
 use crate::generation::Side;
 use serde::{Deserialize, Serialize};
@@ -375,14 +376,12 @@ pub struct LoadedScene {
 
 impl Scene {
     pub fn load(path: &Path) -> Result<LoadedScene, InputError> {
-        let text = std::fs::read_to_string(path).map_err(|e| InputError::Io {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
-        let scene: Scene = toml::from_str(&text).map_err(|e| InputError::parse(path, &text, &e))?;
+        let text = InputError::read_text(path)?;
+        let scene = Scene::parse(&text, path)?;
         scene.check(path)?;
         let design_path = path.parent().unwrap_or(Path::new(".")).join(&scene.design);
         let pair = load_pair(&design_path)?;
+        scene.check_sizes(path, &pair)?;
         Ok(LoadedScene {
             path: path.to_path_buf(),
             scene,
@@ -391,243 +390,9 @@ impl Scene {
         })
     }
 
-    fn check(&self, path: &Path) -> Result<(), InputError> {
-        let fail = |field: &str, value: String, limit: &str| InputError::Invalid {
-            path: path.to_path_buf(),
-            field: field.into(),
-            value,
-            limit: limit.into(),
-        };
-        let r = &self.rotation;
-        for (f, v) in [
-            ("rotation.mesh_cycles_standard", r.mesh_cycles_standard),
-            (
-                "rotation.mesh_cycles_lightweight",
-                r.mesh_cycles_lightweight,
-            ),
-            ("utca.mesh_cycles", self.utca.mesh_cycles),
-        ] {
-            if !(v > 0.0 && v <= 100.0) {
-                return Err(fail(f, v.to_string(), "must lie in (0, 100]"));
-            }
-        }
-        for (f, v) in [
-            ("rotation.step_deg", r.step_deg),
-            ("utca.step_deg", self.utca.step_deg),
-        ] {
-            if !(v > 0.0 && v <= 5.0) {
-                return Err(fail(f, v.to_string(), "must lie in (0, 5]"));
-            }
-        }
-        for (f, v) in [
-            ("utca.face_samples", self.utca.face_samples),
-            ("utca.profile_samples", self.utca.profile_samples),
-            ("utca.flank_grid_profile", self.utca.flank_grid_profile),
-            ("utca.flank_grid_face", self.utca.flank_grid_face),
-        ] {
-            if !(5..=1000).contains(&v) {
-                return Err(fail(f, v.to_string(), "must lie in [5, 1000]"));
-            }
-        }
-        for (f, e) in [
-            ("mesh.reduced_order", self.mesh.reduced_order),
-            ("mesh.reference", self.mesh.reference),
-            ("mesh.medium", self.mesh.medium()),
-        ] {
-            for (k, v) in [("profile", e.profile), ("face", e.face)] {
-                if !(1..=500).contains(&v) {
-                    return Err(fail(
-                        &format!("{f}.{k}"),
-                        v.to_string(),
-                        "must lie in [1, 500]",
-                    ));
-                }
-            }
-        }
-        if !(self.utca.marking_compound_um > 0.0 && self.utca.marking_compound_um < 100.0) {
-            return Err(fail(
-                "utca.marking_compound_um",
-                self.utca.marking_compound_um.to_string(),
-                "must lie in (0, 100)",
-            ));
-        }
-        for (i, t) in self.pinion_torque_nm.iter().enumerate() {
-            if !(t.is_finite() && *t >= 0.0) {
-                return Err(fail(
-                    &format!("pinion_torque_nm[{i}]"),
-                    t.to_string(),
-                    "must be >= 0",
-                ));
-            }
-        }
-        let st = &self.stiffness;
-        for (f, v) in [
-            ("stiffness.grid_profile", st.grid_profile),
-            ("stiffness.grid_face", st.grid_face),
-        ] {
-            if v != 0 && !(2..=200).contains(&v) {
-                return Err(fail(
-                    f,
-                    v.to_string(),
-                    "must be 0 (mesh level) or lie in [2, 200]",
-                ));
-            }
-        }
-        if !(st.load_radius_factor >= 0.25 && st.load_radius_factor <= 3.0) {
-            return Err(fail(
-                "stiffness.load_radius_factor",
-                st.load_radius_factor.to_string(),
-                "must lie in [0.25, 3]",
-            ));
-        }
-        if st.response_teeth > 5 {
-            return Err(fail(
-                "stiffness.response_teeth",
-                st.response_teeth.to_string(),
-                "must be <= 5",
-            ));
-        }
-        if !(1..=256).contains(&st.solve_block) {
-            return Err(fail(
-                "stiffness.solve_block",
-                st.solve_block.to_string(),
-                "must lie in [1, 256]",
-            ));
-        }
-        let mu = self.ltca.friction_coefficient;
-        if !(0.0..=0.5).contains(&mu) {
-            return Err(fail(
-                "ltca.friction_coefficient",
-                mu.to_string(),
-                "must lie in [0, 0.5]",
-            ));
-        }
-        if !(4..=400).contains(&self.ltca.slices) {
-            return Err(fail(
-                "ltca.slices",
-                self.ltca.slices.to_string(),
-                "must lie in [4, 400]",
-            ));
-        }
-        let mb = &self.multibody;
-        for (f, v, lo, hi) in [
-            (
-                "multibody.quasi_static_wheel_rpm",
-                mb.quasi_static_wheel_rpm,
-                1e-3,
-                1e4,
-            ),
-            (
-                "multibody.quasi_static_max_step_s",
-                mb.quasi_static_max_step_s,
-                1e-8,
-                1.0,
-            ),
-            ("multibody.runup_time_s", mb.runup_time_s, 1e-4, 100.0),
-            (
-                "multibody.runup_pinion_torque_nm",
-                mb.runup_pinion_torque_nm,
-                0.0,
-                1e6,
-            ),
-            ("multibody.runup_max_step_s", mb.runup_max_step_s, 1e-8, 1.0),
-            ("multibody.damping_ratio", mb.damping_ratio, 0.0, 10.0),
-            ("multibody.rho_inf", mb.rho_inf, 0.0, 1.0),
-            (
-                "multibody.te_tolerance_urad",
-                mb.te_tolerance_urad,
-                1e-9,
-                100.0,
-            ),
-            ("multibody.table_step_deg", mb.table_step_deg, 1e-3, 2.0),
-            (
-                "multibody.table_torque_factor",
-                mb.table_torque_factor,
-                1.0,
-                100.0,
-            ),
-        ] {
-            if !(v >= lo && v <= hi) {
-                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
-            }
-        }
-        for (f, v) in [
-            ("multibody.runup_rpm[0]", mb.runup_rpm[0]),
-            ("multibody.runup_rpm[1]", mb.runup_rpm[1]),
-        ] {
-            if !(0.0..=1e5).contains(&v) {
-                return Err(fail(f, v.to_string(), "must lie in [0, 100000]"));
-            }
-        }
-        if !(8..=2000).contains(&mb.table_lag_nodes) {
-            return Err(fail(
-                "multibody.table_lag_nodes",
-                mb.table_lag_nodes.to_string(),
-                "must lie in [8, 2000]",
-            ));
-        }
-        for (f, v) in [
-            ("multibody.pinion_inertia_kgm2", mb.pinion_inertia_kgm2),
-            ("multibody.wheel_inertia_kgm2", mb.wheel_inertia_kgm2),
-        ] {
-            if let Some(j) = v {
-                if !(j > 0.0 && j.is_finite()) {
-                    return Err(fail(f, j.to_string(), "must be finite and > 0"));
-                }
-            }
-        }
-        for (f, v, lo, hi) in [
-            (
-                "multibody.rattle_pinion_rpm",
-                mb.rattle_pinion_rpm,
-                0.0,
-                1e5,
-            ),
-            (
-                "multibody.rattle_speed_fluctuation",
-                mb.rattle_speed_fluctuation,
-                0.0,
-                1.0,
-            ),
-            (
-                "multibody.rattle_frequency_hz",
-                mb.rattle_frequency_hz,
-                0.0,
-                1e5,
-            ),
-            (
-                "multibody.rattle_wheel_drag_nm",
-                mb.rattle_wheel_drag_nm,
-                0.0,
-                1e4,
-            ),
-            ("multibody.rattle_time_s", mb.rattle_time_s, 0.0, 100.0),
-            (
-                "multibody.rattle_max_step_s",
-                mb.rattle_max_step_s,
-                1e-8,
-                1.0,
-            ),
-        ] {
-            if !(v >= lo && v <= hi) {
-                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
-            }
-        }
-        if mb.rattle_time_s > 0.0 && !mb.coast_contact {
-            return Err(fail(
-                "multibody.rattle_time_s",
-                mb.rattle_time_s.to_string(),
-                "must be 0 unless multibody.coast_contact = true (rattle needs both flanks)",
-            ));
-        }
-        if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {
-            return Err(fail(
-                "blanks",
-                "[]".into(),
-                "each member needs at least one blank",
-            ));
-        }
-        Ok(())
+    /// Parses scene text; `path` is used in messages (no checks yet).
+    pub fn parse(text: &str, path: &Path) -> Result<Scene, InputError> {
+        toml::from_str(text).map_err(|e| InputError::parse(path, text, &e))
     }
 }
 

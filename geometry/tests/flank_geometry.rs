@@ -38,9 +38,10 @@ fn spiral_angle_grows_from_toe_to_heel_as_the_cutter_circle_predicts() {
     let r = f.gen.cone.radius;
     for l in [p.inner_cone_distance(), p.outer_cone_distance()] {
         let (beta, _) = angles_at(f, l, 0.0);
-        let expect = geometry::design::spiral_angle_at(p.mean_cone_distance, p.spiral_angle, r, l)
-            .unwrap()
-            .to_degrees();
+        let expect =
+            geometry::design_file::spiral_angle_at(p.mean_cone_distance, p.spiral_angle, r, l)
+                .unwrap()
+                .to_degrees();
         assert!(
             (beta - expect).abs() < 1e-6,
             "at L = {l}: {beta} vs circle {expect}"

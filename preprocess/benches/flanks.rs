@@ -2,7 +2,8 @@
 //! on the white-paper pair, written as JSON (`bench/flanks.json`) and a table.
 //! Target (issue 2): UTCA over 2 mesh cycles at 0.1° in under 100 ms.
 
-use geometry::design::{load_pair, Member};
+use geometry::design::Member;
+use geometry::design_file::load_pair;
 use geometry::generation::Side;
 use geometry::pair::PairGeometry;
 use geometry::scene::UtcaSettings;

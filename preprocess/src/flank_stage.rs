@@ -2,7 +2,8 @@
 //! design or scene file, written into one output directory.
 
 use formats::output::write_json;
-use geometry::design::{load_pair, Member, PairData};
+use geometry::design::{Member, PairData};
+use geometry::design_file::load_pair;
 use geometry::direct::contact_ellipse;
 use geometry::error::{GeometryError, InputError};
 use geometry::flank::Flank;

@@ -4,7 +4,8 @@
 //! Run with `cargo test --release -p preprocess --test reference_designs -- --nocapture`
 //! to see the derived numbers.
 
-use geometry::design::{load_pair, min_cutter_radius, Hand, Member, PairData};
+use geometry::design::{Hand, Member, PairData};
+use geometry::design_file::{load_pair, min_cutter_radius};
 use std::path::{Path, PathBuf};
 
 const REFERENCE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../reference");

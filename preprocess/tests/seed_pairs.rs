@@ -10,7 +10,8 @@
 #[path = "../../geometry/tests/common/mod.rs"]
 mod common;
 
-use geometry::design::{load_pair, Member};
+use geometry::design::Member;
+use geometry::design_file::load_pair;
 use geometry::gear_body::{
     face_cone_clearance, polyline_clearance, slot_sections, SLOT_FLANK_REACH_ARC_TOP,
     SLOT_TOP_MIN_CLEARANCE,

@@ -603,7 +603,7 @@ pub fn geometric_curvature(fp: &FlankPair, p: &geometry::flank::FlankPoint, line
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geometry::design::load_pair;
+    use geometry::design_file::load_pair;
     use geometry::generation::Side;
     use geometry::pair::PairGeometry;
     use geometry::utca::LineGrid;

@@ -1,7 +1,8 @@
 #![allow(dead_code)]
 //! Shared helpers of the integration tests.
 
-use geometry::design::{load_pair, DesignFile, PairData};
+use geometry::design::{DesignFile, PairData};
+use geometry::design_file::load_pair;
 use geometry::pair::PairGeometry;
 use std::path::PathBuf;
 

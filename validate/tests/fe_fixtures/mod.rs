@@ -5,7 +5,8 @@
 
 #![allow(dead_code)]
 
-use geometry::design::{load_pair, Member};
+use geometry::design::Member;
+use geometry::design_file::load_pair;
 use geometry::gear_body::{BlankDimensions, BlankDimensionsMm};
 use geometry::generation::Side;
 use geometry::pair::PairGeometry;

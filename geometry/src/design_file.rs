@@ -1,0 +1,509 @@
+//! Reading a design file ([`load_pair`], [`DesignFile::load`],
+//! [`DesignFile::to_pair`]) and its checks: every number finite and in range
+//! (with the limit in the message), the data consistent with each other
+//! (pitch angles from the tooth numbers before the cone angles that depend
+//! on them), and the derived pair sound (cutter radius, tooth thickness,
+//! spiral angle along the face).
+
+use crate::design::*;
+use crate::error::InputError;
+use std::path::{Path, PathBuf};
+
+impl DesignFile {
+    /// Reads and parses a design file (no semantic checks yet).
+    pub fn load(path: &Path) -> Result<Self, InputError> {
+        let text = InputError::read_text(path)?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses TOML text; `path` is used in messages.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, InputError> {
+        toml::from_str(text).map_err(|e| InputError::parse(path, text, &e))
+    }
+
+    /// Checks the design and converts it to SI.
+    pub fn to_pair(&self, path: &Path) -> Result<PairData, InputError> {
+        check_design(self, path)?;
+        let deg = f64::to_radians;
+        let mm = |x: f64| x * 1e-3;
+        let member = |d: &MemberDesign| MemberData {
+            teeth: d.teeth,
+            hand: d.hand,
+            pitch_angle: deg(d.pitch_angle_deg),
+            root_angle: deg(d.root_angle_deg),
+            face_angle: deg(d.face_angle_deg),
+            mean_addendum: mm(d.mean_addendum_mm),
+            mean_dedendum: mm(d.mean_dedendum_mm),
+            point_width: mm(d.point_width_mm),
+            youngs_modulus: d.material.youngs_modulus_gpa * 1e9,
+            poisson_ratio: d.material.poisson_ratio,
+            density: d.material.density_kg_m3,
+        };
+        let p = &self.pair;
+        // Exact pitch angles from the tooth numbers (the file's rounded values
+        // were checked to 0.01°): the roll ratios must match z₁/z₂ exactly.
+        let sigma = deg(p.shaft_angle_deg);
+        let g1 = pinion_pitch_angle(self.pinion.teeth as f64, self.wheel.teeth as f64, sigma);
+        let mut members = [member(&self.pinion), member(&self.wheel)];
+        members[0].pitch_angle = g1;
+        members[1].pitch_angle = sigma - g1;
+        let pair = PairData {
+            name: self.name.clone(),
+            shaft_angle: deg(p.shaft_angle_deg),
+            spiral_angle: deg(p.mean_spiral_angle_deg),
+            normal_module: mm(p.mean_normal_module_mm),
+            mean_cone_distance: mm(p.mean_cone_distance_mm),
+            face_width: mm(p.face_width_mm),
+            pressure_angle: [
+                deg(p.drive_pressure_angle_deg),
+                deg(p.coast_pressure_angle_deg),
+            ],
+            members,
+            cutter_radius: mm(self.cutter.radius_mm),
+            edge_radius: mm(self.cutter.edge_radius_mm),
+            ease_off: self.ease_off.clone(),
+            published: {
+                let dir = path.parent().unwrap_or(Path::new("."));
+                PublishedDesign {
+                    loaded_te: self.published.loaded_te.as_ref().map(|f| dir.join(f)),
+                    cpu: self.published.cpu.as_ref().map(|f| dir.join(f)),
+                }
+            },
+        };
+        check_derived(&pair, path)?;
+        Ok(pair)
+    }
+}
+
+/// Loads and checks a design file.
+pub fn load_pair(path: &Path) -> Result<PairData, InputError> {
+    DesignFile::load(path)?.to_pair(path)
+}
+
+struct Checker<'a> {
+    path: &'a Path,
+}
+
+impl Checker<'_> {
+    fn fail(&self, field: &str, value: f64, limit: String) -> InputError {
+        InputError::Invalid {
+            path: PathBuf::from(self.path),
+            field: field.to_string(),
+            value: format!("{value}"),
+            limit,
+        }
+    }
+    fn positive(&self, field: &str, v: f64) -> Result<(), InputError> {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(self.fail(field, v, "must be > 0".into()))
+        }
+    }
+    fn range(&self, field: &str, v: f64, lo: f64, hi: f64) -> Result<(), InputError> {
+        if v.is_finite() && v >= lo && v <= hi {
+            Ok(())
+        } else {
+            Err(self.fail(field, v, format!("must lie in [{lo}, {hi}]")))
+        }
+    }
+}
+
+/// Largest mean cone distance, mm (a 10 m pitch diameter).
+pub const MAX_CONE_DISTANCE_MM: f64 = 5000.0;
+/// Largest tooth number of either member.
+pub const MAX_TEETH: u32 = 500;
+/// Largest mean addendum or dedendum as a multiple of the mean normal module
+/// (usual: about 1 and 1.25; strongly shifted pinions reach 2).
+pub const MAX_DEPTH_MODULES: f64 = 3.0;
+/// Cutter radius bounds as multiples of the mean cone distance. Usual
+/// face-mill cutters lie between 0.5 and 1.5 R_m. Far above (from about
+/// 1e4 R_m on the white-paper pair) the tooth trace is numerically straight
+/// and the flank points are not found; below about 0.37 R_m the heel of the
+/// 9-tooth seed pinions' convex flank is not reached by the generated surface
+/// (both surfaced as "Newton did not converge").
+pub const MIN_CUTTER_RADIUS_CONE_DISTANCES: f64 = 0.4;
+pub const MAX_CUTTER_RADIUS_CONE_DISTANCES: f64 = 4.0;
+/// Largest magnitude of a topography deviation, µm.
+pub const MAX_TOPOGRAPHY_UM: f64 = 1000.0;
+/// Largest number of topography nodes along either direction.
+pub const MAX_TOPOGRAPHY_NODES: usize = 200;
+
+/// Checks that a name used as a file or directory name is a plain name: not
+/// empty, at most 100 characters, no path separator, no `..`, no control
+/// character, not `.`.
+pub fn check_plain_name(path: &Path, field: &str, name: &str) -> Result<(), InputError> {
+    let bad = if name.is_empty() {
+        Some("must not be empty (it becomes a directory name)")
+    } else if name.chars().count() > 100 {
+        Some("must be at most 100 characters (it becomes a directory name)")
+    } else if name.contains('/') || name.contains('\\') {
+        Some("must be a plain name without '/' or '\\' (it becomes a directory name)")
+    } else if name == "." || name.contains("..") {
+        Some("must be a plain name without '..' and not '.' (it becomes a directory name)")
+    } else if name.chars().any(char::is_control) {
+        Some("must not contain control characters (it becomes a directory name)")
+    } else {
+        None
+    };
+    match bad {
+        Some(limit) => Err(InputError::Invalid {
+            path: path.to_path_buf(),
+            field: field.into(),
+            value: format!("{name:?}"),
+            limit: limit.into(),
+        }),
+        None => Ok(()),
+    }
+}
+
+fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
+    let c = Checker { path };
+    check_plain_name(path, "name", &d.name)?;
+    let p = &d.pair;
+    c.range("pair.shaft_angle_deg", p.shaft_angle_deg, 30.0, 150.0)?;
+    c.range(
+        "pair.mean_spiral_angle_deg",
+        p.mean_spiral_angle_deg,
+        0.0,
+        50.0,
+    )?;
+    c.positive("pair.mean_normal_module_mm", p.mean_normal_module_mm)?;
+    if !(p.mean_cone_distance_mm.is_finite()
+        && p.mean_cone_distance_mm > 0.0
+        && p.mean_cone_distance_mm <= MAX_CONE_DISTANCE_MM)
+    {
+        return Err(c.fail(
+            "pair.mean_cone_distance_mm",
+            p.mean_cone_distance_mm,
+            format!("must lie in (0, {MAX_CONE_DISTANCE_MM}]"),
+        ));
+    }
+    c.positive("pair.face_width_mm", p.face_width_mm)?;
+    c.range(
+        "pair.drive_pressure_angle_deg",
+        p.drive_pressure_angle_deg,
+        10.0,
+        35.0,
+    )?;
+    c.range(
+        "pair.coast_pressure_angle_deg",
+        p.coast_pressure_angle_deg,
+        10.0,
+        35.0,
+    )?;
+    // Usual limit: face width at most a third of the outer cone distance.
+    let re = p.mean_cone_distance_mm + 0.5 * p.face_width_mm;
+    if p.face_width_mm > re / 3.0 {
+        return Err(c.fail(
+            "pair.face_width_mm",
+            p.face_width_mm,
+            format!(
+                "must be <= outer cone distance / 3, i.e. <= mean cone distance / 2.5 = {:.3} mm",
+                p.mean_cone_distance_mm / 2.5
+            ),
+        ));
+    }
+    for (name, m) in [("pinion", &d.pinion), ("wheel", &d.wheel)] {
+        let f = |s: &str| format!("{name}.{s}");
+        if !(5..=MAX_TEETH).contains(&m.teeth) {
+            return Err(c.fail(
+                &f("teeth"),
+                m.teeth as f64,
+                format!("must lie in [5, {MAX_TEETH}]"),
+            ));
+        }
+        c.range(&f("pitch_angle_deg"), m.pitch_angle_deg, 1.0, 89.0)?;
+    }
+    if d.pinion.teeth > d.wheel.teeth {
+        return Err(c.fail(
+            "pinion.teeth",
+            d.pinion.teeth as f64,
+            format!("must be <= wheel.teeth = {}", d.wheel.teeth),
+        ));
+    }
+    if d.pinion.hand == d.wheel.hand {
+        return Err(InputError::Invalid {
+            path: path.to_path_buf(),
+            field: "wheel.hand".into(),
+            value: format!("{:?}", d.wheel.hand).to_lowercase(),
+            limit: "must be the opposite of pinion.hand".into(),
+        });
+    }
+    // Pitch angles from the tooth numbers and the shaft angle, before the
+    // root and face angles, whose limits are the pitch angles: an
+    // inconsistent pitch angle is reported as such.
+    let sigma = p.shaft_angle_deg.to_radians();
+    let g1 = pinion_pitch_angle(d.pinion.teeth as f64, d.wheel.teeth as f64, sigma).to_degrees();
+    let g2 = p.shaft_angle_deg - g1;
+    let tol = 0.01;
+    if (d.pinion.pitch_angle_deg - g1).abs() > tol {
+        return Err(c.fail(
+            "pinion.pitch_angle_deg",
+            d.pinion.pitch_angle_deg,
+            format!("must equal {g1:.4} (from the tooth numbers and shaft angle) within {tol}"),
+        ));
+    }
+    if (d.wheel.pitch_angle_deg - g2).abs() > tol {
+        return Err(c.fail(
+            "wheel.pitch_angle_deg",
+            d.wheel.pitch_angle_deg,
+            format!("must equal {g2:.4} (shaft angle minus pinion pitch angle) within {tol}"),
+        ));
+    }
+    for (name, m) in [("pinion", &d.pinion), ("wheel", &d.wheel)] {
+        let f = |s: &str| format!("{name}.{s}");
+        let g = m.pitch_angle_deg;
+        if !(m.root_angle_deg.is_finite() && m.root_angle_deg >= 0.5 && m.root_angle_deg <= g) {
+            return Err(c.fail(
+                &f("root_angle_deg"),
+                m.root_angle_deg,
+                format!("must lie in [0.5, {g}] (at most {name}.pitch_angle_deg)"),
+            ));
+        }
+        if !(m.face_angle_deg.is_finite() && m.face_angle_deg >= g && m.face_angle_deg <= 89.9) {
+            return Err(c.fail(
+                &f("face_angle_deg"),
+                m.face_angle_deg,
+                format!("must lie in [{g}, 89.9] (at least {name}.pitch_angle_deg)"),
+            ));
+        }
+        let depth = MAX_DEPTH_MODULES * p.mean_normal_module_mm;
+        for (k, v) in [
+            ("mean_addendum_mm", m.mean_addendum_mm),
+            ("mean_dedendum_mm", m.mean_dedendum_mm),
+        ] {
+            c.positive(&f(k), v)?;
+            if v > depth {
+                return Err(c.fail(
+                    &f(k),
+                    v,
+                    format!(
+                        "must be <= {MAX_DEPTH_MODULES} m_n = {depth:.4} mm (m_n = pair.mean_normal_module_mm)"
+                    ),
+                ));
+            }
+        }
+        c.positive(&f("point_width_mm"), m.point_width_mm)?;
+        c.range(
+            &f("material.youngs_modulus_gpa"),
+            m.material.youngs_modulus_gpa,
+            1.0,
+            1000.0,
+        )?;
+        c.range(
+            &f("material.poisson_ratio"),
+            m.material.poisson_ratio,
+            0.0,
+            0.49,
+        )?;
+        c.range(
+            &f("material.density_kg_m3"),
+            m.material.density_kg_m3,
+            100.0,
+            30000.0,
+        )?;
+    }
+    // Mean normal module from the cone distance: m_n = 2 R_m sin γ₁ cos β / z₁.
+    let mn = 2.0
+        * p.mean_cone_distance_mm
+        * g1.to_radians().sin()
+        * p.mean_spiral_angle_deg.to_radians().cos()
+        / d.pinion.teeth as f64;
+    if (mn - p.mean_normal_module_mm).abs() > 2e-3 * mn {
+        return Err(c.fail(
+            "pair.mean_normal_module_mm",
+            p.mean_normal_module_mm,
+            format!("must equal 2 R_m sin(γ1) cos(β) / z1 = {mn:.4} mm within 0.2%"),
+        ));
+    }
+    // Clearance: each member's addendum below the mate's dedendum.
+    for (a, b) in [("pinion", "wheel"), ("wheel", "pinion")] {
+        let (ma, mb) = if a == "pinion" {
+            (&d.pinion, &d.wheel)
+        } else {
+            (&d.wheel, &d.pinion)
+        };
+        if ma.mean_addendum_mm >= mb.mean_dedendum_mm {
+            return Err(c.fail(
+                &format!("{a}.mean_addendum_mm"),
+                ma.mean_addendum_mm,
+                format!(
+                    "must be < {b}.mean_dedendum_mm = {} (tip clearance)",
+                    mb.mean_dedendum_mm
+                ),
+            ));
+        }
+    }
+    let (r_min, r_max) = (
+        MIN_CUTTER_RADIUS_CONE_DISTANCES * p.mean_cone_distance_mm,
+        MAX_CUTTER_RADIUS_CONE_DISTANCES * p.mean_cone_distance_mm,
+    );
+    let r = d.cutter.radius_mm;
+    if !(r.is_finite() && r >= r_min && r <= r_max) {
+        return Err(c.fail(
+            "cutter.radius_mm",
+            r,
+            format!(
+                "must lie between the minimum and maximum [{MIN_CUTTER_RADIUS_CONE_DISTANCES}, {MAX_CUTTER_RADIUS_CONE_DISTANCES}] × pair.mean_cone_distance_mm = [{r_min:.1}, {r_max:.1}] mm (usual face-mill cutters: 0.5 to 1.5 R_m; beyond, the flanks cannot be generated)"
+            ),
+        ));
+    }
+    c.range(
+        "cutter.edge_radius_mm",
+        d.cutter.edge_radius_mm,
+        0.0,
+        0.5 * d.pinion.point_width_mm.min(d.wheel.point_width_mm),
+    )?;
+    let e = &d.ease_off;
+    for (f, v) in [
+        ("ease_off.profile_crowning_um", e.profile_crowning_um),
+        ("ease_off.lengthwise_crowning_um", e.lengthwise_crowning_um),
+        ("ease_off.motion_error_urad", e.motion_error_urad),
+    ] {
+        c.range(f, v, 0.0, 500.0)?;
+    }
+    c.range("ease_off.bias_um", e.bias_um, -500.0, 500.0)?;
+    if let Some(t) = &e.topography {
+        check_topography(&c, t)?;
+    }
+    Ok(())
+}
+
+fn check_topography(c: &Checker, t: &TopographyDesign) -> Result<(), InputError> {
+    for (f, v) in [
+        ("ease_off.topography.profile", &t.profile),
+        ("ease_off.topography.face", &t.face),
+    ] {
+        if v.len() < 2 || v.len() > MAX_TOPOGRAPHY_NODES {
+            return Err(c.fail(
+                f,
+                v.len() as f64,
+                format!("needs 2 to {MAX_TOPOGRAPHY_NODES} nodes"),
+            ));
+        }
+        for (i, &x) in v.iter().enumerate() {
+            if !(x.is_finite() && (0.0..=1.0).contains(&x)) {
+                return Err(c.fail(&format!("{f}[{i}]"), x, "must lie in [0, 1]".into()));
+            }
+        }
+        for (i, w) in v.windows(2).enumerate() {
+            if w[1] <= w[0] {
+                return Err(c.fail(
+                    &format!("{f}[{}]", i + 1),
+                    w[1],
+                    format!("must be strictly increasing (after {})", w[0]),
+                ));
+            }
+        }
+    }
+    if t.deviation_um.len() != t.profile.len()
+        || t.deviation_um.iter().any(|r| r.len() != t.face.len())
+    {
+        return Err(c.fail(
+            "ease_off.topography.deviation_um",
+            t.deviation_um.len() as f64,
+            format!(
+                "must have {} rows of {} values",
+                t.profile.len(),
+                t.face.len()
+            ),
+        ));
+    }
+    for (i, row) in t.deviation_um.iter().enumerate() {
+        for (j, &v) in row.iter().enumerate() {
+            if !(v.is_finite() && v.abs() <= MAX_TOPOGRAPHY_UM) {
+                return Err(c.fail(
+                    &format!("ease_off.topography.deviation_um[{i}][{j}]"),
+                    v,
+                    format!(
+                        "must be finite with |value| <= {MAX_TOPOGRAPHY_UM} µm (a normal deviation from the conjugate flank)"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks that need derived quantities: tooth thickness and the cutter circle.
+fn check_derived(p: &PairData, path: &Path) -> Result<(), InputError> {
+    let c = Checker { path };
+    for m in [Member::Pinion, Member::Wheel] {
+        let s = p.normal_thickness(m);
+        if s <= 0.0 {
+            let f = format!("{}.point_width_mm", m.name());
+            return Err(c.fail(
+                &f,
+                p.member(m).point_width * 1e3,
+                "leaves no tooth: point width + dedendum·(tan α_d + tan α_c) must be < π m_n"
+                    .into(),
+            ));
+        }
+    }
+    let bl = p.normal_backlash();
+    if bl < 0.0 {
+        return Err(c.fail(
+            "wheel.point_width_mm",
+            p.members[1].point_width * 1e3,
+            format!(
+                "teeth interfere: normal backlash π m_n − s_n1 − s_n2 = {:.4} mm must be >= 0",
+                bl * 1e3
+            ),
+        ));
+    }
+    // The cutter circle through the mean point with the mean spiral angle must
+    // reach toe and heel with a spiral angle below 90° on both sides of the slot.
+    let min_r = min_cutter_radius(p);
+    if p.cutter_radius < min_r {
+        return Err(c.fail(
+            "cutter.radius_mm",
+            p.cutter_radius * 1e3,
+            format!(
+                "too small for the lengthwise curvature: the tooth trace must run from toe to heel with spiral angle in [-85°, 85°]; minimum is {:.2} mm",
+                min_r * 1e3
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Spiral angle along a cutter circle of radius `r` whose tangent at cone
+/// distance `rm` makes the angle `beta` with the generatrix:
+/// sin β(L) = (L² + r² − s²) / (2 L r), s² = R_m² − 2 R_m r sin β + r².
+pub fn spiral_angle_at(rm: f64, beta: f64, r: f64, l: f64) -> Option<f64> {
+    let s2 = rm * rm - 2.0 * rm * r * beta.sin() + r * r;
+    let sb = (l * l + r * r - s2) / (2.0 * l * r);
+    (sb.abs() <= 1.0).then(|| sb.asin())
+}
+
+fn trace_ok(p: &PairData, r: f64) -> bool {
+    let limit = 85f64.to_radians();
+    let slot = std::f64::consts::PI * p.normal_module - p.normal_thickness(Member::Pinion);
+    [r - 0.5 * slot, r + 0.5 * slot].iter().all(|&rr| {
+        rr > 0.0
+            && [p.inner_cone_distance(), p.outer_cone_distance()]
+                .iter()
+                .all(|&l| {
+                    spiral_angle_at(p.mean_cone_distance, p.spiral_angle, rr, l)
+                        .is_some_and(|b| b.abs() <= limit)
+                })
+    })
+}
+
+/// Smallest cutter radius whose tooth traces satisfy [`trace_ok`] (bisection).
+pub fn min_cutter_radius(p: &PairData) -> f64 {
+    let (mut lo, mut hi) = (1e-6, 10.0 * p.outer_cone_distance());
+    if trace_ok(p, lo) {
+        return lo;
+    }
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if trace_ok(p, mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
