@@ -40,7 +40,7 @@ pub enum SolverError {
     NotConverged { what: String, iterations: usize },
     #[error("multibody mesh table: {0}")]
     Table(String),
-    #[error("{member} tooth {tooth} is loaded but the stiffness file holds only teeth {solved:?}; rerun `preprocess stiffness` for this scene")]
+    #[error("{member} tooth {tooth} is loaded but the stiffness file holds only teeth {solved:?}: the run turns the gears past the rotation the meshes and stiffness files were planned for (the scene's [rotation] mesh cycles of this blank, and the multibody run-up or rattle); lengthen `rotation.mesh_cycles_<blank>`, then run `preprocess mesh` and `preprocess stiffness` again")]
     ToothNotSolved {
         member: String,
         tooth: usize,
