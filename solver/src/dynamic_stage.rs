@@ -8,6 +8,11 @@
 //!   (the wheel bearing force with the mesh orders) for the blanks that run up;
 //! - `summary.json`: per torque TE mean and peak-to-peak, steps and CPU time.
 //!
+//! `<out>/<scene>/multibody/` is written as one set
+//! ([`formats::result_set`]): into a staging sibling, put in place whole
+//! with its `run.json` once every blank has run; a run that fails leaves
+//! the previous set as it was.
+//!
 //! Bearings are rigid: the bearing force of each member is the reaction to
 //! the contact force (the wheel's is reported; the pinion's is its negative).
 
@@ -26,6 +31,7 @@ use charts::{te_curve, Series};
 use formats::columns::{PINION_ROTATION_DEG, PINION_RPM, TE_URAD, TIME_S};
 use formats::manifest::Manifest;
 use formats::output::{write_atomic, write_json};
+use formats::result_set::ResultSet;
 use formats::stiffness_plan::StiffnessPlan;
 use geometry::design::Member;
 use geometry::pair::{pinion_direction, PairGeometry};
@@ -155,6 +161,12 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     }
     let sc = &scene.scene;
     let mb = &sc.multibody;
+    // Taken before any work: refuses an output that another run is writing
+    // or that cannot be written.
+    let set = ResultSet::begin(
+        &out.join(&sc.name).join("multibody"),
+        &format!("solver dynamic {}", scene.path.display()),
+    )?;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;
     let fp = g.side(side);
@@ -260,7 +272,9 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             };
             let table_s = t0.elapsed().as_secs_f64();
             let name = format!("{pb:?}_{wb:?}").to_lowercase();
-            let odir = out.join(&sc.name).join("multibody").join(&name);
+            // Written into the staging directory; the summary names the
+            // final path.
+            let odir = set.path().join(&name);
             std::fs::create_dir_all(&odir)?;
             let inertia = [j1, j2];
             let control = |max_step: f64| StepControl {
@@ -408,16 +422,14 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 table_cpu_s_per_position: table.cpu_s_per_position,
                 quasi_static: qs,
                 runup,
-                dir: odir.clone(),
+                dir: set.dir().join(&name),
             };
             write_json(&odir.join("summary.json"), &summary)?;
             all.push(summary);
         }
     }
-    write_json(
-        &out.join(&sc.name).join("multibody").join("summary.json"),
-        &all,
-    )?;
+    write_json(&set.path().join("summary.json"), &all)?;
+    set.commit()?;
     Ok(all)
 }
 

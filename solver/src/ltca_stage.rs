@@ -3,6 +3,10 @@
 //! that `preprocess stiffness` wrote (their hashes are checked), to
 //! `<out>/<scene>/ltca/<pinion>_<wheel>/`: `te.csv`, `pairs.csv`,
 //! `slices.csv`, `wheel_torque.csv`, `ltca.h5` and `summary.json`.
+//! `<out>/<scene>/ltca/` is written as one set
+//! ([`formats::result_set`]): into a staging sibling, put in place whole
+//! with its `run.json` once every blank has run; a run that fails leaves
+//! the previous set as it was.
 
 use crate::compliance::{MemberCompliance, PairCompliance};
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
@@ -10,6 +14,7 @@ use anyhow::Context;
 use formats::columns::{te_at_urad, PINION_ROTATION_DEG, UTCA_TE_URAD};
 use formats::output::{write_atomic, write_json};
 use formats::paths::MeshLevel;
+use formats::result_set::ResultSet;
 use formats::stiffness_file;
 use formats::stiffness_plan::{self, StiffnessPlan};
 use geometry::design::Member;
@@ -121,6 +126,12 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         return Ok(Vec::new());
     }
     let sc = &scene.scene;
+    // Taken before any work: refuses an output that another run is writing
+    // or that cannot be written.
+    let set = ResultSet::begin(
+        &out.join(&sc.name).join("ltca"),
+        &format!("solver ltca {}", scene.path.display()),
+    )?;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;
     let fp = g.side(side);
@@ -151,16 +162,28 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             let res = run_sweep(fp, &rs, &pc, &sweep, &sc.pinion_torque_nm)
                 .with_context(|| format!("scene {}: LTCA, {wb:?} wheel blank", sc.name))?;
             let name = format!("{pb:?}_{wb:?}").to_lowercase();
-            let odir = out.join(&sc.name).join("ltca").join(&name);
+            // Written into the staging directory; the summaries name the
+            // final paths.
+            let odir = set.path().join(&name);
+            let final_dir = set.dir().join(&name);
             std::fs::create_dir_all(&odir)?;
             write_outputs(&odir, &res, &sc.pinion_torque_nm)?;
             let (um, up) = mean_ptp(&res.iter().map(|p| p.utca_te).collect::<Vec<_>>());
             let coast = match &coast_rs {
                 Some(crs) => Some(
-                    coast_loads(scene, &g, &dir, crs, pb, wb, &sweep, &odir.join("coast"))
-                        .with_context(|| {
-                            format!("scene {}: coast-side LTCA, {wb:?} wheel blank", sc.name)
-                        })?,
+                    coast_loads(
+                        scene,
+                        &g,
+                        &dir,
+                        crs,
+                        pb,
+                        wb,
+                        &sweep,
+                        [&odir.join("coast"), &final_dir.join("coast")],
+                    )
+                    .with_context(|| {
+                        format!("scene {}: coast-side LTCA, {wb:?} wheel blank", sc.name)
+                    })?,
                 ),
                 None => None,
             };
@@ -177,7 +200,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 stiffness_files: vec![pin_path.path.clone(), whl_path.path],
                 wall_s: t0.elapsed().as_secs_f64(),
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
-                dir: odir.clone(),
+                dir: final_dir,
                 coast,
             };
             write_json(&odir.join("summary.json"), &summary)?;
@@ -201,15 +224,14 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             out_all.push(summary);
         }
     }
-    write_json(
-        &out.join(&sc.name).join("ltca").join("summary.json"),
-        &out_all,
-    )?;
+    write_json(&set.path().join("summary.json"), &out_all)?;
+    set.commit()?;
     Ok(out_all)
 }
 
 /// The scene's loads on the coast flanks of pinion blank `pb` × wheel
-/// blank `wb` (see [`CoastSummary`]), written to `odir`.
+/// blank `wb` (see [`CoastSummary`]), written to `odir`
+/// (`[where written, where it will be]`).
 #[allow(clippy::too_many_arguments)]
 fn coast_loads(
     scene: &LoadedScene,
@@ -219,7 +241,7 @@ fn coast_loads(
     pb: Blank,
     wb: Blank,
     sweep: &Sweep,
-    odir: &Path,
+    [odir, final_dir]: [&Path; 2],
 ) -> anyhow::Result<CoastSummary> {
     let sc = &scene.scene;
     let side = sc.loaded_flank;
@@ -242,7 +264,7 @@ fn coast_loads(
         utca_te_ptp_urad: up * 1e6,
         stiffness_files: vec![pin_plan.path, whl_plan.path],
         loads: load_summaries(&res, &sc.pinion_torque_nm),
-        dir: odir.to_path_buf(),
+        dir: final_dir.to_path_buf(),
     };
     write_json(&odir.join("summary.json"), &summary)?;
     Ok(summary)

@@ -4,11 +4,29 @@
 //! and torque), `pattern_<T>nm.csv` (contact pressure on the pinion flanks at
 //! the largest torque) and `summary.json`. A run whose inputs (mesh files,
 //! settings, positions, torques) hash to an existing summary reuses it.
+//!
+//! Each blank's solved positions are cached in `<blank>/positions/<key>/`,
+//! shared by the runs of one sweep (shards write into it side by side, a
+//! killed run resumes from it). The results of a run are one set
+//! ([`formats::result_set`]):
+//! - a run without `--shard` or `--compare-cache` takes the directory's
+//!   lock, writes `te.csv`, the patterns and the summaries into a staging
+//!   sibling (a reused blank's files copied over), moves the position
+//!   caches into it and puts it in place whole with its `run.json`; a run
+//!   that fails or is killed leaves the previous results as they were and
+//!   the positions it solved in the cache;
+//! - `--compare-cache` takes the same lock and writes only
+//!   `compare_cache.json`, in place;
+//! - `--shard` runs write only into the cache: they share a lock with
+//!   each other, and are refused while a run holds the directory's lock
+//!   (as that run is refused while shards run), so that no shard writes
+//!   into a cache that a finishing run is moving.
 
 use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
 use anyhow::Context;
 use formats::columns;
 use formats::output::{write_atomic, write_json};
+use formats::result_set::{ResultSet, RunLock};
 use geometry::design::Member as Which;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
@@ -260,6 +278,31 @@ pub fn run(
         return Ok(Vec::new());
     }
     let sc = &scene.scene;
+    // Taken before any work (see the module documentation): the set of a
+    // full run, or the lock of a cache comparison or of a shard.
+    let ref_dir = reference_dir(out, &sc.name, &opt.level);
+    let what = format!(
+        "validate reference {} --level {}",
+        scene.path.display(),
+        opt.level
+    );
+    let (set, _lock) = match opt.shard {
+        Some((k, n)) => (
+            None,
+            Some(RunLock::shared(
+                &ref_dir,
+                &format!("{what} --shard {k}/{n}"),
+            )?),
+        ),
+        None if opt.compare_cache => (
+            None,
+            Some(RunLock::exclusive(
+                &ref_dir,
+                &format!("{what} --compare-cache"),
+            )?),
+        ),
+        None => (Some(ResultSet::begin(&ref_dir, &what)?), None),
+    };
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;
     let fp = g.side(side);
@@ -281,7 +324,10 @@ pub fn run(
         for &wb in &sc.blanks.wheel {
             let t0 = std::time::Instant::now();
             let name = format!("{}_{}", blank_name(pb), blank_name(wb));
-            let odir = reference_dir(out, &sc.name, &opt.level).join(&name);
+            // The previous results and the position cache; this run's
+            // results go to `sdir` in the staging directory (a full run).
+            let odir = ref_dir.join(&name);
+            let sdir = set.as_ref().map(|s| s.path().join(&name));
             let stride = match wb {
                 Blank::Lightweight => opt.stride_lightweight.unwrap_or(opt.stride),
                 _ => opt.stride,
@@ -331,6 +377,9 @@ pub fn run(
                             "reference {name}: inputs unchanged, reusing {}",
                             summary_path.display()
                         );
+                        if let Some(sdir) = &sdir {
+                            copy_files(&odir, sdir)?;
+                        }
                         all.push(s);
                         continue;
                     }
@@ -493,9 +542,10 @@ pub fn run(
                 continue;
             }
             let sweep_s = t_sweep.elapsed().as_secs_f64();
-            std::fs::create_dir_all(&odir)?;
+            let sdir = sdir.expect("a run without --shard or --compare-cache has a result set");
+            std::fs::create_dir_all(&sdir)?;
             write_te_csv(
-                &odir.join("te.csv"),
+                &sdir.join("te.csv"),
                 &res,
                 &utca.te,
                 &fp.pinion,
@@ -526,9 +576,9 @@ pub fn run(
                 writeln!(csv, "{},{},{},{xi},{eta},{}", p[0], p[1], p[2], v * 1e-6)?;
             }
             let t = sc.pinion_torque_nm.last().copied().unwrap_or(0.0);
-            write_atomic(&odir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
+            write_atomic(&sdir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
             write_atomic(
-                &odir.join(format!("pattern_{t}nm.vtu")),
+                &sdir.join(format!("pattern_{t}nm.vtu")),
                 pattern_vtu(&pts).as_bytes(),
             )?;
             // Sizes and factoring times of this run's bodies, or of the run
@@ -582,7 +632,7 @@ pub fn run(
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
                 unloaded: unloaded_check(&res, &utca.te),
             };
-            write_json(&summary_path, &summary)?;
+            write_json(&sdir.join("summary.json"), &summary)?;
             let u = &summary.unloaded;
             eprintln!(
                 "  unloaded ({} N·m): TE mean {:.2} µrad (UTCA {:.2}), ptp {:.2} µrad (UTCA {:.2}), largest difference {:.3} µrad",
@@ -598,13 +648,34 @@ pub fn run(
             all.push(summary);
         }
     }
-    if !(opt.compare_cache || opt.shard.is_some()) {
-        write_json(
-            &reference_dir(out, &sc.name, &opt.level).join("summary.json"),
-            &all,
-        )?;
+    if let Some(mut set) = set {
+        write_json(&set.path().join("summary.json"), &all)?;
+        // Every blank's position cache (of this scene's blanks or not)
+        // outlives the run.
+        for e in std::fs::read_dir(&ref_dir).into_iter().flatten().flatten() {
+            let rel = Path::new(&e.file_name()).join("positions");
+            if ref_dir.join(&rel).is_dir() {
+                set.carry_over(&rel);
+            }
+        }
+        set.commit()?;
     }
     Ok(all)
+}
+
+/// Copies the files (not the directories) of `from` into `to`: a reused
+/// blank's results into the new set.
+fn copy_files(from: &Path, to: &Path) -> anyhow::Result<()> {
+    std::fs::create_dir_all(to)?;
+    for e in std::fs::read_dir(from)? {
+        let e = e?;
+        if e.file_type()?.is_file() {
+            let (a, b) = (e.path(), to.join(e.file_name()));
+            std::fs::copy(&a, &b)
+                .with_context(|| format!("cannot copy {} to {}", a.display(), b.display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// The pressure envelope on the pinion flank nodes (member frame, m) as a

@@ -1,0 +1,164 @@
+//! `solver ltca` and `solver dynamic` write `<out>/<scene>/ltca` resp.
+//! `<out>/<scene>/multibody` as one set ([`formats::result_set`]), tried
+//! on the checked-in stiffness fixture of `examples/02_ltca_fixture/`
+//! (a second of LTCA per run).
+
+use formats::result_set::{lock_path, ResultSet, RunInfo, RUN_FILE};
+use geometry::scene::{LoadedScene, Scene};
+use std::path::{Path, PathBuf};
+
+/// A scratch folder under the target directory, removed when dropped.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(case: &str) -> Scratch {
+        let p = Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("result_sets_{case}_{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&p);
+        std::fs::create_dir_all(&p).unwrap();
+        Scratch(p)
+    }
+
+    fn path(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn example() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/02_ltca_fixture")
+}
+
+/// The fixture's scene, its text edited by `edit`, written into `dir`
+/// (the design path made absolute).
+fn scene(dir: &Path, edit: impl Fn(String) -> String) -> LoadedScene {
+    let text = std::fs::read_to_string(example().join("scene.toml")).unwrap();
+    let design = example()
+        .join("../../reference/white_paper_20x43.toml")
+        .canonicalize()
+        .unwrap();
+    let text = text.replace(
+        "design = \"../../reference/white_paper_20x43.toml\"",
+        &format!("design = {:?}", design.display().to_string()),
+    );
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, edit(text)).unwrap();
+    Scene::load(&path).unwrap()
+}
+
+/// Every file under `dir` (relative path, bytes), sorted.
+fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    fn walk(root: &Path, d: &Path, v: &mut Vec<(PathBuf, Vec<u8>)>) {
+        for e in std::fs::read_dir(d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(root, &p, v);
+            } else {
+                let bytes = std::fs::read(&p).unwrap();
+                v.push((p.strip_prefix(root).unwrap().to_path_buf(), bytes));
+            }
+        }
+    }
+    let mut v = Vec::new();
+    walk(dir, dir, &mut v);
+    v.sort();
+    v
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn ltca_run_is_one_set_with_run_json_and_summaries_naming_the_final_paths() {
+    let tmp = Scratch::new("one_set");
+    let sc = scene(tmp.path(), |t| t);
+    let out = tmp.path().join("out");
+    let res = solver::ltca_stage::run(&sc, &example().join("meshes"), &out).unwrap();
+    let set = out.join("ltca_fixture/ltca");
+    assert_eq!(res[0].dir, set.join("standard_standard"));
+    assert!(res[0].dir.join("te.csv").is_file());
+    let info: RunInfo =
+        serde_json::from_str(&std::fs::read_to_string(set.join(RUN_FILE)).unwrap()).unwrap();
+    assert!(info.what.starts_with("solver ltca"), "{info:?}");
+    assert_eq!(names(&out.join("ltca_fixture")), ["ltca"]);
+}
+
+#[test]
+fn ltca_run_failing_on_its_second_blank_leaves_the_previous_set_untouched_and_no_staging_dir() {
+    let tmp = Scratch::new("second_blank");
+    let meshes = example().join("meshes");
+    let out = tmp.path().join("out");
+    solver::ltca_stage::run(&scene(tmp.path(), |t| t), &meshes, &out).unwrap();
+    let set = out.join("ltca_fixture/ltca");
+    let before = files(&set);
+
+    // A second pinion blank whose stiffness file the fixture lacks: the
+    // first blank combination runs (and is written to staging), the second
+    // fails.
+    let two = scene(tmp.path(), |t| {
+        t.replace(
+            "pinion = [\"standard\"]",
+            "pinion = [\"standard\", \"lightweight\"]",
+        )
+    });
+    let err = solver::ltca_stage::run(&two, &meshes, &out).unwrap_err();
+    let msg = format!("{err:#}");
+    assert!(msg.contains("lightweight"), "not the second blank: {msg}");
+    assert_eq!(files(&set), before, "the previous set changed");
+    assert_eq!(names(&out.join("ltca_fixture")), ["ltca"]);
+}
+
+#[test]
+fn ltca_into_an_output_another_run_is_writing_is_refused_naming_it() {
+    let tmp = Scratch::new("busy");
+    let out = tmp.path().join("out");
+    let set = out.join("ltca_fixture/ltca");
+    let other = ResultSet::begin(&set, "solver ltca other.toml").unwrap();
+    let err = solver::ltca_stage::run(&scene(tmp.path(), |t| t), &example().join("meshes"), &out)
+        .unwrap_err();
+    let msg = format!("{err:#}");
+    for part in [
+        format!("pid {}", std::process::id()),
+        "solver ltca other.toml".into(),
+        lock_path(&set).display().to_string(),
+    ] {
+        assert!(msg.contains(&part), "{part:?} not in: {msg}");
+    }
+    assert!(other.path().read_dir().unwrap().next().is_none());
+}
+
+#[test]
+fn ltca_and_dynamic_into_an_unwritable_output_are_refused_before_work() {
+    let tmp = Scratch::new("unwritable");
+    // `--out` is a file: nothing can be written under it.
+    let out = tmp.path().join("out");
+    std::fs::write(&out, "").unwrap();
+    // No meshes at all: a refusal after any work would name them instead.
+    let meshes = tmp.path().join("no-meshes");
+    let sc = scene(tmp.path(), |t| {
+        t.replace("multibody = false", "multibody = true")
+    });
+    let err = solver::ltca_stage::run(&sc, &meshes, &out).unwrap_err();
+    let msg = format!("{err:#}");
+    assert!(
+        msg.contains(&out.join("ltca_fixture").display().to_string()),
+        "{msg}"
+    );
+    let err = solver::dynamic_stage::run(&sc, &meshes, &out).unwrap_err();
+    let msg = format!("{err:#}");
+    assert!(
+        msg.contains(&out.join("ltca_fixture").display().to_string()),
+        "{msg}"
+    );
+}
