@@ -50,9 +50,20 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
     let meshes = tmp.path().join("meshes");
     mesh_stage::run(&scene, &meshes, Level::Reduced).unwrap();
 
-    // One run over the whole sweep.
+    // One run over the whole sweep. What other commands keep in the
+    // folder (a study's results, another blank pair's) survives it.
     let single = tmp.path().join("single");
+    let folder = reference_dir(&single, &scene.scene.name, "reduced");
+    std::fs::create_dir_all(folder.join("other_blanks")).unwrap();
+    std::fs::write(folder.join("convergence.json"), "{\"study\": 1}").unwrap();
+    std::fs::write(folder.join("other_blanks/summary.json"), "{}").unwrap();
     let a = run(&scene, &meshes, &single, &options()).unwrap();
+    assert_eq!(
+        std::fs::read_to_string(folder.join("convergence.json")).unwrap(),
+        "{\"study\": 1}"
+    );
+    assert!(folder.join("other_blanks/summary.json").exists());
+    assert!(folder.join("run.json").exists());
     let n = a[0].positions;
     assert!(n >= 8, "{n} positions");
 

@@ -651,9 +651,24 @@ pub fn run(
     if let Some(mut set) = set {
         write_json(&set.path().join("summary.json"), &all)?;
         // Every blank's position cache (of this scene's blanks or not)
-        // outlives the run.
-        for e in std::fs::read_dir(&ref_dir).into_iter().flatten().flatten() {
-            let rel = Path::new(&e.file_name()).join("positions");
+        // outlives the run, and so does whatever this run did not write:
+        // other blank pairs' results, and the studies that other commands
+        // keep in this folder (`validate convergence`, `line-load`,
+        // `tradeoff`). Entries this run wrote are not carried over.
+        // Whole entries first (a blank pair this run did not solve keeps
+        // all its files), then the caches inside the ones it did.
+        let names: Vec<std::path::PathBuf> = std::fs::read_dir(&ref_dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|e| Path::new(&e.file_name()).to_path_buf())
+            .filter(|n| n != Path::new(formats::result_set::RUN_FILE))
+            .collect();
+        for name in &names {
+            set.carry_over(name);
+        }
+        for name in &names {
+            let rel = name.join("positions");
             if ref_dir.join(&rel).is_dir() {
                 set.carry_over(&rel);
             }
