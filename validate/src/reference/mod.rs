@@ -17,4 +17,6 @@ pub mod contact_surface;
 pub mod path_compliance;
 pub mod penalty;
 pub mod reference_ltca;
+pub mod reference_outputs;
 pub mod reference_stage;
+pub mod reference_summary;

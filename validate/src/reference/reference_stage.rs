@@ -22,6 +22,11 @@
 //!   (as that run is refused while shards run), so that no shard writes
 //!   into a cache that a finishing run is moving.
 
+pub use super::reference_outputs::pattern_vtu;
+use super::reference_outputs::{
+    copy_files, load_summaries, report_factor, unloaded_check, write_te_csv,
+};
+pub use super::reference_summary::{BlankSummary, CacheComparison, LoadSummary, UnloadedCheck};
 use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
 use anyhow::Context;
 use formats::columns;
@@ -31,9 +36,8 @@ use geometry::design::Member as Which;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use preprocess::stiffness_stage::sha256_file;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use sha2::{Digest, Sha256};
-use solver::ltca::mean_ptp;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -92,140 +96,6 @@ pub fn finest_reference(out: &Path, scene: &str, blank: &str) -> Option<std::pat
         .find(|d| d.join("te.csv").exists())
 }
 
-/// The largest differences between positions solved now and their cached
-/// results (`validate reference --compare-cache`), relative to the cached
-/// value; torque balance (already relative) as an absolute difference.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
-pub struct CacheComparison {
-    pub positions_compared: usize,
-    pub positions_without_cache: usize,
-    pub unloaded_te: f64,
-    pub te: f64,
-    pub te_check: f64,
-    pub max_pressure: f64,
-    pub torque_balance_abs: f64,
-    pub search_margin: f64,
-    /// Positions whose working set or active-constraint counts differ.
-    pub count_mismatches: usize,
-    pub tolerance: f64,
-}
-
-impl CacheComparison {
-    fn add(&mut self, new: &PositionResult, old: &PositionResult) {
-        let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(f64::MIN_POSITIVE);
-        self.positions_compared += 1;
-        self.unloaded_te = self.unloaded_te.max(rel(new.unloaded_te, old.unloaded_te));
-        let mut counts_differ =
-            new.constraints != old.constraints || new.loads.len() != old.loads.len();
-        for (a, b) in new.loads.iter().zip(&old.loads) {
-            self.te = self.te.max(rel(a.te, b.te));
-            self.te_check = self.te_check.max(rel(a.te_check, b.te_check));
-            self.max_pressure = self
-                .max_pressure
-                .max(rel(a.max_pressure_pa, b.max_pressure_pa));
-            self.torque_balance_abs = self
-                .torque_balance_abs
-                .max((a.torque_balance - b.torque_balance).abs());
-            if let (Some(x), Some(y)) = (a.search_margin_m, b.search_margin_m) {
-                self.search_margin = self.search_margin.max(rel(x, y));
-            }
-            counts_differ |= a.active != b.active;
-        }
-        self.count_mismatches += usize::from(counts_differ);
-    }
-
-    /// The largest of the relative differences.
-    pub fn worst(&self) -> f64 {
-        [
-            self.unloaded_te,
-            self.te,
-            self.te_check,
-            self.max_pressure,
-            self.torque_balance_abs,
-            self.search_margin,
-        ]
-        .into_iter()
-        .fold(0.0, f64::max)
-    }
-}
-
-/// Per-torque statistics over the sweep.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct LoadSummary {
-    pub torque_nm: f64,
-    pub te_mean_urad: f64,
-    pub te_ptp_urad: f64,
-    /// Largest |TE(penalty) − TE(check penalty)| over the positions, % of
-    /// the mean TE at this torque (at light loads the TE itself passes near
-    /// zero, where a per-position percentage means nothing).
-    pub penalty_difference_pct: f64,
-    /// The same difference, µrad.
-    pub penalty_difference_max_urad: f64,
-    pub max_pressure_mpa: f64,
-    /// Largest |Σ forces × levers − torque| / torque over the positions.
-    pub torque_balance_max: f64,
-    /// Smallest loaded gap of the searched constraints left out of the
-    /// solve in the outer half of the search range, µm (≥ 0 once settled).
-    pub band_margin_min_um: f64,
-    /// Smallest search margin over the positions (search gap − largest
-    /// closure), µm; positive: nothing beyond the search range can have
-    /// touched. None when a cached position predates it.
-    pub search_margin_min_um: Option<f64>,
-    /// Contact solves (both penalties) per position, s.
-    pub cpu_s_per_position: f64,
-}
-
-/// Summary of one pinion × wheel blank combination.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct BlankSummary {
-    pub input_hash: String,
-    pub pinion_blank: String,
-    pub wheel_blank: String,
-    pub level: String,
-    pub penalty_factor: f64,
-    pub penalty_factor_check: f64,
-    pub positions: usize,
-    pub step_deg: f64,
-    pub mesh_cycles: f64,
-    pub dofs: [usize; 2],
-    pub factor_s: [f64; 2],
-    /// Unit-load right-hand sides solved, and their time, per body.
-    pub right_hand_sides: [usize; 2],
-    pub solve_s: [f64; 2],
-    /// Positions taken from the per-position cache of an earlier run.
-    pub positions_reused: usize,
-    /// Constraints searched per position (mean), and solved (mean).
-    pub searched_mean: f64,
-    pub constraints_mean: f64,
-    /// Wall time of this run of the combination (factoring included), s.
-    pub wall_s: f64,
-    /// Wall time of this run's sweep (positions solved or reused), s.
-    pub sweep_s: f64,
-    /// Cost of the sweep from scratch: the positions' own times (when they
-    /// were solved) plus factoring both bodies, s.
-    pub total_cpu_s: f64,
-    /// Wall time per position when it was solved (columns, condensation,
-    /// all torques at both penalties; factoring excluded), s.
-    pub cpu_s_per_position: f64,
-    pub loads: Vec<LoadSummary>,
-    pub unloaded: UnloadedCheck,
-}
-
-/// The meshed geometry's TE at a vanishing torque against the UTCA of the
-/// generated flanks, at the same positions.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct UnloadedCheck {
-    pub torque_nm: f64,
-    /// Largest |TE(reference) − TE(UTCA)|, µrad.
-    pub max_abs_difference_urad: f64,
-    /// Mean of TE(reference) − TE(UTCA), µrad.
-    pub mean_difference_urad: f64,
-    pub utca_te_mean_urad: f64,
-    pub utca_te_ptp_urad: f64,
-    pub reference_te_mean_urad: f64,
-    pub reference_te_ptp_urad: f64,
-}
-
 /// The UTCA of the scene's generated flanks (its own UTCA settings) at `n`
 /// pinion angles from `start` in steps of `step`: the unloaded check's
 /// reference.
@@ -240,23 +110,6 @@ pub fn utca_at(
     let input = preprocess::flank_stage::load_input(&scene.path)?;
     let rs = geometry::utca::roll_surface(fp, &input.utca)?;
     Ok(geometry::utca::run(fp, &rs, start, step, n, direction))
-}
-
-fn unloaded_check(res: &[PositionResult], utca: &[f64]) -> UnloadedCheck {
-    let r: Vec<f64> = res.iter().map(|p| p.unloaded_te * 1e6).collect();
-    let u: Vec<f64> = utca.iter().map(|t| t * 1e6).collect();
-    let d: Vec<f64> = r.iter().zip(&u).map(|(a, b)| a - b).collect();
-    let (rm, rp) = mean_ptp(&r);
-    let (um, up) = mean_ptp(&u);
-    UnloadedCheck {
-        torque_nm: crate::reference_ltca::UNLOADED_TORQUE_NM,
-        max_abs_difference_urad: d.iter().map(|x| x.abs()).fold(0.0, f64::max),
-        mean_difference_urad: d.iter().sum::<f64>() / d.len().max(1) as f64,
-        utca_te_mean_urad: um,
-        utca_te_ptp_urad: up,
-        reference_te_mean_urad: rm,
-        reference_te_ptp_urad: rp,
-    }
 }
 
 fn blank_name(b: Blank) -> String {
@@ -676,148 +529,4 @@ pub fn run(
         set.commit()?;
     }
     Ok(all)
-}
-
-/// Copies the files (not the directories) of `from` into `to`: a reused
-/// blank's results into the new set.
-fn copy_files(from: &Path, to: &Path) -> anyhow::Result<()> {
-    std::fs::create_dir_all(to)?;
-    for e in std::fs::read_dir(from)? {
-        let e = e?;
-        if e.file_type()?.is_file() {
-            let (a, b) = (e.path(), to.join(e.file_name()));
-            std::fs::copy(&a, &b)
-                .with_context(|| format!("cannot copy {} to {}", a.display(), b.display()))?;
-        }
-    }
-    Ok(())
-}
-
-/// The pressure envelope on the pinion flank nodes (member frame, m) as a
-/// VTK unstructured grid of vertices with the point field `pressure_mpa`,
-/// for ParaView.
-pub fn pattern_vtu(pts: &[([f64; 3], f64)]) -> String {
-    let n = pts.len();
-    let mut s = String::from(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n",
-    );
-    let _ = writeln!(s, "<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">");
-    s.push_str("<PointData Scalars=\"pressure_mpa\">\n<DataArray type=\"Float64\" Name=\"pressure_mpa\" format=\"ascii\">\n");
-    for (_, v) in pts {
-        let _ = writeln!(s, "{}", v * 1e-6);
-    }
-    s.push_str("</DataArray>\n</PointData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for (p, _) in pts {
-        let _ = writeln!(s, "{} {} {}", p[0], p[1], p[2]);
-    }
-    s.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    for i in 0..n {
-        let _ = writeln!(s, "{i}");
-    }
-    s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    for i in 0..n {
-        let _ = writeln!(s, "{}", i + 1);
-    }
-    // VTK_VERTEX = 1.
-    s.push_str("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    for _ in 0..n {
-        s.push_str("1\n");
-    }
-    s.push_str("</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    s
-}
-
-/// Prints a factored body's size: dofs, factor values, the part kept.
-fn report_factor(name: &str, m: Option<&Member>) {
-    if let Some(c) = m.map(|m| &m.compliance) {
-        let gb = |n: usize| n as f64 * 8.0 / 1e9;
-        eprintln!(
-            "reference: {name}: {} dofs, factor {:.2} GB in {:.0} s, {:.2} GB kept on the contact nodes' paths",
-            c.dofs_free,
-            gb(c.factor_nnz[1]),
-            c.factor_s,
-            gb(c.factor_nnz[0])
-        );
-    }
-}
-
-fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
-    let n = res.len().max(1) as f64;
-    torques
-        .iter()
-        .enumerate()
-        .map(|(k, &t)| {
-            let te: Vec<f64> = res.iter().map(|r| r.loads[k].te).collect();
-            let (mean, ptp) = mean_ptp(&te);
-            let penalty_max = res
-                .iter()
-                .map(|r| (r.loads[k].te - r.loads[k].te_check).abs())
-                .fold(0.0, f64::max);
-            LoadSummary {
-                torque_nm: t,
-                te_mean_urad: mean * 1e6,
-                te_ptp_urad: ptp * 1e6,
-                penalty_difference_pct: penalty_max / mean.abs() * 100.0,
-                penalty_difference_max_urad: penalty_max * 1e6,
-                max_pressure_mpa: res
-                    .iter()
-                    .map(|r| r.loads[k].max_pressure_pa)
-                    .fold(0.0, f64::max)
-                    * 1e-6,
-                torque_balance_max: res
-                    .iter()
-                    .map(|r| r.loads[k].torque_balance.abs())
-                    .fold(0.0, f64::max),
-                band_margin_min_um: res
-                    .iter()
-                    .map(|r| r.loads[k].band_margin_m)
-                    .fold(f64::INFINITY, f64::min)
-                    * 1e6,
-                search_margin_min_um: res
-                    .iter()
-                    .map(|r| r.loads[k].search_margin_m)
-                    .collect::<Option<Vec<f64>>>()
-                    .map(|v| v.into_iter().fold(f64::INFINITY, f64::min) * 1e6),
-                cpu_s_per_position: res.iter().map(|r| r.cpu_s).sum::<f64>() / n,
-            }
-        })
-        .collect()
-}
-
-fn write_te_csv(
-    path: &Path,
-    res: &[PositionResult],
-    utca: &[f64],
-    flank: &geometry::flank::Flank,
-    start: f64,
-    direction: f64,
-) -> anyhow::Result<()> {
-    let mut s = format!(
-        "{},{},te_unloaded_urad,unloaded_xi,unloaded_eta",
-        columns::PINION_ROTATION_DEG,
-        columns::UTCA_TE_URAD
-    );
-    if let Some(r) = res.first() {
-        for l in &r.loads {
-            write!(s, ",{}", columns::te_at_urad(l.torque_nm))?;
-        }
-    }
-    s.push('\n');
-    for (r, u) in res.iter().zip(utca) {
-        let (l, d) = flank.gen.frame.axial(&r.unloaded_point);
-        let (xi, eta) = flank.bounds.to_unit(l, d);
-        write!(
-            s,
-            "{},{},{},{xi},{eta}",
-            ((r.phi - start) * direction).to_degrees(),
-            u * 1e6,
-            r.unloaded_te * 1e6
-        )?;
-        for l in &r.loads {
-            write!(s, ",{}", l.te * 1e6)?;
-        }
-        s.push('\n');
-    }
-    write_atomic(path, s.as_bytes())?;
-    Ok(())
 }
