@@ -83,9 +83,14 @@ fn consistent(d: &StiffnessData) -> bool {
 /// The file a child process reads ([`read_the_file_named_by_the_parent`]).
 const CHILD_FILE: &str = "STIFFNESS_FUZZ_FILE";
 
+/// Longest a child may read one damaged file: HDF5 can also loop forever
+/// on one (seen once in a `make test` run), which counts as a crash.
+const CHILD_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(20);
+
 /// How one read ended, as the child reports it on stdout.
 fn child_read(path: &std::path::Path) -> Result<String, String> {
-    let out = std::process::Command::new(std::env::current_exe().unwrap())
+    use std::process::Stdio;
+    let mut child = std::process::Command::new(std::env::current_exe().unwrap())
         .args([
             "--exact",
             "read_the_file_named_by_the_parent",
@@ -95,8 +100,20 @@ fn child_read(path: &std::path::Path) -> Result<String, String> {
         ])
         .env(CHILD_FILE, path)
         .env("RUST_BACKTRACE", "0")
-        .output()
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
         .unwrap();
+    let t0 = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if t0.elapsed() > CHILD_TIMEOUT {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Ok(format!("CRASH hang (killed after {CHILD_TIMEOUT:?})"));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let out = child.wait_with_output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     match out.status.code() {
