@@ -26,6 +26,17 @@ pub const MAX_GRID_POINTS: usize = 2500;
 pub const MAX_TORQUES: usize = 100;
 /// Largest pinion torque, N·m.
 pub const MAX_TORQUE_NM: f64 = 1e6;
+/// Fewest lag nodes of the multibody contact table: a third of them cover
+/// the band of unloaded TEs, and with fewer than 16 (5 in the band, about
+/// one node per half the unloaded TE's range) the interpolated pinion
+/// torque there is so far off that the balance at the scene's torque lies
+/// beyond the table's largest lag (8 nodes left no band spacing at all).
+pub const MIN_TABLE_LAG_NODES: usize = 16;
+/// Smallest local error tolerance of the multibody step control on the TE,
+/// µrad: the lag is the difference r q₁ − q₂ of rotations of several rad,
+/// resolved to about 1e-15 (1 + |q|) rad by Newton and rounding; tighter
+/// tolerances only reject steps down to the smallest step.
+pub const MIN_TE_TOLERANCE_URAD: f64 = 1e-6;
 
 impl Scene {
     /// The checks that need no design: every number finite and in range,
@@ -200,7 +211,7 @@ impl Scene {
             (
                 "multibody.te_tolerance_urad",
                 mb.te_tolerance_urad,
-                1e-9,
+                MIN_TE_TOLERANCE_URAD,
                 100.0,
             ),
             ("multibody.table_step_deg", mb.table_step_deg, 1e-3, 2.0),
@@ -223,11 +234,13 @@ impl Scene {
                 return Err(fail(f, v.to_string(), "must lie in [0, 100000]"));
             }
         }
-        if !(8..=2000).contains(&mb.table_lag_nodes) {
+        if !(MIN_TABLE_LAG_NODES..=2000).contains(&mb.table_lag_nodes) {
             return Err(fail(
                 "multibody.table_lag_nodes",
                 mb.table_lag_nodes.to_string(),
-                "must lie in [8, 2000]",
+                &format!(
+                    "must lie in [{MIN_TABLE_LAG_NODES}, 2000] (a third of the nodes resolve the band of unloaded TEs; fewer than {MIN_TABLE_LAG_NODES} put the loaded balance beyond the table)"
+                ),
             ));
         }
         for (f, v) in [

@@ -117,11 +117,13 @@ fn catmull_rom(t: f64) -> [[f64; 4]; 3] {
 /// over twice the unloaded band (where light loads act: T₁ rises from zero
 /// at θ₀(q₁), which moves across that band), the rest growing
 /// geometrically up to hi (T₁ nearly linear in θ there).
+/// At least 3 band nodes (one spacing and the node below `lo`), so that
+/// any n ≥ 4 gives a finite grid (n = 8 made the spacing band / 0).
 pub fn lag_grid(lo: f64, te0_max: f64, hi: f64, n: usize) -> Vec<f64> {
     let band = (2.0 * (te0_max - lo))
         .max(1e-3 * (hi - lo))
         .min(0.5 * (hi - lo));
-    let n_band = n / 3;
+    let n_band = (n / 3).max(3).min(n - 1);
     let d0 = band / (n_band - 2) as f64;
     let mut out: Vec<f64> = (0..n_band).map(|m| lo - d0 + d0 * m as f64).collect();
     let rest = n - n_band;
@@ -252,9 +254,10 @@ impl MeshTable {
         ratio: f64,
         spec: TableSpec,
     ) -> Result<Self, SolverError> {
-        if spec.positions < 4 || spec.lag_nodes < 4 {
+        let min_lags = geometry::scene_checks::MIN_TABLE_LAG_NODES;
+        if spec.positions < 4 || spec.lag_nodes < min_lags {
             return Err(SolverError::Table(format!(
-                "{} positions × {} lag nodes: need at least 4 of each",
+                "{} positions × {} lag nodes: need at least 4 positions and {min_lags} lag nodes (multibody.table_lag_nodes)",
                 spec.positions, spec.lag_nodes
             )));
         }

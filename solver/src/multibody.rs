@@ -360,11 +360,22 @@ impl Model<'_> {
     }
 
     /// Quasi-static wheel lag at pinion rotation q₁ under the drive's
-    /// torque, turning forward (the unloaded TE at zero torque), by Newton
-    /// on the balance of the member that carries the torque: the pinion's
-    /// ∂V/∂q₁ + μ Φ₁ = T₁, or with the pinion's speed imposed the wheel's
-    /// −∂V/∂q₂ + μ Φ₂ = T₂ (with friction the two differ by the mesh
-    /// efficiency).
+    /// torque, turning forward (the unloaded TE at zero torque): the
+    /// smallest lag θ ≥ θ₀(q₁) at which the member that carries the torque
+    /// is in balance, the pinion's ∂V/∂q₁ + μ Φ₁ = T₁, or with the pinion's
+    /// speed imposed the wheel's −∂V/∂q₂ + μ Φ₂ = T₂ (with friction the two
+    /// differ by the mesh efficiency).
+    ///
+    /// The root is bracketed first (from θ₀ upward) and then refined by
+    /// Newton kept inside the bracket (bisection where Newton would leave
+    /// it). Near θ₀ the tabulated torque is an interpolant through the
+    /// contact's onset and not monotonic within about one lag step (it dips
+    /// below zero and rises again): an unguarded Newton from there found
+    /// roots below the unloaded TE at light loads, or none, and the start's
+    /// speed taken from their slope was off by 0.4 % (the 10 rpm run at
+    /// 1e-6 N·m then drifted away by hundreds of µrad). Where the
+    /// interpolated torque already reaches the load at θ₀ the table cannot
+    /// resolve the deflection and θ₀ is returned.
     pub fn static_lag(&self, q1: f64) -> Result<f64, SolverError> {
         let r = self.table.ratio;
         let torque = self.static_torque();
@@ -373,9 +384,8 @@ impl Model<'_> {
             return Ok(t0);
         }
         let wheel = self.drive.free() == [false, true];
-        let du = self.table.mean_lag_step();
-        let mut theta = t0 + 0.1 * self.table.du();
-        for _ in 0..100 {
+        // Residual and its derivative in θ (d/dθ = −∂/∂q₂ at fixed q₁).
+        let residual = |theta: f64| -> Result<(f64, f64), SolverError> {
             let q2 = r * q1 - theta;
             let ms = self.table.state(q1, q2)?;
             let (phi, dphi) = if self.friction > 0.0 {
@@ -383,8 +393,7 @@ impl Model<'_> {
             } else {
                 Default::default()
             };
-            // Residual and its derivative in θ (d/dθ = −∂/∂q₂ at fixed q₁).
-            let (f, df) = if wheel {
+            Ok(if wheel {
                 (
                     -ms.grad[1] + self.friction * phi[1] - torque / r,
                     ms.hess[1][1] - self.friction * dphi[1][1],
@@ -394,19 +403,123 @@ impl Model<'_> {
                     ms.grad[0] + self.friction * phi[0] - torque,
                     -ms.hess[0][1] - self.friction * dphi[0][1],
                 )
+            })
+        };
+        let not_converged = |iterations| SolverError::NotConverged {
+            what: "quasi-static lag".into(),
+            iterations,
+        };
+        // Bracket [lo, hi] with f(lo) < 0 ≤ f(hi), marching up from θ₀ in
+        // growing steps (the table ends at the largest lag it covers).
+        let top = self.table.lags[self.table.lags.len() - 1];
+        let mut lo = t0.max(self.table.theta_lo());
+        let (f_lo, _) = residual(lo)?;
+        if f_lo >= 0.0 {
+            return Ok(lo);
+        }
+        let mut dx = self.table.du();
+        let mut hi = lo;
+        let mut found = false;
+        for _ in 0..200 {
+            let next = (hi + dx).min(top);
+            if residual(next)?.0 >= 0.0 {
+                hi = next;
+                found = true;
+                break;
+            }
+            lo = next;
+            hi = next;
+            if next >= top {
+                break;
+            }
+            dx *= 1.5;
+        }
+        if !found {
+            return Err(SolverError::Table(format!(
+                "no quasi-static balance for {torque} N·m at pinion rotation {:.4} deg below the table's largest lag {:.3} µrad; raise the multibody table's torque",
+                q1.to_degrees(),
+                top * 1e6
+            )));
+        }
+        // Safeguarded Newton in the bracket, from its upper end (the root
+        // lies in the table's smooth part above the onset at most loads).
+        let mut theta = hi;
+        for _ in 0..100 {
+            let (f, df) = residual(theta)?;
+            if f < 0.0 {
+                lo = theta;
+            } else {
+                hi = theta;
+            }
+            let newton = theta - f / df;
+            let next = if df > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
             };
-            let step = if df > 0.0 { -f / df } else { 0.1 * du };
-            theta += step.clamp(-10.0 * du, 10.0 * du);
-            if step.abs() < 1e-16 + 1e-12 * theta.abs() {
+            let step = next - theta;
+            theta = next;
+            if step.abs() < 1e-16 + 1e-12 * theta.abs() || hi - lo <= 4.0 * f64::EPSILON * hi.abs()
+            {
                 return Ok(theta);
             }
         }
-        Err(SolverError::NotConverged {
-            what: "quasi-static lag".into(),
-            iterations: 100,
-        })
+        Err(not_converged(100))
     }
 
+    /// Smallest pinion torque (N·m) that keeps the flanks in contact in
+    /// the quasi-static drive (imposed wheel speed ω₂): the flanks can only
+    /// push the pinion back, so wherever following the unloaded TE θ₀(q₁)
+    /// needs the pinion to speed up, q̈₁ = θ₀″ q̇₁² / (r − θ₀′) with
+    /// q̇₁ = ω₂ / (r − θ₀′), its torque must supply J₁ q̈₁; and where the
+    /// contact passes to the next tooth pair (a kink of θ₀) the pinion's
+    /// rebound must stay within the table's finest lag step. Below this the
+    /// pinion leaves the wheel and drifts across the backlash or rattles:
+    /// the run's TE is then no quasi-static TE. Zero for the other drives.
+    pub fn holding_torque(&self) -> Result<f64, SolverError> {
+        let Drive::WheelSpeed { speed, .. } = self.drive else {
+            return Ok(0.0);
+        };
+        let w = speed.from.abs().max(speed.to.abs());
+        let r = self.table.ratio;
+        let h = self.table.spec.step;
+        let n = if self.table.spec.periodic {
+            self.table.spec.positions
+        } else {
+            self.table.spec.positions - 1
+        };
+        // (at(n) wraps to the first node for a periodic table)
+        // From the tabulated θ₀ by differences at the nodes: the interpolant
+        // overshoots next to the kinks where the contact passes to the next
+        // tooth pair (there the flanks decelerate the pinion, θ₀″ < 0), and
+        // its θ₀″ there is no demand of the flanks' geometry.
+        let te0 = &self.table.te0[self.table.lead..];
+        let at = |k: usize| -> f64 {
+            if k < te0.len() {
+                te0[k]
+            } else {
+                te0[k - te0.len()]
+            }
+        };
+        let mut need: f64 = 0.0;
+        for k in 1..n {
+            let (a, b, c) = (at(k - 1), at(k), at(k + 1));
+            let d1 = (c - a) / (2.0 * h);
+            let d2 = (a - 2.0 * b + c) / (h * h);
+            let v1 = w / (r - d1);
+            need = need.max(self.inertia[0] * d2 * v1 * v1 / (r - d1));
+            // Tooth change: the lag rate drops by Δθ̇ = (θ₀′₋ − θ₀′₊) q̇₁ at
+            // once, an impact; the pinion rebounds (restitution up to 1) and
+            // its torque brings it back after a separation of
+            // J₁ Δθ̇² / (2 r T), to be kept within the table's finest lag step.
+            let drop = ((b - a) - (c - b)) / h;
+            if drop > 0.0 {
+                let rate = drop * v1;
+                need = need.max(self.inertia[0] * rate * rate / (2.0 * r * self.table.du()));
+            }
+        }
+        Ok(need)
+    }
     /// The quasi-static state at pinion rotation q₁, moving at the drive's
     /// initial speed with the static lag kept (θ̇ = θ'(q₁) q̇₁).
     pub fn static_state(&self, q1: f64) -> Result<State, SolverError> {
@@ -482,6 +595,14 @@ pub fn wheel_driven<'a>(
             pinion_torque,
         },
     };
+    let holding = m.holding_torque()?;
+    if pinion_torque < holding {
+        return Err(SolverError::Table(format!(
+            "pinion_torque_nm = {pinion_torque} N·m is below {holding:.3e} N·m, the torque the pinion's inertia ({:.4e} kg·m²) needs to follow the unloaded TE at the quasi-static wheel speed of {:.4} rpm (the flanks can only push it back: below this it leaves the wheel at the tooth changes and drifts across the backlash, and no quasi-static TE exists); raise the torque or lower multibody.quasi_static_wheel_rpm",
+            inertia[0],
+            wheel_speed * 30.0 / std::f64::consts::PI
+        )));
+    }
     let s = m.static_state(0.0)?;
     m.damping = m.damping_for_ratio(zeta, &s)?;
     Ok((m, s))

@@ -95,7 +95,7 @@ impl Integrator {
             let r = m.table.ratio;
             let pred = |i: usize| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
             let err = (r * (next.q[0] - pred(0)) - (next.q[1] - pred(1))).abs();
-            let ratio = err / self.control.tolerance;
+            let ratio = err / self.control.tolerance.max(lag_resolution(r, &next));
             let grow = if ratio > 0.0 {
                 (0.9 * ratio.powf(-1.0 / 3.0)).clamp(0.2, 2.0)
             } else {
@@ -110,6 +110,18 @@ impl Integrator {
             return Ok(next);
         }
     }
+}
+
+/// Smallest local error on the lag θ = r q₁ − q₂ that a step can resolve,
+/// rad: Newton stops at updates of 1e-15 (1 + |q|) and θ is a difference of
+/// rotations that grow along a run, so the corrector − predictor difference
+/// has a floor of rounding noise of about (1 + r) 1e-15 (1 + |q|). A
+/// tolerance below it rejected every step down to the smallest step, where
+/// a run of millions of steps never ended (`te_tolerance_urad` = 1e-9 µrad
+/// in a run-up); the step control takes this floor, 16 times over, as the
+/// least tolerance (the scene checks refuse tolerances near it).
+pub fn lag_resolution(r: f64, s: &State) -> f64 {
+    16.0 * (1.0 + r) * 1e-15 * (1.0 + s.q[0].abs().max(s.q[1].abs()))
 }
 
 /// Solves the 1 × 1 or 2 × 2 system J x = b on the free coordinates.

@@ -1,0 +1,253 @@
+//! Corners of issue 28's stress matrix that broke or misled the multibody
+//! run, on the checked-in example-02 stiffness fixture (a table of 36
+//! positions builds in a fraction of a second):
+//! - the 10 rpm run at 0 and 1e-6 N·m (mean TE −115 and −579 µrad): the
+//!   quasi-static start took a spurious root of the interpolated torque
+//!   below the unloaded TE, and below the pinion's holding torque no
+//!   quasi-static TE exists (refused, naming the limit);
+//! - `table_lag_nodes` 8–12 (refused at load; 16 runs);
+//! - `te_tolerance_urad = 1e-9` (refused at load; the step control no longer
+//!   stalls on rounding noise).
+
+use geometry::design::Member;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, Scene};
+use geometry::utca::roll_surface;
+use solver::compliance::PairCompliance;
+use solver::dynamic_stage::inertia;
+use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::mesh_table::{lag_grid, MeshTable, TableSpec};
+use solver::multibody::{interpolate, wheel_driven, Model};
+use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use std::path::{Path, PathBuf};
+
+fn fixture() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/02_ltca_fixture")
+}
+
+/// The fixture's standard pair: its table (0.5° steps) and polar moments.
+struct Pair {
+    table: MeshTable,
+    inertia: [f64; 2],
+    /// Quasi-static run: wheel speed (rad/s, 10 rpm), duration (s) and the
+    /// sweep's positions (pinion rotation, rad).
+    wheel_speed: f64,
+    t_end: f64,
+    positions: Vec<f64>,
+}
+
+fn pair(lag_nodes: usize, torque_max_nm: f64) -> Pair {
+    let dir = fixture();
+    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
+    let sc = &scene.scene;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
+    let meshes = dir.join("meshes").join(&sc.name);
+    let load = |m: Member| {
+        let (c, plan) = member_compliance(&scene, &g, &meshes, m, Blank::Standard).unwrap();
+        (c, inertia(&scene, &g, &meshes, &plan, m).unwrap().0)
+    };
+    let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
+    let pc = PairCompliance { pinion, wheel };
+    let fp = g.side(sc.loaded_flank);
+    let rs = roll_surface(fp, &sc.utca).unwrap();
+    let tau = g.data.mesh_cycle();
+    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
+    let sweep = scene_sweep(&scene, &g, Blank::Standard);
+    let per = (tau / 0.5f64.to_radians()).round() as usize;
+    let table = MeshTable::build(
+        fp,
+        &rs,
+        &pc,
+        &g.frames[0],
+        ratio,
+        TableSpec {
+            start: sweep.start,
+            direction: sweep.direction,
+            step: tau / per as f64,
+            positions: per,
+            periodic: true,
+            slices: sc.ltca.slices,
+            lag_nodes,
+            torque_max_nm,
+        },
+    )
+    .unwrap();
+    let wheel_speed = std::f64::consts::PI / 3.0;
+    let range = sweep.step * (sweep.positions - 1) as f64;
+    Pair {
+        table,
+        inertia: [j1, j2],
+        wheel_speed,
+        t_end: (range + 2.0 * sweep.step) / (wheel_speed / ratio),
+        positions: (0..sweep.positions)
+            .map(|k| sweep.step * k as f64)
+            .collect(),
+    }
+}
+
+/// The 10 rpm run: TE (rad) at the sweep's positions, steps.
+fn run_10rpm(
+    p: &Pair,
+    m: &Model,
+    s: solver::multibody::State,
+    tolerance: f64,
+) -> (Vec<f64>, usize) {
+    let mut integ = Integrator::new(
+        Scheme::GeneralizedAlpha { rho_inf: 0.9 },
+        StepControl {
+            max_step: 1e-3,
+            min_step: 1e-9,
+            tolerance,
+        },
+    );
+    let r = p.table.ratio;
+    let (mut q1, mut te) = (Vec::new(), Vec::new());
+    let (_, steps) = integrate(m, s, &mut integ, p.t_end, |s| {
+        q1.push(s.q[0]);
+        te.push(r * s.q[0] - s.q[1]);
+        Ok(())
+    })
+    .unwrap();
+    let sampled = p
+        .positions
+        .iter()
+        .map(|&x| interpolate(&q1, &te, x))
+        .collect();
+    (sampled, steps)
+}
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len() as f64
+}
+
+#[test]
+fn multibody_at_0_and_1e_6_nm_is_refused_and_above_the_holding_torque_follows_the_unloaded_te() {
+    let p = pair(96, 2.0);
+    let te0: Vec<f64> = p
+        .positions
+        .iter()
+        .map(|&x| p.table.unloaded(x).unwrap()[0])
+        .collect();
+    // Light loads: no quasi-static lag below the unloaded TE (it was up to
+    // 2.8 µrad below it, a spurious root of the interpolated torque, and
+    // none at all at 1e-6 N·m), and the lag grows with the load.
+    let (base, _) = wheel_driven(&p.table, p.inertia, p.wheel_speed, 1.0, 0.05, 0.0).unwrap();
+    for k in -3..=3 {
+        let q1 = k as f64 * 0.1 * p.table.spec.step;
+        let t0 = p.table.unloaded(q1).unwrap()[0];
+        let mut last = f64::NEG_INFINITY;
+        for torque in [1e-6, 1e-5, 1e-3, 0.1, 1.0] {
+            let m = Model {
+                drive: solver::multibody::Drive::WheelSpeed {
+                    speed: solver::multibody::Ramp {
+                        from: p.wheel_speed,
+                        to: p.wheel_speed,
+                        duration: 0.0,
+                    },
+                    pinion_torque: torque,
+                },
+                ..base
+            };
+            let lag = m.static_lag(q1).unwrap();
+            assert!(
+                lag >= t0 - 1e-12 && lag >= last - 1e-12,
+                "{torque} N·m at {q1}: lag {} µrad, unloaded {} µrad, lighter load {} µrad",
+                lag * 1e6,
+                t0 * 1e6,
+                last * 1e6
+            );
+            last = lag;
+        }
+    }
+    // 0 and 1e-6 N·m: refused, naming the field, the value and the limit.
+    let holding = base.holding_torque().unwrap();
+    assert!(holding > 1e-4 && holding < 0.1, "holding torque {holding}");
+    for torque in [0.0, 1e-6] {
+        let e = wheel_driven(&p.table, p.inertia, p.wheel_speed, torque, 0.05, 0.0)
+            .err()
+            .unwrap_or_else(|| panic!("{torque} N·m accepted"))
+            .to_string();
+        assert!(
+            e.contains("pinion_torque_nm") && e.contains(&format!("{holding:.3e}")),
+            "{e}"
+        );
+    }
+    // Just above it the run rests on the unloaded TE (mean within 1 µrad,
+    // never more than 1 µrad below its smallest value) instead of drifting
+    // hundreds of µrad across the backlash.
+    let torque = 1.2 * holding;
+    let (m, s) = wheel_driven(&p.table, p.inertia, p.wheel_speed, torque, 0.05, 0.0).unwrap();
+    let (te, _) = run_10rpm(&p, &m, s, 1e-9);
+    let lowest = te0.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(
+        (mean(&te) - mean(&te0)).abs() < 1e-6,
+        "{torque} N·m: mean TE {} µrad, unloaded {} µrad",
+        mean(&te) * 1e6,
+        mean(&te0) * 1e6
+    );
+    assert!(te.iter().all(|&x| x > lowest - 1e-6 && x.is_finite()));
+}
+
+/// A scene with the fixture's settings and the given `[multibody]` lines.
+fn scene_with(multibody: &str) -> Result<(), String> {
+    let path = fixture().join("scene.toml");
+    let text = std::fs::read_to_string(&path).unwrap() + "\n[multibody]\n" + multibody + "\n";
+    let scene = Scene::parse(&text, &path).map_err(|e| e.to_string())?;
+    scene.check(&path).map_err(|e| e.to_string())
+}
+
+#[test]
+fn table_lag_nodes_8_to_12_are_refused_at_load_and_16_runs() {
+    for n in [8, 9, 12, 15] {
+        let e = scene_with(&format!("table_lag_nodes = {n}")).unwrap_err();
+        assert!(
+            e.contains("multibody.table_lag_nodes")
+                && e.contains(&n.to_string())
+                && e.contains("16"),
+            "{e}"
+        );
+    }
+    scene_with("table_lag_nodes = 16").unwrap();
+    // The grid itself stays finite and increasing down to 4 nodes (8 gave a
+    // band spacing of band / 0).
+    for n in 4..=16 {
+        let g = lag_grid(1e-6, 40e-6, 300e-6, n);
+        assert_eq!(g.len(), n);
+        assert!(g.iter().all(|x| x.is_finite()), "{n}: {g:?}");
+        assert!(g.windows(2).all(|w| w[1] > w[0]), "{n}: {g:?}");
+    }
+    // 16 nodes: the 100 N·m run stays inside its table (12 ended beyond it)
+    // and agrees with 96 nodes to 0.1 µrad.
+    let te = |nodes: usize| {
+        let p = pair(nodes, 200.0);
+        let (m, s) = wheel_driven(&p.table, p.inertia, p.wheel_speed, 100.0, 0.05, 0.0).unwrap();
+        mean(&run_10rpm(&p, &m, s, 1e-9).0)
+    };
+    let (coarse, fine) = (te(16), te(96));
+    assert!(
+        (coarse - fine).abs() < 1e-7,
+        "{} vs {} µrad",
+        coarse * 1e6,
+        fine * 1e6
+    );
+}
+
+#[test]
+fn te_tolerance_1e_9_urad_is_refused_at_load_and_the_step_control_does_not_stall_on_rounding() {
+    let e = scene_with("te_tolerance_urad = 1e-9").unwrap_err();
+    assert!(
+        e.contains("multibody.te_tolerance_urad")
+            && e.contains("0.000000001")
+            && e.contains("[0.000001,"),
+        "{e}"
+    );
+    scene_with("te_tolerance_urad = 1e-6").unwrap();
+    // A tolerance far below the lag's rounding floor (1e-20 rad): the run
+    // ends in a bounded number of steps, at the same TE as a sane tolerance.
+    let p = pair(96, 200.0);
+    let (m, s) = wheel_driven(&p.table, p.inertia, p.wheel_speed, 100.0, 0.05, 0.0).unwrap();
+    let (tight, steps) = run_10rpm(&p, &m, s, 1e-20);
+    let (sane, _) = run_10rpm(&p, &m, s, 1e-9);
+    assert!(steps < 2_000_000, "{steps} steps");
+    assert!((mean(&tight) - mean(&sane)).abs() < 1e-9);
+}
