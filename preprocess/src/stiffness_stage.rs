@@ -285,7 +285,22 @@ fn run_one(
     } = planned(scene, g, dir, member, blank, level, side)?;
     let axisymmetric = config.axisymmetric;
     let mut replaced_because = None;
-    if path.exists() {
+    // A file the manifest lists with other bytes is not opened at all (a
+    // damaged HDF5 file can crash the HDF5 library itself): it is replaced.
+    let listed = Manifest::read(dir).ok().and_then(|m| {
+        m.meshes
+            .get(&paths::mesh_stem(member, blank, level))
+            .and_then(|e| e.stiffness.get(&stem).map(|s| s.sha256.clone()))
+    });
+    let damaged = path.exists()
+        && listed.is_some_and(|sha| sha256_file(&path).map_or(true, |now| now != sha));
+    if damaged {
+        eprintln!(
+            "{stem}: {} is not the file the manifest lists (changed or damaged); recomputing",
+            path.display()
+        );
+        replaced_because = Some("its bytes differ from the manifest's SHA-256".into());
+    } else if path.exists() {
         // A full read also catches truncated data, not only a stale header.
         let read = stiffness_file::read(&path, Some(&hash)).and_then(|d| {
             match formats::stiffness_sense::first_problem(&d) {
