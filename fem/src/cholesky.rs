@@ -23,6 +23,33 @@ pub enum Ordering {
     Amd,
 }
 
+/// Memory the system can give this process now (`MemAvailable` of
+/// `/proc/meminfo`), bytes; `None` where that is not known.
+pub fn available_memory_bytes() -> Option<usize> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: usize = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Refuses a factor of `dofs` rows that needs `needed` bytes when only
+/// `available` are free (no check when that is unknown): an error with the
+/// estimate instead of the operating system killing the run part way.
+pub fn fits_in_memory(
+    dofs: usize,
+    needed: usize,
+    available: Option<usize>,
+) -> Result<(), FemError> {
+    match available {
+        Some(a) if needed > a => Err(FemError::OutOfMemory {
+            dofs,
+            needed_gb: needed as f64 / 1e9,
+            available_gb: a as f64 / 1e9,
+        }),
+        _ => Ok(()),
+    }
+}
+
 /// A Cholesky factor L Lᵀ = P K Pᵀ of a symmetric positive definite matrix.
 pub struct Factor {
     pub(crate) symbolic: SymbolicCholesky<usize>,
@@ -75,12 +102,16 @@ impl Factor {
         };
         let symbolic = factorize_symbolic_cholesky(k.symbolic(), Side::Lower, ord, params)
             .map_err(|e| FemError::Factorization(format!("{e:?}")))?;
-        let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::rayon(0);
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .map_err(|e| FemError::Factorization(format!("scratch memory: {e:?}")))?;
+        let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        fits_in_memory(
+            n,
+            symbolic.len_val() * std::mem::size_of::<f64>() + scratch.size_bytes(),
+            available_memory_bytes(),
+        )?;
+        let mut values = vec![0.0; symbolic.len_val()];
+        let mut mem = MemBuffer::try_new(scratch)
+            .map_err(|e| FemError::Factorization(format!("scratch memory: {e:?}")))?;
         symbolic
             .factorize_numeric_llt(
                 &mut values,
@@ -145,5 +176,23 @@ impl Factor {
         let n = self.n();
         self.solve_block(faer::MatMut::from_column_major_slice_mut(&mut x, n, 1));
         x
+    }
+}
+
+#[cfg(test)]
+mod memory_tests {
+    use super::*;
+
+    #[test]
+    fn factor_larger_than_the_free_memory_is_refused_with_its_estimate() {
+        let e = fits_in_memory(1_348_188, 7_890_000_000, Some(4_000_000_000)).unwrap_err();
+        let m = e.to_string();
+        assert!(
+            m.contains("7.89 GB") && m.contains("4.00 GB") && m.contains("1348188"),
+            "{m}"
+        );
+        assert!(fits_in_memory(10, 1000, Some(2000)).is_ok());
+        assert!(fits_in_memory(10, usize::MAX, None).is_ok());
+        assert!(available_memory_bytes().is_some_and(|b| b > 0));
     }
 }

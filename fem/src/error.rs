@@ -26,4 +26,12 @@ pub enum FemError {
     /// faer failed (symbolic analysis or memory).
     #[error("sparse factorization failed: {0}")]
     Factorization(String),
+    /// The factor would not fit in the memory this machine has free:
+    /// refused after the symbolic analysis, before allocating it.
+    #[error("the Cholesky factor of {dofs} dofs needs {needed_gb:.2} GB (factor and scratch), this machine has {available_gb:.2} GB available; use a coarser mesh level or a machine with more memory")]
+    OutOfMemory {
+        dofs: usize,
+        needed_gb: f64,
+        available_gb: f64,
+    },
 }
