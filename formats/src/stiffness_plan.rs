@@ -137,10 +137,12 @@ pub enum CheckError {
 
 /// Reads the stiffness file `plan` names and checks that it serves the scene:
 /// the folder's manifest says its mesh was made from the scene's current
-/// inputs and lists this file;
-/// the file's config equals the plan's (completed with the mesh's hashes
-/// from the manifest and the file's own local model), and its hash is the
-/// manifest's. Every mismatch is named by field.
+/// inputs and lists this file; the file's bytes are the ones listed
+/// (SHA-256, checked before HDF5 opens it) and its hash is the manifest's;
+/// its numbers make physical sense ([`crate::stiffness_sense`]); and its
+/// config equals the plan's (completed with the mesh's hashes from the
+/// manifest and the file's own local model). Every mismatch is named by
+/// field.
 pub fn check(
     scene: &LoadedScene,
     g: &PairGeometry,
