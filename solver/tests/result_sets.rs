@@ -51,33 +51,9 @@ fn scene(dir: &Path, edit: impl Fn(String) -> String) -> LoadedScene {
     Scene::load(&path).unwrap()
 }
 
-/// Every file under `dir` (relative path, bytes), sorted.
-fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    fn walk(root: &Path, d: &Path, v: &mut Vec<(PathBuf, Vec<u8>)>) {
-        for e in std::fs::read_dir(d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                walk(root, &p, v);
-            } else {
-                let bytes = std::fs::read(&p).unwrap();
-                v.push((p.strip_prefix(root).unwrap().to_path_buf(), bytes));
-            }
-        }
-    }
-    let mut v = Vec::new();
-    walk(dir, dir, &mut v);
-    v.sort();
-    v
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
+#[path = "../../formats/tests/support/tree.rs"]
+mod tree;
+use tree::{files, names};
 
 #[test]
 fn ltca_run_is_one_set_with_run_json_and_summaries_naming_the_final_paths() {

@@ -48,33 +48,9 @@ fn options(shard: Option<(usize, usize)>) -> StageOptions {
     }
 }
 
-/// Every file under `dir` (relative path, bytes), sorted.
-fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    fn walk(root: &Path, d: &Path, v: &mut Vec<(PathBuf, Vec<u8>)>) {
-        for e in std::fs::read_dir(d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                walk(root, &p, v);
-            } else {
-                let bytes = std::fs::read(&p).unwrap();
-                v.push((p.strip_prefix(root).unwrap().to_path_buf(), bytes));
-            }
-        }
-    }
-    let mut v = Vec::new();
-    walk(dir, dir, &mut v);
-    v.sort();
-    v
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
+#[path = "../../formats/tests/support/tree.rs"]
+mod tree;
+use tree::{files, names};
 
 /// A previous complete set in `out`, with a position cache beside its
 /// results (as a full run leaves it).
