@@ -15,7 +15,8 @@ mod golden;
 
 use geometry::scene::Scene;
 use golden::Quantity;
-use preprocess::mesh_stage::{self, Level};
+#[path = "support/shared_meshes.rs"]
+mod shared_meshes;
 use validate::reference_ltca::ReferenceSettings;
 use validate::reference_stage::{run, StageOptions};
 
@@ -27,8 +28,7 @@ fn example_03_reference_position_matches_its_golden_output() {
     let dir = golden::example_dir(env!("CARGO_MANIFEST_DIR"), "03_reference_position");
     let scene = Scene::load(&dir.join("scene.toml")).unwrap();
     let tmp = tempfile::tempdir().unwrap();
-    let meshes = tmp.path().join("meshes");
-    mesh_stage::run(&scene, &meshes, Level::Reduced).unwrap();
+    let meshes = shared_meshes::reduced_meshes(&scene);
     let t_mesh = t0.elapsed().as_secs_f64();
 
     // The settings of `validate reference` (its command-line defaults); a

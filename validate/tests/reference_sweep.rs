@@ -4,7 +4,8 @@
 //! value was changed.
 
 use geometry::scene::Scene;
-use preprocess::mesh_stage::{self, Level};
+#[path = "support/shared_meshes.rs"]
+mod shared_meshes;
 use std::path::Path;
 use validate::reference_ltca::{PositionResult, ReferenceSettings};
 use validate::reference_stage::{reference_dir, run, CacheComparison, StageOptions};
@@ -47,8 +48,7 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let scene = Scene::load(&root.join("reference/scenes/small.toml")).unwrap();
     let tmp = tempfile::tempdir().unwrap();
-    let meshes = tmp.path().join("meshes");
-    mesh_stage::run(&scene, &meshes, Level::Reduced).unwrap();
+    let meshes = shared_meshes::reduced_meshes(&scene);
 
     // One run over the whole sweep. What other commands keep in the
     // folder (a study's results, another blank pair's) survives it.
