@@ -5,8 +5,8 @@
 use geometry::scene::{Analyses, MeshLevel, Scene};
 use preprocess::mesh_stage::Level;
 use std::path::{Path, PathBuf};
-use validate::reference_ltca::ReferenceSettings;
-use validate::reference_stage::StageOptions;
+#[path = "support/reference_options.rs"]
+mod reference_options;
 
 /// The small scene with `flags` as its `[analyses]`, written into `dir`.
 fn scene_with(dir: &Path, flags: Analyses) -> geometry::scene::LoadedScene {
@@ -25,23 +25,6 @@ fn scene_with(dir: &Path, flags: Analyses) -> geometry::scene::LoadedScene {
     let path = dir.join("scene.toml");
     std::fs::write(&path, body).unwrap();
     Scene::load(&path).unwrap()
-}
-
-fn options() -> StageOptions {
-    StageOptions {
-        level: "reduced".into(),
-        settings: ReferenceSettings {
-            penalty_factor: 100.0,
-            penalty_factor_check: 200.0,
-            start_band_m: 2e-6,
-            search_gap_m: 60e-6,
-        },
-        stride: 1,
-        stride_lightweight: None,
-        block: 96,
-        compare_cache: false,
-        shard: None,
-    }
 }
 
 /// Files under `dir`, recursively.
@@ -86,11 +69,14 @@ fn utca_only_scene_meshes_nothing_and_runs_no_loaded_stage() {
     assert!(solver::dynamic_stage::run(&scene, &meshes, &out)
         .unwrap()
         .is_empty());
-    assert!(
-        validate::reference_stage::run(&scene, &meshes, &out, &options())
-            .unwrap()
-            .is_empty()
-    );
+    assert!(validate::reference_stage::run(
+        &scene,
+        &meshes,
+        &out,
+        &reference_options::options(1, None)
+    )
+    .unwrap()
+    .is_empty());
     assert!(validate::tradeoff::run(&scene, &meshes, &out, &[4])
         .unwrap()
         .is_empty());

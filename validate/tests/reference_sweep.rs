@@ -7,24 +7,13 @@ use geometry::scene::Scene;
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;
 use std::path::Path;
-use validate::reference_ltca::{PositionResult, ReferenceSettings};
+use validate::reference_ltca::PositionResult;
 use validate::reference_stage::{reference_dir, run, CacheComparison, StageOptions};
+#[path = "support/reference_options.rs"]
+mod reference_options;
 
 fn options() -> StageOptions {
-    StageOptions {
-        level: "reduced".into(),
-        settings: ReferenceSettings {
-            penalty_factor: 100.0,
-            penalty_factor_check: 200.0,
-            start_band_m: 2e-6,
-            search_gap_m: 60e-6,
-        },
-        stride: 2,
-        stride_lightweight: None,
-        block: 96,
-        compare_cache: false,
-        shard: None,
-    }
+    reference_options::options(2, None)
 }
 
 /// TE columns of `te.csv` (every value after the header).

@@ -7,8 +7,10 @@
 use formats::result_set::{lock_path, Holder, ResultSet, RunLock};
 use geometry::scene::{LoadedScene, Scene};
 use std::path::{Path, PathBuf};
-use validate::reference_ltca::ReferenceSettings;
-use validate::reference_stage::{reference_dir, run, StageOptions};
+use validate::reference_stage::StageOptions;
+use validate::reference_stage::{reference_dir, run};
+#[path = "support/reference_options.rs"]
+mod reference_options;
 
 /// The small scene, reference on, written into `dir`.
 fn scene(dir: &Path) -> LoadedScene {
@@ -29,23 +31,6 @@ fn scene(dir: &Path) -> LoadedScene {
     )
     .unwrap();
     Scene::load(&path).unwrap()
-}
-
-fn options(shard: Option<(usize, usize)>) -> StageOptions {
-    StageOptions {
-        level: "reduced".into(),
-        settings: ReferenceSettings {
-            penalty_factor: 100.0,
-            penalty_factor_check: 200.0,
-            start_band_m: 2e-6,
-            search_gap_m: 60e-6,
-        },
-        stride: 1,
-        stride_lightweight: None,
-        block: 96,
-        compare_cache: false,
-        shard,
-    }
 }
 
 #[path = "../../formats/tests/support/tree.rs"]
@@ -78,7 +63,7 @@ fn reference_run_that_fails_midway_leaves_the_previous_results_and_the_position_
         &scene(tmp.path()),
         &tmp.path().join("meshes"),
         &out,
-        &options(None),
+        &reference_options::options(1, None),
     )
     .unwrap_err()
     .to_string();
@@ -94,12 +79,12 @@ fn reference_full_run_into_an_output_another_full_run_holds_is_refused_naming_it
     let dir = reference_dir(&out, "small", "reduced");
     let _other = ResultSet::begin(&dir, "validate reference other.toml").unwrap();
     for opt in [
-        options(None),
+        reference_options::options(1, None),
         StageOptions {
             compare_cache: true,
-            ..options(None)
+            ..reference_options::options(1, None)
         },
-        options(Some((0, 2))),
+        reference_options::options(1, Some((0, 2))),
     ] {
         let err = run(&scene(tmp.path()), &tmp.path().join("meshes"), &out, &opt)
             .unwrap_err()
@@ -123,7 +108,7 @@ fn reference_shards_share_the_output_but_a_full_run_waits_for_them() {
         &scene(tmp.path()),
         &tmp.path().join("meshes"),
         &out,
-        &options(Some((0, 2))),
+        &reference_options::options(1, Some((0, 2))),
     )
     .unwrap_err()
     .to_string();
@@ -133,7 +118,7 @@ fn reference_shards_share_the_output_but_a_full_run_waits_for_them() {
         &scene(tmp.path()),
         &tmp.path().join("meshes"),
         &out,
-        &options(None),
+        &reference_options::options(1, None),
     )
     .unwrap_err()
     .to_string();
@@ -165,7 +150,7 @@ fn reference_killed_run_lock_is_taken_over_and_its_staging_dir_removed() {
         &scene(tmp.path()),
         &tmp.path().join("meshes"),
         &out,
-        &options(None),
+        &reference_options::options(1, None),
     )
     .unwrap_err()
     .to_string();
