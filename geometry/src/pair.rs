@@ -282,6 +282,55 @@ impl PairGeometry {
         PairGeometry::build(&data, Some(path))
     }
 
+    /// Smallest top land of both members at toe, mean and heel, m.
+    fn smallest_top_land(&self) -> Result<f64, GeometryError> {
+        let d = &self.data;
+        let mut least = f64::INFINITY;
+        for m in [Member::Pinion, Member::Wheel] {
+            for l in [
+                d.inner_cone_distance(),
+                d.mean_cone_distance,
+                d.outer_cone_distance(),
+            ] {
+                least = least.min(top_land(self, m, l)?);
+            }
+        }
+        Ok(least)
+    }
+
+    /// When the teeth come to a point because the cutter radius is small
+    /// (face milling with a constant slot width makes the tooth thin toward
+    /// toe or heel the more, the smaller the cutter), the smallest cutter
+    /// radius, up to the allowed 4 R_m, with a positive top land everywhere
+    /// (bisection on rebuilt pairs). `None` when no cutter radius in
+    /// [current, 4 R_m] helps: then the addendum or the tooth thickness is
+    /// the cause.
+    fn cutter_radius_for_top_land(&self) -> Result<Option<f64>, GeometryError> {
+        let top_land_with = |r: f64| -> Option<f64> {
+            let mut data = self.data.clone();
+            data.cutter_radius = r;
+            let g = PairGeometry::build(&data, None).ok()?;
+            g.smallest_top_land().ok()
+        };
+        let mut lo = self.data.cutter_radius;
+        let mut hi = 4.0 * self.data.mean_cone_distance;
+        if hi <= lo || !top_land_with(hi).is_some_and(|t| t > 0.0) {
+            return Ok(None);
+        }
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if top_land_with(mid).is_some_and(|t| t > 0.0) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+            if hi - lo < 1e-5 {
+                break;
+            }
+        }
+        Ok(Some(hi))
+    }
+
     /// Rejects pointed teeth and undercut flanks.
     pub fn check_teeth(&self, path: &std::path::Path) -> Result<(), GeometryError> {
         use crate::error::InputError;
@@ -294,6 +343,20 @@ impl PairGeometry {
             ] {
                 let tl = top_land(self, m, l)?;
                 if tl <= 0.0 {
+                    if let Some(r_min) = self.cutter_radius_for_top_land()? {
+                        return Err(InputError::Invalid {
+                            path: path.to_path_buf(),
+                            field: "cutter.radius_mm".into(),
+                            value: format!("{}", d.cutter_radius * 1e3),
+                            limit: format!(
+                                "pointed teeth: the {} top land at the {where_} is {:.3} mm; with this cutter radius the tooth thins along the face toward the {where_}. The smallest cutter radius with a positive top land at toe, mean and heel is {:.1} mm",
+                                m.name(),
+                                tl * 1e3,
+                                r_min * 1e3
+                            ),
+                        }
+                        .into());
+                    }
                     return Err(InputError::Invalid {
                         path: path.to_path_buf(),
                         field: format!("{}.mean_addendum_mm", m.name()),

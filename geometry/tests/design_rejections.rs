@@ -111,6 +111,31 @@ fn pointed_teeth_are_rejected() {
     );
 }
 
+#[test]
+fn small_cutter_radius_pointing_the_heel_is_blamed_on_the_cutter() {
+    // 0.45 R_m is inside the allowed cutter range, but face milling with a
+    // constant slot width thins the tooth toward the heel until it points:
+    // the error names the cutter radius and the smallest one that works.
+    let mut d = common::white_paper_file();
+    d.cutter.radius_mm = 0.45 * d.pair.mean_cone_distance_mm;
+    let msg = check(&d).expect_err("pointed at the heel");
+    rejected(
+        Err(msg.clone()),
+        "cutter.radius_mm",
+        &["pointed teeth", "heel", "smallest cutter radius"],
+    );
+    let r_min: f64 = msg
+        .rsplit("is ")
+        .next()
+        .and_then(|t| t.trim_end_matches(" mm").parse().ok())
+        .expect("radius in the message");
+    // The radius named works, and one 1 % smaller does not.
+    d.cutter.radius_mm = r_min + 0.1;
+    check(&d).expect("the named cutter radius gives positive top lands");
+    d.cutter.radius_mm = 0.99 * r_min;
+    rejected(check(&d), "cutter.radius_mm", &["pointed teeth"]);
+}
+
 /// A design with z₁ teeth on a wheel of 43, same cone distance and spiral
 /// angle, pressure angle `alpha_deg` and pinion addendum coefficient `ha_coef`.
 fn small_pinion(z1: u32, alpha_deg: f64, ha_coef: f64) -> DesignFile {
