@@ -95,6 +95,8 @@ pub enum ResultSetError {
     },
     #[error("cannot write results to {}: {message}", .path.display())]
     Unwritable { path: PathBuf, message: String },
+    #[error("cannot read the run stamp {}: {message}", .path.display())]
+    UnreadableStamp { path: PathBuf, message: String },
     #[error("cannot put the results of this run in place at {}: {message} (they are left in {})", .dir.display(), .staging.display())]
     Commit {
         dir: PathBuf,
@@ -449,6 +451,60 @@ impl RunLock {
 impl Drop for RunLock {
     fn drop(&mut self) {
         release_file(&self.path, &self.holder.token);
+    }
+}
+
+/// The committed set's stamp in `dir` (`<dir>/run.json`), `None` when
+/// `dir` holds no committed set.
+pub fn read_run_info(dir: &Path) -> Result<Option<RunInfo>, ResultSetError> {
+    let path = dir.join(RUN_FILE);
+    match std::fs::read_to_string(&path) {
+        Ok(text) => serde_json::from_str(&text).map(Some).map_err(|e| {
+            ResultSetError::UnreadableStamp {
+                path: path.clone(),
+                message: e.to_string(),
+            }
+        }),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(ResultSetError::UnreadableStamp {
+            path,
+            message: e.to_string(),
+        }),
+    }
+}
+
+/// The stamp of a file that a later run adds in place to a committed set
+/// without replacing the set (`validate reference --compare-cache`): the
+/// set it was computed from (`of_run_id`, that set's `run.json` id; `None`
+/// when the directory held no committed set) and the run that wrote it.
+/// A reader checks [`AddedStamp::belongs_to`] before trusting the file
+/// beside the set: once a new run replaces the set, the file is stale.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct AddedStamp {
+    pub of_run_id: Option<String>,
+    pub written_utc: String,
+    pub command: String,
+    pub pid: u32,
+    pub host: String,
+}
+
+impl AddedStamp {
+    /// Stamps a file added under `lock` (held on the set's directory)
+    /// to the set committed there now.
+    pub fn new(lock: &RunLock) -> Result<AddedStamp, ResultSetError> {
+        Ok(AddedStamp {
+            of_run_id: read_run_info(lock.dir())?.map(|r| r.run_id),
+            written_utc: utc(SystemTime::now()),
+            command: lock.holder.command.clone(),
+            pid: std::process::id(),
+            host: lock.holder.host.clone(),
+        })
+    }
+
+    /// Whether the set committed in `dir` now is the one this file was
+    /// computed from.
+    pub fn belongs_to(&self, dir: &Path) -> Result<bool, ResultSetError> {
+        Ok(read_run_info(dir)?.map(|r| r.run_id) == self.of_run_id)
     }
 }
 

@@ -86,6 +86,10 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
             .unwrap();
     assert_eq!(c.positions_compared, n);
     assert!(c.worst() < 1e-12, "{c:?}");
+    // Added in place to the committed set, and stamped with its run id.
+    let stamp = c.stamp.expect("compare_cache.json is stamped");
+    assert!(stamp.of_run_id.is_some());
+    assert!(stamp.belongs_to(&folder).unwrap());
 
     // One cached TE changed by 1e-5: refused.
     let cached = std::fs::read_dir(odir.join("positions"))
@@ -100,4 +104,11 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
     std::fs::write(&cached, serde_json::to_string(&r).unwrap()).unwrap();
     let err = run(&scene, &meshes, &single, &compare).unwrap_err();
     assert!(err.to_string().contains("differ from the cache"), "{err}");
+
+    // A new run replaces the set: the old comparison no longer belongs to it.
+    run(&scene, &meshes, &single, &options()).unwrap();
+    let c: CacheComparison =
+        serde_json::from_str(&std::fs::read_to_string(odir.join("compare_cache.json")).unwrap())
+            .unwrap();
+    assert!(!c.stamp.unwrap().belongs_to(&folder).unwrap());
 }

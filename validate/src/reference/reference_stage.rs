@@ -16,7 +16,8 @@
 //!   that fails or is killed leaves the previous results as they were and
 //!   the positions it solved in the cache;
 //! - `--compare-cache` takes the same lock and writes only
-//!   `compare_cache.json`, in place;
+//!   `compare_cache.json`, in place, stamped with the `run.json` id of the
+//!   set it checked ([`formats::result_set::AddedStamp`]);
 //! - `--shard` runs write only into the cache: they share a lock with
 //!   each other, and are refused while a run holds the directory's lock
 //!   (as that run is refused while shards run), so that no shard writes
@@ -31,7 +32,7 @@ use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSett
 use anyhow::Context;
 use formats::columns;
 use formats::output::{write_atomic, write_json};
-use formats::result_set::{ResultSet, RunLock};
+use formats::result_set::{AddedStamp, ResultSet, RunLock};
 use geometry::design::Member as Which;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
@@ -139,7 +140,7 @@ pub fn run(
         scene.path.display(),
         opt.level
     );
-    let (set, _lock) = match opt.shard {
+    let (set, lock) = match opt.shard {
         Some((k, n)) => (
             None,
             Some(RunLock::shared(
@@ -364,6 +365,9 @@ pub fn run(
             bar.finish_and_clear();
             if opt.compare_cache {
                 std::fs::create_dir_all(&odir)?;
+                if let Some(lock) = &lock {
+                    comparison.stamp = Some(AddedStamp::new(lock)?);
+                }
                 write_json(&odir.join("compare_cache.json"), &comparison)?;
                 eprintln!(
                     "reference {name}: {} positions solved anew against the cache ({} not cached): largest relative difference {:.2e} (TE {:.2e}, check-penalty TE {:.2e}, max pressure {:.2e}, search margin {:.2e}; torque balance {:.2e}), {} with other constraint counts",
