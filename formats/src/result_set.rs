@@ -25,6 +25,7 @@
 //! live.
 
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::fmt;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -75,6 +76,11 @@ pub struct RunInfo {
     pub command: String,
     pub pid: u32,
     pub host: String,
+    /// The input files the run read, by role (`design`, `mesh:<stem>`,
+    /// `stiffness:<stem>`), with their SHA-256: what [`check_same_inputs`]
+    /// compares between sets that a report puts side by side.
+    #[serde(default)]
+    pub inputs: BTreeMap<String, String>,
 }
 
 /// Why a set (or a lock) could not be taken or committed; every variant
@@ -103,8 +109,31 @@ pub enum ResultSetError {
         staging: PathBuf,
         message: String,
     },
+    #[error("run {run} recorded two inputs as `{key}`: {first} and {second}")]
+    TwoInputs {
+        run: String,
+        key: String,
+        first: String,
+        second: String,
+    },
+    #[error("{} and {} come from different inputs: `{key}` was {} in run {} ({}) and {} in run {} ({}); rerun the older one so both see the same files", .a.display(), .b.display(), short(.a_sha), .a_run, .a_what, short(.b_sha), .b_run, .b_what)]
+    MixedInputs {
+        key: String,
+        a: PathBuf,
+        a_run: String,
+        a_what: String,
+        a_sha: String,
+        b: PathBuf,
+        b_run: String,
+        b_what: String,
+        b_sha: String,
+    },
     #[error(transparent)]
     Write(#[from] crate::output::WriteError),
+}
+
+fn short(sha: &str) -> String {
+    format!("sha256 {}…", &sha[..sha.len().min(12)])
 }
 
 fn hint(h: &Holder) -> String {
@@ -459,18 +488,54 @@ impl Drop for RunLock {
 pub fn read_run_info(dir: &Path) -> Result<Option<RunInfo>, ResultSetError> {
     let path = dir.join(RUN_FILE);
     match std::fs::read_to_string(&path) {
-        Ok(text) => serde_json::from_str(&text).map(Some).map_err(|e| {
-            ResultSetError::UnreadableStamp {
-                path: path.clone(),
-                message: e.to_string(),
-            }
-        }),
+        Ok(text) => {
+            serde_json::from_str(&text)
+                .map(Some)
+                .map_err(|e| ResultSetError::UnreadableStamp {
+                    path: path.clone(),
+                    message: e.to_string(),
+                })
+        }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
         Err(e) => Err(ResultSetError::UnreadableStamp {
             path,
             message: e.to_string(),
         }),
     }
+}
+
+/// Checks that the committed sets in `dirs` (those that exist) read the
+/// same files wherever they name the same input: a report that puts an
+/// LTCA, a multibody run and a reference side by side must not compare
+/// runs made from different designs, meshes or stiffness files. Sets
+/// without a stamp, or stamped before inputs were recorded, are passed.
+pub fn check_same_inputs(dirs: &[&Path]) -> Result<(), ResultSetError> {
+    let mut seen: Vec<(PathBuf, RunInfo)> = Vec::new();
+    for dir in dirs {
+        if let Some(info) = read_run_info(dir)? {
+            for (other, o) in &seen {
+                for (key, sha) in &info.inputs {
+                    if let Some(osha) = o.inputs.get(key) {
+                        if osha != sha {
+                            return Err(ResultSetError::MixedInputs {
+                                key: key.clone(),
+                                a: other.clone(),
+                                a_run: o.run_id.clone(),
+                                a_what: o.what.clone(),
+                                a_sha: osha.clone(),
+                                b: dir.to_path_buf(),
+                                b_run: info.run_id.clone(),
+                                b_what: info.what.clone(),
+                                b_sha: sha.clone(),
+                            });
+                        }
+                    }
+                }
+            }
+            seen.push((dir.to_path_buf(), info));
+        }
+    }
+    Ok(())
 }
 
 /// The stamp of a file that a later run adds in place to a committed set
@@ -516,6 +581,7 @@ pub struct ResultSet {
     staging: PathBuf,
     started: SystemTime,
     carried: Vec<PathBuf>,
+    inputs: BTreeMap<String, String>,
     done: bool,
 }
 
@@ -540,8 +606,27 @@ impl ResultSet {
             staging,
             started,
             carried: Vec::new(),
+            inputs: BTreeMap::new(),
             done: false,
         })
+    }
+
+    /// Records an input file the run reads (`key` its role, e.g.
+    /// `stiffness:<stem>`), written into `run.json` at commit. The same
+    /// key with another SHA-256 within one run is refused.
+    pub fn record_input(&mut self, key: &str, sha256: &str) -> Result<(), ResultSetError> {
+        match self.inputs.get(key) {
+            Some(first) if first != sha256 => Err(ResultSetError::TwoInputs {
+                run: self.lock.holder.what.clone(),
+                key: key.to_string(),
+                first: first.clone(),
+                second: sha256.to_string(),
+            }),
+            _ => {
+                self.inputs.insert(key.to_string(), sha256.to_string());
+                Ok(())
+            }
+        }
     }
 
     /// Where this run writes: the staging directory.
@@ -589,6 +674,7 @@ impl ResultSet {
             command: self.lock.holder.command.clone(),
             pid: std::process::id(),
             host,
+            inputs: std::mem::take(&mut self.inputs),
         };
         crate::output::write_json(&self.staging.join(RUN_FILE), &info)?;
         let err = |staging: &Path, m: String| ResultSetError::Commit {

@@ -4,7 +4,7 @@
 //! local model and writes the file; readers check a file against the same
 //! plan ([`check`]) using the mesh folder's [`Manifest`].
 
-use crate::manifest::{field_differences, Manifest, ManifestError, MeshInputs};
+use crate::manifest::{field_differences, Manifest, ManifestError, MeshEntry, MeshInputs};
 use crate::paths::{self, MeshLevel};
 use crate::stiffness_file::{
     self, StiffnessConfig, StiffnessData, StiffnessFileError, STIFFNESS_SCHEMA,
@@ -131,8 +131,68 @@ pub enum CheckError {
         found: String,
         listed: String,
     },
+    #[error("{}: changed since the mesh stage wrote it (SHA-256 {found}, the manifest lists {listed}); run `preprocess mesh` again", .path.display())]
+    MeshChanged {
+        path: PathBuf,
+        found: String,
+        listed: String,
+    },
     #[error("{}: {problem}; the file is damaged: delete it and run `preprocess stiffness` again", .path.display())]
     Nonsense { path: PathBuf, problem: String },
+}
+
+/// The manifest entry of the body mesh `stem` in `dir`, checked to be made
+/// from the scene's current inputs (design geometry, blank, flank elements
+/// of `level`, refined teeth); each field that differs is named. The
+/// `.msh` bytes are not read here: a reader that opens the mesh compares
+/// its SHA-256 with the entry's `msh_sha256` ([`CheckError::MeshChanged`]).
+pub fn check_mesh(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    stem: &str,
+    member: Member,
+    blank: Blank,
+    level: MeshLevel,
+) -> Result<MeshEntry, CheckError> {
+    let design_text = std::fs::read_to_string(&scene.design_path)
+        .map(|t| geometry::design::geometry_text(&t))
+        .map_err(|e| CheckError::Design {
+            path: scene.design_path.clone(),
+            message: e.to_string(),
+        })?;
+    let manifest = Manifest::read(dir)?;
+    let mesh = manifest.mesh(dir, stem)?;
+    let elements = scene.scene.mesh.elements(level);
+    let wanted = MeshInputs::of_scene(scene, g, &design_text, member, blank, elements);
+    let fields = mesh.inputs.differences(&wanted);
+    if !fields.is_empty() {
+        return Err(CheckError::StaleMesh {
+            stem: stem.to_string(),
+            fields,
+        });
+    }
+    Ok(mesh.clone())
+}
+
+/// The files behind a stiffness file, as a result set records them
+/// ([`crate::result_set::ResultSet::record_input`]): the design's geometry
+/// text, the body mesh and the stiffness file, each with its SHA-256 as the
+/// manifest of `dir` lists it (call after [`check`], which verified them).
+pub fn inputs_of(dir: &Path, plan: &StiffnessPlan) -> Result<Vec<(String, String)>, CheckError> {
+    let manifest = Manifest::read(dir)?;
+    let mesh = manifest.mesh(dir, &plan.mesh_stem)?;
+    let entry = mesh
+        .stiffness
+        .get(&plan.stem)
+        .ok_or_else(|| CheckError::NoStiffness {
+            stem: plan.stem.clone(),
+        })?;
+    Ok(vec![
+        ("design".into(), mesh.inputs.design_sha256.clone()),
+        (format!("mesh:{}", plan.mesh_stem), mesh.msh_sha256.clone()),
+        (format!("stiffness:{}", plan.stem), entry.sha256.clone()),
+    ])
 }
 
 /// Reads the stiffness file `plan` names and checks that it serves the scene:
@@ -152,23 +212,7 @@ pub fn check(
     blank: Blank,
     level: MeshLevel,
 ) -> Result<StiffnessData, CheckError> {
-    let design_text = std::fs::read_to_string(&scene.design_path)
-        .map(|t| geometry::design::geometry_text(&t))
-        .map_err(|e| CheckError::Design {
-            path: scene.design_path.clone(),
-            message: e.to_string(),
-        })?;
-    let manifest = Manifest::read(dir)?;
-    let mesh = manifest.mesh(dir, &plan.mesh_stem)?;
-    let elements = scene.scene.mesh.elements(level);
-    let wanted = MeshInputs::of_scene(scene, g, &design_text, member, blank, elements);
-    let fields = mesh.inputs.differences(&wanted);
-    if !fields.is_empty() {
-        return Err(CheckError::StaleMesh {
-            stem: plan.mesh_stem.clone(),
-            fields,
-        });
-    }
+    let mesh = check_mesh(scene, g, dir, &plan.mesh_stem, member, blank, level)?;
     let entry = mesh
         .stiffness
         .get(&plan.stem)

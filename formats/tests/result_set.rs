@@ -307,3 +307,41 @@ fn a_carried_over_cache_outlives_the_set_it_was_written_beside() {
         "second"
     );
 }
+
+#[test]
+fn one_input_recorded_with_two_hashes_in_one_run_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut set = ResultSet::begin(&tmp.path().join("out"), "test run").unwrap();
+    set.record_input("design", "aa").unwrap();
+    set.record_input("design", "aa").unwrap();
+    let err = set.record_input("design", "bb").unwrap_err();
+    assert!(matches!(err, ResultSetError::TwoInputs { .. }), "{err}");
+    let info = set.commit().unwrap();
+    assert_eq!(info.inputs.get("design").map(String::as_str), Some("aa"));
+}
+
+#[test]
+fn sets_sharing_no_input_or_the_same_hashes_pass_and_a_differing_one_is_named() {
+    use formats::result_set::check_same_inputs;
+    let tmp = tempfile::tempdir().unwrap();
+    let stamp = |name: &str, inputs: &[(&str, &str)]| {
+        let dir = tmp.path().join(name);
+        let mut set = ResultSet::begin(&dir, name).unwrap();
+        for (k, v) in inputs {
+            set.record_input(k, v).unwrap();
+        }
+        set.commit().unwrap();
+        dir
+    };
+    let a = stamp("a", &[("design", "d1"), ("mesh:p", "m1")]);
+    let b = stamp("b", &[("design", "d1"), ("stiffness:p", "s1")]);
+    let c = stamp("c", &[("other", "x")]);
+    let missing = tmp.path().join("never_run");
+    check_same_inputs(&[&a, &b, &c, &missing]).unwrap();
+    let d = stamp("d", &[("mesh:p", "m2")]);
+    let err = check_same_inputs(&[&a, &b, &d]).unwrap_err().to_string();
+    assert!(
+        err.contains("mesh:p") && err.contains("m1") && err.contains("m2"),
+        "{err}"
+    );
+}

@@ -19,7 +19,9 @@
 use crate::backlash::Coast;
 use crate::compliance::PairCompliance;
 use crate::ltca::mean_ptp;
-use crate::ltca_stage::{coast_compliance, member_compliance, scene_sweep};
+use crate::ltca_stage::{
+    coast_compliance, member_compliance, record_stiffness_inputs, scene_sweep,
+};
 use crate::mesh_table::{MeshTable, TableSpec};
 use crate::multibody::{
     interpolate, wheel_driven, Drive, Fluctuation, Impacts, Model, Ramp, State,
@@ -163,7 +165,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let mb = &sc.multibody;
     // Taken before any work: refuses an output that another run is writing
     // or that cannot be written.
-    let set = ResultSet::begin(
+    let mut set = ResultSet::begin(
         &out.join(&sc.name).join("multibody"),
         &format!("solver dynamic {}", scene.path.display()),
     )?;
@@ -186,6 +188,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         let (j1, src1) = inertia(scene, &g, &dir, &pin_plan, Member::Pinion)?;
         for &wb in &sc.blanks.wheel {
             let (whl, whl_plan) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
+            record_stiffness_inputs(&mut set, scene, &g, &dir, [pb, wb], coast_rs.is_some())?;
             let (j2, src2) = inertia(scene, &g, &dir, &whl_plan, Member::Wheel)?;
             let pc = PairCompliance {
                 pinion: pin.clone(),

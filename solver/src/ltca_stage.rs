@@ -77,6 +77,36 @@ pub fn member_compliance_on(
     ))
 }
 
+/// Records in `set` the files that the pinion × wheel blanks' stiffness
+/// data rest on (design, body meshes, stiffness files, with their SHA-256
+/// from the manifest), for the loaded flanks and, with `coast`, the
+/// opposite ones: so that a report can tell sets made from other files
+/// apart ([`formats::result_set::check_same_inputs`]).
+pub fn record_stiffness_inputs(
+    set: &mut ResultSet,
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    [pb, wb]: [Blank; 2],
+    coast: bool,
+) -> anyhow::Result<()> {
+    let side = scene.scene.loaded_flank;
+    let sides: &[Side] = if coast {
+        &[side, side.other()]
+    } else {
+        &[side]
+    };
+    for &s in sides {
+        for (m, b) in [(Member::Pinion, pb), (Member::Wheel, wb)] {
+            let p = stiffness_plan::plan(scene, g, dir, m, b, MeshLevel::Reduced, s)?;
+            for (key, sha) in stiffness_plan::inputs_of(dir, &p)? {
+                set.record_input(&key, &sha)?;
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Both members' compliance for loads on the coast (opposite) flanks, the
 /// wheel's teeth numbered as the coast model's (see
 /// `geometry::pair::OppositePlacement`); also their plans.
@@ -128,7 +158,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let sc = &scene.scene;
     // Taken before any work: refuses an output that another run is writing
     // or that cannot be written.
-    let set = ResultSet::begin(
+    let mut set = ResultSet::begin(
         &out.join(&sc.name).join("ltca"),
         &format!("solver ltca {}", scene.path.display()),
     )?;
@@ -148,6 +178,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         for &wb in &sc.blanks.wheel {
             let t0 = Instant::now();
             let (whl, whl_path) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
+            record_stiffness_inputs(&mut set, scene, &g, &dir, [pb, wb], coast_rs.is_some())?;
             let pc = PairCompliance {
                 pinion: pin.clone(),
                 wheel: whl,

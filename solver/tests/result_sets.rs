@@ -67,6 +67,20 @@ fn ltca_run_is_one_set_with_run_json_and_summaries_naming_the_final_paths() {
     let info: RunInfo =
         serde_json::from_str(&std::fs::read_to_string(set.join(RUN_FILE)).unwrap()).unwrap();
     assert!(info.what.starts_with("solver ltca"), "{info:?}");
+    // The set names the files it rests on, as the manifest lists them.
+    let keys: Vec<&str> = info.inputs.keys().map(String::as_str).collect();
+    assert!(keys.contains(&"design"), "{keys:?}");
+    for m in ["pinion", "wheel"] {
+        assert!(
+            keys.iter().any(|k| k.starts_with(&format!("mesh:{m}_"))),
+            "{keys:?}"
+        );
+        assert!(
+            keys.iter()
+                .any(|k| k.starts_with(&format!("stiffness:{m}_"))),
+            "{keys:?}"
+        );
+    }
     assert_eq!(names(&out.join("ltca_fixture")), ["ltca"]);
 }
 

@@ -52,7 +52,21 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
         "{\"study\": 1}"
     );
     assert!(folder.join("other_blanks/summary.json").exists());
-    assert!(folder.join("run.json").exists());
+    // The set records the design and both meshes it read.
+    let stamp = formats::result_set::read_run_info(&folder)
+        .unwrap()
+        .expect("run.json");
+    for key in [
+        "design",
+        "mesh:pinion_standard_reduced",
+        "mesh:wheel_standard_reduced",
+    ] {
+        assert!(
+            stamp.inputs.contains_key(key),
+            "{key} not in {:?}",
+            stamp.inputs
+        );
+    }
     let n = a[0].positions;
     assert!(n >= 8, "{n} positions");
 
@@ -104,6 +118,24 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
     std::fs::write(&cached, serde_json::to_string(&r).unwrap()).unwrap();
     let err = run(&scene, &meshes, &single, &compare).unwrap_err();
     assert!(err.to_string().contains("differ from the cache"), "{err}");
+
+    // A mesh changed after the mesh stage wrote it is refused before work.
+    let copied = tmp.path().join("meshes");
+    std::fs::create_dir_all(copied.join("small")).unwrap();
+    for f in std::fs::read_dir(meshes.join("small")).unwrap().flatten() {
+        if f.path().is_file() {
+            std::fs::copy(f.path(), copied.join("small").join(f.file_name())).unwrap();
+        }
+    }
+    let msh = copied.join("small/pinion_standard_reduced.msh");
+    let mut bytes = std::fs::read(&msh).unwrap();
+    bytes.extend_from_slice(b"\n");
+    std::fs::write(&msh, bytes).unwrap();
+    let err = run(&scene, &copied, &tmp.path().join("changed"), &options()).unwrap_err();
+    assert!(
+        format!("{err:#}").contains("changed since the mesh stage wrote it"),
+        "{err:#}"
+    );
 
     // A new run replaces the set: the old comparison no longer belongs to it.
     run(&scene, &meshes, &single, &options()).unwrap();

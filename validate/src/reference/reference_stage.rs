@@ -32,7 +32,9 @@ use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSett
 use anyhow::Context;
 use formats::columns;
 use formats::output::{write_atomic, write_json};
+use formats::paths::MeshLevel;
 use formats::result_set::{AddedStamp, ResultSet, RunLock};
+use formats::stiffness_plan;
 use geometry::design::Member as Which;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
@@ -140,7 +142,7 @@ pub fn run(
         scene.path.display(),
         opt.level
     );
-    let (set, lock) = match opt.shard {
+    let (mut set, lock) = match opt.shard {
         Some((k, n)) => (
             None,
             Some(RunLock::shared(
@@ -205,6 +207,41 @@ pub fn run(
                 }
             }
             let (pm_hash, wm_hash) = (sha256_file(&pm)?, sha256_file(&wm)?);
+            // The meshes are the mesh stage's for the scene's current
+            // inputs, unchanged since; the set records what it read.
+            let level = MeshLevel::FINEST_FIRST
+                .into_iter()
+                .find(|l| l.name() == opt.level)
+                .with_context(|| format!("unknown mesh level {}", opt.level))?;
+            for (m, b, path, hash) in [
+                (Which::Pinion, pb, &pm, &pm_hash),
+                (Which::Wheel, wb, &wm, &wm_hash),
+            ] {
+                let stem = formats::paths::mesh_stem(m, b, level);
+                let entry = stiffness_plan::check_mesh(scene, &g, &dir, &stem, m, b, level)
+                    .with_context(|| {
+                        format!(
+                            "scene {}: the {} mesh {} does not serve the scene; run `preprocess mesh {} --level {}`",
+                            sc.name,
+                            m.name(),
+                            path.display(),
+                            scene.path.display(),
+                            opt.level
+                        )
+                    })?;
+                if &entry.msh_sha256 != hash {
+                    return Err(stiffness_plan::CheckError::MeshChanged {
+                        path: path.to_path_buf(),
+                        found: hash.clone(),
+                        listed: entry.msh_sha256,
+                    }
+                    .into());
+                }
+                if let Some(set) = set.as_mut() {
+                    set.record_input("design", &entry.inputs.design_sha256)?;
+                    set.record_input(&format!("mesh:{stem}"), hash)?;
+                }
+            }
             let digest = |key: serde_json::Value| {
                 format!("{:x}", Sha256::digest(key.to_string().as_bytes()))
             };

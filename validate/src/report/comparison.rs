@@ -56,6 +56,8 @@ pub enum ComparisonError {
     Unreadable { path: PathBuf, message: String },
     #[error(transparent)]
     Published(#[from] crate::published::PublishedError),
+    #[error(transparent)]
+    Mixed(#[from] formats::result_set::ResultSetError),
 }
 
 /// Reads a stage's JSON output: `Ok(None)` when the file is not there (the
@@ -89,6 +91,18 @@ pub fn compare(
     published: &PublishedDesign,
     meshes: &Path,
 ) -> Result<Option<Comparison>, ComparisonError> {
+    // The sets put side by side read the same design, meshes and stiffness
+    // files wherever they share one.
+    let mut sets = vec![
+        out.join(scene).join("ltca"),
+        out.join(scene).join("multibody"),
+    ];
+    sets.extend(
+        crate::reference_stage::LEVELS_FINEST_FIRST
+            .iter()
+            .map(|l| crate::reference_stage::reference_dir(out, scene, l)),
+    );
+    formats::result_set::check_same_inputs(&sets.iter().map(|p| p.as_path()).collect::<Vec<_>>())?;
     let Some(mb) = read::<Vec<DynamicSummary>>(&out.join(scene).join("multibody/summary.json"))?
     else {
         return Ok(None);
@@ -593,5 +607,41 @@ mod read_tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("multibody/summary.json"), "{err}");
+    }
+
+    /// A multibody set and an LTCA set stamped with different stiffness
+    /// files (one rerun after `preprocess stiffness`, the other not) are
+    /// refused by the report, naming the file and both runs.
+    #[test]
+    fn ltca_and_multibody_sets_from_other_stiffness_files_are_refused() {
+        use formats::result_set::ResultSet;
+        let dir = tempfile::tempdir().unwrap();
+        let write = |stage: &str, sha: &str| {
+            let mut set = ResultSet::begin(&dir.path().join("s").join(stage), stage).unwrap();
+            set.record_input("design", "d0").unwrap();
+            set.record_input("stiffness:pinion_standard_reduced", sha)
+                .unwrap();
+            set.commit().unwrap();
+        };
+        write("ltca", "aaaaaaaaaaaaaaaa");
+        write("multibody", "aaaaaaaaaaaaaaaa");
+        assert!(
+            compare(dir.path(), "s", &PublishedDesign::default(), dir.path())
+                .unwrap()
+                .is_none()
+        );
+        write("multibody", "bbbbbbbbbbbbbbbb");
+        let err = compare(dir.path(), "s", &PublishedDesign::default(), dir.path())
+            .unwrap_err()
+            .to_string();
+        for w in [
+            "stiffness:pinion_standard_reduced",
+            "ltca",
+            "multibody",
+            "aaaaaaaaaaaa",
+            "bbbbbbbbbbbb",
+        ] {
+            assert!(err.contains(w), "{w} not in: {err}");
+        }
     }
 }
