@@ -116,20 +116,25 @@ pub enum ResultSetError {
         first: String,
         second: String,
     },
-    #[error("{} and {} come from different inputs: `{key}` was {} in run {} ({}) and {} in run {} ({}); rerun the older one so both see the same files", .a.display(), .b.display(), short(.a_sha), .a_run, .a_what, short(.b_sha), .b_run, .b_what)]
-    MixedInputs {
-        key: String,
-        a: PathBuf,
-        a_run: String,
-        a_what: String,
-        a_sha: String,
-        b: PathBuf,
-        b_run: String,
-        b_what: String,
-        b_sha: String,
-    },
+    #[error(transparent)]
+    MixedInputs(Box<MixedInputs>),
     #[error(transparent)]
     Write(#[from] crate::output::WriteError),
+}
+
+/// Two committed sets that name one input with different files.
+#[derive(Debug, thiserror::Error)]
+#[error("{} and {} come from different inputs: `{key}` was {} in run {} ({}) and {} in run {} ({}); rerun the older one so both see the same files", .a.display(), .b.display(), short(.a_sha), .a_run, .a_what, short(.b_sha), .b_run, .b_what)]
+pub struct MixedInputs {
+    pub key: String,
+    pub a: PathBuf,
+    pub a_run: String,
+    pub a_what: String,
+    pub a_sha: String,
+    pub b: PathBuf,
+    pub b_run: String,
+    pub b_what: String,
+    pub b_sha: String,
 }
 
 fn short(sha: &str) -> String {
@@ -517,7 +522,7 @@ pub fn check_same_inputs(dirs: &[&Path]) -> Result<(), ResultSetError> {
                 for (key, sha) in &info.inputs {
                     if let Some(osha) = o.inputs.get(key) {
                         if osha != sha {
-                            return Err(ResultSetError::MixedInputs {
+                            return Err(ResultSetError::MixedInputs(Box::new(MixedInputs {
                                 key: key.clone(),
                                 a: other.clone(),
                                 a_run: o.run_id.clone(),
@@ -527,7 +532,7 @@ pub fn check_same_inputs(dirs: &[&Path]) -> Result<(), ResultSetError> {
                                 b_run: info.run_id.clone(),
                                 b_what: info.what.clone(),
                                 b_sha: sha.clone(),
-                            });
+                            })));
                         }
                     }
                 }
