@@ -138,7 +138,7 @@ pub struct MixedInputs {
 }
 
 fn short(sha: &str) -> String {
-    format!("sha256 {}…", &sha[..sha.len().min(12)])
+    format!("sha256 {}…", sha.chars().take(12).collect::<String>())
 }
 
 fn hint(h: &Holder) -> String {
