@@ -12,9 +12,12 @@
 //! - [`summaries`]: the solver's stage summaries, shared by writer and readers;
 //! - [`output`]: the one atomic write (temporary file + rename) every stage uses;
 //! - [`result_set`]: a stage's output directory written as one set (lock,
-//!   staging sibling, commit by rename, `run.json`).
+//!   staging sibling, commit by rename, `run.json`);
+//! - [`interrupt`]: Ctrl-C and SIGTERM remove what the run began and did
+//!   not finish (staging directories, locks, temporary files).
 
 pub mod columns;
+pub mod interrupt;
 pub mod manifest;
 pub mod output;
 pub mod paths;

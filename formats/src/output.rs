@@ -58,6 +58,7 @@ pub fn write_via<E: From<WriteError>>(
         std::process::id(),
         name.as_deref().unwrap_or("out")
     ));
+    let on_interrupt = crate::interrupt::pending_file(&tmp);
     let r = write(&tmp).and_then(|()| {
         std::fs::rename(&tmp, path).map_err(|e| {
             E::from(write_err(
@@ -69,6 +70,7 @@ pub fn write_via<E: From<WriteError>>(
     if r.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
+    drop(on_interrupt);
     r
 }
 

@@ -342,6 +342,8 @@ pub struct RunLock {
     dir: PathBuf,
     path: PathBuf,
     holder: Holder,
+    /// Released by the termination handler if the run is stopped.
+    _on_interrupt: crate::interrupt::Pending,
 }
 
 impl RunLock {
@@ -412,6 +414,7 @@ impl RunLock {
             if create_lock_file(&path, &holder)? {
                 return Ok(RunLock {
                     dir: dir.to_path_buf(),
+                    _on_interrupt: crate::interrupt::pending_lock(&path, &holder.token),
                     path,
                     holder,
                 });
@@ -588,6 +591,8 @@ pub struct ResultSet {
     carried: Vec<PathBuf>,
     inputs: BTreeMap<String, String>,
     done: bool,
+    /// Removed by the termination handler if the run is stopped.
+    _on_interrupt: crate::interrupt::Pending,
 }
 
 impl ResultSet {
@@ -607,6 +612,7 @@ impl ResultSet {
         let staging = sibling(dir, &format!(".staging.{}.{}", std::process::id(), next()));
         std::fs::create_dir(&staging).map_err(|e| unwritable(&staging, e))?;
         Ok(ResultSet {
+            _on_interrupt: crate::interrupt::pending_dir(&staging),
             lock,
             staging,
             started,
@@ -687,21 +693,33 @@ impl ResultSet {
             staging: staging.to_path_buf(),
             message: m,
         };
+        // From here until the set is in place (or back as it was), a
+        // termination signal waits: carried-over entries (shared caches)
+        // are inside the staging directory meanwhile.
+        let critical = crate::interrupt::critical();
         // Carried-over entries move into the staging directory.
-        let mut moved = Vec::new();
+        // A failure part way moves back what was moved, so that dropping
+        // the staging directory cannot take a shared cache with it.
+        let mut moved: Vec<(PathBuf, PathBuf)> = Vec::new();
+        let move_back = |moved: &[(PathBuf, PathBuf)]| {
+            for (from, to) in moved.iter().rev() {
+                let _ = std::fs::rename(to, from);
+            }
+        };
         for rel in &self.carried {
             let (from, to) = (dir.join(rel), self.staging.join(rel));
             if from.exists() && !to.exists() {
-                if let Some(p) = to.parent() {
-                    std::fs::create_dir_all(p)
-                        .map_err(|e| err(&self.staging, format!("{}: {e}", p.display())))?;
-                }
-                std::fs::rename(&from, &to).map_err(|e| {
-                    err(
+                let r = to
+                    .parent()
+                    .map_or(Ok(()), std::fs::create_dir_all)
+                    .and_then(|()| std::fs::rename(&from, &to));
+                if let Err(e) = r {
+                    move_back(&moved);
+                    return Err(err(
                         &self.staging,
                         format!("cannot move {} into the set: {e}", from.display()),
-                    )
-                })?;
+                    ));
+                }
                 moved.push((from, to));
             }
         }
@@ -720,12 +738,11 @@ impl ResultSet {
             Ok(())
         })();
         if let Err(e) = swap {
-            for (from, to) in moved.iter().rev() {
-                let _ = std::fs::rename(to, from);
-            }
+            move_back(&moved);
             return Err(err(&self.staging, e.to_string()));
         }
         self.done = true;
+        drop(critical);
         if had_old {
             if let Err(e) = std::fs::remove_dir_all(&old) {
                 eprintln!(

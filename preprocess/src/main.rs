@@ -50,6 +50,8 @@ enum Cmd {
 }
 
 fn main() -> anyhow::Result<()> {
+    // Ctrl-C / SIGTERM: remove this run's unfinished output, then exit 130.
+    formats::interrupt::install();
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Flanks { input, out } => {

@@ -46,6 +46,8 @@ enum Cmd {
 }
 
 fn main() -> anyhow::Result<()> {
+    // Ctrl-C / SIGTERM: remove this run's unfinished output, then exit 130.
+    formats::interrupt::install();
     match Cli::parse().cmd {
         Cmd::Plan { scene, out } => {
             let s = geometry::scene::Scene::load(&scene)?;

@@ -199,6 +199,8 @@ fn penalty_settings(
 }
 
 fn main() -> anyhow::Result<()> {
+    // Ctrl-C / SIGTERM: remove this run's unfinished output, then exit 130.
+    formats::interrupt::install();
     match Cli::parse().cmd {
         Cmd::Report {
             scene,
