@@ -123,6 +123,24 @@ pub fn sha256_file(path: &Path) -> std::io::Result<String> {
     Ok(format!("{:x}", Sha256::digest(std::fs::read(path)?)))
 }
 
+/// Why an existing HDF5 file may not be opened: HDF5 opens only files a
+/// manifest lists with their present bytes, because a damaged file can
+/// crash the HDF5 C library itself (not an error, a segmentation fault).
+/// `listed` is the manifest's SHA-256 of `path`, if it lists the file.
+/// `None`: the file may be opened.
+pub fn not_openable(path: &Path, listed: Option<&str>) -> Option<String> {
+    match (listed, sha256_file(path)) {
+        (None, _) => Some(
+            "no manifest lists it, so its bytes cannot be checked before HDF5 opens them".into(),
+        ),
+        (Some(_), Err(e)) => Some(format!("unreadable: {e}")),
+        (Some(sha), Ok(now)) if now != sha => {
+            Some("its bytes differ from the manifest's SHA-256 (changed or damaged)".into())
+        }
+        _ => None,
+    }
+}
+
 /// SHA-256 of a text, hex.
 pub fn sha256_text(text: &str) -> String {
     format!("{:x}", Sha256::digest(text.as_bytes()))
@@ -230,6 +248,23 @@ pub fn field_differences<T: Serialize>(a: &T, b: &T, a_is: &str, b_is: &str) -> 
 
 #[cfg(test)]
 mod tests {
+    use super::not_openable;
+
+    #[test]
+    fn only_a_listed_unchanged_file_may_be_opened_by_hdf5() {
+        let dir = tempfile::tempdir().unwrap();
+        let f = dir.path().join("x.h5");
+        std::fs::write(&f, b"bytes").unwrap();
+        let sha = super::sha256_file(&f).unwrap();
+        assert_eq!(not_openable(&f, Some(&sha)), None);
+        assert!(not_openable(&f, None)
+            .unwrap()
+            .contains("no manifest lists it"));
+        std::fs::write(&f, b"bytez").unwrap();
+        assert!(not_openable(&f, Some(&sha)).unwrap().contains("differ"));
+        std::fs::remove_file(&f).unwrap();
+        assert!(not_openable(&f, Some(&sha)).unwrap().contains("unreadable"));
+    }
     use super::*;
 
     fn inputs() -> MeshInputs {

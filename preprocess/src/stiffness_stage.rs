@@ -285,21 +285,24 @@ fn run_one(
     } = planned(scene, g, dir, member, blank, level, side)?;
     let axisymmetric = config.axisymmetric;
     let mut replaced_because = None;
-    // A file the manifest lists with other bytes is not opened at all (a
-    // damaged HDF5 file can crash the HDF5 library itself): it is replaced.
+    // A file that no manifest lists, or lists with other bytes, is not
+    // opened at all (a damaged HDF5 file can crash the HDF5 library
+    // itself): it is replaced.
     let listed = Manifest::read(dir).ok().and_then(|m| {
         m.meshes
             .get(&paths::mesh_stem(member, blank, level))
             .and_then(|e| e.stiffness.get(&stem).map(|s| s.sha256.clone()))
     });
-    let damaged = path.exists()
-        && listed.is_some_and(|sha| sha256_file(&path).map_or(true, |now| now != sha));
-    if damaged {
+    let not_openable = path
+        .exists()
+        .then(|| formats::manifest::not_openable(&path, listed.as_deref()))
+        .flatten();
+    if let Some(why) = not_openable {
         eprintln!(
-            "{stem}: {} is not the file the manifest lists (changed or damaged); recomputing",
+            "{stem}: {} is not opened ({why}); recomputing",
             path.display()
         );
-        replaced_because = Some("its bytes differ from the manifest's SHA-256".into());
+        replaced_because = Some(why);
     } else if path.exists() {
         // A full read also catches truncated data, not only a stale header.
         let read = stiffness_file::read(&path, Some(&hash)).and_then(|d| {
