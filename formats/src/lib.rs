@@ -8,6 +8,8 @@
 //! - [`stiffness_file`]: the HDF5 stiffness files (schema, config, input hash);
 //! - [`stiffness_plan`]: what a scene asks of a stiffness file, and the
 //!   readers' check of a file against it;
+//! - [`memory_estimate`]: the size of a body's Cholesky factor from its
+//!   degrees of freedom, to refuse before work what cannot fit;
 //! - [`stiffness_sense`]: the physical sense of a stiffness file's numbers;
 //! - [`summaries`]: the solver's stage summaries, shared by writer and readers;
 //! - [`output`]: the one atomic write (temporary file + rename) every stage uses;
@@ -19,6 +21,7 @@
 pub mod columns;
 pub mod interrupt;
 pub mod manifest;
+pub mod memory_estimate;
 pub mod output;
 pub mod paths;
 pub mod result_set;

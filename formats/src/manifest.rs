@@ -103,6 +103,11 @@ pub struct BodyProperties {
     pub density_kg_m3: f64,
     /// ∫ ρ (x² + y²) dV about the member axis, kg·m².
     pub polar_moment_kgm2: f64,
+    /// Nodes of the tet10 mesh (0 in manifests written before it was
+    /// recorded): 3 degrees of freedom each, for the memory estimate of
+    /// its factor ([`crate::memory_estimate`]).
+    #[serde(default)]
+    pub nodes: usize,
 }
 
 /// One stiffness file.
@@ -297,6 +302,7 @@ mod tests {
             inputs_hash: "h".into(),
             msh_sha256: "m".into(),
             body: BodyProperties {
+                nodes: 1000,
                 volume_m3: 1.5e-4,
                 density_kg_m3: 7850.0,
                 polar_moment_kgm2: 1.0 / 3.0 * 1e-3,

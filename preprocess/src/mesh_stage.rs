@@ -212,13 +212,25 @@ fn record_mesh(
     let current = Manifest::read(dir)
         .ok()
         .and_then(|m| m.meshes.get(stem).cloned());
-    if current.is_some_and(|e| {
+    let same = current.as_ref().is_some_and(|e| {
         e.inputs_hash == inputs_hash && e.msh_sha256 == msh_sha256 && e.inputs == inputs
-    }) {
+    });
+    if same && current.as_ref().is_some_and(|e| e.body.nodes > 0) {
         return Ok(());
     }
     let body = crate::body_mesh::read(&msh)
         .map_err(|e| anyhow::anyhow!("reading {}: {e}", msh.display()))?;
+    if same {
+        // An entry from before node counts were recorded: add the count,
+        // keep the stiffness files listed on this very mesh.
+        let nodes = body.mesh.nodes.len();
+        Manifest::update(dir, |m| {
+            if let Some(e) = m.meshes.get_mut(stem) {
+                e.body.nodes = nodes;
+            }
+        })?;
+        return Ok(());
+    }
     let density = g.data.member(member).density;
     let entry = MeshEntry {
         member,
@@ -231,6 +243,7 @@ fn record_mesh(
             volume_m3: body.mesh.volume(),
             density_kg_m3: density,
             polar_moment_kgm2: body.mesh.polar_moment(density),
+            nodes: body.mesh.nodes.len(),
         },
         stiffness: Default::default(),
     };

@@ -103,6 +103,11 @@ enum Cmd {
         /// into the shared position cache.
         #[arg(long)]
         shard: Option<String>,
+        /// Memory the bodies' factors may use, GB (default: what the system
+        /// has available); the run refuses before factoring when the
+        /// factors estimated from the meshes need more.
+        #[arg(long)]
+        memory_gb: Option<f64>,
     },
     /// The reduced model's run time against its error to the reference, over
     /// the slices per tooth pair (needs `validate reference` results).
@@ -296,6 +301,7 @@ fn main() -> anyhow::Result<()> {
             block,
             compare_cache,
             shard,
+            memory_gb,
         } => {
             if !["reduced", "medium", "reference"].contains(&level.as_str()) {
                 anyhow::bail!("--level {level}: must be reduced, medium or reference");
@@ -304,6 +310,12 @@ fn main() -> anyhow::Result<()> {
                 anyhow::bail!("--block {block}: must lie in [1, 100000] right-hand sides");
             }
             let shard = shard.map(|s| parse_shard(&s)).transpose()?;
+            let memory_bytes = match memory_gb {
+                Some(gb) if !(gb.is_finite() && gb > 0.0) => {
+                    anyhow::bail!("--memory-gb = {gb}: must be a positive number of GB")
+                }
+                gb => gb.map(|gb| (gb * 1e9) as usize),
+            };
             let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
             let sc = geometry::scene::Scene::load(&scene)?;
             let opt = validate::reference_stage::StageOptions {
@@ -314,6 +326,7 @@ fn main() -> anyhow::Result<()> {
                 block,
                 compare_cache,
                 shard,
+                memory_bytes,
             };
             validate::reference_stage::run(&sc, &meshes, &out, &opt)?;
         }

@@ -46,6 +46,7 @@ fn example_03_reference_position_matches_its_golden_output() {
         block: 96,
         compare_cache: false,
         shard: None,
+        memory_bytes: None,
     };
     let out = tmp.path().join("out");
     let res = run(&scene, &meshes, &out, &opt).unwrap();

@@ -137,6 +137,21 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
         "{err:#}"
     );
 
+    // Factors that cannot fit in the memory allowed are refused before
+    // any factoring, with the estimate (positions not cached: a new output).
+    let tight = StageOptions {
+        memory_bytes: Some(1_000_000),
+        ..options()
+    };
+    let err = run(&scene, &meshes, &tmp.path().join("tight"), &tight).unwrap_err();
+    let msg = format!("{err:#}");
+    assert!(
+        msg.contains("would hold Cholesky factors")
+            && msg.contains("pinion:")
+            && msg.contains("0.0 GB are available"),
+        "{msg}"
+    );
+
     // A new run replaces the set: the old comparison no longer belongs to it.
     run(&scene, &meshes, &single, &options()).unwrap();
     let c: CacheComparison =

@@ -71,6 +71,11 @@ pub struct StageOptions {
     /// their positions to the shared cache; a run without a shard then
     /// finds them all there and writes the result.
     pub shard: Option<(usize, usize)>,
+    /// Memory this run may use for the bodies' factors, bytes; `None`:
+    /// what the system has available (`MemAvailable`). The factors a run
+    /// would hold at once are estimated from the meshes before any
+    /// factoring and refused above it ([`formats::memory_estimate`]).
+    pub memory_bytes: Option<usize>,
 }
 
 /// Largest relative difference that `--compare-cache` accepts between a
@@ -213,10 +218,14 @@ pub fn run(
                 .into_iter()
                 .find(|l| l.name() == opt.level)
                 .with_context(|| format!("unknown mesh level {}", opt.level))?;
-            for (m, b, path, hash) in [
+            let mut mesh_dofs = [0usize; 2];
+            for (k, (m, b, path, hash)) in [
                 (Which::Pinion, pb, &pm, &pm_hash),
                 (Which::Wheel, wb, &wm, &wm_hash),
-            ] {
+            ]
+            .into_iter()
+            .enumerate()
+            {
                 let stem = formats::paths::mesh_stem(m, b, level);
                 let entry = stiffness_plan::check_mesh(scene, &g, &dir, &stem, m, b, level)
                     .with_context(|| {
@@ -237,6 +246,7 @@ pub fn run(
                     }
                     .into());
                 }
+                mesh_dofs[k] = 3 * entry.body.nodes;
                 if let Some(set) = set.as_mut() {
                     set.record_input("design", &entry.inputs.design_sha256)?;
                     set.record_input(&format!("mesh:{stem}"), hash)?;
@@ -338,6 +348,24 @@ pub fn run(
                     reused += 1;
                     bar.inc(1);
                     continue;
+                }
+                // Before the first factorization: the factors this run will
+                // hold at once, estimated from the meshes' node counts
+                // (unknown in manifests from before they were recorded).
+                if pinion.is_none() || wheel.is_none() {
+                    let mut parts = Vec::new();
+                    if pinion.is_none() && mesh_dofs[0] > 0 {
+                        parts.push(("pinion", mesh_dofs[0]));
+                    }
+                    if mesh_dofs[1] > 0 {
+                        parts.push(("wheel", mesh_dofs[1]));
+                    }
+                    formats::memory_estimate::check_fits(
+                        &what,
+                        &parts,
+                        opt.memory_bytes
+                            .or_else(fem::cholesky::available_memory_bytes),
+                    )?;
                 }
                 if pinion.is_none() {
                     eprintln!("reference: reading and factoring {}", pm.display());

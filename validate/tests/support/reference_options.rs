@@ -19,5 +19,6 @@ pub fn options(stride: usize, shard: Option<(usize, usize)>) -> StageOptions {
         block: 96,
         compare_cache: false,
         shard,
+        memory_bytes: None,
     }
 }
