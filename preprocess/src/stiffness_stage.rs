@@ -355,6 +355,13 @@ fn run_one(
         req.solved_teeth.len(),
         fg.len()
     );
+    // Before assembling: a factor that cannot fit here is refused with the
+    // estimate (the exact size follows from the symbolic analysis).
+    formats::memory_estimate::check_fits(
+        &format!("preprocess stiffness ({stem})"),
+        &[(member.name(), 3 * body.mesh.nodes.len())],
+        fem::cholesky::available_memory_bytes(),
+    )?;
     let inf = compute(&req, &clamped_groups(&config)).with_context(|| {
         format!(
             "scene {}: influence fields of the {} ({blank_name} blank)",
