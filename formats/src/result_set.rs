@@ -81,6 +81,11 @@ pub struct RunInfo {
     /// compares between sets that a report puts side by side.
     #[serde(default)]
     pub inputs: BTreeMap<String, String>,
+    /// SHA-256 of every file the run wrote into the set (paths relative to
+    /// the set, `/`-separated; `run.json` and carried-over entries not
+    /// included): what [`verify_files`] checks before a reader uses them.
+    #[serde(default)]
+    pub files: BTreeMap<String, String>,
 }
 
 /// Why a set (or a lock) could not be taken or committed; every variant
@@ -118,6 +123,13 @@ pub enum ResultSetError {
     },
     #[error(transparent)]
     MixedInputs(Box<MixedInputs>),
+    #[error("{}: {why} since run {run} wrote it; run the stage that writes {} again", .file.display(), .dir.display())]
+    Tampered {
+        dir: PathBuf,
+        file: PathBuf,
+        run: String,
+        why: String,
+    },
     #[error(transparent)]
     Write(#[from] crate::output::WriteError),
 }
@@ -546,6 +558,57 @@ pub fn check_same_inputs(dirs: &[&Path]) -> Result<(), ResultSetError> {
     Ok(())
 }
 
+/// SHA-256 of every file under `root`, by path relative to it
+/// (`/`-separated), `run.json` left out.
+fn file_hashes(root: &Path) -> std::io::Result<BTreeMap<String, String>> {
+    let mut out = BTreeMap::new();
+    let mut stack = vec![root.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d)? {
+            let p = e?.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p != root.join(RUN_FILE) {
+                let rel = p.strip_prefix(root).unwrap_or(&p);
+                let key = rel
+                    .components()
+                    .map(|c| c.as_os_str().to_string_lossy())
+                    .collect::<Vec<_>>()
+                    .join("/");
+                out.insert(key, crate::manifest::sha256_file(&p)?);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Checks that every file the committed set in `dir` lists is there with
+/// the bytes its run wrote; returns the set's stamp (`None` when `dir`
+/// holds no committed set).
+pub fn verify_files(dir: &Path) -> Result<Option<RunInfo>, ResultSetError> {
+    let Some(info) = read_run_info(dir)? else {
+        return Ok(None);
+    };
+    for (rel, sha) in &info.files {
+        let file = dir.join(rel);
+        let why = match crate::manifest::sha256_file(&file) {
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Some("removed".to_string()),
+            Err(e) => Some(format!("unreadable ({e})")),
+            Ok(now) if &now != sha => Some("changed".to_string()),
+            Ok(_) => None,
+        };
+        if let Some(why) = why {
+            return Err(ResultSetError::Tampered {
+                dir: dir.to_path_buf(),
+                file,
+                run: info.run_id.clone(),
+                why,
+            });
+        }
+    }
+    Ok(Some(info))
+}
+
 /// The stamp of a file that a later run adds in place to a committed set
 /// without replacing the set (`validate reference --compare-cache`): the
 /// set it was computed from (`of_run_id`, that set's `run.json` id; `None`
@@ -686,6 +749,7 @@ impl ResultSet {
             pid: std::process::id(),
             host,
             inputs: std::mem::take(&mut self.inputs),
+            files: file_hashes(&self.staging).map_err(|e| unwritable(&self.staging, e))?,
         };
         crate::output::write_json(&self.staging.join(RUN_FILE), &info)?;
         let err = |staging: &Path, m: String| ResultSetError::Commit {

@@ -345,3 +345,23 @@ fn sets_sharing_no_input_or_the_same_hashes_pass_and_a_differing_one_is_named() 
         "{err}"
     );
 }
+
+#[test]
+fn a_committed_file_changed_or_removed_afterwards_is_named_by_the_reader_check() {
+    use formats::result_set::verify_files;
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    let info = commit_set(&dir, "te");
+    assert_eq!(info.files.keys().collect::<Vec<_>>(), ["a/one.csv"]);
+    assert_eq!(verify_files(&dir).unwrap(), Some(info));
+    // A file added in place later is not the run's: not checked.
+    std::fs::write(dir.join("later.json"), "{}").unwrap();
+    assert!(verify_files(&dir).is_ok());
+    std::fs::write(dir.join("a/one.csv"), "tf").unwrap();
+    let e = verify_files(&dir).unwrap_err().to_string();
+    assert!(e.contains("one.csv") && e.contains("changed"), "{e}");
+    std::fs::remove_file(dir.join("a/one.csv")).unwrap();
+    let e = verify_files(&dir).unwrap_err().to_string();
+    assert!(e.contains("removed"), "{e}");
+    assert_eq!(verify_files(&tmp.path().join("never")).unwrap(), None);
+}

@@ -102,6 +102,9 @@ pub fn compare(
             .iter()
             .map(|l| crate::reference_stage::reference_dir(out, scene, l)),
     );
+    for d in &sets {
+        formats::result_set::verify_files(d)?;
+    }
     formats::result_set::check_same_inputs(&sets.iter().map(|p| p.as_path()).collect::<Vec<_>>())?;
     let Some(mb) = read::<Vec<DynamicSummary>>(&out.join(scene).join("multibody/summary.json"))?
     else {
