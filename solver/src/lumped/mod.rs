@@ -8,6 +8,7 @@
 //! Dormand–Prince 5(4)).
 
 pub mod excitation;
+pub mod from_ltca;
 pub mod integrate;
 pub mod model;
 
