@@ -20,6 +20,7 @@ pub mod interp;
 pub mod ltca;
 pub mod ltca_stage;
 pub mod lumped;
+pub mod lumped_stage;
 pub mod mesh_table;
 pub mod multibody;
 pub mod plan;

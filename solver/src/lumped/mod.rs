@@ -5,12 +5,17 @@
 //!
 //! [`model`] (matrices, direction cosines, sign conventions) →
 //! [`excitation`] (Fourier series, impact) → [`integrate`] (adaptive
-//! Dormand–Prince 5(4)).
+//! Dormand–Prince 5(4)); [`from_ltca`] and [`impact`] take k(t), e(t) and
+//! the engagement from our LTCA, [`run`] starts a loaded run at static
+//! equilibrium, [`response`] reduces it to RMS, peak-to-peak and spectra.
 
 pub mod excitation;
 pub mod from_ltca;
+pub mod impact;
 pub mod integrate;
 pub mod model;
+pub mod response;
+pub mod run;
 
 /// Errors of the lumped model.
 #[derive(Debug, thiserror::Error)]
