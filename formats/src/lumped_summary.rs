@@ -66,8 +66,11 @@ pub struct LumpedSummary {
     /// Tangent k(t) = dF/dδ; the secant F/δ mean beside it.
     pub mesh_stiffness_n_per_m: SeriesSummary,
     pub secant_mesh_stiffness_mean_n_per_m: f64,
-    /// e(t) along the normal, m.
+    /// e(t) along the normal fitted as its own series, m (reported; the
+    /// model takes e = δ − F/k from k and the loaded deflection δ).
     pub transmission_error_m: SeriesSummary,
+    /// Loaded static deflection δ(t) = r₂θ(t), m.
+    pub loaded_deflection_m: SeriesSummary,
     /// Natural frequencies of the linear model at the mean k, Hz (rigid mode left out).
     pub natural_frequencies_hz: Vec<f64>,
     pub impact: ImpactSummary,

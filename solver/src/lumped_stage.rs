@@ -8,7 +8,9 @@
 use crate::compliance::PairCompliance;
 use crate::ltca::{geometry, run as run_sweep};
 use crate::ltca_stage::{member_compliance, scene_sweep};
-use crate::lumped::excitation::{seed004_impact_force, FittedSeries, ImpactPulse, MeshExcitation};
+use crate::lumped::excitation::{
+    seed004_impact_force, FittedSeries, ImpactPulse, MeshExcitation, StaticError,
+};
 use crate::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques, MeshSamples};
 use crate::lumped::impact::engagement;
 use crate::lumped::model::{direction_cosines, mesh_damping_for_ratio, Member, Model, WheelHand};
@@ -106,7 +108,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 .with_context(|| format!("scene {}: LTCA for the lumped model", sc.name))?;
             let omega = ls.pinion_speed_rpm * std::f64::consts::PI / 30.0;
             let samples = mesh_samples(&res, ls.pinion_torque_nm, omega, g.data.mesh_cycle())?;
-            let [kf, ef] = fit_series(&samples, ls.fourier_tolerance_of_ptp)?;
+            let [kf, ef, df] = fit_series(&samples, ls.fourier_tolerance_of_ptp)?;
             let tau = fp.pinion.gen.frame.pitch();
             let lag = |k: usize, pair: i32| {
                 let phi = sweep.start + sweep.direction * res[k].rotation;
@@ -128,7 +130,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 &g,
                 bodies,
                 &samples,
-                [&kf, &ef],
+                [&kf, &ef, &df],
                 eng,
                 &odir,
             )?;
@@ -158,7 +160,7 @@ fn run_blank(
     g: &PairGeometry,
     bodies: [formats::manifest::BodyProperties; 2],
     samples: &MeshSamples,
-    [kf, ef]: [&FittedSeries; 2],
+    [kf, ef, df]: [&FittedSeries; 3],
     eng: Option<crate::lumped::impact::Engagement>,
     odir: &Path,
 ) -> anyhow::Result<LumpedSummary> {
@@ -230,7 +232,10 @@ fn run_blank(
     };
     let exc = MeshExcitation {
         stiffness: kf.series.clone(),
-        transmission_error: ef.series.clone(),
+        transmission_error: StaticError::LoadedDeflection {
+            deflection: df.series.clone(),
+            force_n: model.mean_mesh_force(),
+        },
         impact,
     };
     let t0 = Instant::now();
@@ -270,6 +275,7 @@ fn run_blank(
         secant_mesh_stiffness_mean_n_per_m: samples.secant_n_per_m.iter().sum::<f64>()
             / samples.secant_n_per_m.len() as f64,
         transmission_error_m: series_summary(ef),
+        loaded_deflection_m: series_summary(df),
         natural_frequencies_hz: natural_frequencies(&model, kf.series.mean),
         impact: ImpactSummary {
             model: match ls.impact {
@@ -338,7 +344,7 @@ fn write_files(
             samples.secant_n_per_m[i],
             exc.stiffness.value(t),
             samples.te_m[i],
-            exc.transmission_error.value(t),
+            exc.te(t)[0],
             samples.loaded_te_rad[i],
             samples.unloaded_te_rad[i]
         );

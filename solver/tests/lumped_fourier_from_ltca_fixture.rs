@@ -45,8 +45,12 @@ fn lumped_fourier_series_of_ltca_stiffness_and_te_reproduce_the_samples_within_t
     // T(1 − ε) and T(1 + ε)), so 1 % of the peak-to-peak is out of reach of
     // the 18 samples' 8 harmonics; 15 % is reachable and still picks a count.
     let tol = 0.15;
-    let [k, e] = fit_series(&s, tol).unwrap();
-    for (name, f, v) in [("k", &k, &s.tangent_n_per_m), ("e", &e, &s.te_m)] {
+    let [k, e, d] = fit_series(&s, tol).unwrap();
+    for (name, f, v) in [
+        ("k", &k, &s.tangent_n_per_m),
+        ("e", &e, &s.te_m),
+        ("delta", &d, &s.deflection_m),
+    ] {
         let (lo, hi) = v
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {

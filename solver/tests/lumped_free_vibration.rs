@@ -15,7 +15,7 @@ mod lumped_case;
 
 use lumped_case::{model, K_MEAN, MESH_HZ};
 use nalgebra::{DMatrix, SymmetricEigen};
-use solver::lumped::excitation::{FourierSeries, MeshExcitation};
+use solver::lumped::excitation::{FourierSeries, MeshExcitation, StaticError};
 use solver::lumped::integrate::{energy, integrate, Equations, Settings};
 
 const RTOL: f64 = 1e-11;
@@ -23,7 +23,7 @@ const RTOL: f64 = 1e-11;
 fn constant_excitation() -> MeshExcitation {
     MeshExcitation {
         stiffness: FourierSeries::constant(K_MEAN, 1.0 / MESH_HZ),
-        transmission_error: FourierSeries::constant(0.0, 1.0 / MESH_HZ),
+        transmission_error: StaticError::Series(FourierSeries::constant(0.0, 1.0 / MESH_HZ)),
         impact: None,
     }
 }

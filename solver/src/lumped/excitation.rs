@@ -239,11 +239,49 @@ pub fn seed004_impact_force(
     impact_velocity_m_s.abs() * (entering_pair_stiffness_n_per_m * me).sqrt()
 }
 
+/// The static transmission error e(t) along the normal, m.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StaticError {
+    /// e(t) as its own series.
+    Series(FourierSeries),
+    /// e(t) = δ(t) − F/k(t) from a series of the loaded static deflection
+    /// δ(t) (the LTCA's loaded TE times r₂) at the mesh force F = T₁/r₁:
+    /// the model's quasi-static deflection δ = e + F/k is then the series
+    /// of δ whatever the error of the series of k. Derivatives:
+    /// e′ = δ′ + F k′/k², e″ = δ″ + F (k″/k² − 2k′²/k³).
+    LoadedDeflection {
+        deflection: FourierSeries,
+        force_n: f64,
+    },
+}
+
 /// The mesh excitation: k(t) (N/m), e(t) (m, along the normal) and the
 /// impact pulse.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshExcitation {
     pub stiffness: FourierSeries,
-    pub transmission_error: FourierSeries,
+    pub transmission_error: StaticError,
     pub impact: Option<ImpactPulse>,
+}
+
+impl MeshExcitation {
+    /// e, e′, e″ at `t`.
+    pub fn te(&self, t: f64) -> [f64; 3] {
+        match &self.transmission_error {
+            StaticError::Series(s) => s.eval(t),
+            StaticError::LoadedDeflection {
+                deflection,
+                force_n,
+            } => {
+                let [d, d1, d2] = deflection.eval(t);
+                let [k, k1, k2] = self.stiffness.eval(t);
+                let f = *force_n;
+                [
+                    d - f / k,
+                    d1 + f * k1 / (k * k),
+                    d2 + f * (k2 / (k * k) - 2.0 * k1 * k1 / (k * k * k)),
+                ]
+            }
+        }
+    }
 }

@@ -58,6 +58,8 @@ pub struct MeshSamples {
     pub secant_n_per_m: Vec<f64>,
     /// e (intercept of the tangent), m along the normal.
     pub te_m: Vec<f64>,
+    /// Loaded static deflection r₂θ(T), m along the normal.
+    pub deflection_m: Vec<f64>,
     /// LTCA loaded TE θ(T), rad (wheel lag).
     pub loaded_te_rad: Vec<f64>,
     /// LTCA unloaded TE, rad.
@@ -87,6 +89,7 @@ pub fn mesh_samples(
         tangent_n_per_m: Vec::new(),
         secant_n_per_m: Vec::new(),
         te_m: Vec::new(),
+        deflection_m: Vec::new(),
         loaded_te_rad: Vec::new(),
         unloaded_te_rad: Vec::new(),
         levers_m: [0.0; 2],
@@ -140,15 +143,20 @@ pub fn mesh_samples(
         s.secant_n_per_m
             .push(p.loads[1].mesh_stiffness / (r[0] * r[1]));
         s.te_m.push(r[1] * theta - torque_nm / r[0] / k);
+        s.deflection_m.push(r[1] * theta);
         s.loaded_te_rad.push(theta);
         s.unloaded_te_rad.push(p.utca_te);
     }
     Ok(s)
 }
 
-/// k(t) and e(t) fitted to `samples`, each with the fewest harmonics whose
-/// largest residual is ≤ `tolerance` × its samples' peak-to-peak.
-pub fn fit_series(samples: &MeshSamples, tolerance: f64) -> Result<[FittedSeries; 2], LumpedError> {
+/// k(t), e(t) and the loaded deflection δ(t) = r₂θ(t) fitted to
+/// `samples`, each with the fewest harmonics whose largest residual is
+/// ≤ `tolerance` × its samples' peak-to-peak. The model takes k and δ
+/// ([`super::excitation::StaticError::LoadedDeflection`]): e = δ − F/k
+/// inherits the position-to-position jitter of the tangent k (F/k is some
+/// 30 times the TE's peak-to-peak), δ does not.
+pub fn fit_series(samples: &MeshSamples, tolerance: f64) -> Result<[FittedSeries; 3], LumpedError> {
     Ok([
         fit_to_tolerance(
             &samples.time_s,
@@ -157,5 +165,11 @@ pub fn fit_series(samples: &MeshSamples, tolerance: f64) -> Result<[FittedSeries
             tolerance,
         )?,
         fit_to_tolerance(&samples.time_s, &samples.te_m, samples.period_s, tolerance)?,
+        fit_to_tolerance(
+            &samples.time_s,
+            &samples.deflection_m,
+            samples.period_s,
+            tolerance,
+        )?,
     ])
 }

@@ -67,7 +67,7 @@ impl<'a> Equations<'a> {
 
     /// The mesh force at time `t` for coordinates `q` and velocities `qd`.
     pub fn mesh(&self, t: f64, q: &[f64], qd: &[f64]) -> MeshForce {
-        let [e, ed, _] = self.excitation.transmission_error.eval(t);
+        let [e, ed, _] = self.excitation.te(t);
         let k = self.excitation.stiffness.value(t);
         let lam = dot(&self.v, q) - e;
         let lamd = dot(&self.v, qd) - ed;

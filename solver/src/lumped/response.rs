@@ -76,9 +76,7 @@ pub fn response(
     let t = &h.t[first..];
     let v = model.mesh_vector();
     let lam_dd: Vec<f64> = (first..h.t.len())
-        .map(|i| {
-            (0..8).map(|j| v[j] * h.qdd[i][j]).sum::<f64>() - exc.transmission_error.eval(h.t[i])[2]
-        })
+        .map(|i| (0..8).map(|j| v[j] * h.qdd[i][j]).sum::<f64>() - exc.te(h.t[i])[2])
         .collect();
     let rel: Vec<f64> = (first..h.t.len())
         .map(|i| (0..8).map(|j| v[j] * h.qdd[i][j]).sum::<f64>())

@@ -32,7 +32,7 @@ pub fn static_start(model: &Model, exc: &MeshExcitation) -> Result<[f64; 16], Lu
         along += a[d] * (y[d] - y[4 + d]);
     }
     let lambda = f0 / k0;
-    y[3] = (lambda + exc.transmission_error.value(0.0) - along) / model.levers_m[0];
+    y[3] = (lambda + exc.te(0.0)[0] - along) / model.levers_m[0];
     Ok(y)
 }
 
