@@ -65,6 +65,15 @@ impl<'a> Equations<'a> {
         }
     }
 
+    /// Bearings made rigid: the translations keep their start values (their
+    /// accelerations are zero), only θ₁, θ₂ move.
+    pub fn rigid_bearings(mut self) -> Self {
+        for i in [0, 1, 2, 4, 5, 6] {
+            self.inv_mass[i] = 0.0;
+        }
+        self
+    }
+
     /// The mesh force at time `t` for coordinates `q` and velocities `qd`.
     pub fn mesh(&self, t: f64, q: &[f64], qd: &[f64]) -> MeshForce {
         let [e, ed, _] = self.excitation.te(t);

@@ -73,17 +73,21 @@ pub fn response(
     mesh_hz: f64,
     max_order: f64,
 ) -> Response {
-    let t = &h.t[first..];
+    // The last sample closes the window (t = the run's end, a whole number
+    // of mesh cycles after the first kept sample): left out, so the window
+    // is n Δt long and the mesh orders fall on bins.
+    let end = h.t.len().saturating_sub(1).max(first);
+    let t = &h.t[first..end];
     let v = model.mesh_vector();
-    let lam_dd: Vec<f64> = (first..h.t.len())
+    let lam_dd: Vec<f64> = (first..end)
         .map(|i| (0..8).map(|j| v[j] * h.qdd[i][j]).sum::<f64>() - exc.te(h.t[i])[2])
         .collect();
-    let rel: Vec<f64> = (first..h.t.len())
+    let rel: Vec<f64> = (first..end)
         .map(|i| (0..8).map(|j| v[j] * h.qdd[i][j]).sum::<f64>())
         .collect();
-    let lam: Vec<f64> = h.mesh[first..].iter().map(|m| m.lambda_m).collect();
+    let lam: Vec<f64> = h.mesh[first..end].iter().map(|m| m.lambda_m).collect();
     let col =
-        |k: usize, of: &[[f64; 8]]| -> Vec<f64> { of[first..].iter().map(|r| r[k]).collect() };
+        |k: usize, of: &[[f64; 8]]| -> Vec<f64> { of[first..end].iter().map(|r| r[k]).collect() };
     let mut rms_acc = [0.0; 7];
     let mut p2p = [0.0; 7];
     for (d, &k) in TRANSLATIONS.iter().enumerate() {
@@ -92,7 +96,7 @@ pub fn response(
     }
     rms_acc[6] = rms(&lam_dd);
     p2p[6] = ptp(&lam);
-    let force: Vec<f64> = h.mesh[first..].iter().map(|m| m.force_n).collect();
+    let force: Vec<f64> = h.mesh[first..end].iter().map(|m| m.force_n).collect();
     let fmean = force.iter().sum::<f64>() / force.len().max(1) as f64;
     let fmin = force.iter().cloned().fold(f64::INFINITY, f64::min);
     let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
@@ -100,7 +104,7 @@ pub fn response(
     let bearing: Vec<Vec<f64>> = (0..6)
         .map(|d| {
             let i = d / 3;
-            (first..h.t.len())
+            (first..end)
                 .map(|s| model.bearing_force(i, &h.q[s], &h.qd[s])[d % 3])
                 .collect()
         })

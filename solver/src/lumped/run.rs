@@ -40,7 +40,10 @@ pub fn static_start(model: &Model, exc: &MeshExcitation) -> Result<[f64; 16], Lu
 /// relative tolerance `rtol`; absolute tolerances rtol × the scale of each
 /// component (the static mesh deflection δ = F₀/kₘ, 1 µm at no load, over
 /// the levers for the rotations, times 2π f_mesh for the velocities). The
-/// step is kept below a quarter of an impact pulse.
+/// step is kept below a quarter of an impact pulse and below 1/ω_max (ω_max
+/// the highest natural frequency at the largest k): Dormand–Prince's
+/// stability bound is h ω ≈ 3.3, and steps held at that bound by an
+/// unexcited fast mode would end the run as "stiff".
 pub fn settings(
     model: &Model,
     exc: &MeshExcitation,
@@ -65,10 +68,17 @@ pub fn settings(
         atol[i] = rtol * s;
         atol[8 + i] = rtol * s * w;
     }
-    let max_step = match exc.impact {
+    let k_max = exc.stiffness.mean + exc.stiffness.amplitudes().iter().sum::<f64>();
+    let w_max = crate::lumped_stage::natural_frequencies(model, k_max)
+        .last()
+        .map_or(0.0, |f| 2.0 * std::f64::consts::PI * f);
+    let mut max_step = match exc.impact {
         Some(p) => 0.25 * p.duration_s,
         None => 0.05 * period,
     };
+    if w_max > 0.0 {
+        max_step = max_step.min(1.0 / w_max);
+    }
     Settings {
         t_span_s: [0.0, mesh_cycles * period],
         output_step_s: period / samples as f64,
