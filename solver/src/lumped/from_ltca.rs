@@ -116,7 +116,7 @@ pub fn mesh_samples(
             )));
         }
         let total: f64 = p.loads[1].pair_force.iter().map(|f| f.1).sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             return Err(LumpedError::Input(format!(
                 "LTCA position at {} rad carries no normal force",
                 p.rotation
@@ -129,7 +129,7 @@ pub fn mesh_samples(
     s.levers_m = r;
     for p in &keep {
         let dtheta = p.loads[2].te - p.loads[0].te;
-        if !(dtheta > 0.0) {
+        if dtheta.is_nan() || dtheta <= 0.0 {
             return Err(LumpedError::Input(format!(
                 "LTCA position at {} rad: loaded TE does not grow with torque ({} rad from {} to {} N·m)",
                 p.rotation, dtheta, torques[0], torques[2]

@@ -11,7 +11,7 @@ use super::LumpedError;
 pub fn static_start(model: &Model, exc: &MeshExcitation) -> Result<[f64; 16], LumpedError> {
     let f0 = model.mean_mesh_force();
     let k0 = exc.stiffness.value(0.0);
-    if !(k0 > 0.0) {
+    if k0.is_nan() || k0 <= 0.0 {
         return Err(LumpedError::Input(format!(
             "mesh stiffness at t = 0 is {k0} N/m: must be > 0"
         )));
