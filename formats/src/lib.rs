@@ -12,6 +12,7 @@
 //!   degrees of freedom, to refuse before work what cannot fit;
 //! - [`stiffness_sense`]: the physical sense of a stiffness file's numbers;
 //! - [`summaries`]: the solver's stage summaries, shared by writer and readers;
+//! - [`lumped_summary`]: the 8-DOF lumped run's summary;
 //! - [`output`]: the one atomic write (temporary file + rename) every stage uses;
 //! - [`result_set`]: a stage's output directory written as one set (lock,
 //!   staging sibling, commit by rename, `run.json`);
@@ -20,6 +21,7 @@
 
 pub mod columns;
 pub mod interrupt;
+pub mod lumped_summary;
 pub mod manifest;
 pub mod memory_estimate;
 pub mod output;

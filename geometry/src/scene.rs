@@ -39,6 +39,9 @@ pub struct Scene {
     /// Multibody runs (quasi-static and run-up); defaults when absent.
     #[serde(default)]
     pub multibody: MultibodySettings,
+    /// 8-DOF lumped dynamic model (`solver lumped`); absent: not run.
+    #[serde(default)]
+    pub lumped: Option<crate::scene_lumped::LumpedSettings>,
 }
 
 /// Settings of the multibody runs (`solver dynamic`): rigid pinion and

@@ -49,6 +49,9 @@ impl Scene {
             limit: limit.into(),
         };
         crate::design_file::check_plain_name(path, "name", &self.name)?;
+        if let Some(l) = &self.lumped {
+            l.check(path)?;
+        }
         let r = &self.rotation;
         for (f, v) in [
             ("rotation.mesh_cycles_standard", r.mesh_cycles_standard),

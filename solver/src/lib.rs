@@ -19,6 +19,8 @@ pub mod dynamic_stage;
 pub mod interp;
 pub mod ltca;
 pub mod ltca_stage;
+pub mod lumped;
+pub mod lumped_stage;
 pub mod mesh_table;
 pub mod multibody;
 pub mod plan;

@@ -43,6 +43,16 @@ enum Cmd {
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+    /// 8-DOF lumped dynamic model (scene's `[lumped]`), driven by the LTCA's k(t) and e(t).
+    Lumped {
+        scene: PathBuf,
+        /// Root of the meshes and stiffness files (`<meshes>/<scene>/`).
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        /// Results go to `<out>/<scene>/lumped/`.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -75,6 +85,16 @@ fn main() -> anyhow::Result<()> {
                         b.pinion_blank, b.wheel_blank, q.torque_nm, q.te_mean_urad, q.te_ptp_urad, q.steps
                     );
                 }
+            }
+        }
+        Cmd::Lumped { scene, meshes, out } => {
+            let s = geometry::scene::Scene::load(&scene)?;
+            for b in solver::lumped_stage::run(&s, &meshes, &out)? {
+                let a = &b.rms_acceleration_m_s2;
+                println!(
+                    "{:?}/{:?}: RMS acceleration m/s² pinion X {:.2} Y {:.2} Z {:.2}, wheel X {:.2} Y {:.2} Z {:.2}, mesh normal {:.2}; impact {:.0} N",
+                    b.pinion_blank, b.wheel_blank, a.pinion_x, a.pinion_y, a.pinion_z, a.wheel_x, a.wheel_y, a.wheel_z, a.mesh_normal, b.impact_force_n
+                );
             }
         }
         Cmd::Ltca { scene, meshes, out } => {

@@ -1,0 +1,102 @@
+//! `out/<scene>/lumped/<pinion>_<wheel>/summary.json` of `solver lumped`
+//! (the 8-DOF lumped model): written by the solver, read by the report
+//! with this one definition.
+
+use geometry::gear_body::Blank;
+use serde::{Deserialize, Serialize};
+
+/// A Fourier series of the excitation over the mesh cycle.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SeriesSummary {
+    pub mean: f64,
+    /// Amplitude √(aₗ² + bₗ²) of harmonics l = 1..N.
+    pub harmonics: Vec<f64>,
+    /// Largest residual at the LTCA positions over their peak-to-peak, and
+    /// the bound asked for; `met` false: the most harmonics the samples allow.
+    pub max_residual_of_ptp: f64,
+    pub tolerance_of_ptp: f64,
+    pub met: bool,
+}
+
+/// Per direction of both members and along the mesh normal.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Directions {
+    pub pinion_x: f64,
+    pub pinion_y: f64,
+    pub pinion_z: f64,
+    pub wheel_x: f64,
+    pub wheel_y: f64,
+    pub wheel_z: f64,
+    pub mesh_normal: f64,
+}
+
+/// The meshing impact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ImpactSummary {
+    /// `engagement` or `seed004`.
+    pub model: String,
+    /// Seed 004's F_s, N (also listed with `engagement`, where no pulse is applied).
+    pub seed004_force_n: f64,
+    /// Impact velocity v_s, m/s, and the entering pair's tangent stiffness k_s, N/m.
+    pub velocity_m_s: f64,
+    pub entering_pair_stiffness_n_per_m: f64,
+    /// Pinion rotation of the entering pair's first loaded position from the sweep start, deg.
+    pub first_loaded_rotation_deg: f64,
+    /// The pulse applied (0 with `engagement`), N, and its length, s.
+    pub applied_peak_n: f64,
+    pub pulse_s: f64,
+}
+
+/// Summary of one pinion × wheel blank.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LumpedSummary {
+    pub pinion_blank: Blank,
+    pub wheel_blank: Blank,
+    pub pinion_speed_rpm: f64,
+    pub mesh_frequency_hz: f64,
+    pub pinion_torque_nm: f64,
+    pub mesh_cycles: f64,
+    pub dropped_mesh_cycles: f64,
+    /// (a₁, a₂, a₃) and the levers r₁, r₂ (m).
+    pub direction_cosines: [f64; 3],
+    pub levers_m: [f64; 2],
+    pub masses_kg: [f64; 2],
+    pub inertias_kgm2: [f64; 2],
+    pub mesh_damping_ns_per_m: f64,
+    /// Tangent k(t) = dF/dδ; the secant F/δ mean beside it.
+    pub mesh_stiffness_n_per_m: SeriesSummary,
+    pub secant_mesh_stiffness_mean_n_per_m: f64,
+    /// e(t) along the normal fitted as its own series, m (reported; the
+    /// model takes e = δ − F/k from k and the loaded deflection δ).
+    pub transmission_error_m: SeriesSummary,
+    /// Loaded static deflection δ(t) = r₂θ(t), m.
+    pub loaded_deflection_m: SeriesSummary,
+    /// Natural frequencies of the linear model at the mean k, Hz (rigid mode left out).
+    pub natural_frequencies_hz: Vec<f64>,
+    pub impact: ImpactSummary,
+    /// Seed 004's `impact_force_n`: the applied pulse peak (0 with `engagement`).
+    pub impact_force_n: f64,
+    /// RMS of the fluctuating accelerations, m/s² (mesh normal: λ̈).
+    pub rms_acceleration_m_s2: Directions,
+    /// RMS of the bodies' relative acceleration along the normal, v·q̈
+    /// (λ̈ without ë: the static TE's own curvature left out), m/s².
+    pub relative_normal_acceleration_rms_m_s2: f64,
+    /// Each over the mesh normal's, %.
+    pub rms_acceleration_share_percent: Directions,
+    /// Peak-to-peak displacements, m (mesh normal: λ).
+    pub peak_to_peak_displacement_m: Directions,
+    /// Dynamic mesh force Fₙ: mean, min, max, N; max over the static F = T₁/r₁.
+    pub mesh_force_mean_n: f64,
+    pub mesh_force_min_n: f64,
+    pub mesh_force_max_n: f64,
+    pub dynamic_factor: f64,
+    /// Bearing forces X, Y, Z: RMS of the fluctuation, N.
+    pub pinion_bearing_force_rms_n: [f64; 3],
+    pub wheel_bearing_force_rms_n: [f64; 3],
+    /// Largest bearing-force spectrum lines (resultant fluctuation of both members): (mesh order, N amplitude).
+    pub bearing_force_peaks: Vec<(f64, f64)>,
+    /// Integration: accepted and rejected steps, right-hand-side evaluations, wall s.
+    pub steps: [usize; 2],
+    pub evaluations: usize,
+    pub integration_wall_s: f64,
+}

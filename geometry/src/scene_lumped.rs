@@ -1,0 +1,189 @@
+//! `[lumped]` scene section: the 8-degree-of-freedom lumped dynamic model
+//! (`solver lumped`), driven by the scene's LTCA. SI units or the unit in
+//! the field name; every field is read.
+
+use crate::error::InputError;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// How the meshing impact enters the model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ImpactModel {
+    /// No added pulse: the engagement of the entering pair acts only
+    /// through k(t) and e(t) of our contact element.
+    Engagement,
+    /// Seed 004's pulse: peak F_s = v_s √(k_s mₑ′) at the entering pair's
+    /// first loaded position, half-sine of `impact_pulse_of_mesh_period`.
+    Seed004,
+}
+
+/// Settings of the lumped run.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct LumpedSettings {
+    /// Pinion speed, rpm.
+    pub pinion_speed_rpm: f64,
+    /// Operating pinion torque, N·m (the LTCA runs at it and ±5 % for the
+    /// tangent stiffness).
+    pub pinion_torque_nm: f64,
+    /// Mesh cycles integrated, and the first ones dropped from the statistics.
+    pub mesh_cycles: f64,
+    pub dropped_mesh_cycles: f64,
+    /// Output samples per mesh cycle.
+    pub samples_per_mesh_cycle: usize,
+    /// Relative tolerance of the Dormand–Prince 5(4) steps.
+    pub relative_tolerance: f64,
+    /// Harmonic count of k(t), e(t): the fewest whose largest residual at the
+    /// LTCA positions is within this share of the samples' peak-to-peak.
+    pub fourier_tolerance_of_ptp: f64,
+    /// Mesh damping ratio ζ: cₙ = 2ζ√(kₘ mₑ).
+    pub mesh_damping_ratio: f64,
+    /// Bearing stiffness in X, Y, Z, N/m.
+    pub pinion_bearing_stiffness_n_per_m: [f64; 3],
+    pub wheel_bearing_stiffness_n_per_m: [f64; 3],
+    /// Bearing damping ratio per direction: c = 2ζ√(k m).
+    pub bearing_damping_ratio: f64,
+    /// Masses and polar moments; absent: from the reduced mesh (volume ×
+    /// density, ∫ρr²dV) in the mesh folder's manifest.
+    pub pinion_mass_kg: Option<f64>,
+    pub wheel_mass_kg: Option<f64>,
+    pub pinion_inertia_kgm2: Option<f64>,
+    pub wheel_inertia_kgm2: Option<f64>,
+    pub impact: ImpactModel,
+    /// Impact pulse length over the mesh period (seed 004: 0.05).
+    pub impact_pulse_of_mesh_period: f64,
+}
+
+impl Default for LumpedSettings {
+    fn default() -> Self {
+        Self {
+            pinion_speed_rpm: 1000.0,
+            pinion_torque_nm: 100.0,
+            mesh_cycles: 50.0,
+            dropped_mesh_cycles: 10.0,
+            samples_per_mesh_cycle: 256,
+            relative_tolerance: 1e-6,
+            fourier_tolerance_of_ptp: 0.1,
+            mesh_damping_ratio: 0.1,
+            pinion_bearing_stiffness_n_per_m: [1e9; 3],
+            wheel_bearing_stiffness_n_per_m: [1e9; 3],
+            bearing_damping_ratio: 0.05,
+            pinion_mass_kg: None,
+            wheel_mass_kg: None,
+            pinion_inertia_kgm2: None,
+            wheel_inertia_kgm2: None,
+            impact: ImpactModel::Engagement,
+            impact_pulse_of_mesh_period: 0.05,
+        }
+    }
+}
+
+impl LumpedSettings {
+    /// Checks every value against its limit; errors name field, value and limit.
+    pub fn check(&self, path: &Path) -> Result<(), InputError> {
+        let fail = |field: &str, value: String, limit: &str| InputError::Invalid {
+            path: path.to_path_buf(),
+            field: format!("lumped.{field}"),
+            value,
+            limit: limit.into(),
+        };
+        let range = |field: &str, v: f64, lo: f64, hi: f64, limit: &str| {
+            if v.is_finite() && v > lo && v <= hi {
+                Ok(())
+            } else {
+                Err(fail(field, v.to_string(), limit))
+            }
+        };
+        range(
+            "pinion_speed_rpm",
+            self.pinion_speed_rpm,
+            0.0,
+            1e5,
+            "must lie in (0, 100000]",
+        )?;
+        range(
+            "pinion_torque_nm",
+            self.pinion_torque_nm,
+            0.0,
+            1e6,
+            "must lie in (0, 1e6]",
+        )?;
+        range(
+            "mesh_cycles",
+            self.mesh_cycles,
+            0.0,
+            1e4,
+            "must lie in (0, 10000]",
+        )?;
+        if !(self.dropped_mesh_cycles >= 0.0 && self.dropped_mesh_cycles < self.mesh_cycles) {
+            return Err(fail(
+                "dropped_mesh_cycles",
+                self.dropped_mesh_cycles.to_string(),
+                "must lie in [0, mesh_cycles)",
+            ));
+        }
+        if !(16..=4096).contains(&self.samples_per_mesh_cycle) {
+            return Err(fail(
+                "samples_per_mesh_cycle",
+                self.samples_per_mesh_cycle.to_string(),
+                "must lie in [16, 4096]",
+            ));
+        }
+        range(
+            "relative_tolerance",
+            self.relative_tolerance,
+            1e-13,
+            1e-2,
+            "must lie in (1e-13, 1e-2]",
+        )?;
+        range(
+            "fourier_tolerance_of_ptp",
+            self.fourier_tolerance_of_ptp,
+            0.0,
+            1.0,
+            "must lie in (0, 1]",
+        )?;
+        for (f, v) in [
+            ("mesh_damping_ratio", self.mesh_damping_ratio),
+            ("bearing_damping_ratio", self.bearing_damping_ratio),
+        ] {
+            if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+                return Err(fail(f, v.to_string(), "must lie in [0, 1]"));
+            }
+        }
+        for (f, k) in [
+            (
+                "pinion_bearing_stiffness_n_per_m",
+                self.pinion_bearing_stiffness_n_per_m,
+            ),
+            (
+                "wheel_bearing_stiffness_n_per_m",
+                self.wheel_bearing_stiffness_n_per_m,
+            ),
+        ] {
+            if k.iter().any(|v| !(v.is_finite() && *v > 0.0 && *v <= 1e13)) {
+                return Err(fail(f, format!("{k:?}"), "each must lie in (0, 1e13]"));
+            }
+        }
+        for (f, v) in [
+            ("pinion_mass_kg", self.pinion_mass_kg),
+            ("wheel_mass_kg", self.wheel_mass_kg),
+            ("pinion_inertia_kgm2", self.pinion_inertia_kgm2),
+            ("wheel_inertia_kgm2", self.wheel_inertia_kgm2),
+        ] {
+            if let Some(v) = v {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(fail(f, v.to_string(), "must be finite and > 0"));
+                }
+            }
+        }
+        range(
+            "impact_pulse_of_mesh_period",
+            self.impact_pulse_of_mesh_period,
+            0.0,
+            0.5,
+            "must lie in (0, 0.5]",
+        )
+    }
+}

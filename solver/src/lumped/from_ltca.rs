@@ -1,0 +1,175 @@
+//! Mesh stiffness k(t) and static transmission error e(t) of the 8-DOF
+//! model from our quasi-static LTCA at the operating torque.
+//!
+//! Stiffness: the tangent k = dF/dδ of the loaded mesh, not the secant F/δ
+//! (seed 004's "ratio of the applied load to the resulting deflection").
+//! The dynamic model moves about the loaded static state, and a small
+//! motion there meets the slope of the load–deflection curve; the Hertzian
+//! (Weber–Banaschek) flattening and the growing contact area make that
+//! curve stiffen with load, so F/δ underestimates the stiffness the
+//! vibration sees. The tangent is the central difference over pinion
+//! torques T(1 ± ε) at every position (the contact problem is solved
+//! exactly at each, active set included):
+//!
+//! ```text
+//! κ = dT₁/dθ ≈ 2εT / (θ(T(1+ε)) − θ(T(1−ε)))     (N·m/rad, θ the wheel lag)
+//! k = κ / (r₁ r₂)                                    (N/m along the normal)
+//! ```
+//!
+//! with F = T₁/r₁ and δ = r₂θ. Transmission error: with the tangent, the
+//! mesh force of the model is F = k(λ − e) about the loaded state, so e(t)
+//! is the tangent's intercept
+//!
+//! ```text
+//! e = r₂ θ(T) − (T/r₁)/k
+//! ```
+//!
+//! which makes the model's quasi-static deflection at torque T equal the
+//! LTCA's loaded TE at every position (with the secant instead, e is the
+//! unloaded TE and k = T/(r₁r₂(θ − θ₀))). Levers: r₁ = T / ΣFₙ and
+//! r₂ = T₂ / ΣFₙ, the mean over the positions of our contact solution's
+//! own torque per total normal force (pinion and wheel).
+
+use super::excitation::{fit_to_tolerance, FittedSeries};
+use super::LumpedError;
+use crate::ltca::PositionResult;
+use serde::Serialize;
+
+/// The relative torque step ε of the tangent.
+pub const TANGENT_STEP: f64 = 0.05;
+
+/// The torques to run the LTCA at for [`mesh_samples`]: T(1 − ε), T, T(1 + ε).
+pub fn tangent_torques(torque_nm: f64) -> [f64; 3] {
+    [
+        torque_nm * (1.0 - TANGENT_STEP),
+        torque_nm,
+        torque_nm * (1.0 + TANGENT_STEP),
+    ]
+}
+
+/// The mesh over one mesh cycle, one entry per LTCA position.
+#[derive(Debug, Clone, Serialize)]
+pub struct MeshSamples {
+    /// Time from the sweep start at the pinion speed, s.
+    pub time_s: Vec<f64>,
+    /// Tangent k, N/m.
+    pub tangent_n_per_m: Vec<f64>,
+    /// Secant F/(δ − δ₀), N/m (for comparison; δ₀ the unloaded TE).
+    pub secant_n_per_m: Vec<f64>,
+    /// e (intercept of the tangent), m along the normal.
+    pub te_m: Vec<f64>,
+    /// Loaded static deflection r₂θ(T), m along the normal.
+    pub deflection_m: Vec<f64>,
+    /// LTCA loaded TE θ(T), rad (wheel lag).
+    pub loaded_te_rad: Vec<f64>,
+    /// LTCA unloaded TE, rad.
+    pub unloaded_te_rad: Vec<f64>,
+    /// Levers r₁, r₂, m.
+    pub levers_m: [f64; 2],
+    /// Mesh period, s.
+    pub period_s: f64,
+    pub torque_nm: f64,
+}
+
+/// Samples from an LTCA run at [`tangent_torques`]`(torque_nm)`, the
+/// pinion turning at `pinion_speed_rad_s`; `mesh_cycle_rad` = 2π/z₁.
+/// Positions at or past one mesh cycle from the first are left out (the
+/// series is periodic).
+pub fn mesh_samples(
+    res: &[PositionResult],
+    torque_nm: f64,
+    pinion_speed_rad_s: f64,
+    mesh_cycle_rad: f64,
+) -> Result<MeshSamples, LumpedError> {
+    super::model::positive("torque", torque_nm, false)?;
+    super::model::positive("pinion speed", pinion_speed_rad_s, false)?;
+    let torques = tangent_torques(torque_nm);
+    let mut s = MeshSamples {
+        time_s: Vec::new(),
+        tangent_n_per_m: Vec::new(),
+        secant_n_per_m: Vec::new(),
+        te_m: Vec::new(),
+        deflection_m: Vec::new(),
+        loaded_te_rad: Vec::new(),
+        unloaded_te_rad: Vec::new(),
+        levers_m: [0.0; 2],
+        period_s: mesh_cycle_rad / pinion_speed_rad_s,
+        torque_nm,
+    };
+    let keep: Vec<&PositionResult> = res
+        .iter()
+        .filter(|p| p.rotation < mesh_cycle_rad * (1.0 - 1e-9))
+        .collect();
+    if keep.len() < 3 {
+        return Err(LumpedError::Input(format!(
+            "LTCA: {} positions inside one mesh cycle, need ≥ 3",
+            keep.len()
+        )));
+    }
+    let mut levers = [0.0; 2];
+    for p in &keep {
+        if p.loads.len() != 3 {
+            return Err(LumpedError::Input(format!(
+                "LTCA position at {} rad has {} torques, needs the 3 of tangent_torques",
+                p.rotation,
+                p.loads.len()
+            )));
+        }
+        let total: f64 = p.loads[1].pair_force.iter().map(|f| f.1).sum();
+        if total.is_nan() || total <= 0.0 {
+            return Err(LumpedError::Input(format!(
+                "LTCA position at {} rad carries no normal force",
+                p.rotation
+            )));
+        }
+        levers[0] += torque_nm / total;
+        levers[1] += p.loads[1].wheel_torque_nm / total;
+    }
+    let r = levers.map(|l| l / keep.len() as f64);
+    s.levers_m = r;
+    for p in &keep {
+        let dtheta = p.loads[2].te - p.loads[0].te;
+        if dtheta.is_nan() || dtheta <= 0.0 {
+            return Err(LumpedError::Input(format!(
+                "LTCA position at {} rad: loaded TE does not grow with torque ({} rad from {} to {} N·m)",
+                p.rotation, dtheta, torques[0], torques[2]
+            )));
+        }
+        let kappa = (torques[2] - torques[0]) / dtheta;
+        let k = kappa / (r[0] * r[1]);
+        let theta = p.loads[1].te;
+        s.time_s.push(p.rotation / pinion_speed_rad_s);
+        s.tangent_n_per_m.push(k);
+        s.secant_n_per_m
+            .push(p.loads[1].mesh_stiffness / (r[0] * r[1]));
+        s.te_m.push(r[1] * theta - torque_nm / r[0] / k);
+        s.deflection_m.push(r[1] * theta);
+        s.loaded_te_rad.push(theta);
+        s.unloaded_te_rad.push(p.utca_te);
+    }
+    Ok(s)
+}
+
+/// k(t), e(t) and the loaded deflection δ(t) = r₂θ(t) fitted to
+/// `samples`, each with the fewest harmonics whose largest residual is
+/// ≤ `tolerance` × its samples' peak-to-peak. The model takes k and δ
+/// ([`super::excitation::StaticError::LoadedDeflection`]): e = δ − F/k
+/// inherits the position-to-position jitter of the tangent k (F/k is some
+/// 30 times the TE's peak-to-peak), δ does not.
+pub fn fit_series(samples: &MeshSamples, tolerance: f64) -> Result<[FittedSeries; 3], LumpedError> {
+    Ok([
+        fit_to_tolerance(
+            &samples.time_s,
+            &samples.tangent_n_per_m,
+            samples.period_s,
+            tolerance,
+        )?,
+        fit_to_tolerance(&samples.time_s, &samples.te_m, samples.period_s, tolerance)?,
+        fit_to_tolerance(
+            &samples.time_s,
+            &samples.deflection_m,
+            samples.period_s,
+            tolerance,
+        )?,
+    ])
+}
