@@ -16,6 +16,7 @@ pub mod compliance;
 pub mod contact_problem;
 pub mod cpu_clock;
 pub mod dynamic_stage;
+pub mod impact_law;
 pub mod interp;
 pub mod ltca;
 pub mod ltca_stage;
