@@ -207,11 +207,11 @@ pub fn build(
                         &nalgebra::Vector3::from(s.normal),
                         g.phi + s.pair as f64 * tau,
                     );
-                    for i in 0..3 {
-                        f[i] += p.force * n[i];
+                    for (fi, ni) in f.iter_mut().zip(n.iter()) {
+                        *fi += p.force * ni;
                     }
-                    for i in 0..2 {
-                        phi_f[i] += p.force * s.friction_lever[i];
+                    for (pf, l) in phi_f.iter_mut().zip(s.friction_lever) {
+                        *pf += p.force * l;
                     }
                     let w = law.damping_weight(p.delta).0;
                     a[0] += w * s.lever_pinion * s.lever_wheel;

@@ -180,7 +180,7 @@ pub fn run(
     let mut csv = String::from(
         "time_s,pinion_speed_deg_s,wheel_speed_deg_s,wheel_speed_kinematic_deg_s,te_urad,wheel_mesh_torque_nm,tangential_force_n,mesh_force_n\n",
     );
-    for k in 0..tr.t.len() {
+    for (k, ftk) in ft.iter().enumerate() {
         let _ = writeln!(
             csv,
             "{:.7},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
@@ -190,7 +190,7 @@ pub fn run(
             deg(r * tr.w1[k]),
             tr.te[k] * 1e6,
             tr.wheel_torque[k],
-            ft[k],
+            ftk,
             tr.force[k]
         );
     }

@@ -406,10 +406,11 @@ impl Model<'_> {
             d[0][1] -= c * a[0];
             d[1][0] -= c * a[1] * r;
             d[1][1] += c * a[1];
-            for j in 0..2 {
-                k[0][j] += c * rate * is.damping_grad[0][j];
-                k[1][j] -= c * rate * is.damping_grad[1][j];
-            }
+            let g = is.damping_grad;
+            *k = [
+                [k[0][0] + c * rate * g[0][0], k[0][1] + c * rate * g[0][1]],
+                [k[1][0] - c * rate * g[1][0], k[1][1] - c * rate * g[1][1]],
+            ];
         }
         if let Some(fr) = imp.friction {
             let (phi, dphi) = self.table.friction_state(q[0], q[1])?;
