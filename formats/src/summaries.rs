@@ -184,6 +184,11 @@ pub struct LoadRunSummary {
     /// Wheel mesh torque: time mean against the load (relative difference).
     pub wheel_mesh_torque_mean_nm: f64,
     pub torque_balance_error: f64,
+    /// Pinion mesh torque (time mean, N·m) and the mesh efficiency
+    /// mean(T₂ ω₂) / mean(T₁ ω₁) over the window (1 without friction and
+    /// damping losses).
+    pub pinion_mesh_torque_mean_nm: f64,
+    pub mesh_efficiency: f64,
     /// Tangential force at the wheel's outer pitch circle (mesh torque /
     /// outer pitch radius): mean, 2T/d, relative difference, mean and
     /// largest |F_t − mean|, N.

@@ -29,6 +29,7 @@ pub struct LoadTrace {
     pub w2: Vec<f64>,
     pub te: Vec<f64>,
     pub wheel_torque: Vec<f64>,
+    pub pinion_torque: Vec<f64>,
     pub force: Vec<f64>,
 }
 
@@ -65,6 +66,7 @@ pub fn simulate(
         tr.w2.push(s.v[1]);
         tr.te.push(r * s.q[0] - s.q[1]);
         tr.wheel_torque.push(c.force[1]);
+        tr.pinion_torque.push(-c.force[0]);
         tr.force
             .push((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt());
         Ok(())
@@ -158,6 +160,12 @@ pub fn run(
     let w2_mean = time_mean(&tr.t, &tr.w2, w.from, w.to);
     let (w2_fl_mean, w2_fl_max) = fluctuation(&tr.t, &tr.w2, kinematic, w.from, w.to);
     let torque_mean = time_mean(&tr.t, &tr.wheel_torque, w.from, w.to);
+    let pinion_mean = time_mean(&tr.t, &tr.pinion_torque, w.from, w.to);
+    let power = |tq: &[f64], sp: &[f64]| -> f64 {
+        let p: Vec<f64> = tq.iter().zip(sp).map(|(a, b)| a * b).collect();
+        time_mean(&tr.t, &p, w.from, w.to)
+    };
+    let efficiency = power(&tr.wheel_torque, &tr.w2) / power(&tr.pinion_torque, &tr.w1);
     let load = run.wheel_torque_nm;
     // Outer pitch radius of the wheel (the seeds' d/2), and the mean point's.
     let whl = &pair.members[1];
@@ -227,7 +235,7 @@ pub fn run(
         ],
     )?;
     eprintln!(
-        "  load run ({label}): {steps} steps ({} rejected), {:.1} µs/step; wheel {:.3} deg/s vs {:.3} kinematic, torque {:.3} vs {load} N·m, |F| mean {:.0} N max {:.0} N",
+        "  load run ({label}): {steps} steps ({} rejected), {:.1} µs/step; wheel {:.3} deg/s vs {:.3} kinematic, torque {:.3} vs {load} N·m, efficiency {efficiency:.5}, |F| mean {:.0} N max {:.0} N",
         integ.rejected,
         cpu / steps.max(1) as f64 * 1e6,
         deg(w2_mean),
@@ -259,6 +267,8 @@ pub fn run(
         } else {
             torque_mean
         },
+        pinion_mesh_torque_mean_nm: pinion_mean,
+        mesh_efficiency: efficiency,
         tangential_force_mean_n: ft_mean,
         tangential_force_theory_n: load / r_outer,
         tangential_force_error: if load > 0.0 {
