@@ -22,6 +22,10 @@
 //!   gradient of V (Itoh & Abe 1988): without damping, kinetic energy + V −
 //!   work of the torques is constant to the Newton tolerance.
 //!
+//! With an impact-law table ([`crate::impact_table`]) V is that law's
+//! stiffness term on the same grid; its damping and speed-dependent friction
+//! replace c s(u) θ̇ and μ σ(q̇₁) Φ ([`Model::contact`]).
+//!
 //! Step control: the difference between the step's θ and its explicit
 //! Taylor predictor estimates the local error; steps above the tolerance
 //! are retried with a smaller step, and the step never exceeds the maximum.

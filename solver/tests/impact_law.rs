@@ -118,6 +118,10 @@ fn undamped_hertz_impact_of_two_masses_matches_johnsons_contact_time_and_peak_fo
     // Johnson's number for e = 3/2: t_c = 2.9432 δ_m / v₀.
     assert!((closed.contact_time * 0.5 / closed.max_penetration - 2.9432).abs() < 1e-4);
     let (tc, peak, exit, _) = collide(&law, m, v, 4000.0);
+    eprintln!(
+        "t_c {tc:.6e} s (closed {:.6e}), peak {peak:.6e} N (closed {:.6e}), exit speed {exit}",
+        closed.contact_time, closed.peak_force
+    );
     assert!(
         (tc / closed.contact_time - 1.0).abs() < 1e-5,
         "t_c {tc} vs {closed:?}"
@@ -160,16 +164,15 @@ fn restitution_falls_monotonically_with_damping_and_matches_its_first_order_esti
         let (_, _, exit, _) = collide(&law, m, v, 4000.0);
         let eps = exit / v[0];
         let est = restitution_estimate(&law, mass, v[0]);
+        eprintln!("C = {c} N·s/m: restitution {eps:.6}, first-order estimate {est:.6}");
         assert!(eps < last, "C = {c}: ε = {eps} after {last}");
         last = eps;
-        // First order in C: the estimate's error grows as (1 − ε)².
+        // First order in C: the estimate's error is second order, below
+        // 1.5 (1 − ε)² (measured 1.1 (1 − ε)² at most, at C = 300 N·s/m:
+        // ε = 0.95062 against 0.94801).
         let loss = 1.0 - eps;
         assert!(
-            (eps - est).abs() < 0.05 * loss + 2.0 * loss * loss,
-            "C = {c}: ε = {eps}, estimate {est}"
-        );
-        assert!(
-            (eps - est).abs() < 0.1 * loss,
+            (eps - est).abs() < 1.5 * loss * loss + 1e-6,
             "C = {c}: ε = {eps}, estimate {est}"
         );
     }
