@@ -79,17 +79,18 @@ fn pairs_at(g: &Geometry, law: &ImpactLaw, theta: f64) -> Vec<PairContact> {
     out
 }
 
-/// Pinion torque of the law at lag θ, N·m.
-fn torque_at(g: &Geometry, law: &ImpactLaw, theta: f64) -> f64 {
+/// Pinion torque of the law at lag θ at the position of `g`, N·m:
+/// Σⱼ λ₁ₖ* K δⱼ^e (what the table holds at its nodes).
+pub fn torque_at(g: &Geometry, law: &ImpactLaw, theta: f64) -> f64 {
     pairs_at(g, law, theta)
         .iter()
         .map(|p| g.slices[p.slice].lever_pinion * p.force)
         .sum()
 }
 
-/// Lag at which the law carries `torque` at this position (bisection; the
-/// torque rises monotonically with θ).
-fn lag_for(g: &Geometry, law: &ImpactLaw, torque: f64) -> Result<f64, SolverError> {
+/// Lag at which the law carries `torque` at the position of `g`
+/// (bisection; the torque rises monotonically with θ), rad.
+pub fn lag_for(g: &Geometry, law: &ImpactLaw, torque: f64) -> Result<f64, SolverError> {
     let lo0 = g.utca_te;
     let mut hi = lo0 + 1e-6;
     let mut n = 0;
