@@ -1,7 +1,8 @@
 //! The imposed-speed load run of seeds 001 and 002: the pinion at an
 //! imposed (ramped) speed, the wheel free under a resisting torque that
-//! rises by the cubic STEP; writes `load_run.csv`, `load_run_speed.svg`
-//! and `load_run_force.svg`, and summarises the steady window over whole
+//! rises by the cubic STEP; writes `load_run.csv`, `load_run_speed.svg`,
+//! `load_run_torque.svg` and `load_run_force.svg` (the seeds' figures of
+//! speeds, wheel torque and meshing force), and summarises the steady window over whole
 //! mesh cycles: mean wheel speed against the kinematic ratio, mean wheel
 //! mesh torque against the load (torque balance), tangential force at the
 //! outer pitch circle against 2T/d, meshing force, fluctuation amplitudes,
@@ -120,6 +121,44 @@ pub fn time_mean(t: &[f64], y: &[f64], a: f64, b: f64) -> f64 {
     area / (b - a)
 }
 
+/// Buckets of a chart's time axis: each keeps its samples' minimum and
+/// maximum (in time order), so the peaks survive.
+const CHART_BUCKETS: usize = 4000;
+
+/// The min/max envelope of y(t) over `buckets` equal time buckets (the
+/// samples themselves when there are fewer than two per bucket).
+pub fn envelope(t: &[f64], y: &[f64], buckets: usize) -> (Vec<f64>, Vec<f64>) {
+    if t.len() <= 2 * buckets || t.len() < 2 {
+        return (t.to_vec(), y.to_vec());
+    }
+    let (t0, t1) = (t[0], t[t.len() - 1]);
+    let width = (t1 - t0) / buckets as f64;
+    let (mut x_out, mut y_out) = (Vec::new(), Vec::new());
+    let mut k = 0;
+    while k < t.len() {
+        let b = (((t[k] - t0) / width) as usize).min(buckets - 1);
+        let mut end = k;
+        while end < t.len() && (((t[end] - t0) / width) as usize).min(buckets - 1) == b {
+            end += 1;
+        }
+        let (mut lo, mut hi) = (k, k);
+        for i in k..end {
+            if y[i] < y[lo] {
+                lo = i;
+            }
+            if y[i] > y[hi] {
+                hi = i;
+            }
+        }
+        for i in if lo <= hi { [lo, hi] } else { [hi, lo] } {
+            x_out.push(t[i]);
+            y_out.push(y[i]);
+        }
+        k = end;
+    }
+    (x_out, y_out)
+}
+
 /// Mean and largest |y − reference| over the samples in [a, b].
 fn fluctuation(t: &[f64], y: &[f64], reference: f64, a: f64, b: f64) -> (f64, f64) {
     let d: Vec<f64> = t
@@ -188,7 +227,14 @@ pub fn run(
     let mut csv = String::from(
         "time_s,pinion_speed_deg_s,wheel_speed_deg_s,wheel_speed_kinematic_deg_s,te_urad,wheel_mesh_torque_nm,tangential_force_n,mesh_force_n\n",
     );
+    // Rows at most every max_step_s (the step control halves steps where
+    // the contact changes; the summary uses every step).
+    let mut next = f64::NEG_INFINITY;
     for (k, ftk) in ft.iter().enumerate() {
+        if tr.t[k] < next && k + 1 < ft.len() {
+            continue;
+        }
+        next = tr.t[k] + run.max_step_s * (1.0 - 1e-9);
         let _ = writeln!(
             csv,
             "{:.7},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
@@ -203,11 +249,14 @@ pub fn run(
         );
     }
     write_atomic(&odir.join("load_run.csv"), csv.as_bytes())?;
-    let series = |name: &str, y: Vec<f64>, dashed: bool| Series {
-        name: name.into(),
-        x: tr.t.clone(),
-        y,
-        dashed,
+    let series = |name: &str, y: Vec<f64>, dashed: bool| {
+        let (x, y) = envelope(&tr.t, &y, CHART_BUCKETS);
+        Series {
+            name: name.into(),
+            x,
+            y,
+            dashed,
+        }
     };
     te_curve(
         &odir.join("load_run_speed.svg"),
@@ -222,6 +271,17 @@ pub fn run(
                 tr.w1.iter().map(|x| deg(r * x)).collect(),
                 true,
             ),
+        ],
+    )?;
+    let applied: Vec<f64> = tr.t.iter().map(|&t| -m.drive.torques(t)[1]).collect();
+    te_curve(
+        &odir.join("load_run_torque.svg"),
+        &format!("{label}: wheel mesh torque and applied load"),
+        "time (s)",
+        "torque (N·m)",
+        &[
+            series("wheel mesh torque", tr.wheel_torque.clone(), false),
+            series("applied load", applied, true),
         ],
     )?;
     te_curve(
@@ -294,5 +354,30 @@ impl Window {
                 run.steady_from_s, run.time_s
             )
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn envelope_keeps_each_buckets_extremes_in_time_order() {
+        let t: Vec<f64> = (0..10_000).map(|k| k as f64 * 1e-4).collect();
+        let mut y: Vec<f64> = t.iter().map(|x| (50.0 * x).sin()).collect();
+        y[4321] = 7.0;
+        y[8765] = -9.0;
+        let (x, v) = envelope(&t, &y, 100);
+        assert!(x.len() <= 200 && x.windows(2).all(|w| w[1] > w[0]));
+        assert!(v.contains(&7.0) && v.contains(&-9.0));
+        // Few samples: unchanged.
+        assert_eq!(envelope(&t[..150], &y[..150], 100).0, t[..150].to_vec());
+    }
+
+    #[test]
+    fn time_mean_of_a_line_is_its_midpoint_value() {
+        let t = [0.0, 0.1, 0.35, 0.4, 1.0];
+        let y: Vec<f64> = t.iter().map(|x| 2.0 + 3.0 * x).collect();
+        assert!((time_mean(&t, &y, 0.05, 0.9) - (2.0 + 3.0 * 0.475)).abs() < 1e-12);
     }
 }

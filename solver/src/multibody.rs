@@ -139,7 +139,7 @@ impl Drive {
     }
 
     /// External generalized forces on (q₁, q₂) at time t.
-    pub(crate) fn torques(&self, t: f64) -> [f64; 2] {
+    pub fn torques(&self, t: f64) -> [f64; 2] {
         match *self {
             Drive::PinionSpeedLoadStep {
                 wheel_torque,
