@@ -87,9 +87,10 @@ pub struct MeshTable {
 pub struct ImpactFields {
     pub law: ImpactLaw,
     pub friction: Option<Friction>,
-    /// Damping levers (Σ w λ₁ λ₂, Σ w λ₂²), m²/rad: generalized damping
-    /// forces −C θ̇ A₁ on q₁ and +C θ̇ A₂ on q₂.
-    pub damping: Vec<[f64; 2]>,
+    /// Damping levers A = (Σ w λ₁ λ₂, Σ w λ₂²) and E = (Σ w λ₁ ε,
+    /// Σ w λ₂ ε), ε = λ₁ − r λ₂, m²: generalized damping forces
+    /// −C (A₁ θ̇ + E₁ q̇₁) on q₁ and +C (A₂ θ̇ + E₂ q̇₁) on q₂.
+    pub damping: Vec<[f64; 4]>,
     /// Force-weighted mean slip speed per unit pinion speed, m/rad.
     pub slip: Vec<f64>,
 }
@@ -97,9 +98,9 @@ pub struct ImpactFields {
 /// The impact law's non-conservative fields at (q₁, q₂).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ImpactState {
-    /// Damping levers A and ∂Aᵢ/∂q_j.
-    pub damping: [f64; 2],
-    pub damping_grad: [[f64; 2]; 2],
+    /// Damping levers (A₁, A₂, E₁, E₂) and their derivatives ∂/∂q_j.
+    pub damping: [f64; 4],
+    pub damping_grad: [[f64; 2]; 4],
     /// Mean slip speed per unit pinion speed, m/rad.
     pub slip: f64,
 }
@@ -552,9 +553,10 @@ impl MeshTable {
             return Ok(Some(out));
         }
         let nu = self.spec.lag_nodes;
-        for i in 0..2 {
+        for i in 0..4 {
             let [f, fq, ft, ..] = self.field(|p, m| imp.damping[p * nu + m][i], q1, theta)?;
-            out.damping[i] = f.max(0.0);
+            // A ≥ 0 (Hermite overshoot clipped); E takes either sign.
+            out.damping[i] = if i < 2 { f.max(0.0) } else { f };
             out.damping_grad[i] = [fq + r * ft, -ft];
         }
         out.slip = self.field(|p, m| imp.slip[p * nu + m], q1, theta)?[0].max(0.0);

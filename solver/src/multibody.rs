@@ -373,7 +373,8 @@ impl Model<'_> {
 
     /// The impact law's damping and friction ([`crate::impact_table`]),
     /// added to the generalized forces `q_c` with their tangents: damping
-    /// −C θ̇ A₁ on q₁ and +C θ̇ A₂ on q₂, the law's zero clamp on the mesh
+    /// −C (A₁ θ̇ + E₁ q̇₁) on q₁ and +C (A₂ θ̇ + E₂ q̇₁) on q₂ (the normal
+    /// approach speed at each pair's deepest point), the law's zero clamp on the mesh
     /// total (where the damping would pull the pinion, the mesh force is
     /// zero: forces and tangents vanish); friction −μ_e Φ₁ on q₁, +μ_e Φ₂
     /// on q₂ with μ_e = sgn(q̇₁) μ(ḡ |q̇₁|) (ḡ the mean slip speed per unit
@@ -395,7 +396,8 @@ impl Model<'_> {
         let r = self.table.ratio;
         let c = imp.law.damping;
         let rate = r * v[0] - v[1];
-        let pinion_damping = c * rate * is.damping[0];
+        let [a1, a2, e1, e2] = is.damping;
+        let pinion_damping = c * (a1 * rate + e1 * v[0]);
         if ms.grad[0] - pinion_damping < 0.0 && ms.grad[0] > 0.0 {
             *q_c = [0.0; 2];
             *k = [[0.0; 2]; 2];
@@ -404,16 +406,16 @@ impl Model<'_> {
         }
         if ms.grad[0] > 0.0 {
             q_c[0] -= pinion_damping;
-            q_c[1] += c * rate * is.damping[1];
-            let a = is.damping;
-            d[0][0] += c * a[0] * r;
-            d[0][1] -= c * a[0];
-            d[1][0] -= c * a[1] * r;
-            d[1][1] += c * a[1];
+            q_c[1] += c * (a2 * rate + e2 * v[0]);
+            d[0][0] += c * (a1 * r + e1);
+            d[0][1] -= c * a1;
+            d[1][0] -= c * (a2 * r + e2);
+            d[1][1] += c * a2;
             let g = is.damping_grad;
+            let dq = |j: usize, a: usize, e: usize| c * (rate * g[a][j] + v[0] * g[e][j]);
             *k = [
-                [k[0][0] + c * rate * g[0][0], k[0][1] + c * rate * g[0][1]],
-                [k[1][0] - c * rate * g[1][0], k[1][1] - c * rate * g[1][1]],
+                [k[0][0] + dq(0, 0, 2), k[0][1] + dq(1, 0, 2)],
+                [k[1][0] - dq(0, 1, 3), k[1][1] - dq(1, 1, 3)],
             ];
         }
         if let Some(fr) = imp.friction {
