@@ -352,3 +352,45 @@ fn impact_law_table_reproduces_the_law_between_its_nodes() {
     );
     assert!(worst < 0.02, "relative error {worst:e} at {at:?}");
 }
+
+#[test]
+fn impact_law_damping_and_friction_never_feed_power_into_the_mesh() {
+    // Seed 001's damping and friction, with the pair's own Hertz K.
+    let f = fixture(&ImpactSettings {
+        damping_n_s_per_mm: 100.0,
+        static_friction: 0.5,
+        dynamic_friction: 0.3,
+        ..ImpactSettings::default()
+    });
+    let m = Model {
+        table: &f.impact,
+        coast: None,
+        inertia: f.inertia,
+        damping: 0.0,
+        friction: 0.0,
+        drive: solver::multibody::Drive::Free {
+            pinion_torque: 300.0,
+            wheel_torque: 300.0 / f.ratio,
+        },
+    };
+    let (mut worst, mut dissipated) = (f64::NEG_INFINITY, 0usize);
+    for k in 0..4 * f.spec.positions {
+        let q1 = k as f64 * 0.25 * f.spec.step;
+        let theta = m.static_lag(q1).unwrap();
+        for w1 in [0.5, 5.0, 50.0, -5.0] {
+            for lag_rate in [-2e-3, 0.0, 2e-3] {
+                let v = [w1, f.ratio * w1 - lag_rate * w1.abs()];
+                let c = m.contact([q1, f.ratio * q1 - theta], v).unwrap();
+                // Power of everything but the potential's forces.
+                let p: f64 = (0..2).map(|i| (c.force[i] + c.mesh.grad[i]) * v[i]).sum();
+                worst = worst.max(p);
+                if p < 0.0 {
+                    dissipated += 1;
+                }
+            }
+        }
+    }
+    eprintln!("largest non-conservative power {worst:.3e} W; {dissipated} states dissipate");
+    assert!(worst <= 1e-9, "non-conservative power {worst:e} W");
+    assert!(dissipated > 0);
+}
