@@ -122,7 +122,89 @@ pub struct DynamicSummary {
     pub backlash_urad: Option<f64>,
     pub free_play_urad: Option<[f64; 2]>,
     pub rattle: Option<RattleSummary>,
+    /// The contact's force law, "element" or "impact", and the impact
+    /// law's parameters when it is used.
+    #[serde(default = "element_law")]
+    pub force_law: String,
+    #[serde(default)]
+    pub impact_law: Option<ImpactLawSummary>,
+    /// The imposed-speed load run (seeds 001/002), when the scene has one.
+    #[serde(default)]
+    pub load_run: Option<LoadRunSummary>,
     pub dir: PathBuf,
+}
+
+fn element_law() -> String {
+    "element".into()
+}
+
+/// The impact law's parameters as used (seeds' mm-based units), and the
+/// Hertz stiffness of the pair for comparison.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ImpactLawSummary {
+    /// K (N/mm^e), and where it comes from ("scene" or "hertz").
+    pub stiffness_n_per_mm_e: f64,
+    pub stiffness_source: String,
+    /// 4/3 √R E* (N/mm^1.5) with R from the outer pitch radii (mm).
+    pub hertz_stiffness_n_per_mm_1_5: f64,
+    pub hertz_radii_mm: [f64; 2],
+    pub exponent: f64,
+    pub damping_n_s_per_mm: f64,
+    pub penetration_depth_mm: f64,
+    pub static_friction: f64,
+    pub dynamic_friction: f64,
+    pub stiction_speed_mm_s: f64,
+    pub friction_transition_speed_mm_s: f64,
+}
+
+/// The imposed-speed load run: drive, cost, and the means and
+/// fluctuations over whole mesh cycles of its steady window.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LoadRunSummary {
+    pub pinion_rpm: f64,
+    pub pinion_ramp_s: f64,
+    pub wheel_torque_nm: f64,
+    pub wheel_torque_rise_s: f64,
+    pub sim_time_s: f64,
+    pub steps: usize,
+    pub rejected_steps: usize,
+    pub cpu_s: f64,
+    pub cpu_s_per_step: f64,
+    /// Steady window [from, to] (s), trimmed to whole mesh cycles, and
+    /// the mesh cycles it holds.
+    pub window_s: [f64; 2],
+    pub window_mesh_cycles: usize,
+    /// Wheel speed: time mean, kinematic value (pinion speed × z₁/z₂), the
+    /// relative difference, and the mean and largest |ω₂ − kinematic|, °/s.
+    pub wheel_speed_mean_deg_s: f64,
+    pub wheel_speed_kinematic_deg_s: f64,
+    pub wheel_speed_error: f64,
+    pub wheel_speed_fluctuation_mean_deg_s: f64,
+    pub wheel_speed_fluctuation_max_deg_s: f64,
+    /// Wheel mesh torque: time mean against the load (relative difference).
+    pub wheel_mesh_torque_mean_nm: f64,
+    pub torque_balance_error: f64,
+    /// Pinion mesh torque (time mean, N·m) and the mesh efficiency
+    /// mean(T₂ ω₂) / mean(T₁ ω₁) over the window (1 without friction and
+    /// damping losses).
+    pub pinion_mesh_torque_mean_nm: f64,
+    pub mesh_efficiency: f64,
+    /// Tangential force at the wheel's outer pitch circle (mesh torque /
+    /// outer pitch radius): mean, 2T/d, relative difference, mean and
+    /// largest |F_t − mean|, N.
+    pub tangential_force_mean_n: f64,
+    pub tangential_force_theory_n: f64,
+    pub tangential_force_error: f64,
+    pub tangential_force_fluctuation_mean_n: f64,
+    pub tangential_force_fluctuation_max_n: f64,
+    /// Meshing (contact) force magnitude: mean, peak, and the normal force
+    /// at the mean point T / (r_m cos α_n cos β_m), N.
+    pub mesh_force_mean_n: f64,
+    pub mesh_force_max_n: f64,
+    pub mesh_force_theory_n: f64,
+    /// TE mean and peak-to-peak over the window, µrad.
+    pub te_mean_urad: f64,
+    pub te_ptp_urad: f64,
 }
 
 /// The rattle run: fluctuating pinion speed, free wheel.

@@ -21,6 +21,7 @@ pub mod pair;
 pub mod placement;
 pub mod scene;
 pub mod scene_checks;
+pub mod scene_contact_law;
 pub mod scene_lumped;
 pub mod teeth;
 pub mod utca;

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 pub use crate::gear_body::Blank;
+pub use crate::scene_contact_law::{ForceLaw, ImpactSettings, LoadRun};
 
 /// Top level of a scene file.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -95,6 +96,13 @@ pub struct MultibodySettings {
     pub rattle_wheel_drag_nm: f64,
     pub rattle_time_s: f64,
     pub rattle_max_step_s: f64,
+    /// The contact's force law: "element" (the FE-analytical element) or
+    /// "impact" (the impact function of seeds 001/002, `[multibody.impact]`).
+    pub force_law: ForceLaw,
+    pub impact: ImpactSettings,
+    /// Imposed-speed run under a wheel load (`[multibody.load_run]`; none
+    /// when absent).
+    pub load_run: Option<LoadRun>,
 }
 
 impl Default for MultibodySettings {
@@ -122,6 +130,9 @@ impl Default for MultibodySettings {
             rattle_wheel_drag_nm: 0.0,
             rattle_time_s: 0.0,
             rattle_max_step_s: 1e-5,
+            force_law: ForceLaw::Element,
+            impact: ImpactSettings::default(),
+            load_run: None,
         }
     }
 }
@@ -141,6 +152,9 @@ impl Scene {
             }
             if mb.coast_contact && mb.rattle_time_s > 0.0 {
                 cycles = cycles.max(mb.rattle_rotation() / mesh_cycle_rad + 1.0);
+            }
+            if let Some(run) = &mb.load_run {
+                cycles = cycles.max(run.rotation() / mesh_cycle_rad + 1.0);
             }
             cycles
         } else {

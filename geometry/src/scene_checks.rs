@@ -293,6 +293,12 @@ impl Scene {
                 return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
             }
         }
+        if mb.force_law == crate::scene::ForceLaw::Impact {
+            mb.impact.check(path, mb.coast_contact)?;
+        }
+        if let Some(run) = &mb.load_run {
+            run.check(path)?;
+        }
         if mb.rattle_time_s > 0.0 && !mb.coast_contact {
             return Err(fail(
                 "multibody.rattle_time_s",
@@ -398,6 +404,9 @@ impl Scene {
             }
             if mb.coast_contact && mb.rattle_time_s > 0.0 {
                 rotation = rotation.max(mb.rattle_rotation());
+            }
+            if let Some(run) = &mb.load_run {
+                rotation = rotation.max(run.rotation());
             }
             let n = rotation / mb.table_step_deg.to_radians() + 1.0;
             if n > MAX_POSITIONS {

@@ -55,3 +55,83 @@ fn rattle_without_coast_contact_or_with_a_fluctuation_beyond_1_is_rejected() {
         "{e}"
     );
 }
+
+#[test]
+fn impact_law_settings_out_of_range_or_unknown_are_rejected_naming_the_field() {
+    let law = "[multibody]\nforce_law = \"impact\"\n[multibody.impact]\n";
+    let s = scene_with(&format!("{law}exponent = 2.2\ndamping_n_s_per_mm = 100.0")).unwrap();
+    let mb = &s.scene.multibody;
+    assert_eq!(mb.force_law, geometry::scene::ForceLaw::Impact);
+    assert_eq!(
+        (mb.impact.exponent, mb.impact.damping_n_s_per_mm),
+        (2.2, 100.0)
+    );
+    for (extra, field, limit) in [
+        ("exponent = 0.5", "multibody.impact.exponent", "[1, 3]"),
+        (
+            "stiffness_n_per_mm_e = -1.0",
+            "multibody.impact.stiffness_n_per_mm_e",
+            "(0, 1e15]",
+        ),
+        (
+            "penetration_depth_mm = 0.0",
+            "multibody.impact.penetration_depth_mm",
+            "(0, 1e6]",
+        ),
+        (
+            "stiction_speed_mm_s = 500.0\nfriction_transition_speed_mm_s = 400.0",
+            "multibody.impact.friction_transition_speed_mm_s",
+            "stiction_speed_mm_s = 500",
+        ),
+        (
+            "static_friction = 3.0",
+            "multibody.impact.static_friction",
+            "[0, 2]",
+        ),
+    ] {
+        let e = scene_with(&format!("{law}{extra}")).unwrap_err();
+        assert!(e.contains(field) && e.contains(limit), "{extra}: {e}");
+    }
+    let e = scene_with(&format!("{law}stiffness = 1.0")).unwrap_err();
+    assert!(e.contains("stiffness"), "{e}");
+    // The impact law's table holds the drive flanks only.
+    let e = scene_with("[multibody]\nforce_law = \"impact\"\ncoast_contact = true").unwrap_err();
+    assert!(
+        e.contains("multibody.force_law") && e.contains("coast_contact"),
+        "{e}"
+    );
+}
+
+#[test]
+fn load_run_with_its_steady_window_past_its_end_is_rejected() {
+    let run = "[multibody.load_run]\npinion_rpm = 150.0\npinion_ramp_s = 0.0\nwheel_torque_nm = 100.0\nwheel_torque_rise_s = 0.1\nmax_step_s = 1e-5\n";
+    let s = scene_with(&format!("{run}time_s = 0.4\nsteady_from_s = 0.1")).unwrap();
+    let r = s.scene.multibody.load_run.as_ref().unwrap();
+    // 150 rpm for 0.4 s: one pinion turn.
+    assert!((r.rotation() - 2.0 * std::f64::consts::PI).abs() < 1e-12);
+    let e = scene_with(&format!("{run}time_s = 0.4\nsteady_from_s = 0.4")).unwrap_err();
+    assert!(
+        e.contains("multibody.load_run.steady_from_s") && e.contains("time_s = 0.4"),
+        "{e}"
+    );
+    let e = scene_with(&format!("{run}time_s = 200.0\nsteady_from_s = 0.1")).unwrap_err();
+    assert!(
+        e.contains("multibody.load_run.time_s") && e.contains("[0.0001, 100]"),
+        "{e}"
+    );
+}
+
+#[test]
+fn seed_scenes_load_with_both_force_laws() {
+    for (name, law) in [
+        ("seed001_impact", geometry::scene::ForceLaw::Impact),
+        ("seed001_element", geometry::scene::ForceLaw::Element),
+        ("seed002_impact", geometry::scene::ForceLaw::Impact),
+        ("seed002_element", geometry::scene::ForceLaw::Element),
+    ] {
+        let path = common::reference(&format!("scenes/{name}.toml"));
+        let s = Scene::load(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(s.scene.multibody.force_law, law, "{name}");
+        assert!(s.scene.multibody.load_run.is_some(), "{name}");
+    }
+}

@@ -3,19 +3,23 @@
 //! run time against error over the table resolution, the error being the
 //! 10 rpm run's TE against the quasi-static LTCA at the same positions, and
 //! the run-up's time per step next to the white paper's ~0.4 s CPU per step
-//! (its Table 6). Results in `bench/multibody.json`.
+//! (its Table 6); and the cost per step of the two force laws (the
+//! FE-analytical element and the impact law, issue 30) in the seeds' load
+//! run: pinion at 300 rpm, the wheel load of 300 N·m at the pinion rising
+//! by STEP over 20 ms, 0.1 s. Results in `bench/multibody.json`.
 
 use geometry::design::Member;
 use geometry::pair::PairGeometry;
-use geometry::scene::{Blank, Scene};
+use geometry::scene::{Blank, ImpactSettings, LoadRun, Scene};
 use geometry::utca::roll_surface;
 use serde_json::json;
 use solver::compliance::PairCompliance;
-use solver::dynamic_stage::inertia;
+use solver::dynamic_stage::{impact_law, inertia};
+use solver::load_run;
 use solver::ltca::{mean_ptp, run};
 use solver::ltca_stage::{member_compliance, scene_sweep};
 use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{interpolate, wheel_driven};
+use solver::multibody::{interpolate, wheel_driven, Drive, Model};
 use solver::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::path::Path;
 use std::time::Instant;
@@ -130,14 +134,115 @@ fn main() {
             "te_error_percent_of_ltca_ptp": {"100": errs[0], "300": errs[1], "700": errs[2]}}),
         );
     }
+    let laws = force_laws(fp, &rs, &pc, &g, &sweep, sc, ratio, tau, inertia);
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
     formats::output::write_json(
         &out.join("multibody.json"),
         &json!({"machine": format!("{cores} cores, {}", std::env::consts::ARCH),
             "case": "10 rpm wheel, standard blanks, default scene, 2 mesh cycles; error = max |TE_MB - TE_LTCA| over the LTCA positions, % of the LTCA's ptp",
-            "white_paper_runup_cpu_s_per_step": 0.4, "tables": rows}),
+            "white_paper_runup_cpu_s_per_step": 0.4, "tables": rows,
+            "force_laws": {"case": "load run: pinion 300 rpm, wheel load 300 N·m at the pinion (STEP over 20 ms), 0.1 s, max step 1e-5 s, generalized-α; table 0.125° x 96 lags; impact law: Hertz K of the pair (outer pitch radii), e = 1.5, C = 50 N·s/mm, d = 0.1 mm, μ 0.08/0.05", "laws": laws}}),
     )
     .unwrap();
     println!("written to bench/multibody.json");
+}
+
+/// The load run with each force law: table build and CPU time per step.
+#[allow(clippy::too_many_arguments)]
+fn force_laws(
+    fp: &geometry::pair::FlankPair,
+    rs: &geometry::utca::RollSurface,
+    pc: &PairCompliance,
+    g: &PairGeometry,
+    sweep: &solver::ltca::Sweep,
+    sc: &geometry::scene::Scene,
+    ratio: f64,
+    tau: f64,
+    inertia: [f64; 2],
+) -> Vec<serde_json::Value> {
+    let per = (tau / 0.125f64.to_radians()).round() as usize;
+    let spec = TableSpec {
+        start: sweep.start,
+        direction: sweep.direction,
+        step: tau / per as f64,
+        positions: per,
+        periodic: true,
+        slices: sc.ltca.slices,
+        lag_nodes: 96,
+        torque_max_nm: 600.0,
+    };
+    let settings = ImpactSettings {
+        damping_n_s_per_mm: 50.0,
+        static_friction: 0.08,
+        dynamic_friction: 0.05,
+        ..ImpactSettings::default()
+    };
+    let (law, friction, _) = impact_law(&g.data, &settings);
+    let run = LoadRun {
+        pinion_rpm: 300.0,
+        pinion_ramp_s: 0.0,
+        wheel_torque_nm: 300.0 / ratio,
+        wheel_torque_rise_s: 0.02,
+        time_s: 0.1,
+        max_step_s: 1e-5,
+        steady_from_s: 0.05,
+    };
+    println!(
+        "\nForce laws, load run 300 rpm / 300 N·m, 0.1 s\n{:>8} {:>9} {:>8} {:>9} {:>8}",
+        "law", "table[s]", "steps", "rejected", "us/step"
+    );
+    let mut out = Vec::new();
+    for name in ["element", "impact"] {
+        let t = Instant::now();
+        let table = if name == "element" {
+            MeshTable::build(fp, rs, pc, &g.frames[0], ratio, spec)
+        } else {
+            solver::impact_table::build(fp, rs, &g.frames[0], ratio, spec, law, friction)
+        }
+        .unwrap();
+        let build = t.elapsed().as_secs_f64();
+        let mut m = Model {
+            table: &table,
+            coast: None,
+            inertia,
+            damping: 0.0,
+            friction: 0.0,
+            drive: load_run::drive(&run),
+        };
+        let s0 = m.static_state(0.0).unwrap();
+        if name == "element" {
+            let loaded = Model {
+                drive: Drive::Free {
+                    pinion_torque: 300.0,
+                    wheel_torque: run.wheel_torque_nm,
+                },
+                ..m
+            };
+            let s = loaded.static_state(0.0).unwrap();
+            m.damping = loaded
+                .damping_for_ratio(sc.multibody.damping_ratio, &s)
+                .unwrap();
+        }
+        let mut integ = Integrator::new(
+            Scheme::GeneralizedAlpha {
+                rho_inf: sc.multibody.rho_inf,
+            },
+            StepControl {
+                max_step: run.max_step_s,
+                min_step: run.max_step_s * 1e-6,
+                tolerance: sc.multibody.te_tolerance_urad * 1e-6,
+            },
+        );
+        let clock = solver::cpu_clock::thread_cpu_s();
+        let (_, steps) = load_run::simulate(&m, s0, &mut integ, run.time_s).unwrap();
+        let us = (solver::cpu_clock::thread_cpu_s() - clock) / steps as f64 * 1e6;
+        println!(
+            "{:>8} {:>9.2} {:>8} {:>9} {:>8.1}",
+            name, build, steps, integ.rejected, us
+        );
+        out.push(json!({"law": name, "table_build_s": build, "steps": steps,
+            "rejected_steps": integ.rejected, "us_per_step": us}));
+    }
+    out
 }

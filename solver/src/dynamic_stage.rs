@@ -18,6 +18,9 @@
 
 use crate::backlash::Coast;
 use crate::compliance::PairCompliance;
+use crate::impact_law::{
+    effective_modulus, effective_radius, hertz_point_stiffness, Friction, ImpactLaw,
+};
 use crate::ltca::mean_ptp;
 use crate::ltca_stage::{
     coast_compliance, member_compliance, record_stiffness_inputs, scene_sweep,
@@ -37,13 +40,60 @@ use formats::result_set::ResultSet;
 use formats::stiffness_plan::StiffnessPlan;
 use geometry::design::Member;
 use geometry::pair::{pinion_direction, PairGeometry};
-use geometry::scene::{Blank, LoadedScene};
+use geometry::scene::{Blank, ForceLaw, ImpactSettings, LoadedScene};
 use geometry::utca::roll_surface;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+use formats::summaries::ImpactLawSummary;
 pub use formats::summaries::{DynamicSummary, QuasiStaticSummary, RattleSummary, RunupSummary};
+
+/// The impact law of the scene's settings in SI ([`ImpactLaw`]), its
+/// friction (None when both coefficients are zero), and its summary: K
+/// from the scene, or the Hertz point-contact K = 4/3 √R E* with R from
+/// the outer pitch radii R_e sin δ and E* from both members' materials,
+/// as the seeds compute it.
+pub fn impact_law(
+    pair: &geometry::design::PairData,
+    s: &ImpactSettings,
+) -> (ImpactLaw, Option<Friction>, ImpactLawSummary) {
+    let radii =
+        [0, 1].map(|i| pair.outer_cone_distance() * pair.members[i].pitch_angle.sin() * 1e3);
+    let [p, w] = &pair.members;
+    let modulus = effective_modulus(
+        p.youngs_modulus * 1e-6,
+        p.poisson_ratio,
+        w.youngs_modulus * 1e-6,
+        w.poisson_ratio,
+    );
+    let hertz = hertz_point_stiffness(effective_radius(radii[0], radii[1]), modulus);
+    let (k, source) = match s.stiffness_n_per_mm_e {
+        Some(k) => (k, "scene"),
+        None => (hertz, "hertz"),
+    };
+    let law = ImpactLaw::from_mm_units(k, s.exponent, s.damping_n_s_per_mm, s.penetration_depth_mm);
+    let friction = (s.static_friction > 0.0 || s.dynamic_friction > 0.0).then_some(Friction {
+        static_coefficient: s.static_friction,
+        dynamic_coefficient: s.dynamic_friction,
+        stiction_speed: s.stiction_speed_mm_s * 1e-3,
+        transition_speed: s.friction_transition_speed_mm_s * 1e-3,
+    });
+    let summary = ImpactLawSummary {
+        stiffness_n_per_mm_e: k,
+        stiffness_source: source.into(),
+        hertz_stiffness_n_per_mm_1_5: hertz,
+        hertz_radii_mm: radii,
+        exponent: s.exponent,
+        damping_n_s_per_mm: s.damping_n_s_per_mm,
+        penetration_depth_mm: s.penetration_depth_mm,
+        static_friction: s.static_friction,
+        dynamic_friction: s.dynamic_friction,
+        stiction_speed_mm_s: s.stiction_speed_mm_s,
+        friction_transition_speed_mm_s: s.friction_transition_speed_mm_s,
+    };
+    (law, friction, summary)
+}
 
 struct Trace {
     t: Vec<f64>,
@@ -182,6 +232,10 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let dir = meshes.join(&sc.name);
     let tau = g.data.mesh_cycle();
     let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
+    let impact = match mb.force_law {
+        ForceLaw::Element => None,
+        ForceLaw::Impact => Some(impact_law(&g.data, &mb.impact)),
+    };
     let mut all = Vec::new();
     for &pb in &sc.blanks.pinion {
         let (pin, pin_plan) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
@@ -215,11 +269,15 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             } else {
                 (range / step).ceil() as usize + 3
             };
+            if let Some(run) = &mb.load_run {
+                cycles = cycles.max(run.rotation() / tau);
+            }
             let torque_max = sc
                 .pinion_torque_nm
                 .iter()
                 .copied()
                 .chain(runs_up.then_some(mb.runup_pinion_torque_nm))
+                .chain(mb.load_run.as_ref().map(|r| r.wheel_torque_nm * ratio))
                 .fold(0.0, f64::max)
                 * mb.table_torque_factor;
             let t0 = Instant::now();
@@ -227,23 +285,22 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 "multibody {pb:?}/{wb:?}: contact-element table {positions} positions x {} lags",
                 mb.table_lag_nodes
             );
-            let table = MeshTable::build(
-                fp,
-                &rs,
-                &pc,
-                &g.frames[0],
-                ratio,
-                TableSpec {
-                    start: sweep.start,
-                    direction: sweep.direction,
-                    step,
-                    positions,
-                    periodic,
-                    slices: sc.ltca.slices,
-                    lag_nodes: mb.table_lag_nodes,
-                    torque_max_nm: torque_max.max(1.0),
-                },
-            )
+            let spec = TableSpec {
+                start: sweep.start,
+                direction: sweep.direction,
+                step,
+                positions,
+                periodic,
+                slices: sc.ltca.slices,
+                lag_nodes: mb.table_lag_nodes,
+                torque_max_nm: torque_max.max(1.0),
+            };
+            let table = match &impact {
+                None => MeshTable::build(fp, &rs, &pc, &g.frames[0], ratio, spec),
+                Some((law, friction, _)) => {
+                    crate::impact_table::build(fp, &rs, &g.frames[0], ratio, spec, *law, *friction)
+                }
+            }
             .with_context(|| format!("scene {}: contact-element table, {wb:?} wheel", sc.name))?;
             let coast = match &coast_rs {
                 Some(crs) => {
@@ -305,6 +362,9 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 )?;
                 let m = Model {
                     coast: coast.as_ref(),
+                    // The impact law brings its own damping and friction.
+                    damping: if impact.is_some() { 0.0 } else { m.damping },
+                    friction: if impact.is_some() { 0.0 } else { m.friction },
                     ..m
                 };
                 damping = m.damping;
@@ -357,6 +417,60 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 "transmission error (µrad)",
                 &qs_series,
             )?;
+            let element_friction = if impact.is_some() {
+                0.0
+            } else {
+                sc.ltca.friction_coefficient
+            };
+            let load_run = match &mb.load_run {
+                Some(run) => {
+                    let drive = crate::load_run::drive(run);
+                    let mut m = Model {
+                        table: &table,
+                        coast: coast.as_ref(),
+                        inertia,
+                        damping: 0.0,
+                        friction: element_friction,
+                        drive,
+                    };
+                    let s0 = m.static_state(0.0)?;
+                    if impact.is_none() {
+                        // The element's mesh damping at the full load's balance.
+                        let loaded = Model {
+                            drive: Drive::PinionSpeed {
+                                speed: Ramp {
+                                    from: 0.0,
+                                    to: 0.0,
+                                    duration: 0.0,
+                                },
+                                wheel_torque: run.wheel_torque_nm,
+                            },
+                            ..m
+                        };
+                        let s = loaded.static_state(0.0)?;
+                        m.damping = loaded.damping_for_ratio(mb.damping_ratio, &s)?;
+                    }
+                    eprintln!(
+                        "  load run: pinion {} rpm (ramp {} s), wheel {} N·m (rise {} s), {} s",
+                        run.pinion_rpm,
+                        run.pinion_ramp_s,
+                        run.wheel_torque_nm,
+                        run.wheel_torque_rise_s,
+                        run.time_s
+                    );
+                    Some(crate::load_run::run(
+                        &m,
+                        s0,
+                        run,
+                        &g.data,
+                        scheme,
+                        control(run.max_step_s),
+                        &odir,
+                        &format!("{} ({:?} law)", sc.name, mb.force_law).to_lowercase(),
+                    )?)
+                }
+                None => None,
+            };
             let runup = if runs_up {
                 Some(run_up(
                     &table,
@@ -368,7 +482,8 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                     pb,
                     wb,
                     g.data.members[0].teeth as f64,
-                    sc.ltca.friction_coefficient,
+                    element_friction,
+                    impact.is_some(),
                     coast.as_ref(),
                 )?)
             } else {
@@ -425,6 +540,9 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 table_cpu_s_per_position: table.cpu_s_per_position,
                 quasi_static: qs,
                 runup,
+                force_law: format!("{:?}", mb.force_law).to_lowercase(),
+                impact_law: impact.as_ref().map(|i| i.2.clone()),
+                load_run,
                 dir: set.dir().join(&name),
             };
             write_json(&odir.join("summary.json"), &summary)?;
@@ -448,6 +566,7 @@ fn run_up(
     wb: Blank,
     z1: f64,
     friction: f64,
+    impact_law: bool,
     coast: Option<&Coast>,
 ) -> anyhow::Result<RunupSummary> {
     let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
@@ -469,7 +588,9 @@ fn run_up(
         },
     };
     let s0 = m.static_state(0.0)?;
-    m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;
+    if !impact_law {
+        m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;
+    }
     let mut integ = Integrator::new(scheme, control(mb.runup_max_step_s));
     let t = Instant::now();
     eprintln!(

@@ -27,6 +27,7 @@
 
 use crate::compliance::PairCompliance;
 use crate::contact_problem::ContactProblem;
+use crate::impact_law::{Friction, ImpactLaw};
 use crate::ltca::{assemble, geometry, Assembled, Geometry};
 use crate::SolverError;
 use geometry::generation::MemberFrame;
@@ -75,6 +76,33 @@ pub struct MeshTable {
     pub friction: Vec<[f64; 2]>,
     /// Geometry + assembly + lag-controlled solves, s per position (one core).
     pub cpu_s_per_position: f64,
+    /// The impact law's own fields when the table holds that law instead of
+    /// the element ([`crate::impact_table`]); None for the element.
+    pub impact: Option<ImpactFields>,
+}
+
+/// Fields of an impact-law table ([`crate::impact_table`]), same layout as
+/// the torque.
+#[derive(Debug, Clone)]
+pub struct ImpactFields {
+    pub law: ImpactLaw,
+    pub friction: Option<Friction>,
+    /// Damping levers A = (Σ w λ₁ λ₂, Σ w λ₂²) and E = (Σ w λ₁ ε,
+    /// Σ w λ₂ ε), ε = λ₁ − r λ₂, m²: generalized damping forces
+    /// −C (A₁ θ̇ + E₁ q̇₁) on q₁ and +C (A₂ θ̇ + E₂ q̇₁) on q₂.
+    pub damping: Vec<[f64; 4]>,
+    /// Force-weighted mean slip speed per unit pinion speed, m/rad.
+    pub slip: Vec<f64>,
+}
+
+/// The impact law's non-conservative fields at (q₁, q₂).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ImpactState {
+    /// Damping levers (A₁, A₂, E₁, E₂) and their derivatives ∂/∂q_j.
+    pub damping: [f64; 4],
+    pub damping_grad: [[f64; 2]; 4],
+    /// Mean slip speed per unit pinion speed, m/rad.
+    pub slip: f64,
 }
 
 /// The element's state at (q₁, q₂).
@@ -375,6 +403,7 @@ impl MeshTable {
                 .flat_map(|c| c.friction.iter().copied())
                 .collect(),
             cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / n as f64,
+            impact: None,
         })
     }
 
@@ -509,6 +538,29 @@ impl MeshTable {
             grad[i] = [fq + r * ft, -ft];
         }
         Ok((phi, grad))
+    }
+
+    /// The impact law's damping levers and slip speed at (q₁, q₂); None
+    /// for the element's table, zero where the flanks are open.
+    pub fn impact_state(&self, q1: f64, q2: f64) -> Result<Option<ImpactState>, SolverError> {
+        let Some(imp) = &self.impact else {
+            return Ok(None);
+        };
+        let r = self.ratio;
+        let theta = r * q1 - q2;
+        let mut out = ImpactState::default();
+        if theta <= self.theta_lo() || theta <= self.unloaded(q1)?[0] {
+            return Ok(Some(out));
+        }
+        let nu = self.spec.lag_nodes;
+        for i in 0..4 {
+            let [f, fq, ft, ..] = self.field(|p, m| imp.damping[p * nu + m][i], q1, theta)?;
+            // A ≥ 0 (Hermite overshoot clipped); E takes either sign.
+            out.damping[i] = if i < 2 { f.max(0.0) } else { f };
+            out.damping_grad[i] = [fq + r * ft, -ft];
+        }
+        out.slip = self.field(|p, m| imp.slip[p * nu + m], q1, theta)?[0].max(0.0);
+        Ok(Some(out))
     }
 
     /// Potential, gradient, Hessian and force at (q₁, q₂).

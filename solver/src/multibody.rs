@@ -22,6 +22,10 @@
 //!   gradient of V (Itoh & Abe 1988): without damping, kinetic energy + V −
 //!   work of the torques is constant to the Newton tolerance.
 //!
+//! With an impact-law table ([`crate::impact_table`]) V is that law's
+//! stiffness term on the same grid; its damping and speed-dependent friction
+//! replace c s(u) θ̇ and μ σ(q̇₁) Φ ([`Model::contact`]).
+//!
 //! Step control: the difference between the step's θ and its explicit
 //! Taylor predictor estimates the local error; steps above the tolerance
 //! are retried with a smaller step, and the step never exceeds the maximum.
@@ -97,6 +101,15 @@ pub enum Drive {
         speed: Fluctuation,
         wheel_torque: f64,
     },
+    /// The pinion follows a speed ramp; the wheel's resisting torque rises
+    /// from 0 to `wheel_torque` over `rise_s` by ADAMS's cubic STEP,
+    /// STEP(t, 0, 0, rise_s, T) ([`crate::impact_law::step`]; constant for
+    /// rise_s = 0): the drives of seeds 001 and 002.
+    PinionSpeedLoadStep {
+        speed: Ramp,
+        wheel_torque: f64,
+        rise_s: f64,
+    },
     /// Both free: a driving pinion torque and a resisting wheel torque.
     Free {
         pinion_torque: f64,
@@ -105,18 +118,34 @@ pub enum Drive {
 }
 
 impl Drive {
+    /// STEP(t, 0, 0, rise, T): T for rise ≤ 0.
+    fn load_step(torque: f64, rise: f64, t: f64) -> f64 {
+        if rise > 0.0 {
+            crate::impact_law::step(t, 0.0, 0.0, rise, torque)
+        } else {
+            torque
+        }
+    }
+
     /// Which coordinates are free.
     pub(crate) fn free(&self) -> [bool; 2] {
         match self {
             Drive::WheelSpeed { .. } => [true, false],
-            Drive::PinionSpeed { .. } | Drive::PinionFluctuating { .. } => [false, true],
+            Drive::PinionSpeed { .. }
+            | Drive::PinionFluctuating { .. }
+            | Drive::PinionSpeedLoadStep { .. } => [false, true],
             Drive::Free { .. } => [true, true],
         }
     }
 
-    /// External generalized forces on (q₁, q₂).
-    pub(crate) fn torques(&self) -> [f64; 2] {
+    /// External generalized forces on (q₁, q₂) at time t.
+    pub fn torques(&self, t: f64) -> [f64; 2] {
         match *self {
+            Drive::PinionSpeedLoadStep {
+                wheel_torque,
+                rise_s,
+                ..
+            } => [0.0, -Self::load_step(wheel_torque, rise_s, t)],
             Drive::WheelSpeed { pinion_torque, .. } => [pinion_torque, 0.0],
             Drive::PinionSpeed { wheel_torque, .. }
             | Drive::PinionFluctuating { wheel_torque, .. } => [0.0, -wheel_torque],
@@ -250,7 +279,9 @@ impl Model<'_> {
     pub(crate) fn imposed(&self, t: f64) -> Option<(usize, [f64; 3])> {
         match self.drive {
             Drive::WheelSpeed { speed, .. } => Some((1, speed.at(t))),
-            Drive::PinionSpeed { speed, .. } => Some((0, speed.at(t))),
+            Drive::PinionSpeed { speed, .. } | Drive::PinionSpeedLoadStep { speed, .. } => {
+                Some((0, speed.at(t)))
+            }
             Drive::PinionFluctuating { speed, .. } => Some((0, speed.at(t))),
             Drive::Free { .. } => None,
         }
@@ -304,7 +335,9 @@ impl Model<'_> {
             [c * dir[1] * dir[0], c * dir[1] * dir[1]],
         ];
         let (mut q_c, mut k, mut d) = (q_c, ms.hess, d);
-        if self.friction > 0.0 {
+        if self.table.impact.is_some() {
+            self.impact_forces(q, v, &ms, &mut q_c, &mut k, &mut d)?;
+        } else if self.friction > 0.0 {
             let (mut phi, mut dphi) = self.table.friction_state(q[0], q[1])?;
             if let Some(coast) = self.coast {
                 let (pc, dc) = coast.friction_state(q)?;
@@ -338,10 +371,81 @@ impl Model<'_> {
         })
     }
 
+    /// The impact law's damping and friction ([`crate::impact_table`]),
+    /// added to the generalized forces `q_c` with their tangents: damping
+    /// −C (A₁ θ̇ + E₁ q̇₁) on q₁ and +C (A₂ θ̇ + E₂ q̇₁) on q₂ (the normal
+    /// approach speed at each pair's deepest point), the law's zero clamp on the mesh
+    /// total (where the damping would pull the pinion, the mesh force is
+    /// zero: forces and tangents vanish); friction −μ_e Φ₁ on q₁, +μ_e Φ₂
+    /// on q₂ with μ_e = sgn(q̇₁) μ(ḡ |q̇₁|) (ḡ the mean slip speed per unit
+    /// pinion speed, [`crate::impact_law::Friction`]), acting on the
+    /// elastic normal force.
+    fn impact_forces(
+        &self,
+        q: [f64; 2],
+        v: [f64; 2],
+        ms: &MeshState,
+        q_c: &mut [f64; 2],
+        k: &mut [[f64; 2]; 2],
+        d: &mut [[f64; 2]; 2],
+    ) -> Result<(), SolverError> {
+        let (Some(imp), Some(is)) = (&self.table.impact, self.table.impact_state(q[0], q[1])?)
+        else {
+            return Ok(());
+        };
+        let r = self.table.ratio;
+        let c = imp.law.damping;
+        let rate = r * v[0] - v[1];
+        let [a1, a2, e1, e2] = is.damping;
+        let pinion_damping = c * (a1 * rate + e1 * v[0]);
+        if ms.grad[0] - pinion_damping < 0.0 && ms.grad[0] > 0.0 {
+            *q_c = [0.0; 2];
+            *k = [[0.0; 2]; 2];
+            *d = [[0.0; 2]; 2];
+            return Ok(());
+        }
+        if ms.grad[0] > 0.0 {
+            q_c[0] -= pinion_damping;
+            q_c[1] += c * (a2 * rate + e2 * v[0]);
+            d[0][0] += c * (a1 * r + e1);
+            d[0][1] -= c * a1;
+            d[1][0] -= c * (a2 * r + e2);
+            d[1][1] += c * a2;
+            let g = is.damping_grad;
+            let dq = |j: usize, a: usize, e: usize| c * (rate * g[a][j] + v[0] * g[e][j]);
+            *k = [
+                [k[0][0] + dq(0, 0, 2), k[0][1] + dq(1, 0, 2)],
+                [k[1][0] - dq(0, 1, 3), k[1][1] - dq(1, 1, 3)],
+            ];
+        }
+        if let Some(fr) = imp.friction {
+            let (phi, dphi) = self.table.friction_state(q[0], q[1])?;
+            let g = is.slip;
+            let (mu, dmu) = fr.coefficient(g * v[0].abs());
+            let sgn = if v[0] > 0.0 {
+                1.0
+            } else if v[0] < 0.0 {
+                -1.0
+            } else {
+                0.0
+            };
+            let (mu, dmu) = (sgn * mu, g * dmu);
+            q_c[0] -= mu * phi[0];
+            q_c[1] += mu * phi[1];
+            for j in 0..2 {
+                k[0][j] += mu * dphi[0][j];
+                k[1][j] -= mu * dphi[1][j];
+            }
+            d[0][0] += dmu * phi[0];
+            d[1][0] -= dmu * phi[1];
+        }
+        Ok(())
+    }
+
     /// Kinetic + mesh potential energy − work of the constant torques, J
     /// (constant in a run without damping and with both members free).
     pub fn energy(&self, s: &State) -> Result<f64, SolverError> {
-        let ext = self.drive.torques();
+        let ext = self.drive.torques(s.t);
         Ok(0.5 * self.inertia[0] * s.v[0] * s.v[0]
             + 0.5 * self.inertia[1] * s.v[1] * s.v[1]
             + self.potential(s.q)?
@@ -355,6 +459,11 @@ impl Model<'_> {
             Drive::WheelSpeed { pinion_torque, .. } => pinion_torque,
             Drive::PinionSpeed { wheel_torque, .. }
             | Drive::PinionFluctuating { wheel_torque, .. } => wheel_torque * self.table.ratio,
+            Drive::PinionSpeedLoadStep {
+                wheel_torque,
+                rise_s,
+                ..
+            } => Drive::load_step(wheel_torque, rise_s, 0.0) * self.table.ratio,
             Drive::Free { pinion_torque, .. } => pinion_torque,
         }
     }
@@ -562,7 +671,9 @@ impl Model<'_> {
         let r = self.table.ratio;
         match self.drive {
             Drive::WheelSpeed { speed, .. } => [speed.from / r, speed.from],
-            Drive::PinionSpeed { speed, .. } => [speed.from, speed.from * r],
+            Drive::PinionSpeed { speed, .. } | Drive::PinionSpeedLoadStep { speed, .. } => {
+                [speed.from, speed.from * r]
+            }
             Drive::PinionFluctuating { speed, .. } => [speed.mean, speed.mean * r],
             Drive::Free { .. } => [0.0, 0.0],
         }

@@ -165,8 +165,9 @@ fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), 
     let gamma = 0.5 - am + af;
     let beta = 0.25 * (1.0 - am + af).powi(2);
     let free = m.drive.free();
-    let ext = m.drive.torques();
     let t1 = s.t + h;
+    // External torques at t_{n+1−α_f}.
+    let ext = m.drive.torques(t1 - rho / (rho + 1.0) * h);
     let mut q = [0, 1].map(|i| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i]);
     let fixed = imposed_at(m, s, t1);
     let kin = |q: [f64; 2]| -> ([f64; 2], [f64; 2]) {
@@ -249,8 +250,9 @@ fn discrete_gradient(
 /// Energy-conserving midpoint step: Newton on q_{n+1} with the midpoint tangent.
 fn midpoint_step(m: &Model, s: &State, h: f64) -> Result<(State, usize), SolverError> {
     let free = m.drive.free();
-    let ext = m.drive.torques();
     let t1 = s.t + h;
+    // External torques at the midpoint.
+    let ext = m.drive.torques(s.t + 0.5 * h);
     let fixed = imposed_at(m, s, t1);
     let mut q = [0, 1].map(|i| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i]);
     if let Some((i, [x, _, _])) = fixed {

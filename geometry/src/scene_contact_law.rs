@@ -1,0 +1,232 @@
+//! Scene settings of the multibody's force law (`[multibody] force_law`,
+//! `[multibody.impact]`) and of the imposed-speed load run
+//! (`[multibody.load_run]`, the drives of seeds 001 and 002), with their
+//! checks.
+
+use crate::error::InputError;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The multibody's contact force law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ForceLaw {
+    /// The FE-analytical contact element (stiffness files + Weber–Banaschek).
+    #[default]
+    Element,
+    /// The impact function F = max(0, K δ^e + C δ̇ STEP(δ, 0, 0, d, 1)) per
+    /// tooth pair on the rigid flanks' penetration, with ADAMS-style friction.
+    Impact,
+}
+
+/// Parameters of the impact law in the seeds' mm-based units.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct ImpactSettings {
+    /// K, N/mm^e; absent: Hertz point contact 4/3 √R E* (N/mm^1.5) with R
+    /// from the outer pitch radii and E* from both members' materials, as
+    /// the seeds compute it.
+    pub stiffness_n_per_mm_e: Option<f64>,
+    /// Force exponent e.
+    pub exponent: f64,
+    /// C, N·s/mm, reached at the penetration depth d (mm).
+    pub damping_n_s_per_mm: f64,
+    pub penetration_depth_mm: f64,
+    /// Static and dynamic friction coefficients (0: frictionless).
+    pub static_friction: f64,
+    pub dynamic_friction: f64,
+    /// Stiction and friction transition slip speeds, mm/s (ADAMS defaults).
+    pub stiction_speed_mm_s: f64,
+    pub friction_transition_speed_mm_s: f64,
+}
+
+impl Default for ImpactSettings {
+    fn default() -> Self {
+        ImpactSettings {
+            stiffness_n_per_mm_e: None,
+            exponent: 1.5,
+            damping_n_s_per_mm: 0.0,
+            penetration_depth_mm: 0.1,
+            static_friction: 0.0,
+            dynamic_friction: 0.0,
+            stiction_speed_mm_s: 100.0,
+            friction_transition_speed_mm_s: 1000.0,
+        }
+    }
+}
+
+/// A run with imposed pinion speed and a resisting wheel torque, as seeds
+/// 001 and 002 drive their pairs: the pinion's speed ramps linearly from 0
+/// to `pinion_rpm` over `pinion_ramp_s` (0: at speed from the start), the
+/// wheel torque rises from 0 to `wheel_torque_nm` over
+/// `wheel_torque_rise_s` by the cubic STEP (0: at full torque from the
+/// start); `time_s` simulated with steps up to `max_step_s`; the means and
+/// fluctuations are taken from `steady_from_s` on.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LoadRun {
+    pub pinion_rpm: f64,
+    pub pinion_ramp_s: f64,
+    pub wheel_torque_nm: f64,
+    pub wheel_torque_rise_s: f64,
+    pub time_s: f64,
+    pub max_step_s: f64,
+    pub steady_from_s: f64,
+}
+
+impl LoadRun {
+    /// Pinion rotation of the run, rad.
+    pub fn rotation(&self) -> f64 {
+        let w = self.pinion_rpm * std::f64::consts::PI / 30.0;
+        w * (self.time_s - 0.5 * self.pinion_ramp_s.min(self.time_s))
+    }
+
+    /// Range checks naming field, value and limit.
+    pub fn check(&self, path: &Path) -> Result<(), InputError> {
+        for (f, v, lo, hi) in [
+            ("multibody.load_run.pinion_rpm", self.pinion_rpm, 1e-3, 1e5),
+            (
+                "multibody.load_run.pinion_ramp_s",
+                self.pinion_ramp_s,
+                0.0,
+                100.0,
+            ),
+            (
+                "multibody.load_run.wheel_torque_nm",
+                self.wheel_torque_nm,
+                0.0,
+                1e7,
+            ),
+            (
+                "multibody.load_run.wheel_torque_rise_s",
+                self.wheel_torque_rise_s,
+                0.0,
+                100.0,
+            ),
+            ("multibody.load_run.time_s", self.time_s, 1e-4, 100.0),
+            ("multibody.load_run.max_step_s", self.max_step_s, 1e-8, 1.0),
+            (
+                "multibody.load_run.steady_from_s",
+                self.steady_from_s,
+                0.0,
+                100.0,
+            ),
+        ] {
+            if !(v >= lo && v <= hi) {
+                return Err(invalid(path, f, v, &format!("must lie in [{lo}, {hi}]")));
+            }
+        }
+        if self.steady_from_s >= self.time_s {
+            return Err(invalid(
+                path,
+                "multibody.load_run.steady_from_s",
+                self.steady_from_s,
+                &format!(
+                    "must be below multibody.load_run.time_s = {} (the steady window)",
+                    self.time_s
+                ),
+            ));
+        }
+        let steps = self.time_s / self.max_step_s;
+        if steps > crate::scene_checks::MAX_TIME_STEPS {
+            return Err(invalid(
+                path,
+                "multibody.load_run.max_step_s",
+                self.max_step_s,
+                &format!(
+                    "too small: {steps:.3e} steps over {} s, at most {:.0e}",
+                    self.time_s,
+                    crate::scene_checks::MAX_TIME_STEPS
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+fn invalid(path: &Path, field: &str, value: f64, limit: &str) -> InputError {
+    InputError::Invalid {
+        path: path.to_path_buf(),
+        field: field.into(),
+        value: value.to_string(),
+        limit: limit.into(),
+    }
+}
+
+impl ImpactSettings {
+    /// Range checks naming field, value and limit; `coast_contact` must be
+    /// off with this law (it carries the drive flanks only).
+    pub fn check(&self, path: &Path, coast_contact: bool) -> Result<(), InputError> {
+        if let Some(k) = self.stiffness_n_per_mm_e {
+            if !(k > 0.0 && k <= 1e15) {
+                return Err(invalid(
+                    path,
+                    "multibody.impact.stiffness_n_per_mm_e",
+                    k,
+                    "must lie in (0, 1e15] N/mm^e",
+                ));
+            }
+        }
+        for (f, v, lo, hi) in [
+            ("multibody.impact.exponent", self.exponent, 1.0, 3.0),
+            (
+                "multibody.impact.damping_n_s_per_mm",
+                self.damping_n_s_per_mm,
+                0.0,
+                1e9,
+            ),
+            (
+                "multibody.impact.static_friction",
+                self.static_friction,
+                0.0,
+                2.0,
+            ),
+            (
+                "multibody.impact.dynamic_friction",
+                self.dynamic_friction,
+                0.0,
+                2.0,
+            ),
+        ] {
+            if !(v >= lo && v <= hi) {
+                return Err(invalid(path, f, v, &format!("must lie in [{lo}, {hi}]")));
+            }
+        }
+        for (f, v) in [
+            (
+                "multibody.impact.penetration_depth_mm",
+                self.penetration_depth_mm,
+            ),
+            (
+                "multibody.impact.stiction_speed_mm_s",
+                self.stiction_speed_mm_s,
+            ),
+        ] {
+            if !(v > 0.0 && v <= 1e6) {
+                return Err(invalid(path, f, v, "must lie in (0, 1e6]"));
+            }
+        }
+        if !(self.friction_transition_speed_mm_s > self.stiction_speed_mm_s
+            && self.friction_transition_speed_mm_s <= 1e6)
+        {
+            return Err(invalid(
+                path,
+                "multibody.impact.friction_transition_speed_mm_s",
+                self.friction_transition_speed_mm_s,
+                &format!(
+                    "must lie in (multibody.impact.stiction_speed_mm_s = {}, 1e6]",
+                    self.stiction_speed_mm_s
+                ),
+            ));
+        }
+        if coast_contact {
+            return Err(InputError::Invalid {
+                path: path.to_path_buf(),
+                field: "multibody.force_law".into(),
+                value: "impact".into(),
+                limit: "needs multibody.coast_contact = false (the impact law's table carries the drive flanks only)".into(),
+            });
+        }
+        Ok(())
+    }
+}
