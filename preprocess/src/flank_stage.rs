@@ -2,6 +2,7 @@
 //! design or scene file, written into one output directory.
 
 use formats::output::write_json;
+use formats::result_set::ResultSet;
 use geometry::design::{Member, PairData};
 use geometry::design_file::load_pair;
 use geometry::direct::contact_ellipse;
@@ -25,6 +26,10 @@ pub enum FlankStageError {
     Write(#[from] formats::output::WriteError),
     #[error(transparent)]
     Plot(#[from] charts::PlotError),
+    #[error(transparent)]
+    Set(#[from] formats::result_set::ResultSetError),
+    #[error("{}: cannot read the design file: {message}", .path.display())]
+    Design { path: PathBuf, message: String },
 }
 
 /// What the stage needs from a design or scene file.
@@ -248,8 +253,28 @@ pub fn run(input: &FlankInput, out: &Path) -> Result<Option<FlankSummary>, Flank
     run_stage(input, out).map(Some)
 }
 
-/// Runs the stage and writes `flanks.json`, `utca.json`, `summary.json` and SVG plots into `out`.
+/// Runs the stage and writes `flanks.json`, `utca.json`, `summary.json` and
+/// SVG plots into `out`, as one result set ([`formats::result_set`]: staged,
+/// put in place whole, `run.json` with the design's SHA-256 and the files').
 pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStageError> {
+    // Taken before any work: refuses an output another run is writing or
+    // that cannot be written.
+    let mut set = ResultSet::begin(out, &format!("preprocess flanks {}", input.name))?;
+    let design_text =
+        std::fs::read_to_string(&input.design_path).map_err(|e| FlankStageError::Design {
+            path: input.design_path.clone(),
+            message: e.to_string(),
+        })?;
+    set.record_input(
+        "design",
+        &formats::manifest::sha256_text(&geometry::design::geometry_text(&design_text)),
+    )?;
+    let summary = write_stage(input, set.path())?;
+    set.commit()?;
+    Ok(summary)
+}
+
+fn write_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStageError> {
     let mut timing = Timing::default();
     let t = Instant::now();
     let g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
@@ -299,10 +324,6 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankSt
     let report = utca_report(fp, pair, &u, s)?;
     timing.ellipses = t.elapsed().as_secs_f64();
 
-    std::fs::create_dir_all(out).map_err(|e| formats::output::WriteError {
-        path: out.to_path_buf(),
-        message: e.to_string(),
-    })?;
     write_json(&out.join("flanks.json"), &grids)?;
     write_json(&out.join("utca.json"), &report)?;
 

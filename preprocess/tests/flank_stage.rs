@@ -33,6 +33,14 @@ fn small_scene_writes_grids_utca_plots_and_summary() {
         .filter(|e| !e.file_name().to_string_lossy().contains('.'))
         .collect();
     assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+    // One set: run.json names the design and lists every file written.
+    let info = formats::result_set::verify_files(&out)
+        .unwrap()
+        .expect("run.json");
+    assert!(info.inputs.contains_key("design"), "{:?}", info.inputs);
+    for f in ["flanks.json", "utca.json", "summary.json", "te.svg"] {
+        assert!(info.files.contains_key(f), "{f} not in {:?}", info.files.keys());
+    }
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["mesh_cycle_deg"].as_f64().unwrap(), 18.0);

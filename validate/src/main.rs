@@ -217,6 +217,25 @@ fn main() -> anyhow::Result<()> {
             readme,
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
+            // The flank stage's set unchanged since written, and made from
+            // the same design as the solver's and the reference's sets.
+            formats::result_set::verify_files(&flanks)?;
+            if let Some(o) = out.as_ref() {
+                let name = &input.name;
+                let mut sets = vec![
+                    flanks.clone(),
+                    o.join(name).join("ltca"),
+                    o.join(name).join("multibody"),
+                ];
+                sets.extend(
+                    validate::reference_stage::LEVELS_FINEST_FIRST
+                        .iter()
+                        .map(|l| validate::reference_stage::reference_dir(o, name, l)),
+                );
+                formats::result_set::check_same_inputs(
+                    &sets.iter().map(|p| p.as_path()).collect::<Vec<_>>(),
+                )?;
+            }
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
             let published = validate::published::te_ptp_1nm(&input.pair.published)?;
             let sc = geometry::scene::Scene::load(&scene).ok();
