@@ -39,7 +39,11 @@ fn small_scene_writes_grids_utca_plots_and_summary() {
         .expect("run.json");
     assert!(info.inputs.contains_key("design"), "{:?}", info.inputs);
     for f in ["flanks.json", "utca.json", "summary.json", "te.svg"] {
-        assert!(info.files.contains_key(f), "{f} not in {:?}", info.files.keys());
+        assert!(
+            info.files.contains_key(f),
+            "{f} not in {:?}",
+            info.files.keys()
+        );
     }
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();

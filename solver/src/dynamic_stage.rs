@@ -587,6 +587,22 @@ fn run_up(
             wheel_torque: torque / table.ratio,
         },
     };
+    // Without coast flanks the wheel must stay on the drive flanks up to
+    // the top speed: below the holding torque it runs ahead at the tooth
+    // changes and leaves the mesh, and the run-up's TE means nothing.
+    let holding = m.holding_torque()?;
+    if torque < holding {
+        if coast.is_none() {
+            anyhow::bail!(
+                "multibody.runup_pinion_torque_nm = {torque} N·m is below {holding:.3e} N·m, the torque that holds the wheel (inertia {:.4e} kg·m²) on the drive flanks up to the run-up's {} rpm (the flanks can only push it forward: below this it runs ahead at the tooth changes and, without coast flanks, leaves the mesh); raise the torque, lower multibody.runup_rpm, or set multibody.coast_contact = true to follow the impacts across the backlash",
+                inertia[1],
+                mb.runup_rpm[0].abs().max(mb.runup_rpm[1].abs())
+            );
+        }
+        eprintln!(
+            "  run-up: {torque} N·m is below the holding torque {holding:.3e} N·m at the top speed: the wheel will leave the drive flanks at the tooth changes (coast contact is on: impacts across the backlash)"
+        );
+    }
     let s0 = m.static_state(0.0)?;
     if !impact_law {
         m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;

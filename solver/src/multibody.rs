@@ -585,9 +585,19 @@ impl Model<'_> {
     /// rebound must stay within the table's finest lag step. Below this the
     /// pinion leaves the wheel and drifts across the backlash or rattles:
     /// the run's TE is then no quasi-static TE. Zero for the other drives.
+    ///
+    /// The mirror image for the run-up (imposed pinion speed ω₁, resisting
+    /// wheel torque): the flanks can only push the wheel forward, so where
+    /// following θ₀ slows the wheel, q̈₂ = −θ₀″ ω₁² at steady speed, the
+    /// wheel's resisting torque must supply J₂ θ₀″ ω₁²; at a tooth change
+    /// the wheel runs ahead by J₂ (Δθ₀′ ω₁)² / (2 T₂), to be kept within the
+    /// finest lag step. Returned as the pinion torque r T₂, at the ramp's
+    /// top speed.
     pub fn holding_torque(&self) -> Result<f64, SolverError> {
-        let Drive::WheelSpeed { speed, .. } = self.drive else {
-            return Ok(0.0);
+        let (speed, member) = match self.drive {
+            Drive::WheelSpeed { speed, .. } => (speed, 0),
+            Drive::PinionSpeed { speed, .. } => (speed, 1),
+            _ => return Ok(0.0),
         };
         let w = speed.from.abs().max(speed.to.abs());
         let r = self.table.ratio;
@@ -615,6 +625,16 @@ impl Model<'_> {
             let (a, b, c) = (at(k - 1), at(k), at(k + 1));
             let d1 = (c - a) / (2.0 * h);
             let d2 = (a - 2.0 * b + c) / (h * h);
+            if member == 1 {
+                // Run-up: pinion speed imposed, the wheel held by T₂.
+                need = need.max(r * self.inertia[1] * d2 * w * w);
+                let drop = ((b - a) - (c - b)) / h;
+                if drop > 0.0 {
+                    let rate = drop * w;
+                    need = need.max(r * self.inertia[1] * rate * rate / (2.0 * self.table.du()));
+                }
+                continue;
+            }
             let v1 = w / (r - d1);
             need = need.max(self.inertia[0] * d2 * v1 * v1 / (r - d1));
             // Tooth change: the lag rate drops by Δθ̇ = (θ₀′₋ − θ₀′₊) q̇₁ at

@@ -7,7 +7,9 @@
 //!   quasi-static TE exists (refused, naming the limit);
 //! - `table_lag_nodes` 8–12 (refused at load; 16 runs);
 //! - `te_tolerance_urad = 1e-9` (refused at load; the step control no longer
-//!   stalls on rounding noise).
+//!   stalls on rounding noise);
+//! - the run-up below the torque that holds the wheel on the flanks
+//!   (refused without coast flanks, naming the limit).
 
 use geometry::design::Member;
 use geometry::pair::PairGeometry;
@@ -250,4 +252,89 @@ fn te_tolerance_1e_9_urad_is_refused_at_load_and_the_step_control_does_not_stall
     let (sane, _) = run_10rpm(&p, &m, s, 1e-9);
     assert!(steps < 2_000_000, "{steps} steps");
     assert!((mean(&tight) - mean(&sane)).abs() < 1e-9);
+}
+
+/// The run-up's mirror-image limit: with the pinion speed imposed the
+/// flanks can only push the wheel forward, so the resisting torque must
+/// hold the wheel (inertia J₂) on them up to the top speed. It grows with
+/// the square of the speed (both the curvature demand J₂ θ₀″ ω² and the
+/// tooth-change rebound J₂ (Δθ₀′ ω)² / 2Δθ are quadratic in ω), the
+/// default run-up (300 N·m to 1,000 rpm) is above it on this pair, and a
+/// run at constant top speed confirms it: the wheel keeps to the flanks at
+/// twice the limit and runs ahead across the lag grid far below it.
+#[test]
+fn runup_holding_torque_keeps_the_wheel_on_the_flanks_above_it_and_not_far_below_it() {
+    use solver::multibody::{Drive, Ramp};
+    let p = pair(96, 600.0);
+    let holding = |rpm: f64| {
+        let m = Model {
+            table: &p.table,
+            coast: None,
+            inertia: p.inertia,
+            damping: 0.0,
+            friction: 0.0,
+            drive: Drive::PinionSpeed {
+                speed: Ramp {
+                    from: 0.0,
+                    to: rpm * std::f64::consts::PI / 30.0,
+                    duration: 0.1,
+                },
+                wheel_torque: 300.0 / p.table.ratio,
+            },
+        };
+        m.holding_torque().unwrap()
+    };
+    let (h1, h2) = (holding(1000.0), holding(2000.0));
+    println!("run-up holding torque (pinion, N·m): {h1:.4} at 1000 rpm, {h2:.4} at 2000 rpm");
+    assert!(h1 > 0.0);
+    assert!((h2 / h1 - 4.0).abs() < 1e-9, "ratio {}", h2 / h1);
+    assert!(h1 < 300.0, "{h1} N·m");
+    // At a speed where it exceeds the run-up's torque, the stage refuses
+    // (without coast flanks): find that speed from the quadratic law.
+    let rpm_limit = 1000.0 * (300.0 / h1).sqrt();
+    assert!(holding(1.01 * rpm_limit) > 300.0 && holding(0.99 * rpm_limit) < 300.0);
+
+    // The criterion against the dynamics: at 2,000 rpm held constant, the
+    // wheel stays within one lag step of the drive flanks at twice the
+    // holding torque and runs ahead further at a twentieth of it.
+    let w = 2000.0 * std::f64::consts::PI / 30.0;
+    let deepest_separation = |pinion_torque: f64| -> f64 {
+        let m = Model {
+            table: &p.table,
+            coast: None,
+            inertia: p.inertia,
+            damping: 0.0,
+            friction: 0.0,
+            drive: Drive::PinionSpeed {
+                speed: Ramp {
+                    from: w,
+                    to: w,
+                    duration: 0.0,
+                },
+                wheel_torque: pinion_torque / p.table.ratio,
+            },
+        };
+        let s0 = m.static_state(0.0).unwrap();
+        let mut integ = Integrator::new(
+            Scheme::GeneralizedAlpha { rho_inf: 0.9 },
+            StepControl {
+                max_step: 2e-6,
+                min_step: 1e-10,
+                tolerance: 1e-9,
+            },
+        );
+        let t_end = 3.0 * p.table.span() / w;
+        let mut worst: f64 = 0.0;
+        integrate(&m, s0, &mut integ, t_end, |s| {
+            worst = worst.min(m.contact(s.q, s.v)?.mesh.u);
+            Ok(())
+        })
+        .unwrap();
+        -worst
+    };
+    let du = p.table.du();
+    let (held, loose) = (deepest_separation(2.0 * h2), deepest_separation(0.05 * h2));
+    println!("separation at 2x / 0.05x the holding torque: {held:.3e} / {loose:.3e} rad (lag step {du:.3e})");
+    assert!(held <= du, "{held} > {du}");
+    assert!(loose > du, "{loose} <= {du}");
 }
