@@ -30,8 +30,9 @@ FINE_STRIDE_LW ?= $(FINE_STRIDE)
 # (measured: 303 s for the four, of it 181 s meshing, 40 s stiffness files,
 # 82 s `solver dynamic`; seed001 element/impact 102/62 s, seed002 57/83 s);
 # a later run reuses the meshes and stiffness files and redoes the dynamic
-# runs (about 1.5 min). Each scene meshes and solves its stiffness files under its own
-# name, so the impact and element scenes of a seed do that twice.
+# runs (about 1.5 min). Each scene meshes and solves its stiffness files
+# under its own name, so the impact and element scenes of a seed do that
+# twice.
 # CONTACT_LAWS=0 leaves them out.
 CONTACT_LAWS       ?= 1
 CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_element
