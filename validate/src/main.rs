@@ -248,12 +248,19 @@ fn main() -> anyhow::Result<()> {
                 )?,
                 _ => None,
             };
-            let figures = validate::figures::report_figures(
+            let mut figures = validate::figures::report_figures(
                 out.as_deref(),
                 sc.as_ref().map(|s| &s.scene),
                 &flanks,
                 &reports,
             );
+            if let Some(o) = out.as_deref() {
+                figures.contact_laws = Some(validate::report::contact_laws::build(
+                    o,
+                    scene.parent(),
+                    &reports,
+                )?);
+            }
             let written = validate::report::write(
                 &reports,
                 &c,

@@ -33,6 +33,8 @@ pub struct ReportFigures {
     pub tradeoff: Option<Figure>,
     /// The flank stage's plots: unloaded TE, path of contact, ease-off.
     pub unloaded: Vec<Figure>,
+    /// The "Contact laws" section with its load-run charts (seeds 001/002).
+    pub contact_laws: Option<crate::report::contact_laws::ContactLaws>,
 }
 
 impl ReportFigures {
@@ -43,6 +45,7 @@ impl ReportFigures {
             .chain(&self.patterns)
             .chain(&self.tradeoff)
             .chain(&self.unloaded)
+            .chain(self.contact_laws.iter().flat_map(|c| &c.figures))
     }
 }
 

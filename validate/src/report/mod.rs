@@ -9,6 +9,7 @@
 
 pub mod comparison;
 pub mod comparison_row;
+pub mod contact_laws;
 pub mod differences;
 pub mod figures;
 pub mod html;
@@ -193,6 +194,9 @@ pub fn markdown(
     match &figs.tradeoff {
         Some(f) => s.push_str(&figures_before_table(tradeoff, std::slice::from_ref(f))),
         None => s.push_str(tradeoff),
+    }
+    if let Some(cl) = &figs.contact_laws {
+        s.push_str(&cl.markdown);
     }
     unloaded_section(&mut s, c, published, &figs.unloaded);
     roll_surface_section(&mut s, c);

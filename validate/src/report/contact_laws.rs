@@ -1,0 +1,669 @@
+//! The report's "Contact laws" section (issue 30): the Hertz impact-function
+//! law (ADAMS `IMPACT`, NX 3D contact) against the FE-analytical contact
+//! element, on the load runs of seeds 001 and 002, beside the values the
+//! seeds publish.
+//!
+//! For each seed it reads `<out>/seed00N_impact/multibody/summary.json` and
+//! `<out>/seed00N_element/multibody/summary.json` (written by
+//! `solver dynamic`); a seed without both is named as absent in one line.
+//! Every number of ours is formatted from those summaries; the seeds'
+//! numbers are the constants of [`SEED_001`] and [`SEED_002`], each with
+//! where the seed prints it. The load-run charts next to the summaries are
+//! copied into the report directory.
+
+use crate::figures::{copied, Figure};
+use formats::summaries::{DynamicSummary, ImpactLawSummary, LoadRunSummary};
+use solver::impact_law::{seed_001_stiffness, seed_002_back_cone_stiffness, SeedStiffness};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A value a seed prints, and where (table, figure or section).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Quoted {
+    pub value: f64,
+    pub source: &'static str,
+}
+
+const fn q(value: f64, source: &'static str) -> Option<Quoted> {
+    Some(Quoted { value, source })
+}
+
+/// What a seed publishes about its load run and its impact law; None where
+/// it gives no number.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeedPublished {
+    /// Seed number as in the scene names (`seed001_impact`).
+    pub id: &'static str,
+    /// Short description: pair, code.
+    pub title: &'static str,
+    /// Mean wheel speed (°/s) and its relative difference to the kinematic
+    /// speed (%, as the seed prints it: unsigned).
+    pub wheel_speed_deg_s: Option<Quoted>,
+    pub wheel_speed_error_percent: Option<Quoted>,
+    /// Mean tangential force (N), the seed's 2T/d (N) and the relative
+    /// difference (%).
+    pub tangential_force_n: Option<Quoted>,
+    pub tangential_force_theory_n: Option<Quoted>,
+    pub tangential_force_error_percent: Option<Quoted>,
+    /// Mean and largest |ω₂ − kinematic|, °/s.
+    pub speed_fluctuation_mean_deg_s: Option<Quoted>,
+    pub speed_fluctuation_max_deg_s: Option<Quoted>,
+    /// Mean and largest |F_t − mean|, N.
+    pub force_fluctuation_mean_n: Option<Quoted>,
+    pub force_fluctuation_max_n: Option<Quoted>,
+    /// What the seed says about the meshing force, when it gives no number.
+    pub mesh_force_statement: Option<&'static str>,
+    /// The impact law's parameters as printed: K, e, C (N·s/mm), d (mm),
+    /// μ static and dynamic.
+    pub stiffness: Quoted,
+    pub exponent: f64,
+    pub damping_n_s_per_mm: f64,
+    pub depth_mm: f64,
+    pub static_friction: f64,
+    pub dynamic_friction: f64,
+    pub parameters_source: &'static str,
+}
+
+/// Seed 001 (`/work/shared/seeds/001_c43e8a84d769cf72.txt`): 9/40 pair,
+/// SolidWorks + ADAMS, 150 rpm, 15,713 N·m on the wheel.
+pub const SEED_001: SeedPublished = SeedPublished {
+    id: "001",
+    title: "9/40 pair, SolidWorks + ADAMS IMPACT",
+    wheel_speed_deg_s: q(200.0, "Section 4, Figure 6: \"about 200 °/s\""),
+    wheel_speed_error_percent: None,
+    tangential_force_n: None,
+    tangential_force_theory_n: None,
+    tangential_force_error_percent: None,
+    speed_fluctuation_mean_deg_s: None,
+    speed_fluctuation_max_deg_s: None,
+    force_fluctuation_mean_n: None,
+    force_fluctuation_max_n: None,
+    mesh_force_statement: Some(
+        "mean \"almost the same\" as the theoretical value, no number (Section 4, Figure 8)",
+    ),
+    stiffness: Quoted {
+        value: 8.433e5,
+        source: "printed in N/mm²",
+    },
+    exponent: 2.2,
+    damping_n_s_per_mm: 100.0,
+    depth_mm: 0.1,
+    static_friction: 0.5,
+    dynamic_friction: 0.3,
+    parameters_source: "Section 3.2",
+};
+
+/// Seed 002 (`/work/shared/seeds/002_c3ebbaa7232b9d9f.txt`): 9/37 pair,
+/// UG NX 3D contact, pinion ramped to 1283.8 rpm in 0.2 s, 1,965 N·m.
+pub const SEED_002: SeedPublished = SeedPublished {
+    id: "002",
+    title: "9/37 pair, UG NX 3D contact",
+    wheel_speed_deg_s: q(1872.69, "Table 2"),
+    wheel_speed_error_percent: q(0.054, "Table 2"),
+    tangential_force_n: q(24799.9, "Table 2"),
+    tangential_force_theory_n: q(23603.5, "Table 2"),
+    tangential_force_error_percent: q(4.82, "Table 2"),
+    speed_fluctuation_mean_deg_s: q(13.5, "Section 4, Figure 7"),
+    speed_fluctuation_max_deg_s: q(86.9, "Section 4, Figure 7"),
+    force_fluctuation_mean_n: q(117.53, "Section 4, Figure 9"),
+    force_fluctuation_max_n: q(1741.3, "Section 4, Figure 9"),
+    mesh_force_statement: None,
+    stiffness: Quoted {
+        value: 6.65e7,
+        source: "after Eq. (9), printed without unit",
+    },
+    exponent: 1.5,
+    damping_n_s_per_mm: 50.0,
+    depth_mm: 0.1,
+    static_friction: 0.08,
+    dynamic_friction: 0.05,
+    parameters_source: "Section 3",
+};
+
+/// The seeds of the section, in order.
+pub const SEEDS: [SeedPublished; 2] = [SEED_001, SEED_002];
+
+/// A summary file of a seed scene that is there but cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum ContactLawsError {
+    #[error("{}: cannot read the multibody summary: {source}", .path.display())]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}: not a multibody summary: {source}", .path.display())]
+    Parse {
+        path: PathBuf,
+        source: serde_json::Error,
+    },
+    #[error("{}: no run with a load run (`[multibody.load_run]`) in the multibody summary", .path.display())]
+    NoLoadRun { path: PathBuf },
+    #[error("{}: the load run used the {found:?} force law, the scene name says {expected:?}", .path.display())]
+    WrongLaw {
+        path: PathBuf,
+        found: String,
+        expected: &'static str,
+    },
+}
+
+/// One scene's load run: the run's summary, its load run and where its
+/// charts are.
+#[derive(Debug, Clone)]
+pub struct LawRun {
+    pub scene: String,
+    pub run: DynamicSummary,
+    pub load_run: LoadRunSummary,
+    /// `<out>/<scene>/multibody/<blanks>/`.
+    pub dir: PathBuf,
+}
+
+/// A seed's two runs, or the summary files that are missing.
+#[derive(Debug, Clone)]
+pub enum SeedRuns {
+    Present {
+        impact: Box<LawRun>,
+        element: Box<LawRun>,
+        /// The scenes' reduced meshes (profile × face), when the scene file
+        /// could be read.
+        mesh: Option<[u32; 2]>,
+    },
+    Absent {
+        missing: Vec<PathBuf>,
+    },
+}
+
+/// The section: its markdown and its figures (SVG files already in the
+/// report directory).
+#[derive(Debug, Clone, Default)]
+pub struct ContactLaws {
+    pub markdown: String,
+    pub figures: Vec<Figure>,
+}
+
+/// `out/<scene>/multibody/summary.json`.
+pub fn summary_path(out: &Path, scene: &str) -> PathBuf {
+    out.join(scene).join("multibody").join("summary.json")
+}
+
+/// The load run of `<out>/<scene>/multibody/summary.json` with force law
+/// `law`; Ok(None) when the file does not exist.
+pub fn read_run(
+    out: &Path,
+    scene: &str,
+    law: &'static str,
+) -> Result<Option<LawRun>, ContactLawsError> {
+    let path = summary_path(out, scene);
+    let text = match std::fs::read_to_string(&path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(source) => return Err(ContactLawsError::Read { path, source }),
+    };
+    let runs: Vec<DynamicSummary> =
+        serde_json::from_str(&text).map_err(|source| ContactLawsError::Parse {
+            path: path.clone(),
+            source,
+        })?;
+    let Some(run) = runs.into_iter().find(|r| r.load_run.is_some()) else {
+        return Err(ContactLawsError::NoLoadRun { path });
+    };
+    if run.force_law != law {
+        return Err(ContactLawsError::WrongLaw {
+            found: run.force_law,
+            expected: law,
+            path,
+        });
+    }
+    // The charts: the run's blank directory under this `out` (the summary's
+    // `dir` is relative to where the solver ran).
+    let mut dir = out.join(scene).join("multibody");
+    if let Some(blanks) = run.dir.file_name() {
+        dir.push(blanks);
+    }
+    let load_run = run
+        .load_run
+        .clone()
+        .ok_or(ContactLawsError::NoLoadRun { path: path.clone() })?;
+    Ok(Some(LawRun {
+        scene: scene.to_string(),
+        run,
+        load_run,
+        dir,
+    }))
+}
+
+/// Both runs of `seed`, with the scenes' reduced meshes from
+/// `<scenes>/seed00N_element.toml` when it can be read.
+pub fn seed_runs(
+    out: &Path,
+    scenes: Option<&Path>,
+    seed: &SeedPublished,
+) -> Result<SeedRuns, ContactLawsError> {
+    let (si, se) = (
+        format!("seed{}_impact", seed.id),
+        format!("seed{}_element", seed.id),
+    );
+    let impact = read_run(out, &si, "impact")?;
+    let element = read_run(out, &se, "element")?;
+    match (impact, element) {
+        (Some(impact), Some(element)) => {
+            let mesh = scenes
+                .and_then(|d| geometry::scene::Scene::load(&d.join(format!("{se}.toml"))).ok())
+                .map(|l| {
+                    let m = l.scene.mesh.reduced_order;
+                    [m.profile, m.face]
+                });
+            Ok(SeedRuns::Present {
+                impact: Box::new(impact),
+                element: Box::new(element),
+                mesh,
+            })
+        }
+        (i, e) => Ok(SeedRuns::Absent {
+            missing: [(i.is_none(), si), (e.is_none(), se)]
+                .into_iter()
+                .filter(|(m, _)| *m)
+                .map(|(_, s)| summary_path(out, &s))
+                .collect(),
+        }),
+    }
+}
+
+/// Signed relative difference in percent (in powers of ten below
+/// 0.001 %, so that a small difference does not print as zero).
+fn pct(x: f64) -> String {
+    let v = 100.0 * x;
+    if v != 0.0 && v.abs() < 1e-3 {
+        format!("{v:+.1e} %")
+    } else {
+        format!("{v:+.3} %")
+    }
+}
+
+/// |x| in percent for differences near zero.
+fn small_pct(x: f64) -> String {
+    format!("{:.1e} %", 100.0 * x.abs())
+}
+
+/// A seed's value as it prints it (its own digits), and where.
+fn quoted(v: Option<Quoted>, unit: &str) -> String {
+    v.map_or_else(
+        || "not given".to_string(),
+        |p| format!("{}{unit} ({})", p.value, p.source),
+    )
+}
+
+fn pair(a: Option<Quoted>, b: Option<Quoted>) -> String {
+    match (a, b) {
+        (Some(a), Some(b)) if a.source == b.source => {
+            format!("{} / {} ({})", a.value, b.value, a.source)
+        }
+        (None, None) => "not given".into(),
+        (a, b) => format!("{} / {}", quoted(a, ""), quoted(b, "")),
+    }
+}
+
+/// The load-run table of one seed.
+fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &LoadRunSummary) {
+    let _ = writeln!(
+        s,
+        "| quantity | impact law | FE-analytical element | seed {} |",
+        p.id
+    );
+    let _ = writeln!(s, "|---|---|---|---|");
+    let mut row = |q: &str, f: &dyn Fn(&LoadRunSummary) -> String, seed: String| {
+        let _ = writeln!(s, "| {q} | {} | {} | {seed} |", f(i), f(e));
+    };
+    row(
+        "steady window, s (mesh cycles)",
+        &|l| {
+            format!(
+                "{:.3} – {:.3} ({})",
+                l.window_s[0], l.window_s[1], l.window_mesh_cycles
+            )
+        },
+        String::new(),
+    );
+    row(
+        &format!(
+            "mean wheel speed, °/s (kinematic {:.3})",
+            i.wheel_speed_kinematic_deg_s
+        ),
+        &|l| format!("{:.3}", l.wheel_speed_mean_deg_s),
+        quoted(p.wheel_speed_deg_s, ""),
+    );
+    row(
+        "mean wheel speed against kinematic",
+        &|l| pct(l.wheel_speed_error),
+        quoted(p.wheel_speed_error_percent, " %"),
+    );
+    row(
+        &format!(
+            "mean tangential force, N (2T/d = {:.1})",
+            i.tangential_force_theory_n
+        ),
+        &|l| format!("{:.1}", l.tangential_force_mean_n),
+        match (p.tangential_force_n, p.tangential_force_theory_n) {
+            (Some(f), Some(t)) if f.source == t.source => {
+                format!("{} against 2T/d = {} ({})", f.value, t.value, f.source)
+            }
+            (f, _) => quoted(f, ""),
+        },
+    );
+    row(
+        "mean tangential force against 2T/d",
+        &|l| pct(l.tangential_force_error),
+        quoted(p.tangential_force_error_percent, " %"),
+    );
+    row(
+        "wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s",
+        &|l| {
+            format!(
+                "{:.2} / {:.2}",
+                l.wheel_speed_fluctuation_mean_deg_s, l.wheel_speed_fluctuation_max_deg_s
+            )
+        },
+        pair(
+            p.speed_fluctuation_mean_deg_s,
+            p.speed_fluctuation_max_deg_s,
+        ),
+    );
+    row(
+        "tangential force fluctuation \\|F_t − mean\\| mean / max, N",
+        &|l| {
+            format!(
+                "{:.1} / {:.1}",
+                l.tangential_force_fluctuation_mean_n, l.tangential_force_fluctuation_max_n
+            )
+        },
+        pair(p.force_fluctuation_mean_n, p.force_fluctuation_max_n),
+    );
+    row(
+        &format!(
+            "meshing force mean / max, N (theory T / (r_m cos α_n cos β_m) = {:.0})",
+            i.mesh_force_theory_n
+        ),
+        &|l| format!("{:.0} / {:.0}", l.mesh_force_mean_n, l.mesh_force_max_n),
+        p.mesh_force_statement.unwrap_or("not given").to_string(),
+    );
+    row(
+        "meshing force mean against theory",
+        &|l| pct(l.mesh_force_mean_n / l.mesh_force_theory_n - 1.0),
+        String::new(),
+    );
+    row(
+        "TE mean / peak-to-peak, µrad",
+        &|l| format!("{:.1} / {:.1}", l.te_mean_urad, l.te_ptp_urad),
+        "not given".into(),
+    );
+    row(
+        "mesh efficiency mean(T₂ω₂) / mean(T₁ω₁)",
+        &|l| format!("{:.4}", l.mesh_efficiency),
+        "not given".into(),
+    );
+    row(
+        "steps (rejected)",
+        &|l| format!("{} ({})", l.steps, l.rejected_steps),
+        String::new(),
+    );
+    row(
+        "CPU per step, µs (whole run, s)",
+        &|l| format!("{:.1} ({:.1})", l.cpu_s_per_step * 1e6, l.cpu_s),
+        String::new(),
+    );
+    s.push('\n');
+}
+
+/// The impact law's parameters as used, beside the seed's printed values,
+/// and the Hertz K recomputed from the pair's pitch radii.
+fn parameter_table(
+    s: &mut String,
+    p: &SeedPublished,
+    law: &ImpactLawSummary,
+    element_mu: f64,
+    hertz: &[(&str, SeedStiffness)],
+) {
+    let _ = writeln!(
+        s,
+        "| impact-law parameter | used here | seed {} ({}) |",
+        p.id, p.parameters_source
+    );
+    let _ = writeln!(s, "|---|---|---|");
+    let _ = writeln!(
+        s,
+        "| K, N/mm^e | {:.4e} (from the {}) | {:.4e}, {} |",
+        law.stiffness_n_per_mm_e, law.stiffness_source, p.stiffness.value, p.stiffness.source
+    );
+    let _ = writeln!(
+        s,
+        "| Hertz K = 4/3 √R E*, N/mm^1.5, R from the pitch radii {:.2} and {:.2} mm | {:.4e} | printed / recomputed = {:.3} |",
+        law.hertz_radii_mm[0],
+        law.hertz_radii_mm[1],
+        law.hertz_stiffness_n_per_mm_1_5,
+        p.stiffness.value / law.hertz_stiffness_n_per_mm_1_5
+    );
+    // Only the values that differ from the pitch-radius row above.
+    let pitch = law.hertz_stiffness_n_per_mm_1_5;
+    for (what, k) in hertz
+        .iter()
+        .filter(|(_, k)| (k.recomputed / pitch - 1.0).abs() > 1e-6)
+    {
+        let _ = writeln!(
+            s,
+            "| Hertz K, {what}, R₁, R₂ = {:.2}, {:.2} mm, E* = {:.4e} N/mm² | {:.4e} | printed / recomputed = {:.3} |",
+            k.radii_mm[0],
+            k.radii_mm[1],
+            k.modulus_n_per_mm2,
+            k.recomputed,
+            k.ratio()
+        );
+    }
+    let _ = writeln!(s, "| exponent e | {} | {} |", law.exponent, p.exponent);
+    let _ = writeln!(
+        s,
+        "| damping C, N·s/mm, full at d, mm | {} at {} | {} at {} |",
+        law.damping_n_s_per_mm, law.penetration_depth_mm, p.damping_n_s_per_mm, p.depth_mm
+    );
+    let _ = writeln!(
+        s,
+        "| friction μs / μd (stiction / transition speed, mm/s) | {} / {} ({} / {}) | {} / {} |",
+        law.static_friction,
+        law.dynamic_friction,
+        law.stiction_speed_mm_s,
+        law.friction_transition_speed_mm_s,
+        p.static_friction,
+        p.dynamic_friction
+    );
+    let _ = writeln!(
+        s,
+        "| element runs: constant Coulomb μ | {} | |\n",
+        element_mu
+    );
+}
+
+/// The Hertz stiffness recomputed from each seed's own inputs (its
+/// materials; for seed 002 also the back-cone radii), see
+/// `solver::impact_law`.
+fn seed_hertz(p: &SeedPublished) -> Vec<(&'static str, SeedStiffness)> {
+    match p.id {
+        "001" => vec![("the seed's own inputs", seed_001_stiffness())],
+        "002" => vec![(
+            "back-cone (Tredgold) radii r / cos δ",
+            seed_002_back_cone_stiffness(),
+        )],
+        _ => Vec::new(),
+    }
+}
+
+/// What the stiffness findings are, numbers from `law` and `hertz`.
+fn stiffness_finding(
+    s: &mut String,
+    p: &SeedPublished,
+    law: &ImpactLawSummary,
+    hertz: &[(&str, SeedStiffness)],
+) {
+    let pitch = law.hertz_stiffness_n_per_mm_1_5;
+    match (p.id, hertz.first()) {
+        ("001", Some((_, k))) => {
+            let _ = writeln!(
+                s,
+                "Stiffness: 4/3 √R E* with the seed's inputs is {:.4e} N/mm^1.5 (R = {:.3} mm, E* = {:.4e} N/mm²); the printed {:.4e} differs by {:+.2} % and reproduces only with E* rounded to 1.1e5 N/mm² as printed. The seed derives K for F = K δ^1.5 and uses it with the exponent {}: with δ in mm that is a different law, weaker below 1 mm penetration. This run uses the printed K with the printed exponent, as the seed did.\n",
+                k.recomputed,
+                k.radius_mm,
+                k.modulus_n_per_mm2,
+                p.stiffness.value,
+                100.0 * (k.ratio() - 1.0),
+                p.exponent
+            );
+        }
+        ("002", Some((_, k))) => {
+            let _ = writeln!(
+                s,
+                "Stiffness: the printed k = {:.3e} (no unit) is {:.0} times the Hertz value with the back-cone radii of the outer transverse section ({:.3e} N/mm^1.5) and {:.0} times the value with the pitch radii ({:.3e}); no choice of R with α ≤ 1 and E in N/mm² reproduces it (E in N/cm² with R in mm would). This run uses the printed k as N/mm^1.5, as the seed's units imply: a contact about {:.0} times stiffer than Hertz.\n",
+                p.stiffness.value,
+                k.ratio(),
+                k.recomputed,
+                p.stiffness.value / pitch,
+                pitch,
+                law.stiffness_n_per_mm_e / pitch
+            );
+        }
+        _ => {}
+    }
+}
+
+/// Where the differences come from, for one seed.
+fn differences(s: &mut String, p: &SeedPublished, i: &LawRun, e: &LawRun, mesh: Option<[u32; 2]>) {
+    let (li, le) = (&i.load_run, &e.load_run);
+    let mesh = mesh.map_or("coarse reduced".to_string(), |m| {
+        format!("coarse {} × {}", m[0], m[1])
+    });
+    let _ = writeln!(s, "Where the differences come from:\n");
+    let _ = writeln!(
+        s,
+        "- Means: both laws hold the mean wheel speed within {} and {} of kinematic and the mean tangential force within {} and {} of 2T/d over whole mesh cycles of the steady window: in a steady run the time mean has to balance the load, whatever the contact law.{}",
+        small_pct(li.wheel_speed_error),
+        small_pct(le.wheel_speed_error),
+        small_pct(li.tangential_force_error),
+        small_pct(le.tangential_force_error),
+        match p.tangential_force_error_percent {
+            Some(t) => format!(
+                " The seed's {} % ({}) therefore measures its averaging (window, start-up) or its solver, not the contact law.",
+                t.value, t.source
+            ),
+            None => String::new(),
+        }
+    );
+    let _ = writeln!(
+        s,
+        "- The element runs use the FE-analytical contact on the {mesh} reduced meshes (profile × face per flank) of the seed pairs: their TE mean ({:.0} µrad against {:.0} µrad with the impact law) holds the tooth and body compliance of these coarse meshes, which the impact law does not have, and their force and speed fluctuations follow the mesh stiffness variation that these meshes resolve.",
+        le.te_mean_urad, li.te_mean_urad
+    );
+    let _ = writeln!(
+        s,
+        "- The impact law works on rigid geometry: the bodies do not deform, the only compliance is K δ^e at each pair's deepest point, and a pair comes into contact at once at its rigid first contact, so the speed and force fluctuations come from the impacts at mesh entry and the jump between pairs (largest tangential-force fluctuation {:.0} N against {:.0} N with the element).",
+        li.tangential_force_fluctuation_max_n, le.tangential_force_fluctuation_max_n
+    );
+    let _ = writeln!(
+        s,
+        "- Friction: the element runs use a constant Coulomb μ = {} (the seed's dynamic coefficient); the impact law switches between μs = {} and μd = {} with the sliding speed, and adds its contact damping C δ̇. The mesh efficiency, {:.4} (impact) against {:.4} (element), reflects both.\n",
+        e.run.friction_coefficient,
+        i.run.impact_law.as_ref().map_or(f64::NAN, |l| l.static_friction),
+        i.run.impact_law.as_ref().map_or(f64::NAN, |l| l.dynamic_friction),
+        li.mesh_efficiency,
+        le.mesh_efficiency
+    );
+}
+
+/// The load-run charts of both runs (impact | element side by side per
+/// chart), copied to `reports` as `contact_laws_<scene>_<chart>.svg`.
+fn seed_figures(p: &SeedPublished, i: &LawRun, e: &LawRun, reports: &Path) -> Vec<Figure> {
+    let charts = [
+        ("load_run_speed.svg", "wheel speed"),
+        ("load_run_force.svg", "tangential force"),
+        ("load_run_torque.svg", "wheel torque"),
+    ];
+    let mut figs = Vec::new();
+    for (file, what) in charts {
+        for (run, law) in [(i, "impact law"), (e, "FE-analytical element")] {
+            let to = format!("contact_laws_{}_{}", run.scene, file);
+            let title = format!("Seed {}, {law}: {what} over the load run", p.id);
+            figs.extend(copied(&title, &run.dir.join(file), reports, &to));
+        }
+    }
+    figs
+}
+
+/// The section for the seeds' runs under `out`: `scenes` is the directory
+/// of the seed scene files (for their mesh sizes), `reports` where the
+/// charts are copied.
+pub fn build(
+    out: &Path,
+    scenes: Option<&Path>,
+    reports: &Path,
+) -> Result<ContactLaws, ContactLawsError> {
+    let runs = SEEDS
+        .iter()
+        .map(|p| seed_runs(out, scenes, p).map(|r| (p, r)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(section(&runs, reports))
+}
+
+/// The section's markdown from the seeds' runs.
+pub fn section(runs: &[(&SeedPublished, SeedRuns)], reports: &Path) -> ContactLaws {
+    let mut s = String::new();
+    let mut figures = Vec::new();
+    let _ = writeln!(s, "## Contact laws: Hertz impact function against the FE-analytical contact element (seeds 001 and 002)\n");
+    let _ = writeln!(
+        s,
+        "The impact-function law of general-purpose multibody codes (ADAMS IMPACT, NX 3D contact: F = K δ^e + C δ̇ STEP(δ, 0, 0, d, 1), friction switching between μs and μd) and the FE-analytical contact element, each on the seeds' load runs (imposed pinion speed, wheel load), beside the numbers the seeds publish. Means and fluctuations are over whole mesh cycles of the steady window.\n"
+    );
+    for (p, r) in runs {
+        match r {
+            SeedRuns::Absent { missing } => {
+                let names: Vec<String> = missing
+                    .iter()
+                    .map(|m| format!("`{}`", m.display()))
+                    .collect();
+                let _ = writeln!(
+                    s,
+                    "Seed {} ({}): not run, {} absent (`make validate CONTACT_LAWS=1` runs it).\n",
+                    p.id,
+                    p.title,
+                    names.join(" and ")
+                );
+            }
+            SeedRuns::Present {
+                impact,
+                element,
+                mesh,
+            } => {
+                let _ = writeln!(s, "### Seed {} ({})\n", p.id, p.title);
+                let (li, le) = (&impact.load_run, &element.load_run);
+                let _ = writeln!(
+                    s,
+                    "Pinion at {:.1} rpm (ramp {} s), wheel load {} N·m (rise {} s), {} s simulated.\n",
+                    li.pinion_rpm, li.pinion_ramp_s, li.wheel_torque_nm, li.wheel_torque_rise_s, li.sim_time_s
+                );
+                load_run_table(&mut s, p, li, le);
+                let hertz = seed_hertz(p);
+                if let Some(law) = &impact.run.impact_law {
+                    parameter_table(&mut s, p, law, element.run.friction_coefficient, &hertz);
+                    stiffness_finding(&mut s, p, law, &hertz);
+                }
+                differences(&mut s, p, impact, element, *mesh);
+                let figs = seed_figures(p, impact, element, reports);
+                for f in &figs {
+                    let _ = writeln!(s, "![{}]({})", f.title.replace(['[', ']'], ""), f.file);
+                }
+                if !figs.is_empty() {
+                    s.push('\n');
+                }
+                figures.extend(figs);
+            }
+        }
+    }
+    ContactLaws {
+        markdown: s,
+        figures,
+    }
+}
