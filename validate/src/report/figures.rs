@@ -33,6 +33,8 @@ pub struct ReportFigures {
     pub tradeoff: Option<Figure>,
     /// The flank stage's plots: unloaded TE, path of contact, ease-off.
     pub unloaded: Vec<Figure>,
+    /// The lumped model's section with its charts.
+    pub lumped: super::lumped::LumpedSection,
 }
 
 impl ReportFigures {
@@ -43,6 +45,7 @@ impl ReportFigures {
             .chain(&self.patterns)
             .chain(&self.tradeoff)
             .chain(&self.unloaded)
+            .chain(&self.lumped.figures)
     }
 }
 
@@ -83,6 +86,7 @@ pub fn report_figures(
             .iter()
             .filter_map(|(title, from, to)| copied(title, &flanks.join(from), reports, to))
             .collect(),
+        lumped: super::lumped::section(out, reports),
         ..Default::default()
     };
     let (Some(o), Some(s)) = (out, scene) else {

@@ -13,6 +13,7 @@ pub mod differences;
 pub mod figures;
 pub mod html;
 pub mod layout;
+pub mod lumped;
 pub mod published;
 pub mod results;
 
@@ -199,6 +200,7 @@ pub fn markdown(
     if let Some(p) = &parts {
         s.push_str(&p.details);
     }
+    s.push_str(&figs.lumped.markdown);
     while s.ends_with("\n\n") {
         s.pop();
     }
