@@ -19,6 +19,7 @@ pub mod material;
 pub mod minimize;
 pub mod pair;
 pub mod placement;
+pub mod roughness;
 pub mod scene;
 pub mod scene_checks;
 pub mod scene_contact_law;

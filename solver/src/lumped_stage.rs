@@ -2,8 +2,8 @@
 //! blank of a scene with a `[lumped]` section, driven by our LTCA at the
 //! operating torque, to `<out>/<scene>/lumped/<pinion>_<wheel>/`:
 //! `time_history.csv`, `mesh_excitation.csv`, `bearing_spectrum.csv` and
-//! `summary.json` ([`formats::lumped_summary::LumpedSummary`]), written as
-//! one result set.
+//! `summary.json` ([`formats::lumped_summary::LumpedSummary`]) and the charts
+//! of [`crate::lumped_plots`], written as one result set.
 
 use crate::compliance::PairCompliance;
 use crate::ltca::{geometry, run as run_sweep};
@@ -255,6 +255,20 @@ fn run_blank(
             .unwrap_or(0);
     let r = response(&model, &exc, &h, first, mesh_hz, MAX_ORDER);
     write_files(odir, &model, &exc, &h, samples, &r)?;
+    let label = format!(
+        "{pinion_blank:?} pinion / {wheel_blank:?} wheel, {} rpm",
+        ls.pinion_speed_rpm
+    );
+    crate::lumped_plots::write_plots(
+        odir,
+        &label,
+        &h,
+        first,
+        mesh_hz,
+        model.mean_mesh_force(),
+        &r,
+        MAX_ORDER,
+    )?;
     let share = r
         .rms_acceleration
         .map(|a| 100.0 * a / r.rms_acceleration[6]);

@@ -35,6 +35,8 @@ pub struct ReportFigures {
     pub unloaded: Vec<Figure>,
     /// The "Contact laws" section with its load-run charts (seeds 001/002).
     pub contact_laws: Option<crate::report::contact_laws::ContactLaws>,
+    /// The lumped model's section with its charts.
+    pub lumped: super::lumped::LumpedSection,
 }
 
 impl ReportFigures {
@@ -46,6 +48,7 @@ impl ReportFigures {
             .chain(&self.tradeoff)
             .chain(&self.unloaded)
             .chain(self.contact_laws.iter().flat_map(|c| &c.figures))
+            .chain(&self.lumped.figures)
     }
 }
 
@@ -86,6 +89,7 @@ pub fn report_figures(
             .iter()
             .filter_map(|(title, from, to)| copied(title, &flanks.join(from), reports, to))
             .collect(),
+        lumped: super::lumped::section(out, reports),
         ..Default::default()
     };
     let (Some(o), Some(s)) = (out, scene) else {

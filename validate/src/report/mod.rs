@@ -14,6 +14,7 @@ pub mod differences;
 pub mod figures;
 pub mod html;
 pub mod layout;
+pub mod lumped;
 pub mod published;
 pub mod results;
 
@@ -203,6 +204,7 @@ pub fn markdown(
     if let Some(p) = &parts {
         s.push_str(&p.details);
     }
+    s.push_str(&figs.lumped.markdown);
     while s.ends_with("\n\n") {
         s.pop();
     }
