@@ -63,6 +63,12 @@ pub struct LumpedSummary {
     pub masses_kg: [f64; 2],
     pub inertias_kgm2: [f64; 2],
     pub mesh_damping_ns_per_m: f64,
+    /// Bearing stiffness of pinion and wheel per direction (X, Y, Z), N/m,
+    /// and the bearings' damping ratio, as the run used them.
+    #[serde(default)]
+    pub bearing_stiffness_n_per_m: [[f64; 3]; 2],
+    #[serde(default)]
+    pub bearing_damping_ratio: f64,
     /// Tangent k(t) = dF/dδ; the secant F/δ mean beside it.
     pub mesh_stiffness_n_per_m: SeriesSummary,
     pub secant_mesh_stiffness_mean_n_per_m: f64,

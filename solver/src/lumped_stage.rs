@@ -286,6 +286,11 @@ fn run_blank(
         masses_kg: mass,
         inertias_kgm2: inertia,
         mesh_damping_ns_per_m: model.mesh_damping_ns_per_m,
+        bearing_stiffness_n_per_m: [
+            ls.pinion_bearing_stiffness_n_per_m,
+            ls.wheel_bearing_stiffness_n_per_m,
+        ],
+        bearing_damping_ratio: ls.bearing_damping_ratio,
         mesh_stiffness_n_per_m: series_summary(kf),
         secant_mesh_stiffness_mean_n_per_m: samples.secant_n_per_m.iter().sum::<f64>()
             / samples.secant_n_per_m.len() as f64,

@@ -42,6 +42,8 @@ fn summary() -> LumpedSummary {
         masses_kg: [2.0, 7.7],
         inertias_kgm2: [0.0018, 0.118],
         mesh_damping_ns_per_m: 2000.0,
+        bearing_stiffness_n_per_m: [[1e9; 3], [1e9, 2e9, 1e9]],
+        bearing_damping_ratio: 0.02,
         mesh_stiffness_n_per_m: series(7.2345e7, 8, 0.0983),
         secant_mesh_stiffness_mean_n_per_m: 6.7742e7,
         transmission_error_m: series(5.3e-6, 6, 0.0883),
@@ -109,6 +111,11 @@ fn present_summary_gives_table3_rows_beside_seed004_and_the_charts() {
     // 27,660 N against T1/r1 = 133.72 / 0.04 = 3343 N: 8.3 times.
     assert!(md.contains("3343 N"));
     assert!(md.contains("8.3 times"));
+    // The bearings as the run used them, not as a text assumed them.
+    assert!(
+        md.contains("pinion 1.000e9 / 1.000e9 / 1.000e9 N/m and wheel 1.000e9 / 2.000e9 / 1.000e9 N/m (X / Y / Z) with 2 % damping"),
+        "{md}"
+    );
     assert!(md.contains("4.8 times our tangent mean"));
     assert!(
         md.contains("natural frequencies are 1053, 1811 Hz against the mesh frequency 2261.7 Hz")

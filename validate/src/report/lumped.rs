@@ -234,6 +234,20 @@ fn pair_markdown(s: &mut String, r: &LumpedSummary) {
     );
 }
 
+/// The bearing stiffnesses as the run used them: one value when all six
+/// are equal, else per member and direction.
+fn bearings_text(k: &[[f64; 3]; 2]) -> String {
+    let all: Vec<f64> = k.iter().flatten().copied().collect();
+    if all.iter().all(|&v| v == all[0]) {
+        format!("{:.3e} N/m in every direction", all[0])
+    } else {
+        format!(
+            "pinion {:.3e} / {:.3e} / {:.3e} N/m and wheel {:.3e} / {:.3e} / {:.3e} N/m (X / Y / Z)",
+            k[0][0], k[0][1], k[0][2], k[1][0], k[1][1], k[1][2]
+        )
+    }
+}
+
 fn differences_markdown(s: &mut String, r: &LumpedSummary) {
     let static_force = r.pinion_torque_nm / r.levers_m[0];
     let k_ratio = SEED004_MEAN_MESH_STIFFNESS_N_PER_M / r.mesh_stiffness_n_per_m.mean;
@@ -241,10 +255,12 @@ fn differences_markdown(s: &mut String, r: &LumpedSummary) {
         s,
         "### Why ours differs from seed 004\n\n\
 - **Meshes.** The scene runs the coarse 6 × 10 flank-element meshes of `reference/scenes/seed004_lumped.toml`; the stiffness, loaded TE and impact velocity come from that reduced model, not a converged one.\n\
-- **Bearings.** Seed 004 publishes no bearing stiffness; the scene assumes 1 GN/m in every direction with 2 % damping. The body accelerations depend on that choice: with it the linear model's natural frequencies are {} Hz against the mesh frequency {:.1} Hz.\n\
+- **Bearings.** Seed 004 publishes no bearing stiffness; the scene assumes {} with {:.0} % damping. The body accelerations depend on that choice: with it the linear model's natural frequencies are {} Hz against the mesh frequency {:.1} Hz.\n\
 - **Our design file.** Seed 004 gives no flank modification; `reference/seed004_23x86.toml` carries an assumed ease-off (profile and lengthwise crowning, a parabolic motion error). The localized contact it gives lowers the tangent stiffness at this load and shapes the loaded TE that drives the model.\n\
 - **Mean stiffness.** Seed 004's {SEED004_MEAN_MESH_STIFFNESS_N_PER_M:.1e} N/m is {k_ratio:.1} times our tangent mean; it is a \"typical value\" from its Table 1, whose other entries (mesh frequency 2π × 1000 rad/s, impact velocity 0.5 m/s) do not match its own case study either.\n\
 - **Impact.** Seed 004's {SEED004_IMPACT_FORCE_N:.0} N is {:.1} times the static mesh force T₁/r₁ = {static_force:.0} N of this load; ours is seed 004's F_s formula with the impact velocity ({:.4} m/s) and entering pair's stiffness of our LTCA, {:.0} N.\n",
+        bearings_text(&r.bearing_stiffness_n_per_m),
+        100.0 * r.bearing_damping_ratio,
         r.natural_frequencies_hz
             .iter()
             .map(|f| format!("{f:.0}"))
