@@ -9,6 +9,7 @@
 use crate::compliance::PairCompliance;
 use crate::contact_problem::{ContactProblem, ContactSolution};
 use crate::cpu_clock::timed;
+use crate::edge_contact::{position_edge, EdgeHit};
 use crate::slices::{pair_slices, Slice};
 use crate::weber_banaschek::{contact_modulus, half_width, LineContact};
 use crate::SolverError;
@@ -218,6 +219,9 @@ pub struct PositionLoad {
     pub slices: Vec<SliceLoad>,
     pub solve_s: f64,
     pub iterations: usize,
+    /// The loaded contact's reach past an edge of the active flank (the
+    /// largest overshoot over the slices), if any.
+    pub edge: Option<EdgeHit>,
 }
 
 /// A position over all torques.
@@ -236,6 +240,7 @@ pub struct PositionResult {
 }
 
 fn position_load(
+    fp: &FlankPair,
     g: &Geometry,
     a: &Assembled,
     s: &ContactSolution,
@@ -246,6 +251,7 @@ fn position_load(
     let mut pair_torque: Vec<f64> = Vec::new();
     let mut slices = Vec::new();
     let mut pmax: f64 = 0.0;
+    let mut half_widths = vec![0.0; g.slices.len()];
     for (k, sl) in g.slices.iter().enumerate() {
         match pair_force.iter().position(|p| p.0 == sl.pair) {
             Some(i) => {
@@ -264,6 +270,7 @@ fn position_load(
             let b = half_width(q, lc.rho, es);
             let p0 = 2.0 * q / (std::f64::consts::PI * b);
             pmax = pmax.max(p0);
+            half_widths[k] = b;
             slices.push(SliceLoad {
                 pair: sl.pair,
                 xi: sl.xi,
@@ -299,6 +306,7 @@ fn position_load(
         slices,
         solve_s: dt,
         iterations: s.iterations,
+        edge: position_edge(fp, &g.slices, &s.force, &half_widths),
     }
 }
 
@@ -327,7 +335,7 @@ pub fn run(
             for &torque in torques {
                 let (s, dt) = timed(|| solve(&a, torque, warm.as_deref()));
                 let s = s?;
-                loads.push(position_load(&g, &a, &s, torque, dt));
+                loads.push(position_load(fp, &g, &a, &s, torque, dt));
                 warm = Some(s.active);
             }
             Ok(PositionResult {
