@@ -219,6 +219,15 @@ pub struct PositionLoad {
     pub slices: Vec<SliceLoad>,
     pub solve_s: f64,
     pub iterations: usize,
+    /// Active-set changes over all fixed-point iterations.
+    pub active_set_changes: usize,
+    /// Σ (λ₁ + μ ℓ₁) F − T, N·m: the contact's torque on the pinion less the
+    /// applied torque (zero to rounding).
+    pub torque_residual_nm: f64,
+    /// Smallest slice force, N (≥ 0: compressive only), over all slices.
+    pub min_force_n: f64,
+    /// Loaded TE and every slice force finite.
+    pub finite: bool,
     /// The loaded contact's reach past an edge of the active flank (the
     /// largest overshoot over the slices), if any.
     pub edge: Option<EdgeHit>,
@@ -306,6 +315,16 @@ fn position_load(
         slices,
         solve_s: dt,
         iterations: s.iterations,
+        active_set_changes: s.active_set_changes,
+        torque_residual_nm: s
+            .force
+            .iter()
+            .zip(&a.lever_pinion)
+            .map(|(f, l)| f * l)
+            .sum::<f64>()
+            - torque,
+        min_force_n: s.force.iter().copied().fold(f64::INFINITY, f64::min),
+        finite: s.theta.is_finite() && s.force.iter().all(|f| f.is_finite()),
         edge: position_edge(fp, &g.slices, &s.force, &half_widths),
     }
 }
