@@ -33,6 +33,8 @@ pub struct ReportFigures {
     pub tradeoff: Option<Figure>,
     /// The flank stage's plots: unloaded TE, path of contact, ease-off.
     pub unloaded: Vec<Figure>,
+    /// The stress matrix's section and outcome grid.
+    pub stress: crate::report::stress::StressSection,
 }
 
 impl ReportFigures {
@@ -43,6 +45,7 @@ impl ReportFigures {
             .chain(&self.patterns)
             .chain(&self.tradeoff)
             .chain(&self.unloaded)
+            .chain(&self.stress.figure)
     }
 }
 
@@ -89,6 +92,7 @@ pub fn report_figures(
         return f;
     };
     f.loaded_te = te_figures(o, &s.name, reports, &s.pinion_torque_nm);
+    f.stress = crate::report::stress::section(o, &s.name, reports);
     f.tradeoff = copied(
         "Reduced model: error to the reference against run time",
         &o.join(&s.name).join("reference/tradeoff.svg"),
