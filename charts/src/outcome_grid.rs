@@ -28,7 +28,7 @@ const CLASS_COLOURS: [RGBColor; 5] = [
 
 const CELL_W: u32 = 96;
 const CELL_H: u32 = 26;
-const LABEL_W: u32 = 210;
+const LABEL_W: u32 = 250;
 const TOP: u32 = 56;
 
 /// Draws the grid: `rows` their labels (left), `classes` the legend names

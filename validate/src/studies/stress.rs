@@ -840,12 +840,20 @@ fn chart(path: &Path, s: &StressSummary) -> anyhow::Result<()> {
             row,
             col,
             class: c.outcome.class(),
-            text: c.label.clone(),
+            // Loads whose contact reaches an edge of the flank are marked.
+            text: if c.edge_contact.is_some() {
+                format!("{} · edge", c.label)
+            } else {
+                c.label.clone()
+            },
         });
     }
     outcome_grid(
         path,
-        &format!("Stress matrix of {}: outcome per cell", s.scene),
+        &format!(
+            "Stress matrix of {} and the seed pairs: outcome per cell (\"edge\": contact reaches an edge of the flank)",
+            s.scene
+        ),
         &rows,
         &Outcome::CLASSES,
         &grid,
