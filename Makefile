@@ -45,7 +45,7 @@ CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_elem
 LUMPED        ?= 1
 LUMPED_SCENE  := reference/scenes/seed004_lumped.toml
 
-.PHONY: setup build test bench preprocess solve validate convergence clean
+.PHONY: setup build test bench preprocess solve validate convergence stress clean
 
 setup:
 	@bash scripts/setup.sh
@@ -110,6 +110,22 @@ convergence: build
 	$(BIN)/preprocess mesh $(SCENE) --level reference --out meshes
 	$(BIN)/validate convergence $(SCENE) --meshes meshes --out $(OUT)
 	$(BIN)/validate line-load $(SCENE) --meshes meshes --out $(OUT)
+
+# Issue 28's stress matrix: the scene's design and the seed pairs
+# (reference/scenes/seed*_*x*.toml), standard blanks, reduced meshes and
+# stiffness files made where missing or stale and reused otherwise; the
+# white-paper pair also on the example-02 fixture's 6 x 10 grid.
+# Writes $(OUT)/<scene>/stress/ (summary.json, outcomes.svg); the report
+# shows it. About 12 min on 2 shared cores with everything cached.
+SEED_SCENES := $(wildcard reference/scenes/seed[0-9][0-9][0-9]_[0-9]*x[0-9]*.toml)
+stress: build
+	$(BIN)/preprocess mesh $(SCENE) --level reduced --out meshes
+	$(BIN)/preprocess stiffness $(SCENE) --meshes meshes
+	@for s in $(SEED_SCENES); do \
+	  $(BIN)/preprocess mesh $$s --level reduced --out meshes && \
+	  $(BIN)/preprocess stiffness $$s --meshes meshes || exit 1; done
+	$(BIN)/validate stress $(SCENE) --meshes meshes --out $(OUT) \
+	  --grid-scene examples/02_ltca_fixture/scene.toml
 
 clean:
 	$(CARGO) clean

@@ -27,6 +27,55 @@ pub struct LoadSummary {
     /// z₁/z₂ / torque (one without friction, to the ease-off's departure
     /// from conjugate levers).
     pub wheel_torque_mean_nm: f64,
+    /// The first position of the sweep (in its order) where a loaded
+    /// slice's contact reaches an edge of the active flank; None where the
+    /// contact stays inside at every position (or in files written before
+    /// the check existed).
+    #[serde(default)]
+    pub edge_contact: Option<EdgeContact>,
+}
+
+/// An edge of the active flank that the contact can reach.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Edge {
+    /// Inner end of the face width (small cone distance).
+    Toe,
+    /// Outer end of the face width.
+    Heel,
+    PinionTip,
+    /// The pinion flank's lower limit, where the root fillet meets it.
+    PinionRootFillet,
+    WheelTip,
+    WheelRootFillet,
+}
+
+impl Edge {
+    pub fn name(self) -> &'static str {
+        match self {
+            Edge::Toe => "toe",
+            Edge::Heel => "heel",
+            Edge::PinionTip => "pinion tip",
+            Edge::PinionRootFillet => "pinion root-fillet limit",
+            Edge::WheelTip => "wheel tip",
+            Edge::WheelRootFillet => "wheel root-fillet limit",
+        }
+    }
+}
+
+/// Contact reaching an edge of the active flank at one position.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EdgeContact {
+    pub edge: Edge,
+    /// Pinion rotation from the sweep start, deg.
+    pub pinion_rotation_deg: f64,
+    /// Tooth pair whose slice reaches the edge.
+    pub pair: i32,
+    /// How far the contact reaches past the edge, mm (≥ 0). Along the
+    /// profile: the Hertz half-width beyond the tip or the root-fillet
+    /// limit. At the toe and heel the slice's band is cut at the face's
+    /// end, so a loaded end band reaches it with overshoot 0.
+    pub overshoot_mm: f64,
 }
 
 /// Summary of one pinion × wheel blank combination.

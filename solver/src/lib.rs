@@ -16,6 +16,7 @@ pub mod compliance;
 pub mod contact_problem;
 pub mod cpu_clock;
 pub mod dynamic_stage;
+pub mod edge_contact;
 pub mod impact_law;
 pub mod impact_table;
 pub mod interp;

@@ -9,6 +9,7 @@
 use crate::compliance::PairCompliance;
 use crate::contact_problem::{ContactProblem, ContactSolution};
 use crate::cpu_clock::timed;
+use crate::edge_contact::{position_edge, EdgeHit};
 use crate::slices::{pair_slices, Slice};
 use crate::weber_banaschek::{contact_modulus, half_width, LineContact};
 use crate::SolverError;
@@ -218,6 +219,18 @@ pub struct PositionLoad {
     pub slices: Vec<SliceLoad>,
     pub solve_s: f64,
     pub iterations: usize,
+    /// Active-set changes over all fixed-point iterations.
+    pub active_set_changes: usize,
+    /// Σ (λ₁ + μ ℓ₁) F − T, N·m: the contact's torque on the pinion less the
+    /// applied torque (zero to rounding).
+    pub torque_residual_nm: f64,
+    /// Smallest slice force, N (≥ 0: compressive only), over all slices.
+    pub min_force_n: f64,
+    /// Loaded TE and every slice force finite.
+    pub finite: bool,
+    /// The loaded contact's reach past an edge of the active flank (the
+    /// largest overshoot over the slices), if any.
+    pub edge: Option<EdgeHit>,
 }
 
 /// A position over all torques.
@@ -236,6 +249,7 @@ pub struct PositionResult {
 }
 
 fn position_load(
+    fp: &FlankPair,
     g: &Geometry,
     a: &Assembled,
     s: &ContactSolution,
@@ -246,6 +260,7 @@ fn position_load(
     let mut pair_torque: Vec<f64> = Vec::new();
     let mut slices = Vec::new();
     let mut pmax: f64 = 0.0;
+    let mut half_widths = vec![0.0; g.slices.len()];
     for (k, sl) in g.slices.iter().enumerate() {
         match pair_force.iter().position(|p| p.0 == sl.pair) {
             Some(i) => {
@@ -264,6 +279,7 @@ fn position_load(
             let b = half_width(q, lc.rho, es);
             let p0 = 2.0 * q / (std::f64::consts::PI * b);
             pmax = pmax.max(p0);
+            half_widths[k] = b;
             slices.push(SliceLoad {
                 pair: sl.pair,
                 xi: sl.xi,
@@ -299,6 +315,17 @@ fn position_load(
         slices,
         solve_s: dt,
         iterations: s.iterations,
+        active_set_changes: s.active_set_changes,
+        torque_residual_nm: s
+            .force
+            .iter()
+            .zip(&a.lever_pinion)
+            .map(|(f, l)| f * l)
+            .sum::<f64>()
+            - torque,
+        min_force_n: s.force.iter().copied().fold(f64::INFINITY, f64::min),
+        finite: s.theta.is_finite() && s.force.iter().all(|f| f.is_finite()),
+        edge: position_edge(fp, &g.slices, &s.force, &half_widths),
     }
 }
 
@@ -327,7 +354,7 @@ pub fn run(
             for &torque in torques {
                 let (s, dt) = timed(|| solve(&a, torque, warm.as_deref()));
                 let s = s?;
-                loads.push(position_load(&g, &a, &s, torque, dt));
+                loads.push(position_load(fp, &g, &a, &s, torque, dt));
                 warm = Some(s.active);
             }
             Ok(PositionResult {

@@ -26,7 +26,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-pub use formats::summaries::{BlankSummary, CoastSummary, LoadSummary};
+pub use formats::summaries::{BlankSummary, CoastSummary, Edge, EdgeContact, LoadSummary};
 
 /// The coast side's sweep over the pinion angles of the loaded side's
 /// `sweep`, backwards (in the coast side's driving direction).
@@ -235,6 +235,14 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 coast,
             };
             write_json(&odir.join("summary.json"), &summary)?;
+            warn_edge_contact(&sc.name, &format!("{pb:?}/{wb:?} blanks"), &summary.loads);
+            if let Some(c) = &summary.coast {
+                warn_edge_contact(
+                    &sc.name,
+                    &format!("{pb:?}/{wb:?} blanks, coast flanks"),
+                    &c.loads,
+                );
+            }
             for l in &summary.loads {
                 eprintln!(
                     "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {:.2} ms/position",
@@ -336,9 +344,39 @@ pub fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummar
                     .fold(0.0, f64::max),
                 wheel_torque_mean_nm: res.iter().map(|p| p.loads[i].wheel_torque_nm).sum::<f64>()
                     / n,
+                edge_contact: first_edge_contact(res, i),
             }
         })
         .collect()
+}
+
+/// The first position of `res` (sweep order) where the contact at torque
+/// index `i` reaches an edge of the active flank.
+pub fn first_edge_contact(res: &[PositionResult], i: usize) -> Option<EdgeContact> {
+    res.iter().find_map(|p| {
+        p.loads[i].edge.map(|h| EdgeContact {
+            edge: h.edge,
+            pinion_rotation_deg: p.rotation.to_degrees(),
+            pair: h.pair,
+            overshoot_mm: h.overshoot_m * 1e3,
+        })
+    })
+}
+
+/// A warning line on stderr for each load whose contact reaches an edge.
+pub fn warn_edge_contact(scene: &str, what: &str, loads: &[LoadSummary]) {
+    for l in loads {
+        if let Some(e) = &l.edge_contact {
+            eprintln!(
+                "warning: scene {scene}, {what}: at {} N·m the contact reaches the {} (tooth pair {}, pinion rotation {:.3}°, {:.4} mm past it); the reduced model does not hold beyond the flank's edge",
+                l.torque_nm,
+                e.edge.name(),
+                e.pair,
+                e.pinion_rotation_deg,
+                e.overshoot_mm
+            );
+        }
+    }
 }
 
 fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow::Result<()> {

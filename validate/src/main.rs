@@ -122,6 +122,22 @@ enum Cmd {
         #[arg(long, value_delimiter = ',', default_value = "8,12,20,30,45,60")]
         slices: Vec<usize>,
     },
+    /// Issue 28's stress matrix (loads up to edge contact, slices, stiffness
+    /// grids, flanks, multibody step, tolerance and speed) for the scene's
+    /// design and the seed pairs beside it, on cached meshes and stiffness
+    /// files: `<out>/<scene>/stress/summary.json` and `outcomes.svg`.
+    Stress {
+        /// Scene file.
+        scene: PathBuf,
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Scenes of the same designs at other stiffness grids, their
+        /// stiffness files in `meshes/` beside each.
+        #[arg(long)]
+        grid_scene: Vec<PathBuf>,
+    },
     /// Mesh convergence of the reference LTCA: TE at one position and torque
     /// on three mesh levels (standard blanks), observed order, extrapolation.
     Convergence {
@@ -355,6 +371,41 @@ fn main() -> anyhow::Result<()> {
                 memory_bytes,
             };
             validate::reference_stage::run(&sc, &meshes, &out, &opt)?;
+        }
+        Cmd::Stress {
+            scene,
+            meshes,
+            out,
+            grid_scene,
+        } => {
+            let sc = geometry::scene::Scene::load(&scene)?;
+            let s = validate::stress::run(&sc, &meshes, &out, &grid_scene)?;
+            let n = |k: usize| s.cells.iter().filter(|c| c.outcome.class() == k).count();
+            println!(
+                "stress {}: {} cells, {} converged, {} refused, {} failed, {} skipped, {:.0} s",
+                s.scene,
+                s.cells.len(),
+                n(0),
+                n(1),
+                n(2),
+                n(3),
+                s.wall_s
+            );
+            for d in &s.designs {
+                match &d.edge_contact {
+                    Some(e) => println!(
+                        "  {}: edge contact from {} N·m ({}, pinion rotation {:.2}°)",
+                        d.design,
+                        d.edge_contact_torque_nm.unwrap_or(f64::NAN),
+                        e.edge.name(),
+                        e.pinion_rotation_deg
+                    ),
+                    None => println!(
+                        "  {}: no edge contact up to {} N·m",
+                        d.design, d.largest_load_nm
+                    ),
+                }
+            }
         }
         Cmd::Tradeoff {
             scene,

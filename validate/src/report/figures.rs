@@ -37,6 +37,8 @@ pub struct ReportFigures {
     pub contact_laws: Option<crate::report::contact_laws::ContactLaws>,
     /// The lumped model's section with its charts.
     pub lumped: super::lumped::LumpedSection,
+    /// The stress matrix's section and outcome grid.
+    pub stress: crate::report::stress::StressSection,
 }
 
 impl ReportFigures {
@@ -49,6 +51,7 @@ impl ReportFigures {
             .chain(&self.unloaded)
             .chain(self.contact_laws.iter().flat_map(|c| &c.figures))
             .chain(&self.lumped.figures)
+            .chain(&self.stress.figure)
     }
 }
 
@@ -96,6 +99,7 @@ pub fn report_figures(
         return f;
     };
     f.loaded_te = te_figures(o, &s.name, reports, &s.pinion_torque_nm);
+    f.stress = crate::report::stress::section(o, &s.name, reports);
     f.tradeoff = copied(
         "Reduced model: error to the reference against run time",
         &o.join(&s.name).join("reference/tradeoff.svg"),

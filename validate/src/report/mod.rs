@@ -17,6 +17,7 @@ pub mod layout;
 pub mod lumped;
 pub mod published;
 pub mod results;
+pub mod stress;
 
 use crate::figures::{Figure, ReportFigures};
 use crate::utca_check::UtcaCheck;
@@ -201,6 +202,7 @@ pub fn markdown(
     }
     unloaded_section(&mut s, c, published, &figs.unloaded);
     roll_surface_section(&mut s, c);
+    s.push_str(&stress::text(&figs.stress));
     if let Some(p) = &parts {
         s.push_str(&p.details);
     }

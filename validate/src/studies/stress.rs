@@ -1,0 +1,862 @@
+//! `validate stress <scene>`: the stress matrix of issue 28 on cached meshes
+//! and stiffness files. For the scene's design and every seed pair (the
+//! chain scenes `seed<NNN>_<z1>x<z2>.toml` beside the scene), standard
+//! blanks, drive flanks:
+//!
+//! - loads: the pinion torques of [`LOADS_NM`] over the scene's sweep, then
+//!   doubling from 5,000 N·m until the LTCA reports edge contact (or a
+//!   refusal), at most [`DOUBLINGS`] times;
+//! - slices per tooth pair [`SLICES`] at [`PROBE_NM`];
+//! - the stiffness grid of the cached files, and of any `--grid-scene`
+//!   whose design is the same (the white-paper pair's 6 × 10 example-02
+//!   fixture); other grids need new stiffness files and are not run;
+//! - the coast flanks at [`PROBE_NM`] where their stiffness files exist;
+//! - multibody, both members free with constant torques ([`PROBE_NM`] on
+//!   the pinion, the balancing torque on the wheel), undamped, without
+//!   friction, the energy-conserving scheme, from the quasi-static state,
+//!   over one mesh cycle or [`MAX_RUN_S`], the shorter: maximum step [`MAX_STEPS_S`] at
+//!   [`STEP_STUDY_RPM`], TE tolerance [`TOLERANCES_RAD`] at the same
+//!   speed, and pinion speed [`SPEEDS_RPM`]. One mesh cycle keeps the
+//!   1e-6 s run at 1,000 rpm to a few thousand steps; the 0.1 s cap keeps
+//!   the 10 rpm runs (an undamped mesh vibration resolved to 1e-9 rad
+//!   needs steps of a few µs: a whole cycle of seed 002 at 10 rpm would
+//!   take some 500,000 steps) to the matrix's 20 min.
+//!
+//! Every cell records its outcome (converged, refused with the refusal's
+//! message, failed with the error, or skipped where its inputs are not
+//! cached), non-finite values in any output, the torque balance, whether
+//! every slice force is compressive, whether the TE grows with the load at
+//! every position, the energy drift of the undamped runs and the CPU time.
+//! Written as one result set to `<out>/<scene>/stress/` (`summary.json`,
+//! [`StressSummary`], and `outcomes.svg`).
+
+use anyhow::Context;
+use charts::{outcome_grid, GridCell};
+use formats::output::write_json;
+use formats::result_set::ResultSet;
+use formats::summaries::EdgeContact;
+use geometry::design::Member;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, LoadedScene, Scene};
+use geometry::utca::{roll_surface, RollSurface};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::{Deserialize, Serialize};
+use solver::compliance::PairCompliance;
+use solver::cpu_clock::{thread_cpu_s, timed};
+use solver::dynamic_stage::inertia;
+use solver::ltca::{run as run_sweep, PositionResult, Sweep};
+use solver::ltca_stage::{
+    coast_compliance, coast_sweep, first_edge_contact, member_compliance, scene_sweep,
+};
+use solver::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::{Drive, Model};
+use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::SolverError;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Pinion torques of the load study, N·m.
+pub const LOADS_NM: [f64; 9] = [0.0, 1e-3, 0.1, 1.0, 10.0, 100.0, 1000.0, 3000.0, 5000.0];
+/// Doublings of the largest load at most, looking for edge contact.
+pub const DOUBLINGS: usize = 8;
+/// Pinion torque of the discretization, flank and multibody cells, N·m.
+pub const PROBE_NM: f64 = 300.0;
+/// Slices per tooth pair.
+pub const SLICES: [usize; 6] = [5, 10, 20, 40, 80, 160];
+/// Multibody maximum steps, s.
+pub const MAX_STEPS_S: [f64; 5] = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2];
+/// Multibody local error tolerances on the TE, rad (1e-6 … 1 µrad).
+pub const TOLERANCES_RAD: [f64; 4] = [1e-12, 1e-10, 1e-8, 1e-6];
+/// Pinion speeds, rpm.
+pub const SPEEDS_RPM: [f64; 5] = [10.0, 100.0, 1000.0, 3000.0, 10000.0];
+/// Pinion speed of the step and tolerance studies, rpm.
+pub const STEP_STUDY_RPM: f64 = 1000.0;
+/// Maximum step of the tolerance and speed studies, s.
+const STUDY_MAX_STEP_S: f64 = 1e-5;
+/// TE tolerance of the step and speed studies, rad.
+const STUDY_TOLERANCE_RAD: f64 = 1e-9;
+/// Longest simulated time of one multibody cell, s.
+pub const MAX_RUN_S: f64 = 0.1;
+/// Steps at most of one multibody cell (a run needing more fails).
+pub const MAX_RUN_STEPS: usize = 200_000;
+/// A TE lower than the lighter load's by more than this is a decrease, rad.
+const TE_DECREASE_TOL: f64 = 1e-13;
+
+/// What a cell varies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Study {
+    Load,
+    Slices,
+    Grid,
+    Flank,
+    MaxStep,
+    Tolerance,
+    Speed,
+}
+
+impl Study {
+    pub const ALL: [Study; 7] = [
+        Study::Load,
+        Study::Slices,
+        Study::Grid,
+        Study::Flank,
+        Study::MaxStep,
+        Study::Tolerance,
+        Study::Speed,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            Study::Load => "load",
+            Study::Slices => "slices",
+            Study::Grid => "stiffness grid",
+            Study::Flank => "flank",
+            Study::MaxStep => "multibody max step",
+            Study::Tolerance => "multibody tolerance",
+            Study::Speed => "pinion speed",
+        }
+    }
+}
+
+/// A cell's outcome.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", content = "message", rename_all = "snake_case")]
+pub enum Outcome {
+    Converged,
+    /// Refused by a check of the input, naming field, value and limit.
+    Refused(String),
+    /// An error in the run itself (no convergence, a singular system, ...).
+    Failed(String),
+    /// Not run: its inputs (meshes, stiffness files) are not cached.
+    Skipped(String),
+}
+
+impl Outcome {
+    pub fn class(&self) -> usize {
+        match self {
+            Outcome::Converged => 0,
+            Outcome::Refused(_) => 1,
+            Outcome::Failed(_) => 2,
+            Outcome::Skipped(_) => 3,
+        }
+    }
+    pub const CLASSES: [&'static str; 4] =
+        ["converged", "refused", "failed", "skipped (not cached)"];
+}
+
+/// One cell of the matrix.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Cell {
+    /// Scene name of the design.
+    pub design: String,
+    pub study: Study,
+    /// The varied value, in `unit`.
+    pub value: f64,
+    pub unit: String,
+    pub label: String,
+    pub outcome: Outcome,
+    /// LTCA: largest fixed-point iteration count over the positions;
+    /// multibody: Newton iterations of the run.
+    pub iterations: Option<usize>,
+    /// LTCA: largest number of active-set changes over the positions.
+    pub active_set_changes: Option<usize>,
+    /// Multibody: accepted and rejected steps.
+    pub steps: Option<usize>,
+    pub rejected_steps: Option<usize>,
+    /// Multibody: simulated time, s.
+    #[serde(default)]
+    pub sim_time_s: Option<f64>,
+    /// A NaN or an infinity in any output of the cell.
+    pub non_finite: bool,
+    /// LTCA: largest |Σ λ₁F − T| / T over the positions (N·m at T = 0).
+    pub torque_balance: Option<f64>,
+    /// LTCA: every slice force ≥ 0.
+    pub compressive_only: Option<bool>,
+    /// Load study: TE at this load ≥ at the next lighter one, every
+    /// position (None for the lightest).
+    pub te_monotonic: Option<bool>,
+    pub te_mean_urad: Option<f64>,
+    /// Undamped multibody runs: largest |E(t) − E(0)| over the kinetic
+    /// energy at the start plus the work the pinion torque does in the run.
+    pub energy_drift: Option<f64>,
+    /// LTCA: the first position whose contact reaches an edge of the flank.
+    pub edge_contact: Option<EdgeContact>,
+    /// CPU time of the cell, s (LTCA: all positions' threads).
+    pub cpu_s: f64,
+}
+
+/// Per design.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DesignSummary {
+    pub design: String,
+    pub scene: PathBuf,
+    /// Contact grid (profile × face) of its cached stiffness files.
+    pub grid: [u32; 2],
+    pub positions: usize,
+    /// Smallest load of the load study with edge contact, and where.
+    pub edge_contact_torque_nm: Option<f64>,
+    pub edge_contact: Option<EdgeContact>,
+    /// Largest load run.
+    pub largest_load_nm: f64,
+}
+
+/// `summary.json` of the stress set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StressSummary {
+    pub scene: String,
+    pub designs: Vec<DesignSummary>,
+    pub cells: Vec<Cell>,
+    pub wall_s: f64,
+}
+
+impl StressSummary {
+    /// Reads `<out>/<scene>/stress/summary.json`; None where absent.
+    pub fn read(out: &Path, scene: &str) -> anyhow::Result<Option<StressSummary>> {
+        let p = out.join(scene).join("stress").join("summary.json");
+        match std::fs::read_to_string(&p) {
+            Ok(t) => Ok(Some(
+                serde_json::from_str(&t).with_context(|| format!("reading {}", p.display()))?,
+            )),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+            Err(e) => Err(e).with_context(|| format!("reading {}", p.display())),
+        }
+    }
+}
+
+/// A refusal (a check of the input) or a failure of the run.
+pub fn classify(e: &SolverError) -> Outcome {
+    match e {
+        SolverError::Torque(_) | SolverError::Table(_) | SolverError::ToothNotSolved { .. } => {
+            Outcome::Refused(e.to_string())
+        }
+        _ => Outcome::Failed(e.to_string()),
+    }
+}
+
+fn cell(design: &str, study: Study, value: f64, unit: &str, label: String) -> Cell {
+    Cell {
+        design: design.to_string(),
+        study,
+        value,
+        unit: unit.to_string(),
+        label,
+        outcome: Outcome::Converged,
+        iterations: None,
+        active_set_changes: None,
+        steps: None,
+        rejected_steps: None,
+        sim_time_s: None,
+        non_finite: false,
+        torque_balance: None,
+        compressive_only: None,
+        te_monotonic: None,
+        te_mean_urad: None,
+        energy_drift: None,
+        edge_contact: None,
+        cpu_s: 0.0,
+    }
+}
+
+/// Fills `c` from the sweep `res` at torque index `i` (torque `t`).
+pub fn ltca_record(c: &mut Cell, res: &[PositionResult], i: usize, t: f64) {
+    let loads = res.iter().map(|p| &p.loads[i]);
+    c.iterations = loads.clone().map(|l| l.iterations).max();
+    c.active_set_changes = loads.clone().map(|l| l.active_set_changes).max();
+    c.non_finite = loads.clone().any(|l| {
+        !l.finite
+            || !l.max_pressure_pa.is_finite()
+            || !l.wheel_torque_nm.is_finite()
+            || l.slices.iter().any(|s| !s.half_width_m.is_finite())
+    });
+    let scale = if t > 0.0 { t } else { 1.0 };
+    c.torque_balance = Some(
+        loads
+            .clone()
+            .map(|l| l.torque_residual_nm.abs() / scale)
+            .fold(
+                0.0,
+                |a: f64, b| if b.is_nan() { f64::NAN } else { a.max(b) },
+            ),
+    );
+    c.compressive_only = Some(loads.clone().all(|l| l.min_force_n >= 0.0));
+    c.te_mean_urad = Some(loads.clone().map(|l| l.te).sum::<f64>() / res.len().max(1) as f64 * 1e6);
+    c.edge_contact = first_edge_contact(res, i);
+    let n_t = res.first().map_or(1, |p| p.loads.len()) as f64;
+    c.cpu_s = res
+        .iter()
+        .map(|p| p.loads[i].solve_s + (p.geometry_s + p.assembly_s) / n_t)
+        .sum();
+}
+
+/// Where TE at torque index `i` < TE at `i − 1` anywhere (beyond rounding).
+fn te_decreases(res: &[PositionResult], i: usize) -> bool {
+    res.iter()
+        .any(|p| p.loads[i].te < p.loads[i - 1].te - TE_DECREASE_TOL)
+}
+
+/// The cached inputs of one design.
+struct Design {
+    scene: LoadedScene,
+    g: PairGeometry,
+    dir: PathBuf,
+}
+
+impl Design {
+    fn name(&self) -> &str {
+        &self.scene.scene.name
+    }
+    fn pair(&self) -> anyhow::Result<(PairCompliance, [f64; 2])> {
+        let s = &self.scene;
+        let (pin, pp) = member_compliance(s, &self.g, &self.dir, Member::Pinion, Blank::Standard)?;
+        let (whl, wp) = member_compliance(s, &self.g, &self.dir, Member::Wheel, Blank::Standard)?;
+        let j1 = inertia(s, &self.g, &self.dir, &pp, Member::Pinion)?.0;
+        let j2 = inertia(s, &self.g, &self.dir, &wp, Member::Wheel)?.0;
+        Ok((
+            PairCompliance {
+                pinion: pin,
+                wheel: whl,
+            },
+            [j1, j2],
+        ))
+    }
+}
+
+/// The seed chain scenes beside `scene` (`seed<digits>_<z1>x<z2>.toml`).
+pub fn seed_scenes(scene: &Path) -> Vec<PathBuf> {
+    let dir = scene.parent().unwrap_or(Path::new("."));
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let Some(stem) = p.file_stem().and_then(|s| s.to_str()) else {
+                return false;
+            };
+            let Some(rest) = stem.strip_prefix("seed") else {
+                return false;
+            };
+            let mut parts = rest.splitn(2, '_');
+            let (Some(n), Some(z)) = (parts.next(), parts.next()) else {
+                return false;
+            };
+            let mut zs = z.splitn(2, 'x');
+            p.extension().is_some_and(|e| e == "toml")
+                && !n.is_empty()
+                && n.chars().all(|c| c.is_ascii_digit())
+                && matches!((zs.next(), zs.next()), (Some(a), Some(b))
+                    if !a.is_empty() && !b.is_empty()
+                    && a.chars().chain(b.chars()).all(|c| c.is_ascii_digit()))
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// Runs the matrix for `scene` and the seed scenes beside it; `grid_scenes`
+/// are scenes of the same designs at other stiffness grids, each with its
+/// meshes in a `meshes/` folder beside it.
+pub fn run(
+    scene: &LoadedScene,
+    meshes: &Path,
+    out: &Path,
+    grid_scenes: &[PathBuf],
+) -> anyhow::Result<StressSummary> {
+    let t0 = Instant::now();
+    let name = scene.scene.name.clone();
+    let set = ResultSet::begin(
+        &out.join(&name).join("stress"),
+        &format!("validate stress {}", scene.path.display()),
+    )?;
+    let mut scenes: Vec<PathBuf> = vec![scene.path.clone()];
+    scenes.extend(seed_scenes(&scene.path));
+    let per_design = LOADS_NM.len()
+        + SLICES.len()
+        + 2
+        + MAX_STEPS_S.len()
+        + TOLERANCES_RAD.len()
+        + SPEEDS_RPM.len();
+    let bar = ProgressBar::new((scenes.len() * per_design) as u64);
+    bar.set_style(
+        ProgressStyle::with_template("stress {bar:40} {pos}/{len} cells, {elapsed} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut cells = Vec::new();
+    let mut designs = Vec::new();
+    for path in &scenes {
+        let label = path
+            .file_stem()
+            .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+        bar.set_message(label.clone());
+        match Scene::load(path) {
+            Err(e) => {
+                // Refused at load: one cell naming the check.
+                let mut c = cell(&label, Study::Load, f64::NAN, "", "design".into());
+                c.outcome = Outcome::Refused(format!("{e:#}"));
+                cells.push(c);
+                bar.inc(per_design as u64);
+            }
+            Ok(s) => {
+                let (d, c) = design_cells(s, meshes, grid_scenes, &bar)?;
+                designs.extend(d);
+                cells.extend(c);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    let summary = StressSummary {
+        scene: name.clone(),
+        designs,
+        cells,
+        wall_s: t0.elapsed().as_secs_f64(),
+    };
+    write_json(&set.path().join("summary.json"), &summary)?;
+    chart(&set.path().join("outcomes.svg"), &summary)?;
+    set.commit()?;
+    Ok(summary)
+}
+
+/// Every cell of one design.
+fn design_cells(
+    scene: LoadedScene,
+    meshes: &Path,
+    grid_scenes: &[PathBuf],
+    bar: &ProgressBar,
+) -> anyhow::Result<(Option<DesignSummary>, Vec<Cell>)> {
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let dir = meshes.join(&scene.scene.name);
+    let d = Design { scene, g, dir };
+    let name = d.name().to_string();
+    let grid = d.scene.scene.mesh.reduced_order;
+    let grid = [grid.profile, grid.face];
+    let (pc, inertia) = match d.pair() {
+        Ok(p) => p,
+        Err(e) => {
+            // No cached stiffness files: every cell skipped, with the reason.
+            let why = format!("{e:#}");
+            let mut v = Vec::new();
+            for study in Study::ALL {
+                let mut c = cell(&name, study, f64::NAN, "", "not cached".into());
+                c.outcome = Outcome::Skipped(why.clone());
+                v.push(c);
+            }
+            bar.inc(
+                (LOADS_NM.len()
+                    + SLICES.len()
+                    + 2
+                    + MAX_STEPS_S.len()
+                    + TOLERANCES_RAD.len()
+                    + SPEEDS_RPM.len()) as u64,
+            );
+            return Ok((None, v));
+        }
+    };
+    let sc = &d.scene.scene;
+    let fp = d.g.side(sc.loaded_flank);
+    let rs = roll_surface(fp, &sc.utca)?;
+    let sweep = scene_sweep(&d.scene, &d.g, Blank::Standard);
+    let mut cells = Vec::new();
+
+    // Loads.
+    let (loads, edge_at, largest) = load_cells(&name, fp, &rs, &pc, &sweep, bar);
+    loads.iter().for_each(|c| log_cell(bar, c));
+    cells.extend(loads);
+
+    // Slices.
+    for n in SLICES {
+        let mut c = cell(&name, Study::Slices, n as f64, "", format!("{n}"));
+        let sw = Sweep { slices: n, ..sweep };
+        match run_sweep(fp, &rs, &pc, &sw, &[PROBE_NM]) {
+            Ok(res) => ltca_record(&mut c, &res, 0, PROBE_NM),
+            Err(e) => c.outcome = classify(&e),
+        }
+        log_cell(bar, &c);
+        cells.push(c);
+        bar.inc(1);
+    }
+
+    // Stiffness grids: the cached files', and the grid scenes' of this design.
+    let mut c = cell(
+        &name,
+        Study::Grid,
+        (grid[0] * grid[1]) as f64,
+        "",
+        format!("{} × {}", grid[0], grid[1]),
+    );
+    match run_sweep(fp, &rs, &pc, &sweep, &[PROBE_NM]) {
+        Ok(res) => ltca_record(&mut c, &res, 0, PROBE_NM),
+        Err(e) => c.outcome = classify(&e),
+    }
+    cells.push(c);
+    for gs in grid_scenes {
+        if let Some(c) = grid_scene_cell(&d, gs)? {
+            cells.push(c);
+        }
+    }
+    bar.inc(1);
+
+    // Coast flanks.
+    let mut c = cell(&name, Study::Flank, 1.0, "", "coast".into());
+    match coast_compliance(&d.scene, &d.g, &d.dir, Blank::Standard, Blank::Standard) {
+        Err(e) => c.outcome = Outcome::Skipped(format!("{e:#}")),
+        Ok((cpc, _)) => {
+            let side = sc.loaded_flank.other();
+            let cfp = d.g.side(side);
+            match roll_surface(cfp, &sc.utca) {
+                Err(e) => c.outcome = Outcome::Failed(e.to_string()),
+                Ok(crs) => match run_sweep(
+                    cfp,
+                    &crs,
+                    &cpc,
+                    &coast_sweep(&sweep, &d.g, sc.loaded_flank),
+                    &[PROBE_NM],
+                ) {
+                    Ok(res) => ltca_record(&mut c, &res, 0, PROBE_NM),
+                    Err(e) => c.outcome = classify(&e),
+                },
+            }
+        }
+    }
+    log_cell(bar, &c);
+    cells.push(c);
+    bar.inc(1);
+
+    // Multibody.
+    cells.extend(multibody_cells(&d, fp, &rs, &pc, inertia, bar));
+
+    Ok((
+        Some(DesignSummary {
+            design: name,
+            scene: d.scene.path.clone(),
+            grid,
+            positions: sweep.positions,
+            edge_contact_torque_nm: edge_at.map(|e| e.0),
+            edge_contact: edge_at.map(|e| e.1),
+            largest_load_nm: largest,
+        }),
+        cells,
+    ))
+}
+
+type EdgeAt = Option<(f64, EdgeContact)>;
+
+/// The load study: [`LOADS_NM`] in one sweep (each load warm-started from
+/// the lighter one), then doubling. Returns the cells, the first load with
+/// edge contact and the largest load run.
+fn load_cells(
+    name: &str,
+    fp: &geometry::pair::FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    sweep: &Sweep,
+    bar: &ProgressBar,
+) -> (Vec<Cell>, EdgeAt, f64) {
+    let label = |t: f64| format!("{t} N·m");
+    let mut cells: Vec<Cell> = LOADS_NM
+        .iter()
+        .map(|&t| cell(name, Study::Load, t, "N·m", label(t)))
+        .collect();
+    match run_sweep(fp, rs, pc, sweep, &LOADS_NM) {
+        Ok(res) => {
+            for (i, c) in cells.iter_mut().enumerate() {
+                ltca_record(c, &res, i, LOADS_NM[i]);
+                if i > 0 {
+                    c.te_monotonic = Some(!te_decreases(&res, i));
+                }
+            }
+        }
+        Err(_) => {
+            // One load's error stops the sweep: each load alone, to name it.
+            for c in cells.iter_mut() {
+                match run_sweep(fp, rs, pc, sweep, &[c.value]) {
+                    Ok(res) => ltca_record(c, &res, 0, c.value),
+                    Err(e) => c.outcome = classify(&e),
+                }
+            }
+        }
+    }
+    bar.inc(LOADS_NM.len() as u64);
+    let first_edge = |cells: &[Cell]| {
+        cells
+            .iter()
+            .find_map(|c| c.edge_contact.map(|e| (c.value, e)))
+    };
+    let mut largest = *LOADS_NM.last().unwrap_or(&0.0);
+    let mut t = largest;
+    for _ in 0..DOUBLINGS {
+        if first_edge(&cells).is_some() || cells.iter().any(|c| c.outcome != Outcome::Converged) {
+            break;
+        }
+        t *= 2.0;
+        let mut c = cell(name, Study::Load, t, "N·m", label(t));
+        match run_sweep(fp, rs, pc, sweep, &[t / 2.0, t]) {
+            Ok(res) => {
+                ltca_record(&mut c, &res, 1, t);
+                c.te_monotonic = Some(!te_decreases(&res, 1));
+            }
+            Err(e) => c.outcome = classify(&e),
+        }
+        largest = t;
+        cells.push(c);
+    }
+    let e = first_edge(&cells);
+    (cells, e, largest)
+}
+
+/// The LTCA at [`PROBE_NM`] of `path`'s scene when its design is `d`'s
+/// (same design file), from the stiffness files in `meshes/` beside it.
+fn grid_scene_cell(d: &Design, path: &Path) -> anyhow::Result<Option<Cell>> {
+    let s = Scene::load(path).with_context(|| format!("grid scene {}", path.display()))?;
+    let same = std::fs::canonicalize(&s.design_path).ok()
+        == std::fs::canonicalize(&d.scene.design_path).ok();
+    if !same {
+        return Ok(None);
+    }
+    let grid = s.scene.mesh.reduced_order;
+    let mut c = cell(
+        d.name(),
+        Study::Grid,
+        (grid.profile * grid.face) as f64,
+        "",
+        format!("{} × {}", grid.profile, grid.face),
+    );
+    let dir = path
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join("meshes")
+        .join(&s.scene.name);
+    let g = PairGeometry::build(&s.pair, Some(&s.design_path))?;
+    let fp = g.side(s.scene.loaded_flank);
+    let rs = roll_surface(fp, &s.scene.utca)?;
+    let pc = (|| -> anyhow::Result<PairCompliance> {
+        Ok(PairCompliance {
+            pinion: member_compliance(&s, &g, &dir, Member::Pinion, Blank::Standard)?.0,
+            wheel: member_compliance(&s, &g, &dir, Member::Wheel, Blank::Standard)?.0,
+        })
+    })();
+    match pc {
+        Err(e) => c.outcome = Outcome::Skipped(format!("{e:#}")),
+        Ok(pc) => match run_sweep(
+            fp,
+            &rs,
+            &pc,
+            &scene_sweep(&s, &g, Blank::Standard),
+            &[PROBE_NM],
+        ) {
+            Ok(res) => ltca_record(&mut c, &res, 0, PROBE_NM),
+            Err(e) => c.outcome = classify(&e),
+        },
+    }
+    Ok(Some(c))
+}
+
+/// The multibody cells of a design (see the module's notes).
+fn multibody_cells(
+    d: &Design,
+    fp: &geometry::pair::FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    inertia: [f64; 2],
+    bar: &ProgressBar,
+) -> Vec<Cell> {
+    let name = d.name();
+    let sc = &d.scene.scene;
+    let mb = &sc.multibody;
+    let tau = d.g.data.mesh_cycle();
+    let ratio = d.g.data.members[0].teeth as f64 / d.g.data.members[1].teeth as f64;
+    let sweep = scene_sweep(&d.scene, &d.g, Blank::Standard);
+    let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
+    let mut specs: Vec<(Study, f64, &str, String, f64, f64, f64)> = Vec::new();
+    for h in MAX_STEPS_S {
+        specs.push((
+            Study::MaxStep,
+            h,
+            "s",
+            format!("{h:e} s"),
+            STEP_STUDY_RPM,
+            h,
+            STUDY_TOLERANCE_RAD,
+        ));
+    }
+    for tol in TOLERANCES_RAD {
+        specs.push((
+            Study::Tolerance,
+            tol * 1e6,
+            "µrad",
+            format!("{:e} µrad", tol * 1e6),
+            STEP_STUDY_RPM,
+            STUDY_MAX_STEP_S,
+            tol,
+        ));
+    }
+    for rpm in SPEEDS_RPM {
+        specs.push((
+            Study::Speed,
+            rpm,
+            "rpm",
+            format!("{rpm} rpm"),
+            rpm,
+            STUDY_MAX_STEP_S,
+            STUDY_TOLERANCE_RAD,
+        ));
+    }
+    let (table, build_s) = timed(|| {
+        MeshTable::build(
+            fp,
+            rs,
+            pc,
+            &d.g.frames[0],
+            ratio,
+            TableSpec {
+                start: sweep.start,
+                direction: sweep.direction,
+                step: tau / per_cycle as f64,
+                positions: per_cycle,
+                periodic: true,
+                slices: sc.ltca.slices,
+                lag_nodes: mb.table_lag_nodes,
+                torque_max_nm: PROBE_NM * mb.table_torque_factor,
+            },
+        )
+    });
+    let mut cells = Vec::new();
+    for (study, value, unit, label, rpm, max_step, tol) in specs {
+        let mut c = cell(name, study, value, unit, label);
+        match &table {
+            Err(e) => c.outcome = classify(e),
+            Ok(table) => {
+                let cpu0 = thread_cpu_s();
+                if let Err(e) = free_run(&mut c, table, inertia, tau, rpm, max_step, tol) {
+                    c.outcome = classify(&e);
+                }
+                c.cpu_s = thread_cpu_s() - cpu0 + build_s / 14.0;
+            }
+        }
+        log_cell(bar, &c);
+        cells.push(c);
+        bar.inc(1);
+    }
+    cells
+}
+
+/// One line per finished cell (above the progress bar).
+fn log_cell(bar: &ProgressBar, c: &Cell) {
+    bar.suspend(|| {
+        eprintln!(
+            "stress {} · {} {}: {} ({:.2} s CPU{})",
+            c.design,
+            c.study.name(),
+            c.label,
+            Outcome::CLASSES[c.outcome.class()],
+            c.cpu_s,
+            c.steps.map_or(String::new(), |n| format!(", {n} steps"))
+        )
+    });
+}
+
+/// One undamped free run over a mesh cycle at `rpm` (see the module).
+fn free_run(
+    c: &mut Cell,
+    table: &MeshTable,
+    inertia: [f64; 2],
+    tau: f64,
+    rpm: f64,
+    max_step: f64,
+    tolerance: f64,
+) -> Result<(), SolverError> {
+    let r = table.ratio;
+    let m = Model {
+        table,
+        coast: None,
+        inertia,
+        damping: 0.0,
+        friction: 0.0,
+        drive: Drive::Free {
+            pinion_torque: PROBE_NM,
+            wheel_torque: PROBE_NM / r,
+        },
+    };
+    let w1 = rpm * std::f64::consts::PI / 30.0;
+    let mut s = m.static_state(0.0)?;
+    s.v = [w1, r * w1];
+    let t_end = (tau / w1).min(MAX_RUN_S);
+    let e0 = m.energy(&s)?;
+    let scale = 0.5 * (inertia[0] * w1 * w1 + inertia[1] * (r * w1).powi(2)) + PROBE_NM * tau;
+    let mut integ = Integrator::new(
+        Scheme::EnergyConserving,
+        StepControl {
+            max_step,
+            min_step: max_step * 1e-6,
+            tolerance,
+        },
+    );
+    let (mut drift, mut finite, mut te_sum, mut n) = (0.0f64, true, 0.0, 0usize);
+    let (_, steps) = integrate(&m, s, &mut integ, t_end, |s| {
+        if n > MAX_RUN_STEPS {
+            return Err(SolverError::NotConverged {
+                what: format!(
+                    "the run of {t_end:.3e} s at t = {:.3e} s, more than {MAX_RUN_STEPS} steps",
+                    s.t
+                ),
+                iterations: n,
+            });
+        }
+        let e = m.energy(s)?;
+        finite &= e.is_finite() && s.q.iter().chain(&s.v).chain(&s.a).all(|x| x.is_finite());
+        drift = drift.max((e - e0).abs());
+        te_sum += r * s.q[0] - s.q[1];
+        n += 1;
+        Ok(())
+    })?;
+    c.steps = Some(steps);
+    c.sim_time_s = Some(t_end);
+    c.rejected_steps = Some(integ.rejected);
+    c.iterations = Some(integ.newton_iterations);
+    c.non_finite = !finite;
+    c.energy_drift = Some(drift / scale);
+    c.te_mean_urad = Some(te_sum / n.max(1) as f64 * 1e6);
+    Ok(())
+}
+
+/// Row label of a design's study.
+pub fn row_label(design: &str, study: Study) -> String {
+    format!("{design} · {}", study.name())
+}
+
+/// The outcome grid: one row per design and study.
+fn chart(path: &Path, s: &StressSummary) -> anyhow::Result<()> {
+    let mut rows: Vec<String> = Vec::new();
+    let mut grid = Vec::new();
+    for c in &s.cells {
+        let label = row_label(&c.design, c.study);
+        let row = match rows.iter().position(|r| *r == label) {
+            Some(k) => k,
+            None => {
+                rows.push(label);
+                rows.len() - 1
+            }
+        };
+        let col = grid.iter().filter(|g: &&GridCell| g.row == row).count();
+        grid.push(GridCell {
+            row,
+            col,
+            class: c.outcome.class(),
+            // Loads whose contact reaches an edge of the flank are marked.
+            text: if c.edge_contact.is_some() {
+                format!("{} · edge", c.label)
+            } else {
+                c.label.clone()
+            },
+        });
+    }
+    outcome_grid(
+        path,
+        &format!(
+            "Stress matrix of {} and the seed pairs: outcome per cell (\"edge\": contact reaches an edge of the flank)",
+            s.scene
+        ),
+        &rows,
+        &Outcome::CLASSES,
+        &grid,
+    )?;
+    Ok(())
+}
