@@ -42,7 +42,7 @@
 
 use crate::impact_law::{Friction, ImpactLaw};
 use crate::ltca::{geometry, Geometry};
-use crate::mesh_table::{lag_grid, ImpactFields, MeshTable, TableSpec};
+use crate::mesh_table::{check_spec, columns_and_lags, ImpactFields, MeshTable, TableSpec};
 use crate::SolverError;
 use geometry::generation::MemberFrame;
 use geometry::pair::FlankPair;
@@ -137,13 +137,7 @@ pub fn build(
     law: ImpactLaw,
     friction: Option<Friction>,
 ) -> Result<MeshTable, SolverError> {
-    let min_lags = geometry::scene_checks::MIN_TABLE_LAG_NODES;
-    if spec.positions < 4 || spec.lag_nodes < min_lags {
-        return Err(SolverError::Table(format!(
-            "{} positions × {} lag nodes: need at least 4 positions and {min_lags} lag nodes (multibody.table_lag_nodes)",
-            spec.positions, spec.lag_nodes
-        )));
-    }
+    check_spec(&spec)?;
     let tau = fp.pinion.gen.frame.pitch();
     let phi = |i: i64| spec.start + spec.direction * spec.step * i as f64;
     let pass1 = |range: std::ops::Range<i64>| -> Result<Vec<(Geometry, f64, f64)>, SolverError> {
@@ -160,29 +154,10 @@ pub fn build(
             })
             .collect()
     };
-    let range = |c: &[(Geometry, f64, f64)]| {
-        let hi = c.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max);
-        let lo = c.iter().map(|c| c.0.utca_te).fold(f64::INFINITY, f64::min);
-        (lo, hi)
-    };
-    let mut columns = pass1(0..spec.positions as i64)?;
-    let lead = if spec.periodic {
-        0
-    } else {
-        let (lo, hi) = range(&columns);
-        ((hi - lo) / ratio / spec.step).ceil() as usize + 2
-    };
-    if lead > 0 {
-        let mut before = pass1(-(lead as i64)..0)?;
-        before.append(&mut columns);
-        columns = before;
-    }
-    let (lo, hi) = range(&columns);
-    let te0_max = columns
-        .iter()
-        .map(|c| c.0.utca_te)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let lags = lag_grid(lo, te0_max, hi, spec.lag_nodes);
+    let (columns, lead, lags) =
+        columns_and_lags(&spec, ratio, pass1, |c: &(Geometry, f64, f64)| {
+            (c.0.utca_te, c.1)
+        })?;
     struct Col {
         te0: f64,
         torque: Vec<f64>,

@@ -140,6 +140,53 @@ fn catmull_rom(t: f64) -> [[f64; 4]; 3] {
     ]
 }
 
+/// Refuses a table spec too small to interpolate (both force laws).
+pub(crate) fn check_spec(spec: &TableSpec) -> Result<(), SolverError> {
+    let min_lags = geometry::scene_checks::MIN_TABLE_LAG_NODES;
+    if spec.positions < 4 || spec.lag_nodes < min_lags {
+        return Err(SolverError::Table(format!(
+            "{} positions × {} lag nodes: need at least 4 positions and {min_lags} lag nodes (multibody.table_lag_nodes)",
+            spec.positions, spec.lag_nodes
+        )));
+    }
+    Ok(())
+}
+
+/// The table's columns and lag grid, shared by both force laws: `pass1`
+/// computes the columns of a range of position indices, `lags_of` gives a
+/// column's unloaded TE and its lag at the largest torque. A non-periodic
+/// table starts `lead` positions before q₁ = 0, (θ_hi − θ_lo)/r plus two
+/// steps, since V at q₁ integrates T₁ from first contact, q₁ − (θ − θ_lo)/r.
+/// Returns the columns (lead first), `lead` and the lag grid.
+pub(crate) fn columns_and_lags<C>(
+    spec: &TableSpec,
+    ratio: f64,
+    pass1: impl Fn(std::ops::Range<i64>) -> Result<Vec<C>, SolverError>,
+    lags_of: impl Fn(&C) -> (f64, f64),
+) -> Result<(Vec<C>, usize, Vec<f64>), SolverError> {
+    let range = |c: &[C]| {
+        c.iter().map(&lags_of).fold(
+            (f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+            |(lo, hi, te_max), (te0, lag)| (lo.min(te0), hi.max(lag), te_max.max(te0)),
+        )
+    };
+    let mut columns = pass1(0..spec.positions as i64)?;
+    let lead = if spec.periodic {
+        0
+    } else {
+        let (lo, hi, _) = range(&columns);
+        ((hi - lo) / ratio / spec.step).ceil() as usize + 2
+    };
+    if lead > 0 {
+        let mut before = pass1(-(lead as i64)..0)?;
+        before.append(&mut columns);
+        columns = before;
+    }
+    let (lo, hi, te0_max) = range(&columns);
+    let lags = lag_grid(lo, te0_max, hi, spec.lag_nodes);
+    Ok((columns, lead, lags))
+}
+
 /// Lag nodes for a table whose unloaded TEs lie in [lo, te0_max] and whose
 /// largest lag is hi: a third of the n nodes uniform from one step below lo
 /// over twice the unloaded band (where light loads act: T₁ rises from zero
@@ -282,13 +329,7 @@ impl MeshTable {
         ratio: f64,
         spec: TableSpec,
     ) -> Result<Self, SolverError> {
-        let min_lags = geometry::scene_checks::MIN_TABLE_LAG_NODES;
-        if spec.positions < 4 || spec.lag_nodes < min_lags {
-            return Err(SolverError::Table(format!(
-                "{} positions × {} lag nodes: need at least 4 positions and {min_lags} lag nodes (multibody.table_lag_nodes)",
-                spec.positions, spec.lag_nodes
-            )));
-        }
+        check_spec(&spec)?;
         let tau = fp.pinion.gen.frame.pitch();
         let phi = |i: i64| spec.start + spec.direction * spec.step * i as f64;
         // Pass 1: geometry, compliance and the lag at the largest torque.
@@ -309,31 +350,12 @@ impl MeshTable {
                 })
                 .collect()
         };
-        let lag_range = |p: &[(Geometry, Assembled, f64, f64)]| {
-            let hi = p.iter().map(|p| p.2).fold(f64::NEG_INFINITY, f64::max);
-            let lo = p.iter().map(|p| p.0.utca_te).fold(f64::INFINITY, f64::min);
-            (lo, hi)
-        };
-        let mut columns = pass1(0..spec.positions as i64)?;
-        // V at q₁ integrates T₁ from first contact, q₁ − (θ − θ_lo)/r: a
-        // non-periodic table starts that far (plus two steps) before q₁ = 0.
-        let lead = if spec.periodic {
-            0
-        } else {
-            let (lo, hi) = lag_range(&columns);
-            ((hi - lo) / ratio / spec.step).ceil() as usize + 2
-        };
-        if lead > 0 {
-            let mut before = pass1(-(lead as i64)..0)?;
-            before.append(&mut columns);
-            columns = before;
-        }
-        let (lo, hi) = lag_range(&columns);
-        let te0_max = columns
-            .iter()
-            .map(|p| p.0.utca_te)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let lags = lag_grid(lo, te0_max, hi, spec.lag_nodes);
+        let (columns, lead, lags) = columns_and_lags(
+            &spec,
+            ratio,
+            pass1,
+            |p: &(Geometry, Assembled, f64, f64)| (p.0.utca_te, p.2),
+        )?;
         // Pass 2: the lag-controlled solves.
         let cols: Vec<Column> = columns
             .into_par_iter()
