@@ -42,7 +42,7 @@
 
 use crate::impact_law::{Friction, ImpactLaw};
 use crate::ltca::{geometry, Geometry};
-use crate::mesh_table::{check_spec, columns_and_lags, ImpactFields, MeshTable, TableSpec};
+use crate::mesh_table::{check_spec, columns_and_lags, Column, ImpactFields, MeshTable, TableSpec};
 use crate::SolverError;
 use geometry::generation::MemberFrame;
 use geometry::pair::FlankPair;
@@ -159,26 +159,24 @@ pub fn build(
             (c.0.utca_te, c.1)
         })?;
     struct Col {
-        te0: f64,
-        torque: Vec<f64>,
-        force: Vec<[f64; 3]>,
-        friction: Vec<[f64; 2]>,
+        base: Column,
         damping: Vec<[f64; 4]>,
         slip: Vec<f64>,
-        cpu: f64,
     }
     let cols: Vec<Col> = columns
         .into_par_iter()
         .map(|(g, _, cpu0)| {
             let t = std::time::Instant::now();
             let mut c = Col {
-                te0: g.utca_te,
-                torque: Vec::with_capacity(lags.len()),
-                force: Vec::with_capacity(lags.len()),
-                friction: Vec::with_capacity(lags.len()),
+                base: Column {
+                    te0: g.utca_te,
+                    torque: Vec::with_capacity(lags.len()),
+                    force: Vec::with_capacity(lags.len()),
+                    friction: Vec::with_capacity(lags.len()),
+                    cpu: 0.0,
+                },
                 damping: Vec::with_capacity(lags.len()),
                 slip: Vec::with_capacity(lags.len()),
-                cpu: 0.0,
             };
             for &lag in &lags {
                 let (mut t1, mut f, mut phi_f, mut a) = (0.0, [0.0; 3], [0.0; 2], [0.0; 4]);
@@ -205,38 +203,32 @@ pub fn build(
                     sum_f += p.force;
                     sum_fg += p.force * (s.friction_lever[0] - ratio * s.friction_lever[1]).abs();
                 }
-                c.torque.push(t1);
-                c.force.push(f);
-                c.friction.push(phi_f);
+                c.base.torque.push(t1);
+                c.base.force.push(f);
+                c.base.friction.push(phi_f);
                 c.damping.push(a);
                 c.slip.push(if sum_f > 0.0 { sum_fg / sum_f } else { 0.0 });
             }
-            c.cpu = cpu0 + t.elapsed().as_secs_f64();
+            c.base.cpu = cpu0 + t.elapsed().as_secs_f64();
             c
         })
         .collect();
-    let n = cols.len();
-    Ok(MeshTable {
+    let base: Vec<&Column> = cols.iter().map(|c| &c.base).collect();
+    let impact = ImpactFields {
+        law,
+        friction,
+        damping: cols
+            .iter()
+            .flat_map(|c| c.damping.iter().copied())
+            .collect(),
+        slip: cols.iter().flat_map(|c| c.slip.iter().copied()).collect(),
+    };
+    Ok(MeshTable::from_columns(
         spec,
         lead,
         ratio,
         lags,
-        te0: cols.iter().map(|c| c.te0).collect(),
-        torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
-        force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
-        friction: cols
-            .iter()
-            .flat_map(|c| c.friction.iter().copied())
-            .collect(),
-        cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / n as f64,
-        impact: Some(ImpactFields {
-            law,
-            friction,
-            damping: cols
-                .iter()
-                .flat_map(|c| c.damping.iter().copied())
-                .collect(),
-            slip: cols.iter().flat_map(|c| c.slip.iter().copied()).collect(),
-        }),
-    })
+        &base,
+        Some(impact),
+    ))
 }

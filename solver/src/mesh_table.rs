@@ -310,15 +310,43 @@ fn gauss4() -> [(f64, f64); 4] {
     ]
 }
 
-struct Column {
-    te0: f64,
-    torque: Vec<f64>,
-    force: Vec<[f64; 3]>,
-    friction: Vec<[f64; 2]>,
-    cpu: f64,
+/// One position's column of the table (both force laws): the unloaded TE,
+/// and per lag node the pinion torque, contact force and friction moments.
+pub(crate) struct Column {
+    pub(crate) te0: f64,
+    pub(crate) torque: Vec<f64>,
+    pub(crate) force: Vec<[f64; 3]>,
+    pub(crate) friction: Vec<[f64; 2]>,
+    pub(crate) cpu: f64,
 }
 
 impl MeshTable {
+    /// The table from its columns (lead first), laid out position-major.
+    pub(crate) fn from_columns(
+        spec: TableSpec,
+        lead: usize,
+        ratio: f64,
+        lags: Vec<f64>,
+        cols: &[&Column],
+        impact: Option<ImpactFields>,
+    ) -> MeshTable {
+        MeshTable {
+            spec,
+            lead,
+            ratio,
+            lags,
+            te0: cols.iter().map(|c| c.te0).collect(),
+            torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
+            force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
+            friction: cols
+                .iter()
+                .flat_map(|c| c.friction.iter().copied())
+                .collect(),
+            cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / cols.len() as f64,
+            impact,
+        }
+    }
+
     /// Computes the table: per position the slices and compliance, then the
     /// lag-controlled contact problem at every lag node.
     pub fn build(
@@ -411,22 +439,10 @@ impl MeshTable {
                 })
             })
             .collect::<Result<_, SolverError>>()?;
-        let n = cols.len();
-        Ok(MeshTable {
-            spec,
-            lead,
-            ratio,
-            lags,
-            te0: cols.iter().map(|c| c.te0).collect(),
-            torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
-            force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
-            friction: cols
-                .iter()
-                .flat_map(|c| c.friction.iter().copied())
-                .collect(),
-            cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / n as f64,
-            impact: None,
-        })
+        let cols: Vec<&Column> = cols.iter().collect();
+        Ok(MeshTable::from_columns(
+            spec, lead, ratio, lags, &cols, None,
+        ))
     }
 
     /// First lag node θ_lo (below every unloaded TE), rad.
