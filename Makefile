@@ -73,7 +73,7 @@ preprocess: build
 	$(BIN)/preprocess stiffness $(SCENE) --meshes meshes
 
 solve: preprocess
-	$(BIN)/solver plan $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/plan.json
+	$(BIN)/solver plan $(SCENE) --out $(OUT)/$(notdir $(basename $(SCENE)))/plan
 	$(BIN)/solver ltca $(SCENE) --meshes meshes --out $(OUT)
 	$(BIN)/solver dynamic $(SCENE) --meshes meshes --out $(OUT)
 

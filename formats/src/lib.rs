@@ -16,9 +16,12 @@
 //! - [`output`]: the one atomic write (temporary file + rename) every stage uses;
 //! - [`result_set`]: a stage's output directory written as one set (lock,
 //!   staging sibling, commit by rename, `run.json`);
+//! - [`added_files`]: files a later command adds in place to a committed
+//!   set (the studies beside the reference sweep), with their checksums;
 //! - [`interrupt`]: Ctrl-C and SIGTERM remove what the run began and did
 //!   not finish (staging directories, locks, temporary files).
 
+pub mod added_files;
 pub mod columns;
 pub mod interrupt;
 pub mod lumped_summary;

@@ -125,7 +125,12 @@ pub struct StiffnessEntry {
 
 /// SHA-256 of a file's bytes, hex.
 pub fn sha256_file(path: &Path) -> std::io::Result<String> {
-    Ok(format!("{:x}", Sha256::digest(std::fs::read(path)?)))
+    Ok(sha256_bytes(&std::fs::read(path)?))
+}
+
+/// SHA-256 of bytes, hex.
+pub fn sha256_bytes(bytes: &[u8]) -> String {
+    format!("{:x}", Sha256::digest(bytes))
 }
 
 /// Why an existing HDF5 file may not be opened: HDF5 opens only files a
@@ -148,7 +153,7 @@ pub fn not_openable(path: &Path, listed: Option<&str>) -> Option<String> {
 
 /// SHA-256 of a text, hex.
 pub fn sha256_text(text: &str) -> String {
-    format!("{:x}", Sha256::digest(text.as_bytes()))
+    sha256_bytes(text.as_bytes())
 }
 
 impl MeshInputs {

@@ -19,7 +19,9 @@ enum Cmd {
     /// Contact-detection plan: tooth pairs that can touch at each position, and the teeth that need stiffness data.
     Plan {
         scene: PathBuf,
-        /// Write the full plan as JSON here.
+        /// Write the full plan into this directory as one result set
+        /// (`plan.json`, and `run.json` with the checksums of the plan, the
+        /// scene and the design).
         #[arg(long)]
         out: Option<PathBuf>,
     },
@@ -61,7 +63,10 @@ fn main() -> anyhow::Result<()> {
     match Cli::parse().cmd {
         Cmd::Plan { scene, out } => {
             let s = geometry::scene::Scene::load(&scene)?;
-            let plans = solver::plan::plan(&s)?;
+            let plans = match &out {
+                Some(o) => solver::plan::write_plan_set(&s, o)?,
+                None => solver::plan::plan(&s)?,
+            };
             for p in &plans {
                 let (lo, hi) = p.positions.iter().fold((usize::MAX, 0), |(a, b), q| {
                     (a.min(q.tooth_pairs.len()), b.max(q.tooth_pairs.len()))
@@ -72,7 +77,7 @@ fn main() -> anyhow::Result<()> {
                 );
             }
             if let Some(o) = out {
-                formats::output::write_json(&o, &plans)?;
+                println!("written {}", o.join("plan.json").display());
             }
         }
         Cmd::Dynamic { scene, meshes, out } => {

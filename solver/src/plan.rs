@@ -1,10 +1,15 @@
-//! Which tooth pairs can be in contact at each position of a scene's sweep.
+//! Which tooth pairs can be in contact at each position of a scene's sweep,
+//! and `solver plan --out <dir>`: the plan written as one result set
+//! (`<dir>/plan.json` with `run.json` listing its checksum and the scene
+//! and design it was planned from).
 
+use formats::result_set::{ResultSet, ResultSetError, RunInfo};
 use geometry::error::GeometryError;
 use geometry::generation::Side;
 use geometry::pair::{pairs_in_contact, pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use serde::Serialize;
+use std::path::Path;
 
 /// Tooth pairs (pinion tooth j with wheel tooth −j) that can touch at one position.
 #[derive(Debug, Clone, Serialize)]
@@ -64,6 +69,50 @@ pub fn plan(scene: &LoadedScene) -> Result<Vec<Plan>, GeometryError> {
             }
         })
         .collect())
+}
+
+/// Why the plan could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum PlanWriteError {
+    #[error(transparent)]
+    Set(#[from] ResultSetError),
+    #[error("cannot read {}: {message}", .path.display())]
+    Input {
+        path: std::path::PathBuf,
+        message: String,
+    },
+    #[error(transparent)]
+    Plan(#[from] GeometryError),
+}
+
+/// Plans `scene` and writes the plan into `out` as one result set:
+/// `plan.json`, and `run.json` with its SHA-256 and the inputs' (`scene`:
+/// the scene file's bytes; `design`: the design's geometry text, as the
+/// flank stage records it). The output is taken (and refused, if another
+/// run writes it or it cannot be written) before any work.
+pub fn write_plan_set(scene: &LoadedScene, out: &Path) -> Result<Vec<Plan>, PlanWriteError> {
+    let mut set = ResultSet::begin(out, &format!("solver plan {}", scene.scene.name))?;
+    let read = |path: &Path| {
+        std::fs::read_to_string(path).map_err(|e| PlanWriteError::Input {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    };
+    set.record_input(
+        "scene",
+        &formats::manifest::sha256_text(&read(&scene.path)?),
+    )?;
+    set.record_input(
+        "design",
+        &formats::manifest::sha256_text(&geometry::design::geometry_text(&read(
+            &scene.design_path,
+        )?)),
+    )?;
+    let plans = plan(scene)?;
+    formats::output::write_json(&set.path().join("plan.json"), &plans)
+        .map_err(ResultSetError::from)?;
+    let _: RunInfo = set.commit()?;
+    Ok(plans)
 }
 
 #[cfg(test)]

@@ -152,3 +152,28 @@ fn ltca_and_dynamic_into_an_unwritable_output_are_refused_before_work() {
         "{msg}"
     );
 }
+
+#[test]
+fn plan_is_one_set_listing_its_checksum_and_the_scene_and_design_it_came_from() {
+    let tmp = Scratch::new("plan");
+    let sc = scene(tmp.path(), |t| t);
+    let out = tmp.path().join("plan");
+    let plans = solver::plan::write_plan_set(&sc, &out).unwrap();
+    assert!(!plans.is_empty());
+    let info = formats::result_set::verify_files(&out).unwrap().unwrap();
+    assert!(info.files.contains_key("plan.json"), "{:?}", info.files);
+    assert!(info.inputs.contains_key("scene") && info.inputs.contains_key("design"));
+    assert!(!lock_path(&out).exists());
+    // A plan edited after the run is detected.
+    let p = out.join("plan.json");
+    let text = std::fs::read_to_string(&p).unwrap();
+    std::fs::write(&p, text.replacen("\"tooth_pairs\"", "\"tooth_pairs\" ", 1)).unwrap();
+    let err = formats::result_set::verify_files(&out).unwrap_err();
+    assert!(err.to_string().contains("changed since run"), "{err}");
+    // A run on an edited scene replaces the set and records the new scene.
+    let edited = scene(tmp.path(), |t| t + "\n# edited\n");
+    solver::plan::write_plan_set(&edited, &out).unwrap();
+    let again = formats::result_set::verify_files(&out).unwrap().unwrap();
+    assert_ne!(again.inputs["scene"], info.inputs["scene"]);
+    assert_eq!(again.inputs["design"], info.inputs["design"]);
+}

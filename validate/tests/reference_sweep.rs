@@ -100,10 +100,15 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
             .unwrap();
     assert_eq!(c.positions_compared, n);
     assert!(c.worst() < 1e-12, "{c:?}");
-    // Added in place to the committed set, and stamped with its run id.
-    let stamp = c.stamp.expect("compare_cache.json is stamped");
-    assert!(stamp.of_run_id.is_some());
-    assert!(stamp.belongs_to(&folder).unwrap());
+    // Added in place to the committed set, recorded with its checksum and
+    // the set's run id.
+    let added = "standard_standard/compare_cache.json";
+    let reg = formats::added_files::registry(&folder).unwrap();
+    assert!(reg[added].stamp.of_run_id.is_some());
+    assert!(matches!(
+        formats::added_files::read_added(&folder, added).unwrap(),
+        formats::added_files::AddedState::Current(_)
+    ));
 
     // One cached TE changed by 1e-5: refused.
     let cached = std::fs::read_dir(odir.join("positions"))
@@ -154,8 +159,9 @@ fn shards_collect_into_the_single_run_and_compare_cache_catches_a_changed_value(
 
     // A new run replaces the set: the old comparison no longer belongs to it.
     run(&scene, &meshes, &single, &options()).unwrap();
-    let c: CacheComparison =
-        serde_json::from_str(&std::fs::read_to_string(odir.join("compare_cache.json")).unwrap())
-            .unwrap();
-    assert!(!c.stamp.unwrap().belongs_to(&folder).unwrap());
+    let state = formats::added_files::read_added(&folder, added).unwrap();
+    assert!(
+        matches!(state, formats::added_files::AddedState::OtherSet { .. }),
+        "{state:?}"
+    );
 }

@@ -16,8 +16,8 @@
 //!   that fails or is killed leaves the previous results as they were and
 //!   the positions it solved in the cache;
 //! - `--compare-cache` takes the same lock and writes only
-//!   `compare_cache.json`, in place, stamped with the `run.json` id of the
-//!   set it checked ([`formats::result_set::AddedStamp`]);
+//!   `compare_cache.json`, in place, recorded with its checksum and the
+//!   `run.json` id of the set it checked ([`formats::added_files`]);
 //! - `--shard` runs write only into the cache: they share a lock with
 //!   each other, and are refused while a run holds the directory's lock
 //!   (as that run is refused while shards run), so that no shard writes
@@ -30,10 +30,11 @@ use super::reference_outputs::{
 pub use super::reference_summary::{BlankSummary, CacheComparison, LoadSummary, UnloadedCheck};
 use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
 use anyhow::Context;
+use formats::added_files::{add_json, Dependence};
 use formats::columns;
 use formats::output::{write_atomic, write_json};
 use formats::paths::MeshLevel;
-use formats::result_set::{AddedStamp, ResultSet, RunLock};
+use formats::result_set::{ResultSet, RunLock};
 use formats::stiffness_plan;
 use geometry::design::Member as Which;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
@@ -429,11 +430,14 @@ pub fn run(
             }
             bar.finish_and_clear();
             if opt.compare_cache {
-                std::fs::create_dir_all(&odir)?;
                 if let Some(lock) = &lock {
-                    comparison.stamp = Some(AddedStamp::new(lock)?);
+                    add_json(
+                        lock,
+                        &format!("{name}/compare_cache.json"),
+                        &comparison,
+                        Dependence::OnSet,
+                    )?;
                 }
-                write_json(&odir.join("compare_cache.json"), &comparison)?;
                 eprintln!(
                     "reference {name}: {} positions solved anew against the cache ({} not cached): largest relative difference {:.2e} (TE {:.2e}, check-penalty TE {:.2e}, max pressure {:.2e}, search margin {:.2e}; torque balance {:.2e}), {} with other constraint counts",
                     comparison.positions_compared,

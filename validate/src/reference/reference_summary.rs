@@ -21,11 +21,6 @@ pub struct CacheComparison {
     /// Positions whose working set or active-constraint counts differ.
     pub count_mismatches: usize,
     pub tolerance: f64,
-    /// The committed reference set this comparison checked, and the run
-    /// that wrote it (the file is added in place, beside that set's
-    /// `run.json`; `None` in files written before the stamp existed).
-    #[serde(default)]
-    pub stamp: Option<formats::result_set::AddedStamp>,
 }
 
 impl CacheComparison {

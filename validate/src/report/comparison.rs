@@ -81,6 +81,34 @@ pub fn read<T: for<'de> Deserialize<'de>>(path: &Path) -> Result<Option<T>, Comp
         })
 }
 
+/// A study kept beside the reference sweep ([`formats::added_files`]).
+#[derive(Debug)]
+pub enum Study<T> {
+    /// Not computed.
+    Missing,
+    /// Listed with its checksum, unchanged, of the sweep there now (where
+    /// it depends on it), and readable as this build's type.
+    Current(T),
+    /// There, but not to be shown: why.
+    NotShown(String),
+}
+
+/// Reads the study `<dir>/<rel>` through its registry entry.
+pub fn read_study<T: for<'de> Deserialize<'de>>(
+    dir: &Path,
+    rel: &str,
+) -> Result<Study<T>, ComparisonError> {
+    use formats::added_files::{read_added, AddedState};
+    Ok(match read_added(dir, rel)? {
+        AddedState::Missing => Study::Missing,
+        AddedState::Current(bytes) => match serde_json::from_slice(&bytes) {
+            Ok(v) => Study::Current(v),
+            Err(e) => Study::NotShown(format!("written by an older version ({e})")),
+        },
+        other => Study::NotShown(other.why_not().unwrap_or_default()),
+    })
+}
+
 /// Builds the comparison from `<out>/<scene>/{multibody,reference}/summary.json`;
 /// `published` names the design's published tables; `meshes` is the mesh
 /// root, to tell whether the convergence study was computed on today's
@@ -258,17 +286,28 @@ pub fn compare(
             });
         }
     }
-    let conv_path = out.join(scene).join("reference/convergence.json");
-    // An unreadable study is reported below as written by an older version.
-    let conv = read::<crate::convergence::Convergence>(&conv_path).unwrap_or(None);
-    let conv_current = conv
+    let ref_dir = out.join(scene).join("reference");
+    let shown = |rel: &str, why: &str, cmd: &str| {
+        format!(
+            "Not shown: {} is {why}; `{cmd}` recomputes it.",
+            ref_dir.join(rel).display()
+        )
+    };
+    let conv = read_study::<crate::convergence::Convergence>(&ref_dir, "convergence.json")?;
+    let conv_current = match &conv {
+        Study::Current(c) if c.stale_levels(&meshes.join(scene)).is_empty() => Some(c),
+        _ => None,
+    };
+    let line_load = other_note(read_study::<crate::line_load::LineLoad>(
+        &ref_dir,
+        "line_load.json",
+    )?);
+    let line_load_current = line_load
         .as_ref()
-        .filter(|c| c.stale_levels(&meshes.join(scene)).is_empty());
+        .and_then(|l| l.as_ref().ok())
+        .filter(|l| l.current(&meshes.join(scene)));
     let mut markdown = markdown(&rows, &rf, conv_current);
-    let line_load =
-        read::<crate::line_load::LineLoad>(&out.join(scene).join("reference/line_load.json"))?
-            .filter(|l| l.current(&meshes.join(scene)));
-    crate::differences::breakdown(&mut markdown, &rows, &rf, conv_current, line_load.as_ref());
+    crate::differences::breakdown(&mut markdown, &rows, &rf, conv_current, line_load_current);
     for r in &rf {
         let blank = format!("{}_{}", r.pinion_blank, r.wheel_blank);
         if let Some(line) = crate::differences::pattern_peak(out, scene, &blank) {
@@ -285,43 +324,70 @@ pub fn compare(
             "Note: the reduced model ran with Coulomb friction μ = {mu}; the reference contact is frictionless, so part of the difference is friction.\n"
         );
     }
-    if conv.is_none() && conv_path.exists() {
-        let _ = writeln!(
-            markdown,
-            "\n## Mesh convergence of the reference\n\nNot shown: {} was written by an older version; `make convergence` recomputes it.",
-            conv_path.display()
-        );
-    }
-    if let Some(c) = conv {
-        let stale = c.stale_levels(&meshes.join(scene));
-        if stale.is_empty() {
-            convergence_markdown(&mut markdown, &c);
-        } else {
+    const CONV: &str = "\n## Mesh convergence of the reference\n";
+    match conv {
+        Study::Missing => {}
+        Study::NotShown(why) => {
             let _ = writeln!(
                 markdown,
-                "\n## Mesh convergence of the reference\n\nNot shown: the meshes of level(s) {} changed since the study ran; `make convergence` recomputes it.",
-                stale.join(", ")
+                "{CONV}\n{}",
+                shown("convergence.json", &why, "make convergence")
+            );
+        }
+        Study::Current(c) => {
+            let stale = c.stale_levels(&meshes.join(scene));
+            if stale.is_empty() {
+                convergence_markdown(&mut markdown, &c);
+            } else {
+                let _ = writeln!(
+                    markdown,
+                    "{CONV}\nNot shown: the meshes of level(s) {} changed since the study ran; `make convergence` recomputes it.",
+                    stale.join(", ")
+                );
+            }
+        }
+    }
+    const LINE: &str = "\n## Line load: global FE + Weber–Banaschek against fine-mesh FE\n";
+    match line_load {
+        None => {}
+        Some(Err(why)) => {
+            let _ = writeln!(
+                markdown,
+                "{LINE}\n{}",
+                shown("line_load.json", &why, "make convergence")
+            );
+        }
+        Some(Ok(l)) if l.current(&meshes.join(scene)) => l.markdown(&mut markdown),
+        Some(Ok(_)) => {
+            let _ = writeln!(
+                markdown,
+                "{LINE}\nNot shown: the meshes changed since {} was computed; `make convergence` recomputes it.",
+                ref_dir.join("line_load.json").display()
             );
         }
     }
-    let ll_path = out.join(scene).join("reference/line_load.json");
-    if let Some(l) = read::<crate::line_load::LineLoad>(&ll_path)? {
-        if l.current(&meshes.join(scene)) {
-            l.markdown(&mut markdown);
-        } else {
+    match read_study::<Vec<crate::tradeoff::Point>>(&ref_dir, "tradeoff.json")? {
+        Study::Missing => {}
+        Study::Current(t) => tradeoff_markdown(&mut markdown, &t),
+        Study::NotShown(why) => {
             let _ = writeln!(
                 markdown,
-                "\n## Line load: global FE + Weber–Banaschek against fine-mesh FE\n\nNot shown: the meshes changed since {} was computed; `make convergence` recomputes it.",
-                ll_path.display()
+                "\n## Reduced model: run time against error (slices per tooth pair)\n\n{}",
+                shown("tradeoff.json", &why, "validate tradeoff")
             );
         }
-    }
-    if let Some(t) =
-        read::<Vec<crate::tradeoff::Point>>(&out.join(scene).join("reference/tradeoff.json"))?
-    {
-        tradeoff_markdown(&mut markdown, &t);
     }
     Ok(Some(Comparison { rows, markdown }))
+}
+
+/// A study as an option: missing `None`, current `Some(Ok)`, there but
+/// not to be shown `Some(Err(why))`.
+fn other_note<T>(s: Study<T>) -> Option<Result<T, String>> {
+    match s {
+        Study::Missing => None,
+        Study::Current(v) => Some(Ok(v)),
+        Study::NotShown(why) => Some(Err(why)),
+    }
 }
 
 /// Linear interpolation of (x, y) (x increasing) at `at`; None outside.
@@ -646,5 +712,43 @@ mod read_tests {
         ] {
             assert!(err.contains(w), "{w} not in: {err}");
         }
+    }
+
+    #[test]
+    fn study_changed_after_it_was_written_is_not_shown() {
+        use super::{read_study, Study};
+        use formats::added_files::{add_json, Dependence};
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("reference");
+        std::fs::create_dir_all(&dir).unwrap();
+        let lock = formats::result_set::RunLock::shared(&dir, "study").unwrap();
+        add_json(&lock, "a.json", &vec![1.0, 2.0], Dependence::Beside).unwrap();
+        add_json(&lock, "b.json", &"text", Dependence::Beside).unwrap();
+        drop(lock);
+        assert!(matches!(
+            read_study::<Vec<f64>>(&dir, "a.json").unwrap(),
+            Study::Current(v) if v == [1.0, 2.0]
+        ));
+        // Registered but not this build's type.
+        match read_study::<Vec<f64>>(&dir, "b.json").unwrap() {
+            Study::NotShown(why) => assert!(why.contains("older version"), "{why}"),
+            other => panic!("{other:?}"),
+        }
+        // A number edited by hand.
+        std::fs::write(dir.join("a.json"), "[1.0, 2.5]").unwrap();
+        match read_study::<Vec<f64>>(&dir, "a.json").unwrap() {
+            Study::NotShown(why) => assert!(why.contains("changed"), "{why}"),
+            other => panic!("{other:?}"),
+        }
+        // Written without a registry entry.
+        std::fs::write(dir.join("c.json"), "[3.0]").unwrap();
+        match read_study::<Vec<f64>>(&dir, "c.json").unwrap() {
+            Study::NotShown(why) => assert!(why.contains("not listed"), "{why}"),
+            other => panic!("{other:?}"),
+        }
+        assert!(matches!(
+            read_study::<Vec<f64>>(&dir, "d.json").unwrap(),
+            Study::Missing
+        ));
     }
 }

@@ -100,12 +100,21 @@ pub fn report_figures(
     };
     f.loaded_te = te_figures(o, &s.name, reports, &s.pinion_torque_nm);
     f.stress = crate::report::stress::section(o, &s.name, reports);
-    f.tradeoff = copied(
-        "Reduced model: error to the reference against run time",
-        &o.join(&s.name).join("reference/tradeoff.svg"),
-        reports,
-        "tradeoff.svg",
-    );
+    // Only the plot the trade-off study recorded, of the sweep there now.
+    let ref_dir = o.join(&s.name).join("reference");
+    f.tradeoff = matches!(
+        formats::added_files::read_added(&ref_dir, "tradeoff.svg"),
+        Ok(formats::added_files::AddedState::Current(_))
+    )
+    .then(|| {
+        copied(
+            "Reduced model: error to the reference against run time",
+            &ref_dir.join("tradeoff.svg"),
+            reports,
+            "tradeoff.svg",
+        )
+    })
+    .flatten();
     if let Some(&t) = s.pinion_torque_nm.last() {
         for wb in &s.blanks.wheel {
             for pb in &s.blanks.pinion {

@@ -6,11 +6,16 @@
 //! at the same position against the extrapolated TE. Written to
 //! `<out>/<scene>/reference/convergence.json`; each level's result is kept
 //! under `convergence/` with the hash of its meshes and settings and reused.
+//! The study holds a shared lock on the reference folder while it runs (no
+//! sweep replaces the folder meanwhile) and records every file it writes
+//! there with its checksum ([`formats::added_files`]); a level result is
+//! reused only when it is listed there unchanged and its hash matches.
 
 use crate::reference_ltca::{Member, ReferencePair, ReferenceSettings};
 use crate::reference_stage::REFERENCE_SCHEMA;
 use anyhow::Context;
-use formats::output::write_json;
+use formats::added_files::{add_json, read_added, AddedState, Dependence};
+use formats::result_set::RunLock;
 use geometry::design::Member as Which;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
@@ -170,8 +175,7 @@ pub fn run(
     let utca_te_urad =
         crate::reference_stage::utca_at(scene, fp, phi, step, 1, direction)?.te[0] * 1e6;
     let dir = out.join(&sc.name).join("reference");
-    let cache = dir.join("convergence");
-    std::fs::create_dir_all(&cache)?;
+    let lock = RunLock::shared(&dir, &format!("validate convergence {}", sc.name))?;
     let mut results = Vec::new();
     for level in &levels {
         let elements = match level.as_str() {
@@ -206,18 +210,27 @@ pub fn run(
             "flank": side.flank_name(Which::Pinion),
         });
         let hash = format!("{:x}", Sha256::digest(key.to_string().as_bytes()));
-        let path = cache.join(format!("{level}.json"));
-        if let Some(r) = std::fs::read_to_string(&path)
-            .ok()
-            .and_then(|t| serde_json::from_str::<LevelResult>(&t).ok())
-            .filter(|r| r.input_hash == hash && r.mesh_sha256 == mesh_sha256)
-        {
-            eprintln!(
-                "convergence {level}: inputs unchanged, reusing {}",
-                path.display()
-            );
-            results.push(r);
-            continue;
+        let rel = format!("convergence/{level}.json");
+        match read_added(&dir, &rel)? {
+            AddedState::Current(bytes) => {
+                if let Some(r) = serde_json::from_slice::<LevelResult>(&bytes)
+                    .ok()
+                    .filter(|r| r.input_hash == hash && r.mesh_sha256 == mesh_sha256)
+                {
+                    eprintln!(
+                        "convergence {level}: inputs unchanged, reusing {}",
+                        dir.join(&rel).display()
+                    );
+                    results.push(r);
+                    continue;
+                }
+            }
+            AddedState::Missing => {}
+            other => eprintln!(
+                "convergence {level}: not reusing {}: {}",
+                dir.join(&rel).display(),
+                other.why_not().unwrap_or_default()
+            ),
         }
         eprintln!(
             "convergence {level}: reading and factoring {} and {}",
@@ -260,7 +273,7 @@ pub fn run(
             "convergence {level}: TE {:.3?} µrad at {torques_nm:?} N·m, unloaded {:.4} µrad (UTCA {:.4}) ({} + {} dofs, {} constraints, {:.0} s)",
             res.te_urad, res.unloaded_te_urad, res.utca_te_urad, res.dofs[0], res.dofs[1], res.constraints, res.position_s
         );
-        write_json(&path, &res)?;
+        add_json(&lock, &rel, &res, Dependence::Beside)?;
         results.push(res);
     }
     results.sort_by(|a, b| b.h.total_cmp(&a.h));
@@ -296,7 +309,7 @@ pub fn run(
         levels: results,
         torques,
     };
-    write_json(&dir.join("convergence.json"), &c)?;
+    add_json(&lock, "convergence.json", &c, Dependence::Beside)?;
     Ok(c)
 }
 

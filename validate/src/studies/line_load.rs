@@ -536,9 +536,17 @@ pub fn run(
         compared_columns: cols,
         levels,
     };
+    // Kept beside the reference sweep, recorded with its checksum
+    // (formats::added_files); valid whatever sweep is committed there.
     let target = out.join(&sc.name).join("reference");
-    std::fs::create_dir_all(&target)?;
-    formats::output::write_json(&target.join("line_load.json"), &result)?;
+    let lock =
+        formats::result_set::RunLock::shared(&target, &format!("validate line-load {}", sc.name))?;
+    formats::added_files::add_json(
+        &lock,
+        "line_load.json",
+        &result,
+        formats::added_files::Dependence::Beside,
+    )?;
     Ok(result)
 }
 

@@ -4,7 +4,9 @@
 //! reference's positions, and its mean and peak-to-peak TE per blank and
 //! load are compared with the reference's. Written to
 //! `<out>/<scene>/reference/tradeoff.json` and a plot of the largest error
-//! against the time per position, `tradeoff.svg`.
+//! against the time per position, `tradeoff.svg`, both recorded with their
+//! checksums as computed from the sweep committed there
+//! ([`formats::added_files`], a shared lock held on the folder meanwhile).
 //!
 //! The other discretization, the stiffness grid density, needs stiffness
 //! files at other grids and is not varied here.
@@ -12,7 +14,8 @@
 use crate::reference_stage::BlankSummary as Reference;
 use anyhow::Context;
 use charts::{te_curve, Series};
-use formats::output::write_json;
+use formats::added_files::{add_file, add_json, Dependence};
+use formats::result_set::RunLock;
 use geometry::design::Member;
 use geometry::pair::{pinion_direction, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
@@ -70,6 +73,7 @@ pub fn run(
     let rs = roll_surface(fp, &sc.utca)?;
     let dir = meshes.join(&sc.name);
     let rdir = out.join(&sc.name).join("reference");
+    let lock = RunLock::shared(&rdir, &format!("validate tradeoff {}", sc.name))?;
     let mut points = Vec::new();
     for entry in std::fs::read_dir(&rdir).with_context(|| {
         format!(
@@ -136,8 +140,15 @@ pub fn run(
             }
         }
     }
-    write_json(&rdir.join("tradeoff.json"), &points)?;
-    plot(&rdir.join("tradeoff.svg"), &points)?;
+    add_json(&lock, "tradeoff.json", &points, Dependence::OnSet)?;
+    let svg = rdir.join("tradeoff.svg");
+    plot(&svg, &points)?;
+    add_file(
+        &lock,
+        "tradeoff.svg",
+        &std::fs::read(&svg)?,
+        Dependence::OnSet,
+    )?;
     Ok(points)
 }
 
