@@ -9,9 +9,12 @@
 //! Multibody: [`mesh_table`] (the element as a conservative force element
 //! between rigid bodies) → [`multibody`] (equations of motion, time
 //! integration) → [`dynamic_stage`] (10 rpm and run-up files, with
-//! [`spectrum`] for the bearing-force spectrogram).
+//! [`spectrum`] for the bearing-force spectrogram). [`bearings`]: a shaft
+//! on compliant bearings (reactions and the member's displacement under a
+//! mesh force).
 
 pub mod backlash;
+pub mod bearings;
 pub mod compliance;
 pub mod contact_problem;
 pub mod cpu_clock;
