@@ -163,6 +163,7 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
             force_n: model.mean_mesh_force(),
         },
         impact: None,
+        friction: None,
     };
 
     // One start for both: the quasi-static lag at q₁ = 0, moving along it.
