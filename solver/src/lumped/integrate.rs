@@ -47,20 +47,26 @@ pub struct MeshForce {
 }
 
 impl<'a> Equations<'a> {
-    /// With friction, the wheel's load torque T₂ is set so that the rigid
-    /// rotation (θ₁, θ₂) ∝ (r₂, r₁) carries no mean generalized force at
-    /// the static mesh force F₀ = T₁/(r₁ + μ ḡ₄) (the pinion's balance):
-    /// T₂ = (r₂T₁ − μF₀(r₂ḡ₄ + r₁ḡ₈))/r₁, ḡ the mean of g (the mesh's
-    /// efficiency below 1); without, T₂ = T₁ r₂/r₁.
+    /// With friction, the wheel's load torque T₂ is the mean over the
+    /// friction samples of what the mesh gives the wheel in quasi-static
+    /// balance: at each sample the pinion's balance T₁ = Fₖ(r₁ + μg₄ₖ)
+    /// gives the mesh force Fₖ, and the wheel receives Fₖ(r₂ − μg₈ₖ);
+    /// T₂ = mean of that (the mesh's efficiency below 1), so that the rigid
+    /// rotation (θ₁, θ₂) ∝ (r₂, r₁) carries no mean generalized force.
+    /// Without friction, T₂ = T₁ r₂/r₁.
     pub fn new(model: &'a Model, excitation: &'a MeshExcitation) -> Self {
         let v = model.mesh_vector();
         let mut f: [f64; 8] = std::array::from_fn(|i| model.torques()[i]);
         if let Some(fr) = &excitation.friction {
-            let g = fr.mean();
             let [r1, r2] = model.levers_m;
-            let mu = fr.coefficient;
-            let f0 = model.pinion_torque_nm / (r1 + mu * g[3]);
-            f[7] = -(r2 * model.pinion_torque_nm - mu * f0 * (r2 * g[3] + r1 * g[7])) / r1;
+            let (mu, t1) = (fr.coefficient, model.pinion_torque_nm);
+            let n = fr.per_unit_force.len() as f64;
+            f[7] = -fr
+                .per_unit_force
+                .iter()
+                .map(|g| t1 / (r1 + mu * g[3]) * (r2 - mu * g[7]))
+                .sum::<f64>()
+                / n;
         }
         let mut kb = [0.0; 8];
         let mut cb = [0.0; 8];
