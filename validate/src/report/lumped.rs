@@ -1,6 +1,6 @@
 //! The report's section "Lumped 8-DOF model (seeds 004/003)": `solver
 //! lumped` on `reference/scenes/seed004_lumped.toml` against seed 004's
-//! published numbers.
+//! published numbers, then seed 003's part ([`super::lumped_seed003`]).
 //!
 //! Reads `<out>/seed004_lumped/lumped/summary.json` (one
 //! [`LumpedSummary`] per blank pair) when present, and copies each pair's
@@ -74,8 +74,18 @@ fn ours(d: &Directions) -> [f64; 7] {
 }
 
 /// The section from the stages' output root `out` (None: no root given),
-/// its charts copied into `reports`.
+/// its charts copied into `reports`: seed 004's runs, then seed 003's
+/// ([`super::lumped_seed003`]).
 pub fn section(out: Option<&Path>, reports: &Path) -> LumpedSection {
+    let mut sec = seed004_section(out, reports);
+    if let Some(out) = out {
+        sec.markdown.push_str(&super::lumped_seed003::markdown(out));
+    }
+    sec
+}
+
+/// Seed 004's part.
+fn seed004_section(out: Option<&Path>, reports: &Path) -> LumpedSection {
     let mut s = String::from("## Lumped 8-DOF model (seeds 004/003)\n\n");
     let Some(out) = out else {
         s.push_str("No lumped run: the report was built without an output root.\n\n");
