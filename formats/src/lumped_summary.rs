@@ -77,6 +77,19 @@ pub struct RoughnessSummary {
     pub hertz_half_width_m: f64,
 }
 
+/// An ease-off variant of the design as the run used it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DesignVariantSummary {
+    pub name: String,
+    /// Seed 004's m′₂₁ (1/rad), if the variant gave one.
+    pub te_slope_m21: Option<f64>,
+    /// The ease-off used: motion error (wheel µrad at ±half a mesh cycle)
+    /// and crownings (µm).
+    pub motion_error_urad: f64,
+    pub profile_crowning_um: f64,
+    pub lengthwise_crowning_um: f64,
+}
+
 /// Summary of one pinion × wheel blank.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LumpedSummary {
@@ -160,6 +173,13 @@ pub struct LumpedSummary {
     pub rms_velocity_m_s: Directions,
     #[serde(default)]
     pub member_velocity_rms_m_s: [f64; 2],
+    /// The ease-off variant of the design, if the run is one.
+    #[serde(default)]
+    pub design_variant: Option<DesignVariantSummary>,
+    /// Mean number of tooth pairs carrying load over the mesh cycle at the
+    /// operating torque, from our LTCA.
+    #[serde(default)]
+    pub loaded_contact_ratio: f64,
 }
 
 fn zero_directions() -> Directions {

@@ -76,6 +76,26 @@ pub struct LumpedSettings {
     /// W–M roughness grades added to the pinion flank, each its own run
     /// beside the smooth flank; absent: smooth only.
     pub roughness: Option<LumpedRoughness>,
+    /// Ease-off variants of the design, each its own run at every torque
+    /// (seed 004's TE-slope and contact-ratio studies). They reuse the
+    /// design's FE meshes and stiffness files: an ease-off is a few µm,
+    /// far below the meshes' element size.
+    pub design_variants: Vec<DesignVariant>,
+}
+
+/// One ease-off variant: the design's ease-off with these values replaced.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DesignVariant {
+    /// Name in the output (letters, digits, '_', '.', '-').
+    pub name: String,
+    /// Seed 004's first derivative of the transmission ratio m′₂₁ at the
+    /// reference point (1/rad, ≤ 0): the parabolic motion error
+    /// TE = ½ m′₂₁ (φ₁ − φ₀)², i.e. the design's motion error
+    /// A = ½ |m′₂₁| (τ/2)² wheel radians at ±half a mesh cycle τ.
+    pub te_slope_m21: Option<f64>,
+    pub profile_crowning_um: Option<f64>,
+    pub lengthwise_crowning_um: Option<f64>,
 }
 
 /// Seed 003's friction coefficient μ = μ₀ + μ_r R (its Eq. (30)), R the
@@ -126,6 +146,7 @@ impl Default for LumpedSettings {
             more_pinion_torques_nm: Vec::new(),
             friction: None,
             roughness: None,
+            design_variants: Vec::new(),
         }
     }
 }
@@ -281,6 +302,41 @@ impl LumpedSettings {
             ] {
                 if !(2..=crate::design_file::MAX_TOPOGRAPHY_NODES).contains(&n) {
                     return Err(fail(field, n.to_string(), "must lie in [2, 200]"));
+                }
+            }
+        }
+        for v in &self.design_variants {
+            let ok_name = !v.name.is_empty()
+                && v.name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "_.-".contains(c));
+            if !ok_name {
+                return Err(fail(
+                    "design_variants.name",
+                    format!("{:?}", v.name),
+                    "must be non-empty letters, digits, '_', '.', '-'",
+                ));
+            }
+            if let Some(m) = v.te_slope_m21 {
+                if !(m.is_finite() && (-0.1..=0.0).contains(&m)) {
+                    return Err(fail(
+                        "design_variants.te_slope_m21",
+                        m.to_string(),
+                        "must lie in [-0.1, 0] per rad",
+                    ));
+                }
+            }
+            for (field, c) in [
+                ("design_variants.profile_crowning_um", v.profile_crowning_um),
+                (
+                    "design_variants.lengthwise_crowning_um",
+                    v.lengthwise_crowning_um,
+                ),
+            ] {
+                if let Some(c) = c {
+                    if !(c.is_finite() && (0.0..=500.0).contains(&c)) {
+                        return Err(fail(field, c.to_string(), "must lie in [0, 500] µm"));
+                    }
                 }
             }
         }

@@ -22,15 +22,18 @@ use crate::lumped::run::simulate;
 use crate::lumped_roughness::roughened;
 use crate::slices::friction_direction;
 use anyhow::Context;
-use formats::lumped_summary::{Directions, ImpactSummary, LumpedSummary, SeriesSummary};
+use formats::lumped_summary::{
+    DesignVariantSummary, Directions, ImpactSummary, LumpedSummary, SeriesSummary,
+};
 use formats::manifest::Manifest;
 use formats::output::{write_atomic, write_json};
 use formats::result_set::ResultSet;
+use geometry::design::PairData;
 use geometry::design::{Hand, Member as Which};
 use geometry::generation::Side;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
-use geometry::scene_lumped::{DirectionSource, ImpactModel, LumpedSettings};
+use geometry::scene_lumped::{DesignVariant, DirectionSource, ImpactModel, LumpedSettings};
 use geometry::utca::roll_surface;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -85,15 +88,71 @@ fn torques(ls: &LumpedSettings) -> Vec<f64> {
         .collect()
 }
 
-/// The roughness grades: smooth (None), then each Ra of `roughness`.
-fn grades(ls: &LumpedSettings) -> Vec<Option<f64>> {
-    std::iter::once(None)
+/// A flank variant of the scene's design.
+#[derive(Debug, Clone, Copy)]
+enum Flanks<'a> {
+    /// The design as it is.
+    Design,
+    /// A W–M roughness grade, Ra in µm.
+    Rough(f64),
+    /// An ease-off variant.
+    Variant(&'a DesignVariant),
+}
+
+impl Flanks<'_> {
+    fn label(&self) -> String {
+        match self {
+            Flanks::Design => "design".into(),
+            Flanks::Rough(ra) => format!("ra{ra}"),
+            Flanks::Variant(v) => v.name.clone(),
+        }
+    }
+}
+
+/// The flank variants: the design, each roughness grade, each ease-off variant.
+fn flank_variants(ls: &LumpedSettings) -> Vec<Flanks<'_>> {
+    std::iter::once(Flanks::Design)
         .chain(
             ls.roughness
                 .iter()
-                .flat_map(|r| r.ra_um.iter().map(|x| Some(*x))),
+                .flat_map(|r| r.ra_um.iter().map(|x| Flanks::Rough(*x))),
         )
+        .chain(ls.design_variants.iter().map(Flanks::Variant))
         .collect()
+}
+
+/// The design with the ease-off of `v`, and what it used.
+pub fn varied(pair: &PairData, v: &DesignVariant) -> (PairData, DesignVariantSummary) {
+    let mut p = pair.clone();
+    let e = &mut p.ease_off;
+    if let Some(m) = v.te_slope_m21 {
+        let half = 0.5 * pair.mesh_cycle();
+        e.motion_error_urad = 0.5 * m.abs() * half * half * 1e6;
+    }
+    if let Some(c) = v.profile_crowning_um {
+        e.profile_crowning_um = c;
+    }
+    if let Some(c) = v.lengthwise_crowning_um {
+        e.lengthwise_crowning_um = c;
+    }
+    let summary = DesignVariantSummary {
+        name: v.name.clone(),
+        te_slope_m21: v.te_slope_m21,
+        motion_error_urad: e.motion_error_urad,
+        profile_crowning_um: e.profile_crowning_um,
+        lengthwise_crowning_um: e.lengthwise_crowning_um,
+    };
+    (p, summary)
+}
+
+/// Mean number of tooth pairs carrying load over the positions of one
+/// mesh cycle at the operating torque (load index 1 of the tangent torques).
+fn loaded_contact_ratio(res: &[crate::ltca::PositionResult], positions: usize) -> f64 {
+    res[..positions]
+        .iter()
+        .map(|p| p.loads[1].pair_force.iter().filter(|f| f.1 > 0.0).count() as f64)
+        .sum::<f64>()
+        / positions.max(1) as f64
 }
 
 /// Runs the lumped model of the scene: per blank pair, roughness grade and
@@ -115,8 +174,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let dir = meshes.join(&sc.name);
     let manifest = Manifest::read(&dir)?;
     let torques = torques(ls);
-    let grades = grades(ls);
-    let single = torques.len() == 1 && grades.len() == 1;
+    let variants = flank_variants(ls);
     let omega = ls.pinion_speed_rpm * std::f64::consts::PI / 30.0;
     let mut all = Vec::new();
     for &pb in &sc.blanks.pinion {
@@ -130,10 +188,16 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 pinion: pin.clone(),
                 wheel: whl,
             };
-            for grade in &grades {
-                let rough_pair;
-                let (gr, mut rough) = match (grade, &ls.roughness) {
-                    (Some(ra), Some(r)) => {
+            for flanks in &variants {
+                let other_pair;
+                let (gr, mut rough, design) = match flanks {
+                    Flanks::Rough(ra) => {
+                        let Some(r) = ls.roughness.as_ref() else {
+                            anyhow::bail!(
+                                "scene {}: a roughness grade without [lumped.roughness]",
+                                sc.name
+                            );
+                        };
                         let (p, summary) = roughened(
                             &scene.pair,
                             g.side(side),
@@ -142,13 +206,21 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                             [r.profile_nodes, r.face_nodes],
                             sc.mesh.reduced_order.profile as usize,
                         )?;
-                        rough_pair = PairGeometry::build(&p, Some(&scene.design_path))
+                        other_pair = PairGeometry::build(&p, Some(&scene.design_path))
                             .with_context(|| {
                                 format!("scene {}: the pair with Ra {ra} µm", sc.name)
                             })?;
-                        (&rough_pair, Some(summary))
+                        (&other_pair, Some(summary), None)
                     }
-                    _ => (&g, None),
+                    Flanks::Variant(v) => {
+                        let (p, summary) = varied(&scene.pair, v);
+                        other_pair = PairGeometry::build(&p, Some(&scene.design_path))
+                            .with_context(|| {
+                                format!("scene {}: design variant {}", sc.name, v.name)
+                            })?;
+                        (&other_pair, None, Some(summary))
+                    }
+                    Flanks::Design => (&g, None, None),
                 };
                 let fp = gr.side(side);
                 let rs = roll_surface(fp, &sc.utca)?;
@@ -188,13 +260,12 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                             slice_friction(fp, phi, tau, &gk.slices, &res[k].loads[1].slices)
                         })
                         .collect::<Vec<_>>();
-                    let variant = if single {
+                    // The first torque on the design's own flanks is the
+                    // scene's base run: no suffix.
+                    let variant = if torque == torques[0] && matches!(flanks, Flanks::Design) {
                         String::new()
                     } else {
-                        match grade {
-                            Some(ra) => format!("t{torque}_ra{ra}"),
-                            None => format!("t{torque}_smooth"),
-                        }
+                        format!("t{torque}_{}", flanks.label())
                     };
                     let mut name = format!("{pb:?}_{wb:?}").to_lowercase();
                     if !variant.is_empty() {
@@ -214,6 +285,8 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                         eng,
                         slice_friction,
                         roughness: rough.clone(),
+                        design: design.clone(),
+                        contact_ratio: loaded_contact_ratio(&res, samples.time_s.len()),
                         variant,
                     };
                     let summary = run_blank(&case, &odir)?;
@@ -292,6 +365,8 @@ struct Case<'a> {
     eng: Option<crate::lumped::impact::Engagement>,
     slice_friction: Vec<Vec<SliceFriction>>,
     roughness: Option<formats::lumped_summary::RoughnessSummary>,
+    design: Option<DesignVariantSummary>,
+    contact_ratio: f64,
     variant: String,
 }
 
@@ -490,6 +565,8 @@ fn run_blank(case: &Case, odir: &Path) -> anyhow::Result<LumpedSummary> {
         integration_wall_s: wall,
         variant: case.variant.clone(),
         roughness: case.roughness.clone(),
+        design_variant: case.design.clone(),
+        loaded_contact_ratio: case.contact_ratio,
         friction_coefficient: exc.friction.as_ref().map_or(0.0, |f| f.coefficient),
         friction_normal_angle_deg: angle,
         ltca_normal_model_axes: normal,

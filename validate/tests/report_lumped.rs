@@ -81,6 +81,8 @@ fn summary() -> LumpedSummary {
         ltca_normal_model_axes: [-0.49, 0.31, 0.81],
         rms_velocity_m_s: directions(0.0),
         member_velocity_rms_m_s: [1e-3, 2e-3],
+        design_variant: None,
+        loaded_contact_ratio: 1.625,
     }
 }
 

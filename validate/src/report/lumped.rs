@@ -129,7 +129,10 @@ fn seed004_section(out: Option<&Path>, reports: &Path) -> LumpedSection {
         s,
         "Seed 004's 23/86 pair on our own LTCA: the mesh stiffness k(t) (tangent, dF/dδ) and the loaded transmission error of the scene `{LUMPED_SCENE}` as Fourier series drive the 8-DOF model (X, Y, Z and rotation of each member on its bearings), integrated with Dormand–Prince 5(4). Seed 004's published values stand beside ours; sources under the tables.\n"
     );
-    for r in &summaries {
+    // The scene's base runs (the design's own flanks at its first torque);
+    // the ease-off variants go to the studies below.
+    let base: Vec<&LumpedSummary> = summaries.iter().filter(|r| r.variant.is_empty()).collect();
+    for r in &base {
         let blank = format!("{:?}_{:?}", r.pinion_blank, r.wheel_blank).to_lowercase();
         pair_markdown(&mut s, r);
         let mut figs = Vec::new();
@@ -147,7 +150,8 @@ fn seed004_section(out: Option<&Path>, reports: &Path) -> LumpedSection {
         super::figure_lines(&mut s, &figs, false);
         figures.extend(figs);
     }
-    differences_markdown(&mut s, &summaries[0]);
+    differences_markdown(&mut s, base.first().copied().unwrap_or(&summaries[0]));
+    super::lumped_studies::markdown(&mut s, &summaries);
     LumpedSection {
         markdown: s,
         figures,

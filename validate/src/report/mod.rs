@@ -16,6 +16,7 @@ pub mod html;
 pub mod layout;
 pub mod lumped;
 pub mod lumped_seed003;
+pub mod lumped_studies;
 pub mod published;
 pub mod results;
 pub mod stress;
