@@ -41,9 +41,11 @@ CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_elem
 # reduced meshes (6 x 10 flank elements), stiffness, then `solver lumped`;
 # the report's section "Lumped 8-DOF model" reads
 # out/<scene>/lumped/summary.json. Measured cold (fresh meshes directory,
-# binaries built) on 2 shared cores: seed 004 75 s (mesh 61 s, stiffness
-# 14 s, lumped 0.25 s); seed 003 28 s (flanks, mesh and stiffness 24 s,
-# lumped 3.5 s for 4 flank grades x 2 loads). LUMPED=0 leaves them out.
+# binaries built) on 2 shared cores: seed 004 about 80 s (mesh 61 s,
+# stiffness 14 s, lumped 4 s for the design and its 6 ease-off variants of
+# the TE-slope and contact-ratio studies, which reuse the design's meshes);
+# seed 003 about 30 s (flanks, mesh and stiffness 24 s, lumped 3.5-5.7 s
+# for 4 flank grades x 2 loads). LUMPED=0 leaves them out.
 LUMPED        ?= 1
 LUMPED_SCENES := seed004_lumped seed003_lumped
 

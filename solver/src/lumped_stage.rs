@@ -12,7 +12,7 @@ use crate::lumped::excitation::{
     seed004_impact_force, FittedSeries, ImpactPulse, MeshExcitation, StaticError,
 };
 use crate::lumped::friction::{
-    per_unit_force, seed003_coefficient, FrictionExcitation, SliceFriction,
+    per_unit_force, seed003_coefficient, FrictionExcitation, FrictionGeometry, SliceFriction,
 };
 use crate::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques, MeshSamples};
 use crate::lumped::impact::engagement;
@@ -450,7 +450,11 @@ fn run_blank(case: &Case, odir: &Path) -> anyhow::Result<LumpedSummary> {
         }),
         _ => None,
     };
-    let (g, normal, angle) = per_unit_force(&case.slice_friction, model.direction)?;
+    let FrictionGeometry {
+        per_unit_force: g,
+        normal,
+        angle_deg: angle,
+    } = per_unit_force(&case.slice_friction, model.direction)?;
     if ls.direction_cosines == DirectionSource::Ltca {
         model.direction = normal;
     }

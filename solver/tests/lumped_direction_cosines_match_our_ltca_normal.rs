@@ -81,8 +81,9 @@ fn angles(scene: &str) -> (WheelHand, f64, f64) {
         WheelHand::Left => Side::Drive,
         WheelHand::Right => Side::Coast,
     };
-    let (_, normal, angle) = per_unit_force(&positions, a(Side::Drive)).unwrap();
-    let (_, _, angle_by_hand) = per_unit_force(&positions, a(by_hand)).unwrap();
+    let drive = per_unit_force(&positions, a(Side::Drive)).unwrap();
+    let (normal, angle) = (drive.normal, drive.angle_deg);
+    let angle_by_hand = per_unit_force(&positions, a(by_hand)).unwrap().angle_deg;
     eprintln!(
         "{}: wheel {hand:?}, contact normal {normal:?}, a {:?}: {angle:.2}°; spiral sign by the hand: {angle_by_hand:.2}°",
         scene.scene.name,

@@ -85,7 +85,7 @@ fn lumped_friction_from_the_ltca_is_tangent_dissipative_and_keeps_the_torque_bal
         WheelHand::Left,
         side,
     );
-    let (gv, _, _) = per_unit_force(&positions, a).unwrap();
+    let gv = per_unit_force(&positions, a).unwrap().per_unit_force;
     // 2. Dissipation at the nominal speeds.
     for (k, gk) in gv.iter().enumerate() {
         let p = -(gk[3] + gk[7] * ratio);

@@ -114,13 +114,23 @@ pub struct SliceFriction {
     pub levers_m: [f64; 2],
 }
 
+/// What [`per_unit_force`] finds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrictionGeometry {
+    /// g at each position.
+    pub per_unit_force: Vec<[f64; 8]>,
+    /// The force-weighted flank normal (unit, axes signed as the model's).
+    pub normal: [f64; 3],
+    /// Its angle to the model's direction cosines, deg.
+    pub angle_deg: f64,
+}
+
 /// g at each position from its slices, the force-weighted flank normal
-/// (unit, axes signed as the model's) and its angle (deg) to the model's
-/// direction cosines `a`.
+/// and its angle to the model's direction cosines `a`.
 pub fn per_unit_force(
     positions: &[Vec<SliceFriction>],
     a: [f64; 3],
-) -> Result<(Vec<[f64; 8]>, [f64; 3], f64), LumpedError> {
+) -> Result<FrictionGeometry, LumpedError> {
     let mut mean_n = [0.0; 3];
     for s in positions.iter().flatten() {
         for (m, n) in mean_n.iter_mut().zip(s.normal) {
@@ -155,5 +165,9 @@ pub fn per_unit_force(
             g
         })
         .collect();
-    Ok((g, mapped.map(|m| m / len), cos.acos().to_degrees()))
+    Ok(FrictionGeometry {
+        per_unit_force: g,
+        normal: mapped.map(|m| m / len),
+        angle_deg: cos.acos().to_degrees(),
+    })
 }
