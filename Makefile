@@ -36,14 +36,18 @@ FINE_STRIDE_LW ?= $(FINE_STRIDE)
 # CONTACT_LAWS=0 leaves them out.
 CONTACT_LAWS       ?= 1
 CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_element
-# The 8-DOF lumped model on seed 004's 23/86 pair (reference/scenes/
-# seed004_lumped.toml): flanks, reduced meshes (6 x 10 flank elements),
-# stiffness, then `solver lumped`; the report's section "Lumped 8-DOF model"
-# reads out/seed004_lumped/lumped/summary.json. Measured cold (fresh meshes
-# directory, binaries built) on 2 shared cores: 75 s (mesh 61 s, stiffness
-# 14 s, lumped 0.25 s). LUMPED=0 leaves it out.
+# The 8-DOF lumped model on seed 004's 23/86 pair and seed 003's 16/27 pair
+# (reference/scenes/seed004_lumped.toml, seed003_lumped.toml): flanks,
+# reduced meshes (6 x 10 flank elements), stiffness, then `solver lumped`;
+# the report's section "Lumped 8-DOF model" reads
+# out/<scene>/lumped/summary.json. Measured cold (fresh meshes directory,
+# binaries built) on 2 shared cores: seed 004 about 80 s (mesh 61 s,
+# stiffness 14 s, lumped 4 s for the design and its 6 ease-off variants of
+# the TE-slope and contact-ratio studies, which reuse the design's meshes);
+# seed 003 about 30 s (flanks, mesh and stiffness 24 s, lumped 3.5-5.7 s
+# for 4 flank grades x 2 loads). LUMPED=0 leaves them out.
 LUMPED        ?= 1
-LUMPED_SCENE  := reference/scenes/seed004_lumped.toml
+LUMPED_SCENES := seed004_lumped seed003_lumped
 
 .PHONY: setup build test bench preprocess solve validate convergence stress clean
 
@@ -95,10 +99,12 @@ validate: solve
 	    $(BIN)/solver dynamic $$f --meshes meshes --out $(OUT) || exit 1; \
 	  done; fi
 	@if [ "$(LUMPED)" = 1 ]; then \
-	  $(BIN)/preprocess flanks $(LUMPED_SCENE) --out $(OUT)/seed004_lumped/flanks && \
-	  $(BIN)/preprocess mesh $(LUMPED_SCENE) --level reduced --out meshes && \
-	  $(BIN)/preprocess stiffness $(LUMPED_SCENE) --meshes meshes && \
-	  $(BIN)/solver lumped $(LUMPED_SCENE) --meshes meshes --out $(OUT); fi
+	  for s in $(LUMPED_SCENES); do f=reference/scenes/$$s.toml; \
+	    $(BIN)/preprocess flanks $$f --out $(OUT)/$$s/flanks && \
+	    $(BIN)/preprocess mesh $$f --level reduced --out meshes && \
+	    $(BIN)/preprocess stiffness $$f --meshes meshes && \
+	    $(BIN)/solver lumped $$f --meshes meshes --out $(OUT) || exit 1; \
+	  done; fi
 	$(BIN)/validate report $(SCENE) --flanks $(OUT)/$(notdir $(basename $(SCENE)))/flanks --reports reports --out $(OUT)
 
 # Mesh convergence of the reference (three mesh levels at one position and

@@ -47,6 +47,49 @@ pub struct ImpactSummary {
     pub pulse_s: f64,
 }
 
+/// The W–M roughness of a run and how much of it the LTCA can see.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoughnessSummary {
+    /// Ra of each flank, µm, and of the pair's relative topography (√2 Ra:
+    /// two independent flanks carried on the pinion), µm.
+    pub ra_um: f64,
+    pub composite_ra_um: f64,
+    /// Fractal dimension D (seed 003's Eq. (33)) and the scale G set for the composite Ra, m.
+    pub dimension: f64,
+    pub scale_m: f64,
+    /// W–M terms between λ_s = 2.5 µm and λ_c = 0.8 mm, and those the
+    /// topography grid carries (λ ≥ 2 node spacings).
+    pub terms: usize,
+    pub terms_resolved: usize,
+    /// Rq of the whole profile and of the carried terms, m.
+    pub rq_m: f64,
+    pub rq_resolved_m: f64,
+    /// Shortest carried wavelength, m; topography node spacing along the
+    /// profile, m; profile length, m.
+    pub shortest_resolved_wavelength_m: f64,
+    pub node_spacing_m: f64,
+    pub profile_length_m: f64,
+    /// The FE mesh's flank element length along the profile, m (the
+    /// compliance comes from the smooth flanks' meshes).
+    pub mesh_element_profile_m: f64,
+    /// Hertz half-width of the loaded slices at the operating torque,
+    /// force-weighted mean over slices and positions, m.
+    pub hertz_half_width_m: f64,
+}
+
+/// An ease-off variant of the design as the run used it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DesignVariantSummary {
+    pub name: String,
+    /// Seed 004's m′₂₁ (1/rad), if the variant gave one.
+    pub te_slope_m21: Option<f64>,
+    /// The ease-off used: motion error (wheel µrad at ±half a mesh cycle)
+    /// and crownings (µm).
+    pub motion_error_urad: f64,
+    pub profile_crowning_um: f64,
+    pub lengthwise_crowning_um: f64,
+}
+
 /// Summary of one pinion × wheel blank.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LumpedSummary {
@@ -105,4 +148,48 @@ pub struct LumpedSummary {
     pub steps: [usize; 2],
     pub evaluations: usize,
     pub integration_wall_s: f64,
+    /// The run's name within the blank pair ("" for a scene's only run;
+    /// else torque and roughness).
+    #[serde(default)]
+    pub variant: String,
+    /// The pinion flank's W–M roughness; absent: smooth.
+    #[serde(default)]
+    pub roughness: Option<RoughnessSummary>,
+    /// Friction coefficient μ of the run (0: none), and the angle between
+    /// our LTCA's force-weighted flank normal and seed 004's direction
+    /// cosines, deg (0 in summaries written before it was computed).
+    #[serde(default)]
+    pub friction_coefficient: f64,
+    #[serde(default)]
+    pub friction_normal_angle_deg: f64,
+    /// Our LTCA's force-weighted flank normal on the model's axes (unit),
+    /// beside `direction_cosines` (the two equal when the scene takes
+    /// `direction_cosines = "ltca"`).
+    #[serde(default)]
+    pub ltca_normal_model_axes: [f64; 3],
+    /// RMS of the fluctuating velocities, m/s (mesh normal: λ̇), and of the
+    /// resultant translational velocity of each member, m/s.
+    #[serde(default = "zero_directions")]
+    pub rms_velocity_m_s: Directions,
+    #[serde(default)]
+    pub member_velocity_rms_m_s: [f64; 2],
+    /// The ease-off variant of the design, if the run is one.
+    #[serde(default)]
+    pub design_variant: Option<DesignVariantSummary>,
+    /// Mean number of tooth pairs carrying load over the mesh cycle at the
+    /// operating torque, from our LTCA.
+    #[serde(default)]
+    pub loaded_contact_ratio: f64,
+}
+
+fn zero_directions() -> Directions {
+    Directions {
+        pinion_x: 0.0,
+        pinion_y: 0.0,
+        pinion_z: 0.0,
+        wheel_x: 0.0,
+        wheel_y: 0.0,
+        wheel_z: 0.0,
+        mesh_normal: 0.0,
+    }
 }

@@ -43,10 +43,11 @@
 //! **Into the flanks.** [`WmProfile::topography`] samples the profile as a
 //! [`TopographyDesign`] (µm, normalised flank coordinates), the grid the
 //! design file's `[ease_off.topography]` takes and the ease-off adds to the
-//! pinion flank (bicubic between nodes). No design or scene option generates
-//! it yet: the design file would need the flank's profile length, and a grid
-//! of at most 200 nodes over a ~10 mm profile carries only wavelengths above
-//! ~0.1 mm, i.e. waviness, not the 2.5 µm – 0.8 mm roughness band.
+//! pinion flank (bicubic between nodes). The lumped model's scenes generate
+//! it (`[lumped.roughness]`, `solver::lumped_roughness`, which measures the
+//! flank's profile length); a grid of at most 200 nodes over a ~10 mm
+//! profile carries only wavelengths above ~0.1 mm, i.e. waviness, not the
+//! 2.5 µm – 0.8 mm roughness band.
 
 use crate::design::TopographyDesign;
 use std::f64::consts::PI;

@@ -18,6 +18,19 @@ pub enum ImpactModel {
     Seed004,
 }
 
+/// Where the mesh normal's direction cosines (a₁, a₂, a₃) come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DirectionSource {
+    /// Seed 004's formula from αₙ, β₂, δ₂ and the wheel's hand.
+    Seed004,
+    /// Our LTCA's force-weighted flank normal over the mesh cycle at the
+    /// operating torque (each component's sign as seed 004's: with
+    /// diagonal bearings an axis's sign convention does not change the
+    /// response).
+    Ltca,
+}
+
 /// Settings of the lumped run.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields, default)]
@@ -53,6 +66,60 @@ pub struct LumpedSettings {
     pub impact: ImpactModel,
     /// Impact pulse length over the mesh period (seed 004: 0.05).
     pub impact_pulse_of_mesh_period: f64,
+    /// Source of the direction cosines.
+    pub direction_cosines: DirectionSource,
+    /// Further operating pinion torques, N·m, each its own run (LTCA at
+    /// T(1 ± 5 %) and the model), beside `pinion_torque_nm`.
+    pub more_pinion_torques_nm: Vec<f64>,
+    /// Friction in the model (seed 003's μ = μ₀ + μ_r R); absent: none.
+    pub friction: Option<LumpedFriction>,
+    /// W–M roughness grades added to the pinion flank, each its own run
+    /// beside the smooth flank; absent: smooth only.
+    pub roughness: Option<LumpedRoughness>,
+    /// Ease-off variants of the design, each its own run at every torque
+    /// (seed 004's TE-slope and contact-ratio studies). They reuse the
+    /// design's FE meshes and stiffness files: an ease-off is a few µm,
+    /// far below the meshes' element size.
+    pub design_variants: Vec<DesignVariant>,
+}
+
+/// One ease-off variant: the design's ease-off with these values replaced.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DesignVariant {
+    /// Name in the output (letters, digits, '_', '.', '-').
+    pub name: String,
+    /// Seed 004's first derivative of the transmission ratio m′₂₁ at the
+    /// reference point (1/rad, ≤ 0): the parabolic motion error
+    /// TE = ½ m′₂₁ (φ₁ − φ₀)², i.e. the design's motion error
+    /// A = ½ |m′₂₁| (τ/2)² wheel radians at ±half a mesh cycle τ.
+    pub te_slope_m21: Option<f64>,
+    pub profile_crowning_um: Option<f64>,
+    pub lengthwise_crowning_um: Option<f64>,
+}
+
+/// Seed 003's friction coefficient μ = μ₀ + μ_r R (its Eq. (30)), R the
+/// effective roughness of the contact in µm.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LumpedFriction {
+    /// μ₀.
+    pub base_coefficient: f64,
+    /// μ_r, per µm of R.
+    pub roughness_coefficient_per_um: f64,
+}
+
+/// Seed 003's W–M roughness grades on the pinion flank.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LumpedRoughness {
+    /// Ra of each grade, µm (D from seed 003's Eq. (33), G for the Ra).
+    pub ra_um: Vec<f64>,
+    /// Seed of the W–M phases (the same seed, the same flanks).
+    pub seed: u64,
+    /// Topography nodes along the profile and the face width.
+    pub profile_nodes: usize,
+    pub face_nodes: usize,
 }
 
 impl Default for LumpedSettings {
@@ -75,6 +142,11 @@ impl Default for LumpedSettings {
             wheel_inertia_kgm2: None,
             impact: ImpactModel::Engagement,
             impact_pulse_of_mesh_period: 0.05,
+            direction_cosines: DirectionSource::Seed004,
+            more_pinion_torques_nm: Vec::new(),
+            friction: None,
+            roughness: None,
+            design_variants: Vec::new(),
         }
     }
 }
@@ -184,6 +256,90 @@ impl LumpedSettings {
             0.0,
             0.5,
             "must lie in (0, 0.5]",
-        )
+        )?;
+        for t in &self.more_pinion_torques_nm {
+            range(
+                "more_pinion_torques_nm",
+                *t,
+                0.0,
+                1e6,
+                "each must lie in (0, 1e6]",
+            )?;
+        }
+        if let Some(f) = &self.friction {
+            for (field, v) in [
+                ("friction.base_coefficient", f.base_coefficient),
+                (
+                    "friction.roughness_coefficient_per_um",
+                    f.roughness_coefficient_per_um,
+                ),
+            ] {
+                if !(v.is_finite() && (0.0..=2.0).contains(&v)) {
+                    return Err(fail(field, v.to_string(), "must lie in [0, 2]"));
+                }
+            }
+        }
+        if let Some(r) = &self.roughness {
+            if r.ra_um.is_empty() {
+                return Err(fail(
+                    "roughness.ra_um",
+                    "[]".into(),
+                    "needs at least one grade",
+                ));
+            }
+            for ra in &r.ra_um {
+                range(
+                    "roughness.ra_um",
+                    *ra,
+                    0.0,
+                    10.0,
+                    "each must lie in (0, 10] µm",
+                )?;
+            }
+            for (field, n) in [
+                ("roughness.profile_nodes", r.profile_nodes),
+                ("roughness.face_nodes", r.face_nodes),
+            ] {
+                if !(2..=crate::design_file::MAX_TOPOGRAPHY_NODES).contains(&n) {
+                    return Err(fail(field, n.to_string(), "must lie in [2, 200]"));
+                }
+            }
+        }
+        for v in &self.design_variants {
+            let ok_name = !v.name.is_empty()
+                && v.name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "_.-".contains(c));
+            if !ok_name {
+                return Err(fail(
+                    "design_variants.name",
+                    format!("{:?}", v.name),
+                    "must be non-empty letters, digits, '_', '.', '-'",
+                ));
+            }
+            if let Some(m) = v.te_slope_m21 {
+                if !(m.is_finite() && (-0.1..=0.0).contains(&m)) {
+                    return Err(fail(
+                        "design_variants.te_slope_m21",
+                        m.to_string(),
+                        "must lie in [-0.1, 0] per rad",
+                    ));
+                }
+            }
+            for (field, c) in [
+                ("design_variants.profile_crowning_um", v.profile_crowning_um),
+                (
+                    "design_variants.lengthwise_crowning_um",
+                    v.lengthwise_crowning_um,
+                ),
+            ] {
+                if let Some(c) = c {
+                    if !(c.is_finite() && (0.0..=500.0).contains(&c)) {
+                        return Err(fail(field, c.to_string(), "must lie in [0, 500] µm"));
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 }

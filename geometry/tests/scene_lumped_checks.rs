@@ -2,7 +2,9 @@
 //! value is refused with the field, the value and the limit named, and an
 //! unknown key is refused.
 
-use geometry::scene_lumped::{ImpactModel, LumpedSettings};
+use geometry::scene_lumped::{
+    DirectionSource, ImpactModel, LumpedFriction, LumpedRoughness, LumpedSettings,
+};
 use std::path::Path;
 
 #[test]
@@ -10,7 +12,7 @@ fn scene_lumped_checks_name_field_value_and_limit() {
     let p = Path::new("scene.toml");
     LumpedSettings::default().check(p).unwrap();
     type Edit = fn(&mut LumpedSettings);
-    let cases: [(Edit, &str, &str); 6] = [
+    let cases: [(Edit, &str, &str); 10] = [
         (
             |s| s.pinion_speed_rpm = -1.0,
             "lumped.pinion_speed_rpm",
@@ -41,6 +43,45 @@ fn scene_lumped_checks_name_field_value_and_limit() {
             "lumped.pinion_mass_kg",
             "0",
         ),
+        (
+            |s| s.more_pinion_torques_nm = vec![10.0, -5.0],
+            "lumped.more_pinion_torques_nm",
+            "-5",
+        ),
+        (
+            |s| {
+                s.friction = Some(LumpedFriction {
+                    base_coefficient: 2.5,
+                    roughness_coefficient_per_um: 0.01,
+                })
+            },
+            "lumped.friction.base_coefficient",
+            "2.5",
+        ),
+        (
+            |s| {
+                s.roughness = Some(LumpedRoughness {
+                    ra_um: vec![0.8, 0.0],
+                    seed: 3,
+                    profile_nodes: 41,
+                    face_nodes: 5,
+                })
+            },
+            "lumped.roughness.ra_um",
+            "0",
+        ),
+        (
+            |s| {
+                s.roughness = Some(LumpedRoughness {
+                    ra_um: vec![0.8],
+                    seed: 3,
+                    profile_nodes: 201,
+                    face_nodes: 5,
+                })
+            },
+            "lumped.roughness.profile_nodes",
+            "201",
+        ),
     ];
     for (edit, field, value) in cases {
         let mut s = LumpedSettings::default();
@@ -58,4 +99,14 @@ fn scene_lumped_section_parses_and_refuses_unknown_keys() {
     assert_eq!(s.impact, ImpactModel::Seed004);
     assert_eq!(s.mesh_cycles, LumpedSettings::default().mesh_cycles);
     assert!(toml::from_str::<LumpedSettings>("pinion_speed = 1.0\n").is_err());
+    let s: LumpedSettings = toml::from_str(
+        "direction_cosines = \"ltca\"\nmore_pinion_torques_nm = [62.22]\n[friction]\nbase_coefficient = 0.6\nroughness_coefficient_per_um = 0.01\n[roughness]\nra_um = [0.8]\nseed = 3\nprofile_nodes = 41\nface_nodes = 5\n",
+    )
+    .unwrap();
+    assert_eq!(s.direction_cosines, DirectionSource::Ltca);
+    assert_eq!(s.roughness.unwrap().ra_um, vec![0.8]);
+    assert!(
+        toml::from_str::<LumpedSettings>("[friction]\nbase_coefficient = 0.6\nmu_r = 0.01\n")
+            .is_err()
+    );
 }

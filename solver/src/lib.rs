@@ -28,6 +28,7 @@ pub mod ltca;
 pub mod ltca_stage;
 pub mod lumped;
 pub mod lumped_plots;
+pub mod lumped_roughness;
 pub mod lumped_stage;
 pub mod mesh_table;
 pub mod multibody;

@@ -144,6 +144,8 @@ mod tests {
         };
         let r = Response {
             rms_acceleration: [1.0; 7],
+            rms_velocity: [1e-3; 7],
+            member_velocity_rms: [1e-3; 2],
             relative_normal_rms: 1.0,
             peak_to_peak: [1.0; 7],
             mesh_force: [1000.0, 950.0, 1050.0],

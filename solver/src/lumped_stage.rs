@@ -11,21 +11,29 @@ use crate::ltca_stage::{member_compliance, record_stiffness_inputs, scene_sweep}
 use crate::lumped::excitation::{
     seed004_impact_force, FittedSeries, ImpactPulse, MeshExcitation, StaticError,
 };
+use crate::lumped::friction::{
+    per_unit_force, seed003_coefficient, FrictionExcitation, FrictionGeometry, SliceFriction,
+};
 use crate::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques, MeshSamples};
 use crate::lumped::impact::engagement;
 use crate::lumped::model::{direction_cosines, mesh_damping_for_ratio, Member, Model, WheelHand};
 use crate::lumped::response::{response, Response};
 use crate::lumped::run::simulate;
+use crate::lumped_roughness::roughened;
+use crate::slices::friction_direction;
 use anyhow::Context;
-use formats::lumped_summary::{Directions, ImpactSummary, LumpedSummary, SeriesSummary};
+use formats::lumped_summary::{
+    DesignVariantSummary, Directions, ImpactSummary, LumpedSummary, SeriesSummary,
+};
 use formats::manifest::Manifest;
 use formats::output::{write_atomic, write_json};
 use formats::result_set::ResultSet;
+use geometry::design::PairData;
 use geometry::design::{Hand, Member as Which};
 use geometry::generation::Side;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
-use geometry::scene_lumped::{ImpactModel, LumpedSettings};
+use geometry::scene_lumped::{DesignVariant, DirectionSource, ImpactModel, LumpedSettings};
 use geometry::utca::roll_surface;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -72,7 +80,83 @@ pub fn natural_frequencies(model: &Model, k: f64) -> Vec<f64> {
     w.into_iter().skip(1).collect()
 }
 
-/// Runs the lumped model of the scene.
+/// The operating torques of the scene: `pinion_torque_nm`, then
+/// `more_pinion_torques_nm`.
+fn torques(ls: &LumpedSettings) -> Vec<f64> {
+    std::iter::once(ls.pinion_torque_nm)
+        .chain(ls.more_pinion_torques_nm.iter().copied())
+        .collect()
+}
+
+/// A flank variant of the scene's design.
+#[derive(Debug, Clone, Copy)]
+enum Flanks<'a> {
+    /// The design as it is.
+    Design,
+    /// A W–M roughness grade, Ra in µm.
+    Rough(f64),
+    /// An ease-off variant.
+    Variant(&'a DesignVariant),
+}
+
+impl Flanks<'_> {
+    fn label(&self) -> String {
+        match self {
+            Flanks::Design => "design".into(),
+            Flanks::Rough(ra) => format!("ra{ra}"),
+            Flanks::Variant(v) => v.name.clone(),
+        }
+    }
+}
+
+/// The flank variants: the design, each roughness grade, each ease-off variant.
+fn flank_variants(ls: &LumpedSettings) -> Vec<Flanks<'_>> {
+    std::iter::once(Flanks::Design)
+        .chain(
+            ls.roughness
+                .iter()
+                .flat_map(|r| r.ra_um.iter().map(|x| Flanks::Rough(*x))),
+        )
+        .chain(ls.design_variants.iter().map(Flanks::Variant))
+        .collect()
+}
+
+/// The design with the ease-off of `v`, and what it used.
+pub fn varied(pair: &PairData, v: &DesignVariant) -> (PairData, DesignVariantSummary) {
+    let mut p = pair.clone();
+    let e = &mut p.ease_off;
+    if let Some(m) = v.te_slope_m21 {
+        let half = 0.5 * pair.mesh_cycle();
+        e.motion_error_urad = 0.5 * m.abs() * half * half * 1e6;
+    }
+    if let Some(c) = v.profile_crowning_um {
+        e.profile_crowning_um = c;
+    }
+    if let Some(c) = v.lengthwise_crowning_um {
+        e.lengthwise_crowning_um = c;
+    }
+    let summary = DesignVariantSummary {
+        name: v.name.clone(),
+        te_slope_m21: v.te_slope_m21,
+        motion_error_urad: e.motion_error_urad,
+        profile_crowning_um: e.profile_crowning_um,
+        lengthwise_crowning_um: e.lengthwise_crowning_um,
+    };
+    (p, summary)
+}
+
+/// Mean number of tooth pairs carrying load over the positions of one
+/// mesh cycle at the operating torque (load index 1 of the tangent torques).
+fn loaded_contact_ratio(res: &[crate::ltca::PositionResult], positions: usize) -> f64 {
+    res[..positions]
+        .iter()
+        .map(|p| p.loads[1].pair_force.iter().filter(|f| f.1 > 0.0).count() as f64)
+        .sum::<f64>()
+        / positions.max(1) as f64
+}
+
+/// Runs the lumped model of the scene: per blank pair, roughness grade and
+/// operating torque.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<LumpedSummary>> {
     let sc = &scene.scene;
     let Some(ls) = &sc.lumped else {
@@ -87,10 +171,11 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     )?;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;
-    let fp = g.side(side);
-    let rs = roll_surface(fp, &sc.utca)?;
     let dir = meshes.join(&sc.name);
     let manifest = Manifest::read(&dir)?;
+    let torques = torques(ls);
+    let variants = flank_variants(ls);
+    let omega = ls.pinion_speed_rpm * std::f64::consts::PI / 30.0;
     let mut all = Vec::new();
     for &pb in &sc.blanks.pinion {
         let (pin, pin_plan) = member_compliance(scene, &g, &dir, Which::Pinion, pb)?;
@@ -103,48 +188,123 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 pinion: pin.clone(),
                 wheel: whl,
             };
-            let sweep = scene_sweep(scene, &g, wb);
-            let torques = tangent_torques(ls.pinion_torque_nm);
-            let res = run_sweep(fp, &rs, &pc, &sweep, &torques)
-                .with_context(|| format!("scene {}: LTCA for the lumped model", sc.name))?;
-            let omega = ls.pinion_speed_rpm * std::f64::consts::PI / 30.0;
-            let samples = mesh_samples(&res, ls.pinion_torque_nm, omega, g.data.mesh_cycle())?;
-            let [kf, ef, df] = fit_series(&samples, ls.fourier_tolerance_of_ptp)?;
-            let tau = fp.pinion.gen.frame.pitch();
-            let lag = |k: usize, pair: i32| {
-                let phi = sweep.start + sweep.direction * res[k].rotation;
-                geometry(fp, &rs, phi, tau, sweep.slices)
-                    .slices
-                    .iter()
-                    .filter(|s| s.pair == pair)
-                    .map(|s| s.lag)
-                    .reduce(f64::min)
-            };
-            let eng = engagement(&res, &samples, omega, lag);
-            let name = format!("{pb:?}_{wb:?}").to_lowercase();
-            let odir = set.path().join(&name);
-            std::fs::create_dir_all(&odir)?;
-            let summary = run_blank(
-                ls,
-                [pb, wb],
-                side,
-                &g,
-                bodies,
-                &samples,
-                [&kf, &ef, &df],
-                eng,
-                &odir,
-            )?;
-            eprintln!(
-                "lumped {pb:?}/{wb:?}: k mean {:.4e} N/m ({} harmonics), RMS along the normal {:.2} m/s², {} steps, {:.2} s",
-                summary.mesh_stiffness_n_per_m.mean,
-                summary.mesh_stiffness_n_per_m.harmonics.len(),
-                summary.rms_acceleration_m_s2.mesh_normal,
-                summary.steps[0],
-                summary.integration_wall_s
-            );
-            write_json(&odir.join("summary.json"), &summary)?;
-            all.push(summary);
+            for flanks in &variants {
+                let other_pair;
+                let (gr, mut rough, design) = match flanks {
+                    Flanks::Rough(ra) => {
+                        let Some(r) = ls.roughness.as_ref() else {
+                            anyhow::bail!(
+                                "scene {}: a roughness grade without [lumped.roughness]",
+                                sc.name
+                            );
+                        };
+                        let (p, summary) = roughened(
+                            &scene.pair,
+                            g.side(side),
+                            *ra,
+                            r.seed,
+                            [r.profile_nodes, r.face_nodes],
+                            sc.mesh.reduced_order.profile as usize,
+                        )?;
+                        other_pair = PairGeometry::build(&p, Some(&scene.design_path))
+                            .with_context(|| {
+                                format!("scene {}: the pair with Ra {ra} µm", sc.name)
+                            })?;
+                        (&other_pair, Some(summary), None)
+                    }
+                    Flanks::Variant(v) => {
+                        let (p, summary) = varied(&scene.pair, v);
+                        other_pair = PairGeometry::build(&p, Some(&scene.design_path))
+                            .with_context(|| {
+                                format!("scene {}: design variant {}", sc.name, v.name)
+                            })?;
+                        (&other_pair, None, Some(summary))
+                    }
+                    Flanks::Design => (&g, None, None),
+                };
+                let fp = gr.side(side);
+                let rs = roll_surface(fp, &sc.utca)?;
+                let sweep = scene_sweep(scene, gr, wb);
+                for &torque in &torques {
+                    let res = run_sweep(fp, &rs, &pc, &sweep, &tangent_torques(torque))
+                        .with_context(|| format!("scene {}: LTCA for the lumped model", sc.name))?;
+                    let samples = mesh_samples(&res, torque, omega, gr.data.mesh_cycle())?;
+                    let [kf, ef, df] = fit_series(&samples, ls.fourier_tolerance_of_ptp)?;
+                    let tau = fp.pinion.gen.frame.pitch();
+                    let geo = |k: usize| {
+                        let phi = sweep.start + sweep.direction * res[k].rotation;
+                        (phi, geometry(fp, &rs, phi, tau, sweep.slices))
+                    };
+                    let lag = |k: usize, pair: i32| {
+                        geo(k)
+                            .1
+                            .slices
+                            .iter()
+                            .filter(|s| s.pair == pair)
+                            .map(|s| s.lag)
+                            .reduce(f64::min)
+                    };
+                    let eng = engagement(&res, &samples, omega, lag);
+                    if let Some(r) = rough.as_mut() {
+                        let (fb, f) = res
+                            .iter()
+                            .flat_map(|p| p.loads[1].slices.iter())
+                            .fold((0.0, 0.0), |(fb, f), s| {
+                                (fb + s.force_n * s.half_width_m, f + s.force_n)
+                            });
+                        r.hertz_half_width_m = if f > 0.0 { fb / f } else { 0.0 };
+                    }
+                    let slice_friction = (0..samples.time_s.len())
+                        .map(|k| {
+                            let (phi, gk) = geo(k);
+                            slice_friction(fp, phi, tau, &gk.slices, &res[k].loads[1].slices)
+                        })
+                        .collect::<Vec<_>>();
+                    // The first torque on the design's own flanks is the
+                    // scene's base run: no suffix.
+                    let variant = if torque == torques[0] && matches!(flanks, Flanks::Design) {
+                        String::new()
+                    } else {
+                        format!("t{torque}_{}", flanks.label())
+                    };
+                    let mut name = format!("{pb:?}_{wb:?}").to_lowercase();
+                    if !variant.is_empty() {
+                        name = format!("{name}_{variant}");
+                    }
+                    let odir = set.path().join(&name);
+                    std::fs::create_dir_all(&odir)?;
+                    let case = Case {
+                        ls,
+                        torque,
+                        blanks: [pb, wb],
+                        side,
+                        g: gr,
+                        bodies,
+                        samples: &samples,
+                        fits: [&kf, &ef, &df],
+                        eng,
+                        slice_friction,
+                        roughness: rough.clone(),
+                        design: design.clone(),
+                        contact_ratio: loaded_contact_ratio(&res, samples.time_s.len()),
+                        variant,
+                    };
+                    let summary = run_blank(&case, &odir)?;
+                    eprintln!(
+                        "lumped {pb:?}/{wb:?} {}: k mean {:.4e} N/m ({} harmonics), μ {:.3}, RMS along the normal {:.2} m/s², pinion velocity RMS {:.3} mm/s, {} steps, {:.2} s",
+                        summary.variant,
+                        summary.mesh_stiffness_n_per_m.mean,
+                        summary.mesh_stiffness_n_per_m.harmonics.len(),
+                        summary.friction_coefficient,
+                        summary.rms_acceleration_m_s2.mesh_normal,
+                        1e3 * summary.member_velocity_rms_m_s[0],
+                        summary.steps[0],
+                        summary.integration_wall_s
+                    );
+                    write_json(&odir.join("summary.json"), &summary)?;
+                    all.push(summary);
+                }
+            }
         }
     }
     write_json(&set.path().join("summary.json"), &all)?;
@@ -152,19 +312,78 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     Ok(all)
 }
 
-/// One blank pair: model, excitation, run, files.
-#[allow(clippy::too_many_arguments)]
-fn run_blank(
-    ls: &LumpedSettings,
-    [pinion_blank, wheel_blank]: [Blank; 2],
+/// The friction data of one position: each loaded slice's force, sliding
+/// direction and normal on the pinion axis, the wheel axis and their cross
+/// product, and its friction levers (the loaded slice matched to the
+/// geometry's by tooth pair and (ξ, η), which the LTCA copies from it).
+/// Slices carry tooth 0's point and normal: pair j's are seen at pinion
+/// angle φ + jτ, as the slicing does.
+pub fn slice_friction(
+    fp: &geometry::pair::FlankPair,
+    phi: f64,
+    tau: f64,
+    geo: &[crate::slices::Slice],
+    loaded: &[crate::ltca::SliceLoad],
+) -> Vec<SliceFriction> {
+    let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
+    loaded
+        .iter()
+        .filter_map(|l| {
+            let s = geo
+                .iter()
+                .find(|s| s.pair == l.pair && s.xi == l.xi && s.eta == l.eta)?;
+            let target = phi + s.pair as f64 * tau;
+            let a2 = pf.to_member(&wf.axis(), target);
+            let ey = [a2[0], a2[1], a2[2]].map(|c| c / a2.norm());
+            let ex = [0.0, 0.0, 1.0];
+            let ez = [-ey[1], ey[0], 0.0];
+            let zn = ez[0].hypot(ez[1]);
+            let ez = ez.map(|c| c / zn);
+            let on = |v: [f64; 3]| [ex, ey, ez].map(|e| e.iter().zip(v).map(|(a, b)| a * b).sum());
+            let u = friction_direction(fp, s.pos, s.normal, target).unwrap_or([0.0; 3]);
+            Some(SliceFriction {
+                force_n: l.force_n,
+                direction: on(u),
+                normal: on(s.normal),
+                levers_m: s.friction_lever,
+            })
+        })
+        .collect()
+}
+
+/// One run: the settings, the operating torque, the LTCA's excitation and
+/// what else the run takes.
+struct Case<'a> {
+    ls: &'a LumpedSettings,
+    torque: f64,
+    blanks: [Blank; 2],
     side: Side,
-    g: &PairGeometry,
+    g: &'a PairGeometry,
     bodies: [formats::manifest::BodyProperties; 2],
-    samples: &MeshSamples,
-    [kf, ef, df]: [&FittedSeries; 3],
+    samples: &'a MeshSamples,
+    fits: [&'a FittedSeries; 3],
     eng: Option<crate::lumped::impact::Engagement>,
-    odir: &Path,
-) -> anyhow::Result<LumpedSummary> {
+    slice_friction: Vec<Vec<SliceFriction>>,
+    roughness: Option<formats::lumped_summary::RoughnessSummary>,
+    design: Option<DesignVariantSummary>,
+    contact_ratio: f64,
+    variant: String,
+}
+
+/// One run: model, excitation, integration, files.
+fn run_blank(case: &Case, odir: &Path) -> anyhow::Result<LumpedSummary> {
+    let Case {
+        ls,
+        torque,
+        blanks: [pinion_blank, wheel_blank],
+        side,
+        g,
+        bodies,
+        samples,
+        fits: [kf, ef, df],
+        eng,
+        ..
+    } = *case;
     let d = &g.data;
     let mass = [
         ls.pinion_mass_kg
@@ -194,10 +413,10 @@ fn run_blank(
             member(0, ls.pinion_bearing_stiffness_n_per_m),
             member(1, ls.wheel_bearing_stiffness_n_per_m),
         ],
-        direction: direction_cosines(flank, d.spiral_angle, d.members[1].pitch_angle, hand),
+        direction: direction_cosines(flank, d.spiral_angle, d.members[1].pitch_angle, hand, side),
         levers_m: samples.levers_m,
         mesh_damping_ns_per_m: 0.0,
-        pinion_torque_nm: ls.pinion_torque_nm,
+        pinion_torque_nm: torque,
     };
     model.mesh_damping_ns_per_m = mesh_damping_for_ratio(
         ls.mesh_damping_ratio,
@@ -231,6 +450,29 @@ fn run_blank(
         }),
         _ => None,
     };
+    let FrictionGeometry {
+        per_unit_force: g,
+        normal,
+        angle_deg: angle,
+    } = per_unit_force(&case.slice_friction, model.direction)?;
+    if ls.direction_cosines == DirectionSource::Ltca {
+        model.direction = normal;
+    }
+    let friction = match &ls.friction {
+        Some(f) => {
+            let r = case.roughness.as_ref().map_or(0.0, |r| r.ra_um);
+            // Both flanks of roughness Ra: R = √(Ra² + Ra²).
+            let mu =
+                seed003_coefficient(f.base_coefficient, f.roughness_coefficient_per_um, [r, r]);
+            Some(FrictionExcitation::new(
+                mu,
+                samples.time_s.clone(),
+                g,
+                period,
+            )?)
+        }
+        None => None,
+    };
     let exc = MeshExcitation {
         stiffness: kf.series.clone(),
         transmission_error: StaticError::LoadedDeflection {
@@ -238,6 +480,7 @@ fn run_blank(
             force_n: model.mean_mesh_force(),
         },
         impact,
+        friction,
     };
     let t0 = Instant::now();
     let h = simulate(
@@ -278,7 +521,7 @@ fn run_blank(
         wheel_blank,
         pinion_speed_rpm: ls.pinion_speed_rpm,
         mesh_frequency_hz: mesh_hz,
-        pinion_torque_nm: ls.pinion_torque_nm,
+        pinion_torque_nm: torque,
         mesh_cycles: ls.mesh_cycles,
         dropped_mesh_cycles: ls.dropped_mesh_cycles,
         direction_cosines: model.direction,
@@ -324,6 +567,15 @@ fn run_blank(
         steps: h.steps,
         evaluations: h.evaluations,
         integration_wall_s: wall,
+        variant: case.variant.clone(),
+        roughness: case.roughness.clone(),
+        design_variant: case.design.clone(),
+        loaded_contact_ratio: case.contact_ratio,
+        friction_coefficient: exc.friction.as_ref().map_or(0.0, |f| f.coefficient),
+        friction_normal_angle_deg: angle,
+        ltca_normal_model_axes: normal,
+        rms_velocity_m_s: directions(r.rms_velocity),
+        member_velocity_rms_m_s: r.member_velocity_rms,
     })
 }
 

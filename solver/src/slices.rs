@@ -548,15 +548,26 @@ pub fn sliding_velocity(fp: &FlankPair, pos: [f64; 3], phi: f64) -> [f64; 3] {
 /// = |v_s|). Both vanish at a pure-rolling point (on the pitch line).
 pub fn friction_levers(fp: &FlankPair, pos: [f64; 3], normal: [f64; 3], phi: f64) -> [f64; 2] {
     let (w1, w2, k) = rotation_velocities(fp, pos, phi);
-    let vs = [0, 1, 2].map(|i| w1[i] - k * w2[i]);
+    match friction_direction(fp, pos, normal, phi) {
+        Some(u) => [dot(u, w1), k.signum() * dot(u, w2)],
+        None => [0.0, 0.0],
+    }
+}
+
+/// The unit sliding direction û of [`friction_levers`] (pinion member
+/// frame, tangent to the flank at `pos`): friction pushes the pinion along
+/// −û and the wheel along +û. `None` at a pure-rolling point.
+pub fn friction_direction(
+    fp: &FlankPair,
+    pos: [f64; 3],
+    normal: [f64; 3],
+    phi: f64,
+) -> Option<[f64; 3]> {
+    let vs = sliding_velocity(fp, pos, phi);
     let vn = dot(vs, normal);
     let vt = [0, 1, 2].map(|i| vs[i] - vn * normal[i]);
     let speed = norm(vt);
-    if speed <= 1e-12 * norm(pos) {
-        return [0.0, 0.0];
-    }
-    let u = vt.map(|c| c / speed);
-    [dot(u, w1), k.signum() * dot(u, w2)]
+    (speed > 1e-12 * norm(pos)).then(|| vt.map(|c| c / speed))
 }
 
 /// Relative normal curvature across the contact line from the separation

@@ -25,6 +25,7 @@ fn constant_excitation() -> MeshExcitation {
         stiffness: FourierSeries::constant(K_MEAN, 1.0 / MESH_HZ),
         transmission_error: StaticError::Series(FourierSeries::constant(0.0, 1.0 / MESH_HZ)),
         impact: None,
+        friction: None,
     }
 }
 

@@ -58,6 +58,7 @@ fn lumped_rigid_bearings_at_10_rpm_give_the_quasi_static_ltca_te_within_1_percen
             g.data.spiral_angle,
             g.data.members[1].pitch_angle,
             WheelHand::Left,
+            geometry::generation::Side::Drive,
         ),
         levers_m: s.levers_m,
         mesh_damping_ns_per_m: 0.0,
@@ -72,6 +73,7 @@ fn lumped_rigid_bearings_at_10_rpm_give_the_quasi_static_ltca_te_within_1_percen
             force_n: model.mean_mesh_force(),
         },
         impact: None,
+        friction: None,
     };
     let eq = Equations::new(&model, &exc).rigid_bearings();
     let [r1, r2] = s.levers_m;

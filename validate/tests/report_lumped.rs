@@ -1,6 +1,7 @@
 //! The report's lumped-model section from a synthetic `solver lumped`
 //! summary: our numbers formatted from it beside seed 004's, its charts
-//! copied, and an absent summary stated in one line.
+//! copied, and an absent summary stated in one line (and seed 003's part,
+//! absent too, in its heading and one line).
 
 use formats::lumped_summary::{Directions, ImpactSummary, LumpedSummary, SeriesSummary};
 use geometry::gear_body::Blank;
@@ -73,6 +74,15 @@ fn summary() -> LumpedSummary {
         steps: [4000, 0],
         evaluations: 24000,
         integration_wall_s: 0.01,
+        variant: String::new(),
+        roughness: None,
+        friction_coefficient: 0.0,
+        friction_normal_angle_deg: 0.9,
+        ltca_normal_model_axes: [-0.49, 0.31, 0.81],
+        rms_velocity_m_s: directions(0.0),
+        member_velocity_rms_m_s: [1e-3, 2e-3],
+        design_variant: None,
+        loaded_contact_ratio: 1.625,
     }
 }
 
@@ -141,8 +151,11 @@ fn absent_summary_is_one_line_without_numbers() {
         .skip(1)
         .filter(|l| !l.trim().is_empty())
         .collect();
-    assert_eq!(body.len(), 1, "{}", s.markdown);
+    // Seed 004's line, then seed 003's heading and its line.
+    assert_eq!(body.len(), 3, "{}", s.markdown);
     assert!(body[0].starts_with("No lumped run:"));
+    assert!(body[1].starts_with("### Seed 003"));
+    assert!(body[2].starts_with("No seed 003 run:"));
     assert!(!s.markdown.contains('|') && !s.markdown.contains("0.00"));
     assert!(s.figures.is_empty());
     let none = section(None, reports.path());

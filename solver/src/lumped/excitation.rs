@@ -255,13 +255,14 @@ pub enum StaticError {
     },
 }
 
-/// The mesh excitation: k(t) (N/m), e(t) (m, along the normal) and the
-/// impact pulse.
+/// The mesh excitation: k(t) (N/m), e(t) (m, along the normal), the
+/// impact pulse and sliding friction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshExcitation {
     pub stiffness: FourierSeries,
     pub transmission_error: StaticError,
     pub impact: Option<ImpactPulse>,
+    pub friction: Option<super::friction::FrictionExcitation>,
 }
 
 impl MeshExcitation {

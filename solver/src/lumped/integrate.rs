@@ -1,6 +1,9 @@
 //! Time integration of the 8-DOF model as 16 first-order equations
-//! y = (q, q̇), ẏ = (q̇, M⁻¹(f − K_b q − C_b q̇ − v Fₙ)), with the adaptive
-//! Dormand–Prince 5(4) pair and its dense output.
+//! y = (q, q̇), ẏ = (q̇, M⁻¹(f − K_b q − C_b q̇ − v Fₙ − μ max(Fₙ, 0) g(t))),
+//! with the adaptive Dormand–Prince 5(4) pair and its dense output (g the
+//! friction per unit normal force, [`super::friction`]; with friction the
+//! wheel's load torque is the one that balances the mean friction moments,
+//! [`Equations::new`]).
 //!
 //! Integrator: the `differential-equations` crate's
 //! `ExplicitRungeKutta::dopri5` (Hairer's DOPRI5 step-size control, error
@@ -44,8 +47,27 @@ pub struct MeshForce {
 }
 
 impl<'a> Equations<'a> {
+    /// With friction, the wheel's load torque T₂ is the mean over the
+    /// friction samples of what the mesh gives the wheel in quasi-static
+    /// balance: at each sample the pinion's balance T₁ = Fₖ(r₁ + μg₄ₖ)
+    /// gives the mesh force Fₖ, and the wheel receives Fₖ(r₂ − μg₈ₖ);
+    /// T₂ = mean of that (the mesh's efficiency below 1), so that the rigid
+    /// rotation (θ₁, θ₂) ∝ (r₂, r₁) carries no mean generalized force.
+    /// Without friction, T₂ = T₁ r₂/r₁.
     pub fn new(model: &'a Model, excitation: &'a MeshExcitation) -> Self {
         let v = model.mesh_vector();
+        let mut f: [f64; 8] = std::array::from_fn(|i| model.torques()[i]);
+        if let Some(fr) = &excitation.friction {
+            let [r1, r2] = model.levers_m;
+            let (mu, t1) = (fr.coefficient, model.pinion_torque_nm);
+            let n = fr.per_unit_force.len() as f64;
+            f[7] = -fr
+                .per_unit_force
+                .iter()
+                .map(|g| t1 / (r1 + mu * g[3]) * (r2 - mu * g[7]))
+                .sum::<f64>()
+                / n;
+        }
         let mut kb = [0.0; 8];
         let mut cb = [0.0; 8];
         for i in 0..2 {
@@ -61,7 +83,7 @@ impl<'a> Equations<'a> {
             inv_mass: model.mass_diagonal().map(|m| 1.0 / m),
             kb,
             cb,
-            f: std::array::from_fn(|i| model.torques()[i]),
+            f,
         }
     }
 
@@ -89,11 +111,31 @@ impl<'a> Equations<'a> {
         }
     }
 
+    /// The external torques (0, 0, 0, T₁, 0, 0, 0, −T₂) the run uses.
+    pub fn torques(&self) -> [f64; 8] {
+        self.f
+    }
+
+    /// The friction's generalized force −μ max(Fₙ, 0) g(t) for the mesh
+    /// force `fm` (zero without friction).
+    pub fn friction(&self, t: f64, fm: f64) -> [f64; 8] {
+        match &self.excitation.friction {
+            Some(fr) => {
+                let g = fr.at(t);
+                let s = fr.coefficient * fm.max(0.0);
+                g.map(|x| -s * x)
+            }
+            None => [0.0; 8],
+        }
+    }
+
     /// q̈ at time `t`.
     pub fn acceleration(&self, t: f64, q: &[f64], qd: &[f64]) -> [f64; 8] {
         let fm = self.mesh(t, q, qd).force;
+        let ff = self.friction(t, fm);
         std::array::from_fn(|i| {
-            (self.f[i] - self.kb[i] * q[i] - self.cb[i] * qd[i] - self.v[i] * fm) * self.inv_mass[i]
+            (self.f[i] - self.kb[i] * q[i] - self.cb[i] * qd[i] - self.v[i] * fm + ff[i])
+                * self.inv_mass[i]
         })
     }
 }

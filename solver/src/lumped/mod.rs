@@ -6,10 +6,12 @@
 //! [`model`] (matrices, direction cosines, sign conventions) →
 //! [`excitation`] (Fourier series, impact) → [`integrate`] (adaptive
 //! Dormand–Prince 5(4)); [`from_ltca`] and [`impact`] take k(t), e(t) and
-//! the engagement from our LTCA, [`run`] starts a loaded run at static
+//! the engagement from our LTCA, [`friction`] the sliding friction from its
+//! load distribution, [`run`] starts a loaded run at static
 //! equilibrium, [`response`] reduces it to RMS, peak-to-peak and spectra.
 
 pub mod excitation;
+pub mod friction;
 pub mod from_ltca;
 pub mod impact;
 pub mod integrate;

@@ -11,23 +11,29 @@
 //! Mesh force along the common normal, with the direction cosines
 //!
 //! ```text
-//! a₁ = −(sin αₙ cos δ₂ ± cos αₙ sin β₂ sin δ₂)
-//! a₂ =   sin αₙ sin δ₂ ∓ cos αₙ sin β₂ cos δ₂
+//! a₁ = −(sin αₙ cos δ₂ + σ cos αₙ sin β₂ sin δ₂)
+//! a₂ =   sin αₙ sin δ₂ − σ cos αₙ sin β₂ cos δ₂
 //! a₃ = ± cos αₙ cos β₂
 //! ```
 //!
-//! (αₙ normal pressure angle, β₂ the wheel's mean spiral angle, δ₂ its pitch
-//! angle; the upper sign for a left-hand wheel, the lower for a right-hand
-//! one). That is the normal split into sin αₙ across the pitch line in the
-//! axial plane, cos αₙ sin β₂ along the pitch line (X, Y = ∓ its components
-//! (sin δ₂, cos δ₂)) and cos αₙ cos β₂ tangential (Z). Seed 004 prints
-//! a₁ = −(sin αₙ cos δ₂ + cos αₙ sin β₂ sin δ₂) for both hands and
-//! a₂ = sin αₙ sin δ₂ ± cos αₙ sin β₂ cos δ₂; with the upper sign that is not
-//! a unit vector (|a|² = 1 + sin 2αₙ sin β₂ sin 2δ₂, 1.16 for its 23/86
-//! pair), so here a₁ keeps its printed form for a left-hand wheel (seed
-//! 004's) and a₂'s sign is the one that makes |a| = 1; a right-hand wheel
-//! flips the spiral term in both and the sign of a₃. The normal relative
-//! displacement
+//! (αₙ normal pressure angle of the loaded flank, β₂ the wheel's mean
+//! spiral angle, δ₂ its pitch angle). That is the normal split into
+//! sin αₙ across the pitch line in the axial plane, cos αₙ sin β₂ along the
+//! pitch line (X, Y = ∓ its components (sin δ₂, cos δ₂)) and
+//! cos αₙ cos β₂ tangential (Z). The spiral term's sign σ belongs to the
+//! loaded flank: σ = +1 with the pinion's concave flank loaded (drive),
+//! −1 with its convex flank (coast); the hand sets only the sign of a₃
+//! (a pair of the other hands, turning the other way on the same flanks,
+//! is the mirror image in the plane of the two axes). Seed 004 prints
+//! a₁ = −(sin αₙ cos δ₂ + cos αₙ sin β₂ sin δ₂) and a₂ = sin αₙ sin δ₂ ±
+//! cos αₙ sin β₂ cos δ₂ with the sign by the hand; with the upper sign
+//! that is not a unit vector (|a|² = 1 + sin 2αₙ sin β₂ sin 2δ₂, 1.16 for
+//! its 23/86 pair), so a₂ takes the sign that makes |a| = 1; and taking σ
+//! from the hand, as seed 004 does, puts our LTCA's force-weighted normal
+//! 37° away from a for seed 003's right-hand wheel on the drive flank,
+//! against 0.9° for seed 004's left-hand wheel (the test
+//! `lumped_direction_cosines_match_our_ltca_normal` checks the rule). The
+//! normal relative displacement
 //!
 //! ```text
 //! λ = a₁(X₁ − X₂) + a₂(Y₁ − Y₂) + a₃(Z₁ − Z₂) + r₁θ₁ − r₂θ₂ − e(t)
@@ -52,6 +58,7 @@
 //! gradient of λ), K_b and C_b the diagonal bearing terms.
 
 use super::LumpedError;
+use geometry::generation::Side;
 use nalgebra::{SMatrix, SVector};
 
 /// 8 × 8 matrix of the model.
@@ -67,12 +74,23 @@ pub enum WheelHand {
 }
 
 /// Direction cosines (a₁, a₂, a₃) of the mesh normal (see the module doc),
-/// from the normal pressure angle `alpha_n`, the wheel's mean spiral angle
-/// `beta` and pitch angle `delta2` (rad). A unit vector.
-pub fn direction_cosines(alpha_n: f64, beta: f64, delta2: f64, hand: WheelHand) -> [f64; 3] {
-    let s = match hand {
+/// from the loaded flank's normal pressure angle `alpha_n`, the wheel's
+/// mean spiral angle `beta` and pitch angle `delta2` (rad), the wheel's
+/// hand and the loaded flank `side` (drive: pinion concave). A unit vector.
+pub fn direction_cosines(
+    alpha_n: f64,
+    beta: f64,
+    delta2: f64,
+    hand: WheelHand,
+    side: Side,
+) -> [f64; 3] {
+    let t = match hand {
         WheelHand::Left => 1.0,
         WheelHand::Right => -1.0,
+    };
+    let s = match side {
+        Side::Drive => 1.0,
+        Side::Coast => -1.0,
     };
     let (sa, ca) = alpha_n.sin_cos();
     let (sb, cb) = beta.sin_cos();
@@ -80,7 +98,7 @@ pub fn direction_cosines(alpha_n: f64, beta: f64, delta2: f64, hand: WheelHand) 
     [
         -(sa * cd + s * ca * sb * sd),
         sa * sd - s * ca * sb * cd,
-        s * ca * cb,
+        t * ca * cb,
     ]
 }
 

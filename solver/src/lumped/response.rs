@@ -20,6 +20,11 @@ pub type Seven = [f64; 7];
 #[derive(Debug, Clone, PartialEq)]
 pub struct Response {
     pub rms_acceleration: Seven,
+    /// RMS of the fluctuating velocities (mesh normal: λ̇), m/s.
+    pub rms_velocity: Seven,
+    /// RMS of each member's resultant translational velocity fluctuation,
+    /// √(Σ_d RMS_d²), m/s.
+    pub member_velocity_rms: [f64; 2],
     /// RMS of v·q̈, m/s².
     pub relative_normal_rms: f64,
     pub peak_to_peak: Seven,
@@ -89,12 +94,20 @@ pub fn response(
     let col =
         |k: usize, of: &[[f64; 8]]| -> Vec<f64> { of[first..end].iter().map(|r| r[k]).collect() };
     let mut rms_acc = [0.0; 7];
+    let mut rms_vel = [0.0; 7];
     let mut p2p = [0.0; 7];
     for (d, &k) in TRANSLATIONS.iter().enumerate() {
         rms_acc[d] = rms(&col(k, &h.qdd));
+        rms_vel[d] = rms(&col(k, &h.qd));
         p2p[d] = ptp(&col(k, &h.q));
     }
     rms_acc[6] = rms(&lam_dd);
+    let lam_d: Vec<f64> = (first..end)
+        .map(|i| (0..8).map(|j| v[j] * h.qd[i][j]).sum::<f64>() - exc.te(h.t[i])[1])
+        .collect();
+    rms_vel[6] = rms(&lam_d);
+    let member_velocity_rms =
+        [0, 3].map(|o| (0..3).map(|d| rms_vel[o + d].powi(2)).sum::<f64>().sqrt());
     p2p[6] = ptp(&lam);
     let force: Vec<f64> = h.mesh[first..end].iter().map(|m| m.force_n).collect();
     let fmean = force.iter().sum::<f64>() / force.len().max(1) as f64;
@@ -137,6 +150,8 @@ pub fn response(
     peaks.truncate(8);
     Response {
         rms_acceleration: rms_acc,
+        rms_velocity: rms_vel,
+        member_velocity_rms,
         relative_normal_rms: rms(&rel),
         peak_to_peak: p2p,
         mesh_force: [fmean, fmin, fmax],

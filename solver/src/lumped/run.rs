@@ -6,10 +6,16 @@ use super::model::Model;
 use super::LumpedError;
 
 /// Static equilibrium at t = 0 with k(0), e(0): the mesh carries
-/// F₀ = T₁/r₁, the bearings −a F₀/k_b (pinion) and +a F₀/k_b (wheel),
-/// λ = F₀/k(0), θ₂ = 0 and θ₁ from λ; velocities zero.
+/// F₀ = T₁/r₁ (with friction T₁/(r₁ + μg₄(0)), the pinion's balance), the
+/// bearings the mesh and friction forces (−a F₀ − μF₀ g)/k_b on the pinion
+/// and (+a F₀ − μF₀ g)/k_b on the wheel, λ = F₀/k(0), θ₂ = 0 and θ₁ from λ;
+/// velocities zero.
 pub fn static_start(model: &Model, exc: &MeshExcitation) -> Result<[f64; 16], LumpedError> {
-    let f0 = model.mean_mesh_force();
+    let (mu, g) = exc
+        .friction
+        .as_ref()
+        .map_or((0.0, [0.0; 8]), |f| (f.coefficient, f.at(0.0)));
+    let f0 = model.pinion_torque_nm / (model.levers_m[0] + mu * g[3]);
     let k0 = exc.stiffness.value(0.0);
     if k0.is_nan() || k0 <= 0.0 {
         return Err(LumpedError::Input(format!(
@@ -27,8 +33,8 @@ pub fn static_start(model: &Model, exc: &MeshExcitation) -> Result<[f64; 16], Lu
                 "a static start needs bearing stiffness > 0 in every direction".into(),
             ));
         }
-        y[d] = -a[d] * f0 / kp;
-        y[4 + d] = a[d] * f0 / kw;
+        y[d] = (-a[d] - mu * g[d]) * f0 / kp;
+        y[4 + d] = (a[d] - mu * g[4 + d]) * f0 / kw;
         along += a[d] * (y[d] - y[4 + d]);
     }
     let lambda = f0 / k0;

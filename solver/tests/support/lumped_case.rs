@@ -34,6 +34,7 @@ pub fn model() -> Model {
             25f64.to_radians(),
             75.027f64.to_radians(),
             WheelHand::Left,
+            geometry::generation::Side::Drive,
         ),
         levers_m: [0.04007 * c * c, 0.1498 * c * c],
         mesh_damping_ns_per_m: 0.0,

@@ -1,6 +1,6 @@
 //! The report's section "Lumped 8-DOF model (seeds 004/003)": `solver
 //! lumped` on `reference/scenes/seed004_lumped.toml` against seed 004's
-//! published numbers.
+//! published numbers, then seed 003's part ([`super::lumped_seed003`]).
 //!
 //! Reads `<out>/seed004_lumped/lumped/summary.json` (one
 //! [`LumpedSummary`] per blank pair) when present, and copies each pair's
@@ -74,8 +74,18 @@ fn ours(d: &Directions) -> [f64; 7] {
 }
 
 /// The section from the stages' output root `out` (None: no root given),
-/// its charts copied into `reports`.
+/// its charts copied into `reports`: seed 004's runs, then seed 003's
+/// ([`super::lumped_seed003`]).
 pub fn section(out: Option<&Path>, reports: &Path) -> LumpedSection {
+    let mut sec = seed004_section(out, reports);
+    if let Some(out) = out {
+        sec.markdown.push_str(&super::lumped_seed003::markdown(out));
+    }
+    sec
+}
+
+/// Seed 004's part.
+fn seed004_section(out: Option<&Path>, reports: &Path) -> LumpedSection {
     let mut s = String::from("## Lumped 8-DOF model (seeds 004/003)\n\n");
     let Some(out) = out else {
         s.push_str("No lumped run: the report was built without an output root.\n\n");
@@ -119,7 +129,10 @@ pub fn section(out: Option<&Path>, reports: &Path) -> LumpedSection {
         s,
         "Seed 004's 23/86 pair on our own LTCA: the mesh stiffness k(t) (tangent, dF/dδ) and the loaded transmission error of the scene `{LUMPED_SCENE}` as Fourier series drive the 8-DOF model (X, Y, Z and rotation of each member on its bearings), integrated with Dormand–Prince 5(4). Seed 004's published values stand beside ours; sources under the tables.\n"
     );
-    for r in &summaries {
+    // The scene's base runs (the design's own flanks at its first torque);
+    // the ease-off variants go to the studies below.
+    let base: Vec<&LumpedSummary> = summaries.iter().filter(|r| r.variant.is_empty()).collect();
+    for r in &base {
         let blank = format!("{:?}_{:?}", r.pinion_blank, r.wheel_blank).to_lowercase();
         pair_markdown(&mut s, r);
         let mut figs = Vec::new();
@@ -137,7 +150,8 @@ pub fn section(out: Option<&Path>, reports: &Path) -> LumpedSection {
         super::figure_lines(&mut s, &figs, false);
         figures.extend(figs);
     }
-    differences_markdown(&mut s, &summaries[0]);
+    differences_markdown(&mut s, base.first().copied().unwrap_or(&summaries[0]));
+    super::lumped_studies::markdown(&mut s, &summaries);
     LumpedSection {
         markdown: s,
         figures,

@@ -15,6 +15,8 @@ pub mod figures;
 pub mod html;
 pub mod layout;
 pub mod lumped;
+pub mod lumped_seed003;
+pub mod lumped_studies;
 pub mod published;
 pub mod results;
 pub mod stress;

@@ -1,0 +1,222 @@
+//! The lumped section's part for seed 003 (16/27 pair, W–M roughness,
+//! friction, test-rig vibration): `solver lumped` on
+//! `reference/scenes/seed003_lumped.toml`, read from
+//! `<out>/seed003_lumped/lumped/summary.json` (one [`LumpedSummary`] per
+//! roughness grade and torque). Every number of ours is formatted from the
+//! summaries; seed 003's are the named constants below with their source.
+//! An absent summary is one line of text.
+
+use formats::lumped_summary::LumpedSummary;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The scene whose runs this part reports.
+pub const SEED003_SCENE: &str = "seed003_lumped";
+
+/// Seed 003's test rig: (loader torque N·m, measured mean vibration
+/// velocity mm/s, seed 003's own simulated value mm/s).
+pub const SEED003_MEASURED: [(f64, f64, f64); 2] = [(77.0, 4.195, 4.06), (105.0, 4.384, 4.116)];
+pub const SEED003_MEASURED_SOURCE: &str = "seed 003 (Time-Varying Meshing Stiffness and Dynamic Parameter Model of Spiral Bevel Gears with Different Surface Roughness), Section 4.3 and Table 4: test rig at 1,200 rpm, mean over 30 s";
+
+/// Seed 003's teeth (pinion, wheel), Table 3: the loader torque is taken
+/// as the wheel's, the pinion's is T₂ z₁/z₂.
+pub const SEED003_TEETH: [f64; 2] = [16.0, 27.0];
+
+/// Seed 003's μ₀ and μ_r (its Eq. (30) and text).
+pub const SEED003_FRICTION: (f64, f64) = (0.6, 0.01);
+
+fn grade(r: &LumpedSummary) -> String {
+    r.roughness
+        .as_ref()
+        .map_or("smooth".to_string(), |g| format!("Ra {:.1} µm", g.ra_um))
+}
+
+/// The runs at the loader torque `t2` (matched by the pinion torque T₂z₁/z₂
+/// within 0.01 N·m), in the summaries' order.
+fn at_load(all: &[LumpedSummary], t2: f64) -> Vec<&LumpedSummary> {
+    let t1 = t2 * SEED003_TEETH[0] / SEED003_TEETH[1];
+    all.iter()
+        .filter(|r| (r.pinion_torque_nm - t1).abs() < 0.01)
+        .collect()
+}
+
+/// The markdown of seed 003's part from the output root `out`.
+pub fn markdown(out: &Path) -> String {
+    let mut s = String::from(
+        "### Seed 003: 16/27 pair, W–M roughness and friction, test-rig vibration\n\n",
+    );
+    let path = out.join(SEED003_SCENE).join("lumped").join("summary.json");
+    let all: Vec<LumpedSummary> = match std::fs::read_to_string(&path)
+        .map_err(|e| e.to_string())
+        .and_then(|t| serde_json::from_str::<Vec<LumpedSummary>>(&t).map_err(|e| e.to_string()))
+    {
+        Ok(v) if !v.is_empty() => v,
+        Ok(_) => {
+            let _ = writeln!(s, "No seed 003 run: `{}` lists no run.\n", path.display());
+            return s;
+        }
+        Err(e) => {
+            let _ = writeln!(
+                s,
+                "No seed 003 run: `{}` cannot be read ({e}); `solver lumped reference/scenes/seed003_lumped.toml` writes it.\n",
+                path.display()
+            );
+            return s;
+        }
+    };
+    let r0 = &all[0];
+    let _ = writeln!(
+        s,
+        "The scene `{SEED003_SCENE}` runs the 8-DOF model at {:.0} rpm (mesh frequency {:.1} Hz), {:.0} mesh cycles with the first {:.0} dropped, for the smooth flanks and each W–M roughness grade at both of seed 003's loads. Seed 003's loads are the loader's set torques on the output side; we take them as the wheel torque (pinion T₂ × {:.0}/{:.0}). Friction: seed 003's μ = μ₀ + μ_r R with μ₀ = {}, μ_r = {} per µm and R = √2 Ra (both flanks of roughness Ra); the friction force's direction and moment arms come from our LTCA's slices (sliding direction and friction levers, force-weighted), its size from the dynamic normal force. Seed 003 calls μ₀ = 0.6 the value for good lubrication; a lubricated steel gear mesh usually has 0.04–0.08. Bearings {:.2e} N/m with {:.0} % damping are our choice (seed 003 publishes none), mesh damping ratio 0.1 is seed 003's. The mesh normal's direction comes from our LTCA's force-weighted flank normal, {:.1}° from seed 004's formula with the spiral sign of the loaded flank.\n",
+        r0.pinion_speed_rpm,
+        r0.mesh_frequency_hz,
+        r0.mesh_cycles,
+        r0.dropped_mesh_cycles,
+        SEED003_TEETH[0],
+        SEED003_TEETH[1],
+        SEED003_FRICTION.0,
+        SEED003_FRICTION.1,
+        r0.bearing_stiffness_n_per_m[0][0],
+        100.0 * r0.bearing_damping_ratio,
+        r0.friction_normal_angle_deg
+    );
+    velocity_table(&mut s, &all);
+    stiffness_table(&mut s, &all);
+    roughness_table(&mut s, &all);
+    s
+}
+
+fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
+    let grades: Vec<String> = at_load(all, SEED003_MEASURED[0].0)
+        .iter()
+        .map(|r| grade(r))
+        .collect();
+    let _ = writeln!(
+        s,
+        "Vibration velocity, RMS of the pinion's resultant translational velocity on its bearings (mm/s), against the test rig:\n"
+    );
+    let _ = write!(s, "| loader torque (N·m) | pinion torque (N·m) |");
+    for g in &grades {
+        let _ = write!(s, " ours, {g} |");
+    }
+    let _ = writeln!(s, " measured | seed 003's simulation |");
+    let _ = writeln!(s, "|---|---|{}---|---|", "---|".repeat(grades.len()));
+    for (t2, measured, simulated) in SEED003_MEASURED {
+        let runs = at_load(all, t2);
+        let Some(first) = runs.first() else {
+            let _ = writeln!(s, "| {t2:.0} | no run | | |");
+            continue;
+        };
+        let _ = write!(s, "| {t2:.0} | {:.2} |", first.pinion_torque_nm);
+        for r in &runs {
+            let _ = write!(s, " {:.3} |", 1e3 * r.member_velocity_rms_m_s[0]);
+        }
+        let _ = writeln!(s, " {measured:.3} | {simulated:.3} |");
+    }
+    let ratios: Vec<f64> = SEED003_MEASURED
+        .iter()
+        .flat_map(|(t2, m, _)| {
+            at_load(all, *t2)
+                .into_iter()
+                .map(move |r| 1e3 * r.member_velocity_rms_m_s[0] / m)
+        })
+        .collect();
+    let (lo, hi) = ratios
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let _ = writeln!(
+        s,
+        "\nSource: {SEED003_MEASURED_SOURCE}. Ours are {:.0}–{:.0} % of the measured values. What the comparison can carry: seed 003's sensor sits on the rig (a vibration sensor at the input coupling; the paper does not give its position, direction or frequency band); the nearest quantity of our model is the pinion's velocity on its bearings, since the model has no housing, shafts, coupling, motor or loader, and its bearings are assumed. The measured signal also holds the shaft orders, the motor and the loader, which the model does not. So the comparison checks the order of magnitude and the rise with load (ours {:+.0} % from 77 to 105 N·m for the smooth flanks, measured {:+.1} %), not a level; it is neither a calibration nor a validation.\n",
+        100.0 * lo,
+        100.0 * hi,
+        rise(all),
+        100.0 * (SEED003_MEASURED[1].1 / SEED003_MEASURED[0].1 - 1.0)
+    );
+}
+
+/// Rise of the smooth pinion velocity from the first to the second load, %.
+fn rise(all: &[LumpedSummary]) -> f64 {
+    let smooth = |t2: f64| {
+        at_load(all, t2)
+            .into_iter()
+            .find(|r| r.roughness.is_none())
+            .map_or(f64::NAN, |r| r.member_velocity_rms_m_s[0])
+    };
+    100.0 * (smooth(SEED003_MEASURED[1].0) / smooth(SEED003_MEASURED[0].0) - 1.0)
+}
+
+fn stiffness_table(s: &mut String, all: &[LumpedSummary]) {
+    let _ = writeln!(
+        s,
+        "Mesh stiffness and response per roughness grade (tangent k = dF/dδ from our LTCA with the grade's topography):\n"
+    );
+    let _ = writeln!(
+        s,
+        "| pinion torque (N·m) | flanks | μ | mean k (N/m) | k vs smooth (%) | pinion / wheel velocity RMS (mm/s) | RMS acceleration along the normal (m/s²) |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for r in all {
+        let smooth = all
+            .iter()
+            .find(|x| x.roughness.is_none() && x.pinion_torque_nm == r.pinion_torque_nm)
+            .map_or(f64::NAN, |x| x.mesh_stiffness_n_per_m.mean);
+        let _ = writeln!(
+            s,
+            "| {:.2} | {} | {:.3} | {:.4e} | {:+.2} | {:.3} / {:.3} | {:.1} |",
+            r.pinion_torque_nm,
+            grade(r),
+            r.friction_coefficient,
+            r.mesh_stiffness_n_per_m.mean,
+            100.0 * (r.mesh_stiffness_n_per_m.mean / smooth - 1.0),
+            1e3 * r.member_velocity_rms_m_s[0],
+            1e3 * r.member_velocity_rms_m_s[1],
+            r.rms_acceleration_m_s2.mesh_normal
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nSeed 003 finds the mesh stiffness falling as the roughness grows (its Figure 12) and the vibration rising. In our model the roughness changes the mean stiffness by the amounts in the table, with no trend: the topography moves each slice's first-touch lag and so the load sharing, but the slices' load–deflection law is that of smooth flanks on the FE compliance of smooth flanks. Asperity contact compliance, the mechanism of seed 003's account, is not in the model. Differences in velocity between grades come from the one drawn W–M realization (seed 3) as much as from Ra.\n"
+    );
+}
+
+fn roughness_table(s: &mut String, all: &[LumpedSummary]) {
+    let _ = writeln!(
+        s,
+        "What of the roughness the model carries (per grade at the first load):\n"
+    );
+    let _ = writeln!(
+        s,
+        "| Ra (µm) | composite Ra (µm) | D | G (m) | W–M terms carried / total | Rq carried / total (µm) | shortest wavelength carried (mm) | topography node spacing (mm) | FE element along the profile (mm) | Hertz half-width (mm) |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    let t1 = all[0].pinion_torque_nm;
+    for g in all
+        .iter()
+        .filter(|r| r.pinion_torque_nm == t1)
+        .filter_map(|r| r.roughness.as_ref())
+    {
+        let _ = writeln!(
+            s,
+            "| {:.1} | {:.3} | {:.3} | {:.2e} | {} / {} | {:.3} / {:.3} ({:.0} %) | {:.3} | {:.3} | {:.3} | {:.3} |",
+            g.ra_um,
+            g.composite_ra_um,
+            g.dimension,
+            g.scale_m,
+            g.terms_resolved,
+            g.terms,
+            1e6 * g.rq_resolved_m,
+            1e6 * g.rq_m,
+            100.0 * g.rq_resolved_m / g.rq_m,
+            1e3 * g.shortest_resolved_wavelength_m,
+            1e3 * g.node_spacing_m,
+            1e3 * g.mesh_element_profile_m,
+            1e3 * g.hertz_half_width_m
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nThe W–M profile runs from λ_c = 0.8 mm down to λ_s = 2.5 µm along the profile; the topography grid carries only the terms longer than two node spacings, the profile's longest wavelengths. Because a W–M spectrum puts most of its power there, those few terms hold the share of Rq given above, but they are a waviness of about the contact's own width, not roughness: everything shorter, the asperities that decide real contact area and contact compliance, is left out. The FE meshes (6 × 10 flank elements) carry none of it; they are the smooth flanks' meshes, and their element along the profile is longer than every wavelength of the profile. D from seed 003's Eq. (33) and G set for the composite Ra, since its Eq. (34) does not reproduce its own Ra.\n\n"
+    );
+}
