@@ -26,6 +26,7 @@ pub mod scene;
 pub mod scene_checks;
 pub mod scene_contact_law;
 pub mod scene_lumped;
+pub mod scene_sensitivity;
 pub mod teeth;
 pub mod utca;
 
