@@ -351,3 +351,10 @@ mod tests {
         assert!(matches!(e, ManifestError::Schema { found: 999, .. }), "{e}");
     }
 }
+
+/// SHA-256 of a misalignment as its JSON text, the key a result set records
+/// it under (`misalignment`): `None` for the aligned pair, which records
+/// nothing (so sets from before misalignments existed still compare).
+pub fn misalignment_sha256(m: &geometry::misalignment::Misalignment) -> Option<String> {
+    (!m.is_zero()).then(|| sha256_text(&serde_json::to_string(m).unwrap_or_default()))
+}

@@ -115,6 +115,12 @@ impl Column<'_> {
         }
         let (p, jac) = self.point(eta)?;
         self.last.set(Some((p.uv, jac)));
+        if self.fp.pose.is_some() {
+            // Misaligned: the exact gap with the pair's pose, its closest
+            // wheel point checked against the wheel's bounds.
+            let m = geometry::mate::mate(self.fp, p.pos, self.target, p.uv)?;
+            return geometry::mate::on_wheel(self.fp, m.wheel_uv, 1e-12).then_some((m.lag, p));
+        }
         let (lo, hi) = self.trusted.get();
         if !(lo..=hi).contains(&eta) {
             let (lw, dw) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
@@ -266,6 +272,10 @@ impl Column<'_> {
     /// cannot be evaluated.
     fn margin(&self, eta: f64) -> Option<f64> {
         let p = self.point(eta)?.0;
+        if self.fp.pose.is_some() {
+            let m = geometry::mate::mate(self.fp, p.pos, self.target, p.uv)?;
+            return Some(geometry::mate::wheel_margin(self.fp, m.wheel_uv));
+        }
         let (l, d) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
         Some(self.fp.wheel.bounds.margin(l, d))
     }
@@ -359,6 +369,13 @@ fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
             return None;
         }
         let d = target - lerp(&rs.roll, k);
+        if rs.misaligned() {
+            let gap = lerp(&rs.ease_off, k)
+                + lerp(&rs.offset, k)
+                + lerp(&rs.slope, k) * d
+                + 0.5 * lerp(&rs.k_sep, k) * d * d;
+            return Some(gap / lerp(&rs.lever, k));
+        }
         Some((lerp(&rs.ease_off, k) + 0.5 * lerp(&rs.k_sep, k) * d * d) / lerp(&rs.lever, k))
     };
     let values: Vec<Option<f64>> = (0..np).map(lag).collect();
@@ -491,7 +508,15 @@ pub fn pair_slices(
                 Some((h, dr)) => separation_curvature(&p, h, dr, dp),
                 None => geometric_curvature(fp, &p, dp),
             };
-            let (lw, dw) = fp.wheel.ld(p.uv[0], p.uv[1]);
+            // The wheel point the slice touches and the wheel's lever: the
+            // conjugate mate (same generating parameters) for the aligned
+            // pair, the closest point with the pose for a misaligned one.
+            let (wheel_uv, lever_wheel) = match fp.pose {
+                Some(_) => geometry::mate::mate(fp, p.pos, target, p.uv)
+                    .map_or((p.uv, p.wheel_lever), |m| (m.wheel_uv, m.lever)),
+                None => (p.uv, p.wheel_lever),
+            };
+            let (lw, dw) = fp.wheel.ld(wheel_uv[0], wheel_uv[1]);
             let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw);
             let friction_lever = friction_levers(fp, p.pos, p.normal, target);
             Slice {
@@ -502,7 +527,7 @@ pub fn pair_slices(
                 uv: p.uv,
                 wheel_xi_eta: [xw, ew],
                 lag: c.lag,
-                lever_wheel: p.wheel_lever,
+                lever_wheel,
                 lever_pinion: pinion_lever(p.pos, p.normal),
                 pos: p.pos,
                 normal: p.normal,
@@ -522,11 +547,25 @@ pub fn pair_slices(
 /// origin).
 fn rotation_velocities(fp: &FlankPair, pos: [f64; 3], phi: f64) -> ([f64; 3], [f64; 3], f64) {
     let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
-    let a2 = pf.to_member(&wf.axis(), phi);
+    let k = wf.roll_ratio / pf.roll_ratio;
+    let Some(pose) = &fp.pose else {
+        let a2 = pf.to_member(&wf.axis(), phi);
+        return (
+            cross([0.0, 0.0, 1.0], pos),
+            cross([a2[0], a2[1], a2[2]], pos),
+            k,
+        );
+    };
+    // Misaligned: the wheel axis through the fixed frame's origin, seen
+    // from the pinion, which the pose has turned and moved.
+    let back = pose.inverse();
+    let a2 = pf.to_member(&(back.rotation * wf.axis()), phi);
+    let c2 = pf.to_member(&back.translation, phi);
+    let r = sub(pos, [c2[0], c2[1], c2[2]]);
     (
         cross([0.0, 0.0, 1.0], pos),
-        cross([a2[0], a2[1], a2[2]], pos),
-        wf.roll_ratio / pf.roll_ratio,
+        cross([a2[0], a2[1], a2[2]], r),
+        k,
     )
 }
 
