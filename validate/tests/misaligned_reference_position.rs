@@ -4,6 +4,9 @@
 //! reduced-level meshes, which a misalignment leaves as they are), at the
 //! sweep's first position and 300 N·m: the difference must stay within
 //! what the aligned pair reaches there (1.5 × its difference + 0.5 µrad).
+//! Measured (2 shared cores, 162 s with the meshes cached): aligned LTCA
+//! 347.38 µrad vs reference 341.23 µrad (6.15 µrad), misaligned (P = 0.02 mm,
+//! ΔΣ = 0.01°) 574.42 vs 567.64 µrad (6.79 µrad).
 
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;
@@ -27,7 +30,9 @@ const MISALIGNMENT: Misalignment = Misalignment {
 };
 
 fn example(name: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples")
+        .join(name)
 }
 
 /// Example 03's scene, with `[misalignment]` appended when `m` is given.
@@ -44,7 +49,11 @@ fn reference_scene(dir: &Path, m: Option<Misalignment>) -> LoadedScene {
             m.offset_mm, m.pinion_axial_mm, m.wheel_axial_mm, m.shaft_angle_deg
         ));
     }
-    let path = dir.join(if m.is_some() { "misaligned.toml" } else { "aligned.toml" });
+    let path = dir.join(if m.is_some() {
+        "misaligned.toml"
+    } else {
+        "aligned.toml"
+    });
     std::fs::write(&path, text).unwrap();
     Scene::load(&path).unwrap()
 }
@@ -68,7 +77,11 @@ fn reference_te(scene: &LoadedScene, out: &Path) -> Vec<(f64, f64)> {
         memory_bytes: None,
     };
     let res = run(scene, &meshes, out, &opt).unwrap();
-    res[0].loads.iter().map(|l| (l.torque_nm, l.te_mean_urad)).collect()
+    res[0]
+        .loads
+        .iter()
+        .map(|l| (l.torque_nm, l.te_mean_urad))
+        .collect()
 }
 
 /// The reduced model's TE (µrad) at the first position of the example-02
@@ -78,7 +91,11 @@ fn ltca_te(m: Misalignment, torques: &[f64]) -> Vec<f64> {
     let scene = Scene::load(&dir.join("scene.toml")).unwrap();
     let meshes = dir.join("meshes").join(&scene.scene.name);
     let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let c = |mb: Member| member_compliance(&scene, &g, &meshes, mb, Blank::Standard).unwrap().0;
+    let c = |mb: Member| {
+        member_compliance(&scene, &g, &meshes, mb, Blank::Standard)
+            .unwrap()
+            .0
+    };
     let pc = PairCompliance {
         pinion: c(Member::Pinion),
         wheel: c(Member::Wheel),
@@ -111,13 +128,15 @@ fn misaligned_ltca_matches_the_misaligned_reference_as_the_aligned_pair_does() {
             te_ref,
             ltca[k] - te_ref
         );
-        diffs.push((ltca[k] - te_ref).abs());
-        if m.is_some() {
-            // The misalignment moved the TE by far more than the difference allowed.
-            assert!((ltca[k] - diffs.first().copied().unwrap_or(0.0)).abs() > 1.0);
-        }
+        diffs.push(((ltca[k] - te_ref).abs(), ltca[k]));
     }
-    let (aligned, misaligned) = (diffs[0], diffs[1]);
+    let ((aligned, te_aligned), (misaligned, te_misaligned)) = (diffs[0], diffs[1]);
+    // The misalignment moves the TE by far more than the difference allowed
+    // (measured: 347.4 -> 574.4 urad).
+    assert!(
+        (te_misaligned - te_aligned).abs() > 50.0,
+        "TE {te_aligned} -> {te_misaligned} urad"
+    );
     assert!(
         misaligned <= 1.5 * aligned + 0.5,
         "misaligned pair: |LTCA − reference| {misaligned:.3} urad, aligned pair {aligned:.3} urad"
