@@ -17,6 +17,7 @@ pub mod layout;
 pub mod lumped;
 pub mod published;
 pub mod results;
+pub mod sensitivity;
 pub mod stress;
 
 use crate::figures::{Figure, ReportFigures};
@@ -207,6 +208,7 @@ pub fn markdown(
         s.push_str(&p.details);
     }
     s.push_str(&figs.lumped.markdown);
+    s.push_str(&figs.sensitivity.markdown);
     while s.ends_with("\n\n") {
         s.pop();
     }
