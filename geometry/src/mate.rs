@@ -26,11 +26,11 @@ pub struct Mate {
 /// The mate of the pinion point `pos` (tooth 0, member frame) when tooth 0
 /// is at pinion roll `target` and the wheel at the conjugate angle, the
 /// projection started from the wheel parameters `start`. The lag is the
-/// root of the gap in the wheel's rotation: the first-order step gap / λ₂,
-/// then one Newton step with the gap re-measured at the turned wheel (a
-/// misalignment's lag reaches a milliradian, where the first-order step
-/// alone is off by about 0.1 µrad). None where a projection fails or the
-/// lever vanishes.
+/// root of the gap in the wheel's rotation, by Newton steps gap / λ₂ with
+/// the gap re-measured at the turned wheel (a misalignment's lag reaches a
+/// milliradian, where the first-order step alone is off by about 0.1 µrad);
+/// the wheel point is the one touched at that lag. None where a projection
+/// fails or the lever vanishes.
 pub fn mate(fp: &FlankPair, pos: [f64; 3], target: f64, start: [f64; 2]) -> Option<Mate> {
     let conj = fp.conjugate_wheel_angle(target);
     let p = Vector3::from(pos);
@@ -47,15 +47,29 @@ pub fn mate(fp: &FlankPair, pos: [f64; 3], target: f64, start: [f64; 2]) -> Opti
     let (f0, l0) = foot(conj, start)?;
     // The wheel turns the way that closes the gap.
     let s = l0.signum();
-    let first = f0.gap / l0.abs();
-    let (f1, l1) = foot(conj + s * first, f0.uv)?;
+    let (mut lag, mut f, mut lever) = (0.0, f0, l0.abs());
+    for _ in 0..MATE_ITERATIONS {
+        lag += f.gap / lever;
+        let (fi, li) = foot(conj + s * lag, f.uv)?;
+        (f, lever) = (fi, li.abs());
+        if f.gap.abs() < MATE_GAP_TOL {
+            break;
+        }
+    }
     Some(Mate {
-        lag: first + f1.gap / l1.abs(),
+        lag: lag + f.gap / lever,
         gap: f0.gap,
-        wheel_uv: f1.uv,
-        lever: l1.abs(),
+        wheel_uv: f.uv,
+        lever,
     })
 }
+
+/// Newton steps of [`mate`] at most, and the gap (m) at which it stops:
+/// far from its contact line a point needs a lag of milliradians, and the
+/// wheel point it then touches lies millimetres from the closest one at
+/// the conjugate angle.
+const MATE_ITERATIONS: usize = 8;
+const MATE_GAP_TOL: f64 = 1e-12;
 
 /// Signed distance (m) of the wheel point at generating parameters `uv`
 /// inside the wheel flank's blank bounds (negative outside).

@@ -151,7 +151,17 @@ impl Column<'_> {
         // the cell between the last active nodes of the two node columns.
         let cell = 1.0 / (self.rs.n_profile - 1) as f64;
         self.trusted.set((lo + cell, hi - cell));
-        let mut best = self.descend(start, lo, hi)?;
+        let mut best = match self.descend(start, lo, hi) {
+            Some(b) => b,
+            // Misaligned: the node flags hold at each node's own roll, and
+            // where the wheel point touched at this roll lies past the
+            // wheel's edge the start cannot be evaluated; start from the
+            // best point of the column that can.
+            None if self.fp.pose.is_some() => {
+                self.descend(self.evaluable_start(lo, hi)?, lo, hi)?
+            }
+            None => return None,
+        };
         let beyond = |end: f64, out: Option<f64>, towards: f64| {
             let out = out?;
             (self.value(end + towards * 1e-5) < best.lag).then(|| self.boundary(end, out))
@@ -175,6 +185,16 @@ impl Column<'_> {
             }
         }
         Some(best)
+    }
+
+    /// The smallest-lag point of [`START_SAMPLES`] equally spaced on
+    /// [lo, hi] that can be evaluated; None if none can.
+    fn evaluable_start(&self, lo: f64, hi: f64) -> Option<f64> {
+        (0..=START_SAMPLES)
+            .map(|k| lo + (hi - lo) * k as f64 / START_SAMPLES as f64)
+            .filter_map(|eta| self.eval(eta).map(|e| (e.0, eta)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|e| e.1)
     }
 
     /// Damped Newton for the smallest lag on [lo, hi] from `start`, with
@@ -345,6 +365,9 @@ impl Column<'_> {
         a
     }
 }
+
+/// Samples of a misaligned column's start search ([`Column::evaluable_start`]).
+const START_SAMPLES: usize = 20;
 
 /// An end of a column's active interval: (last active η, first inactive η beyond it).
 type End = (f64, Option<f64>);
