@@ -4,9 +4,10 @@
 //! reduced-level meshes, which a misalignment leaves as they are), at the
 //! sweep's first position and 300 N·m: the difference must stay within
 //! what the aligned pair reaches there (1.5 × its difference + 0.5 µrad).
-//! Measured (2 shared cores, 162 s with the meshes cached): aligned LTCA
-//! 347.38 µrad vs reference 341.23 µrad (6.15 µrad), misaligned (P = 0.02 mm,
-//! ΔΣ = 0.01°) 574.42 vs 567.64 µrad (6.79 µrad).
+//! Measured (2 cores shared with other jobs; 162 s with the meshes made,
+//! 38 s with them shared): aligned LTCA 347.38 µrad vs reference 341.23 µrad
+//! (6.15 µrad), misaligned (P = 0.02 mm, ΔΣ = 0.01°) 574.41 vs 567.64 µrad
+//! (6.77 µrad).
 
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;
