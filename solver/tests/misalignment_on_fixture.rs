@@ -165,3 +165,29 @@ fn misaligned_ltca_at_vanishing_load_is_its_utca_and_load_adds_deflection() {
         "the misalignment moved the TE by {shifted:e} rad only"
     );
 }
+
+#[test]
+fn misaligned_multibody_element_follows_the_misaligned_ltca() {
+    let m = Misalignment::default()
+        .with(Component::Offset, -0.03)
+        .with(Component::WheelAxial, 0.02);
+    let t = table(Some(m));
+    let res = ltca(Some(m), &[300.0]);
+    let aligned = table(None);
+    // The table's nodes lie every 1° from the sweep's start, as the fixture's LTCA.
+    for (k, p) in res.iter().enumerate().take(18) {
+        let q1 = k as f64 * 1f64.to_radians();
+        let te0 = t.unloaded(q1).unwrap()[0];
+        assert!(
+            (te0 - p.utca_te).abs() * 1e6 < 1e-6,
+            "node {k}: table {} vs LTCA {} urad",
+            te0 * 1e6,
+            p.utca_te * 1e6
+        );
+        let moved = (te0 - aligned.unloaded(q1).unwrap()[0]).abs();
+        assert!(
+            moved > 10e-6,
+            "node {k}: the misalignment moved the element by {moved:e} rad"
+        );
+    }
+}
