@@ -48,6 +48,13 @@ CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_elem
 # for 4 flank grades x 2 loads). LUMPED=0 leaves them out.
 LUMPED        ?= 1
 LUMPED_SCENES := seed004_lumped seed003_lumped
+# The misalignment sensitivity study (issue 32) on $(SCENE): E, P, G, ΔΣ
+# each over the scene's [sensitivity] range (default 9 values, ±0.05 mm,
+# ±0.02°) at the scene's loads, from the stiffness files `solve` made; the
+# report's section "Misalignment sensitivity" reads
+# $(OUT)/<scene>/sensitivity/summary.json. Measured on the default scene
+# (2 cores shared with other jobs): 104 s. SENSITIVITY=0 leaves it out.
+SENSITIVITY   ?= 1
 
 .PHONY: setup build test bench preprocess solve validate convergence stress clean
 
@@ -69,6 +76,7 @@ bench: setup build preprocess
 	$(CARGO) bench -p solver --bench ltca
 	$(CARGO) bench -p solver --bench multibody
 	$(CARGO) bench -p solver --bench lumped
+	$(CARGO) bench -p solver --bench sensitivity
 	$(CARGO) bench -p validate --bench reference
 
 preprocess: build
@@ -98,6 +106,8 @@ validate: solve
 	    $(BIN)/preprocess stiffness $$f --meshes meshes && \
 	    $(BIN)/solver dynamic $$f --meshes meshes --out $(OUT) || exit 1; \
 	  done; fi
+	@if [ "$(SENSITIVITY)" = 1 ]; then \
+	  $(BIN)/solver sensitivity $(SCENE) --meshes meshes --out $(OUT); fi
 	@if [ "$(LUMPED)" = 1 ]; then \
 	  for s in $(LUMPED_SCENES); do f=reference/scenes/$$s.toml; \
 	    $(BIN)/preprocess flanks $$f --out $(OUT)/$$s/flanks && \

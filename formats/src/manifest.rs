@@ -256,6 +256,13 @@ pub fn field_differences<T: Serialize>(a: &T, b: &T, a_is: &str, b_is: &str) -> 
         .collect()
 }
 
+/// SHA-256 of a misalignment as its JSON text, the key a result set records
+/// it under (`misalignment`): `None` for the aligned pair, which records
+/// nothing (so sets from before misalignments existed still compare).
+pub fn misalignment_sha256(m: &geometry::misalignment::Misalignment) -> Option<String> {
+    (!m.is_zero()).then(|| sha256_text(&serde_json::to_string(m).unwrap_or_default()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::not_openable;

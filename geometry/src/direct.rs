@@ -37,7 +37,7 @@ pub fn direct_te(
     let jmax = ((r1 - phi1) / tau).ceil() as i32 + 1;
     let conj = fp.placement(phi1, 0.0, direction);
     let ratio = |uv: [f64; 2], j: i32| -> Option<f64> {
-        if !fp.is_active(uv[0], uv[1], 1e-12) {
+        if !candidate(fp, uv) {
             return None;
         }
         let (g, _) = gap_on_flank(fp, conj, j, uv, uv)?;
@@ -67,7 +67,7 @@ pub fn direct_te(
     let mut min_node_gap = f64::INFINITY;
     for jj in jmin..=jmax {
         for &n in &rs.uv {
-            if fp.is_active(n[0], n[1], 1e-12) {
+            if candidate(fp, n) {
                 if let Some((g, _)) = gap_on_flank(fp, at, jj, n, n) {
                     min_node_gap = min_node_gap.min(g);
                 }
@@ -80,6 +80,18 @@ pub fn direct_te(
         uv,
         min_node_gap,
     })
+}
+
+/// Whether the pinion point at `uv` can touch: for the aligned pair, when
+/// it and its conjugate mate lie on their flanks; for a misaligned one, when
+/// it lies on the pinion flank (its closest wheel point is checked by
+/// [`gap_on_flank`]).
+fn candidate(fp: &FlankPair, uv: [f64; 2]) -> bool {
+    if fp.pose.is_some() {
+        crate::mate::on_pinion(fp, uv, 1e-12)
+    } else {
+        fp.is_active(uv[0], uv[1], 1e-12)
+    }
 }
 
 /// Contact ellipse for a separation δ (marking compound) around a contact

@@ -15,8 +15,10 @@ pub mod error;
 pub mod flank;
 pub mod gear_body;
 pub mod generation;
+pub mod mate;
 pub mod material;
 pub mod minimize;
+pub mod misalignment;
 pub mod pair;
 pub mod placement;
 pub mod roughness;
@@ -24,6 +26,7 @@ pub mod scene;
 pub mod scene_checks;
 pub mod scene_contact_law;
 pub mod scene_lumped;
+pub mod scene_sensitivity;
 pub mod teeth;
 pub mod utca;
 

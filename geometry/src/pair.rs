@@ -19,6 +19,10 @@ pub struct FlankPair {
     pub wheel_offset: f64,
     /// Pinion roll range of the active region of tooth 0, rad.
     pub roll_range: [f64; 2],
+    /// The pinion's rigid pose relative to the wheel in the fixed frame
+    /// (misalignments, [`crate::misalignment`]); `None` for the aligned pair,
+    /// which the analyses treat exactly as before misalignments existed.
+    pub pose: Option<crate::misalignment::Pose>,
 }
 
 /// Both sides of a pair.
@@ -83,6 +87,7 @@ impl PairGeometry {
                 pinion,
                 wheel,
                 roll_range: [0.0, 0.0],
+                pose: None,
             })
         };
         let mut geom = PairGeometry {
@@ -106,6 +111,21 @@ impl PairGeometry {
 }
 
 impl PairGeometry {
+    /// Places the bodies with `poses` (both sides of the pair): the pinion's
+    /// pose relative to the wheel enters every gap; `None` aligns the pair.
+    /// The flanks, their bounds and roll ranges are body-fixed and stay.
+    pub fn set_poses(&mut self, poses: Option<crate::misalignment::BodyPoses>) {
+        for fp in self.sides.iter_mut() {
+            fp.pose = poses.map(|p| p.relative());
+        }
+    }
+
+    /// Places the bodies with the misalignments `m` (aligned when all zero).
+    pub fn misalign(&mut self, m: &crate::misalignment::Misalignment) {
+        let poses = (!m.is_zero()).then(|| m.poses(&self.data));
+        self.set_poses(poses);
+    }
+
     pub fn side(&self, side: Side) -> &FlankPair {
         &self.sides[side.index()]
     }

@@ -35,6 +35,24 @@ impl FlankPair {
 /// Closest point of `flank` (unmodified, member frame) to `q`: generating
 /// parameters and signed gap along the flank's outward normal.
 pub fn project(flank: &Flank, q: &Vector3<f64>, start: [f64; 2]) -> Option<([f64; 2], f64)> {
+    project_point(flank, q, start).map(|f| (f.uv, f.gap))
+}
+
+/// The closest point of a flank to a point, as [`project_point`] finds it.
+#[derive(Debug, Clone, Copy)]
+pub struct Foot {
+    /// Generating parameters of the closest point.
+    pub uv: [f64; 2],
+    /// Signed gap along the flank's outward normal, m.
+    pub gap: f64,
+    /// The closest point and the outward unit normal there (member frame).
+    pub pos: Vector3<f64>,
+    pub normal: Vector3<f64>,
+}
+
+/// Closest point of `flank` (unmodified, member frame) to `q` by
+/// Gauss–Newton on the generating parameters from `start`.
+pub fn project_point(flank: &Flank, q: &Vector3<f64>, start: [f64; 2]) -> Option<Foot> {
     let [mut u, mut v] = start;
     let h = 1e-7;
     for _ in 0..30 {
@@ -51,8 +69,29 @@ pub fn project(flank: &Flank, q: &Vector3<f64>, start: [f64; 2]) -> Option<([f64
         }
     }
     let raw = flank.gen.eval(u, v);
-    let gap = (q - Vector3::from(raw.pos)).dot(&Vector3::from(raw.normal));
-    Some(([u, v], gap))
+    let pos = Vector3::from(raw.pos);
+    let normal = Vector3::from(raw.normal);
+    Some(Foot {
+        uv: [u, v],
+        gap: (q - pos).dot(&normal),
+        pos,
+        normal,
+    })
+}
+
+/// Pinion tooth-`j` point `p` (member frame of tooth 0) at placement `at`,
+/// in the member frame of wheel tooth −j: the pinion turned about its axis,
+/// moved by the pair's pose (misalignment) if any, then seen from the
+/// turned wheel.
+pub fn pinion_in_wheel(fp: &FlankPair, at: Placement, j: i32, p: &Vector3<f64>) -> Vector3<f64> {
+    let f1 = &fp.pinion.gen.frame;
+    let f2 = &fp.wheel.gen.frame;
+    let x = f1.to_fixed(p, at.pinion + j as f64 * f1.pitch());
+    let x = match &fp.pose {
+        Some(pose) => pose.apply(&x),
+        None => x,
+    };
+    f2.to_member(&x, at.wheel - j as f64 * f2.pitch())
 }
 
 /// Signed gap between pinion tooth `j` at pinion parameters `uv` and wheel
@@ -64,11 +103,8 @@ pub fn gap(
     uv: [f64; 2],
     start: [f64; 2],
 ) -> Option<(f64, [f64; 2])> {
-    let f1 = &fp.pinion.gen.frame;
-    let f2 = &fp.wheel.gen.frame;
     let p = Vector3::from(fp.pinion.eval_uv(uv[0], uv[1]).pos);
-    let x = f1.to_fixed(&p, at.pinion + j as f64 * f1.pitch());
-    let q = f2.to_member(&x, at.wheel - j as f64 * f2.pitch());
+    let q = pinion_in_wheel(fp, at, j, &p);
     project(&fp.wheel, &q, start).map(|(w, g)| (g, w))
 }
 

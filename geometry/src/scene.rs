@@ -43,6 +43,14 @@ pub struct Scene {
     /// 8-DOF lumped dynamic model (`solver lumped`); absent: not run.
     #[serde(default)]
     pub lumped: Option<crate::scene_lumped::LumpedSettings>,
+    /// Static misalignments E, P, G, ΔΣ of the pair (the pinion's pose
+    /// relative to the wheel in UTCA, LTCA, multibody and reference); all
+    /// zero when absent. Meshes and stiffness files do not depend on them.
+    #[serde(default)]
+    pub misalignment: crate::misalignment::Misalignment,
+    /// Ranges of `solver sensitivity`; defaults when absent.
+    #[serde(default)]
+    pub sensitivity: crate::scene_sensitivity::SensitivitySettings,
 }
 
 /// Settings of the multibody runs (`solver dynamic`): rigid pinion and

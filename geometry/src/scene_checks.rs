@@ -351,6 +351,8 @@ impl Scene {
             value: value.to_string(),
             limit,
         };
+        self.misalignment.check(path, "misalignment", pair)?;
+        self.sensitivity.check(path, &self.misalignment, pair)?;
         let cycle_deg = pair.mesh_cycle().to_degrees();
         let positions = |cycles: f64, step_deg: f64| cycles * cycle_deg / step_deg + 1.0;
         let r = &self.rotation;

@@ -59,6 +59,14 @@ pub struct RollSurface {
     pub k_sep: Vec<f64>,
     /// Node lies on both flanks.
     pub active: Vec<bool>,
+    /// Misaligned pair only (empty otherwise): the gap at the node's own
+    /// roll less its ease-off, m, and the gap's slope in the roll, m/rad;
+    /// with them and K the node's lag at roll φ is
+    /// (E + offset + slope (φ − φ(p)) + ½ K (φ − φ(p))²) / λ₂, the quadratic
+    /// through the gaps at φ(p) and φ(p) ± δ, which starts the exact search
+    /// ([`crate::mate`]).
+    pub offset: Vec<f64>,
+    pub slope: Vec<f64>,
 }
 
 /// The contact point of one tooth pair at one position.
@@ -109,24 +117,68 @@ impl RollSurface {
     pub fn new(fp: &FlankPair, grid: LineGrid) -> Result<Self, GeometryError> {
         let uv = fp.pinion_grid(grid.n_face, grid.n_profile)?;
         let pts: Vec<_> = uv.iter().map(|&[u, v]| fp.pinion.eval_uv(u, v)).collect();
-        let k_sep = uv
-            .iter()
-            .zip(&pts)
-            .map(|(&uv, p)| separation_growth(fp, uv, p.pinion_roll))
-            .collect();
-        Ok(RollSurface {
+        let mut rs = RollSurface {
             n_face: grid.n_face,
             n_profile: grid.n_profile,
             roll: pts.iter().map(|p| p.pinion_roll).collect(),
             ease_off: pts.iter().map(|p| p.ease_off).collect(),
             lever: pts.iter().map(|p| p.wheel_lever).collect(),
-            active: uv
+            active: Vec::new(),
+            uv: Vec::new(),
+            k_sep: Vec::new(),
+            offset: Vec::new(),
+            slope: Vec::new(),
+        };
+        if fp.pose.is_none() {
+            rs.k_sep = uv
+                .iter()
+                .zip(&pts)
+                .map(|(&uv, p)| separation_growth(fp, uv, p.pinion_roll))
+                .collect();
+            rs.active = uv
                 .iter()
                 .map(|&[u, v]| fp.is_active(u, v, crate::pair::EDGE_TOL))
-                .collect(),
-            uv,
-            k_sep,
-        })
+                .collect();
+        } else {
+            for (n, (&uv, p)) in uv.iter().zip(&pts).enumerate() {
+                let q = misaligned_node(fp, uv, p.pos, p.pinion_roll);
+                let on_pinion = crate::mate::on_pinion(fp, uv, crate::pair::EDGE_TOL);
+                let (k, slope, offset, active) = match q {
+                    Some(q) => (
+                        q.k,
+                        q.slope,
+                        q.gap - p.ease_off,
+                        on_pinion && crate::mate::on_wheel(fp, q.wheel_uv, crate::pair::EDGE_TOL),
+                    ),
+                    None => (0.0, 0.0, 0.0, false),
+                };
+                if let Some(q) = q {
+                    rs.lever[n] = q.lever;
+                }
+                rs.k_sep.push(k);
+                rs.slope.push(slope);
+                rs.offset.push(offset);
+                rs.active.push(active);
+            }
+        }
+        rs.uv = uv;
+        Ok(rs)
+    }
+
+    /// Whether the surface was made for a misaligned pair.
+    pub fn misaligned(&self) -> bool {
+        !self.offset.is_empty()
+    }
+
+    /// The node model's lag of node `n` when its tooth is at roll `target`, rad.
+    pub fn node_lag(&self, n: usize, target: f64) -> f64 {
+        let d = target - self.roll[n];
+        if self.misaligned() {
+            (self.ease_off[n] + self.offset[n] + self.slope[n] * d + 0.5 * self.k_sep[n] * d * d)
+                / self.lever[n]
+        } else {
+            (self.ease_off[n] + 0.5 * self.k_sep[n] * d * d) / self.lever[n]
+        }
     }
 
     /// Node column i at or before face parameter ξ (clamped to the grid)
@@ -151,10 +203,13 @@ impl RollSurface {
     }
 }
 
+/// Roll step δ of the separation growth's differences.
+const GROWTH_STEP_DEG: f64 = 0.05;
+
 /// K = (g(+δ) + g(−δ) − 2 g(0)) / δ²: conjugate separation growth of the
 /// pinion point at `uv` when the pair turns by ±δ from its contact roll angle.
 fn separation_growth(fp: &FlankPair, uv: [f64; 2], roll: f64) -> f64 {
-    let delta = 0.05f64.to_radians();
+    let delta = GROWTH_STEP_DEG.to_radians();
     let g = |d: f64| {
         let phi = roll + d;
         let at = crate::placement::Placement {
@@ -169,6 +224,40 @@ fn separation_growth(fp: &FlankPair, uv: [f64; 2], roll: f64) -> f64 {
     } else {
         0.0
     }
+}
+
+/// A node of a misaligned pair: the gap's quadratic in the roll about the
+/// node's own roll angle, and its mate there.
+#[derive(Clone, Copy)]
+struct MisalignedNode {
+    gap: f64,
+    slope: f64,
+    k: f64,
+    lever: f64,
+    wheel_uv: [f64; 2],
+}
+
+/// The gaps of the pinion point `pos` (at `uv`) at rolls φ(p) and
+/// φ(p) ± δ with the pair's pose ([`crate::mate::mate`]): value, slope and
+/// curvature (K ≥ 0) of their parabola. None where a projection fails.
+fn misaligned_node(
+    fp: &FlankPair,
+    uv: [f64; 2],
+    pos: [f64; 3],
+    roll: f64,
+) -> Option<MisalignedNode> {
+    let delta = GROWTH_STEP_DEG.to_radians();
+    let m0 = crate::mate::mate(fp, pos, roll, uv)?;
+    let gp = crate::mate::mate(fp, pos, roll + delta, m0.wheel_uv)?.gap;
+    let gm = crate::mate::mate(fp, pos, roll - delta, m0.wheel_uv)?.gap;
+    let k = (gp + gm - 2.0 * m0.gap) / (delta * delta);
+    Some(MisalignedNode {
+        gap: m0.gap,
+        slope: (gp - gm) / (2.0 * delta),
+        k: if k.is_finite() { k.max(0.0) } else { 0.0 },
+        lever: m0.lever,
+        wheel_uv: m0.wheel_uv,
+    })
 }
 
 /// Contact-line search on one flank pair.
@@ -235,8 +324,19 @@ impl<'a> LineSearch<'a> {
         at(s)
     }
 
-    /// Wheel lag needed for contact at pinion point `uv` of the tooth at roll `target`.
-    fn lag(&self, uv: [f64; 2], target: f64) -> Option<f64> {
+    /// Wheel lag needed for contact at pinion point `uv` of the tooth at
+    /// roll `target`: from the surface of roll angles for the aligned pair,
+    /// from the exact gap with the pair's pose ([`crate::mate`]) for a
+    /// misaligned one.
+    pub fn lag(&self, uv: [f64; 2], target: f64) -> Option<f64> {
+        if self.fp.pose.is_some() {
+            if !crate::mate::on_pinion(self.fp, uv, 1e-12) {
+                return None;
+            }
+            let p = self.fp.pinion.eval_uv(uv[0], uv[1]);
+            let m = crate::mate::mate(self.fp, p.pos, target, uv)?;
+            return crate::mate::on_wheel(self.fp, m.wheel_uv, 1e-12).then_some(m.lag);
+        }
         let (p, ok) = self.fp.point(uv[0], uv[1], 1e-12);
         if !ok {
             return None;
@@ -256,8 +356,7 @@ impl<'a> LineSearch<'a> {
             if !rs.active[n] {
                 continue;
             }
-            let d = target - rs.roll[n];
-            let v = (rs.ease_off[n] + 0.5 * rs.k_sep[n] * d * d) / rs.lever[n];
+            let v = rs.node_lag(n, target);
             if best.is_none_or(|b| v < b.0) {
                 best = Some((v, n));
             }

@@ -135,3 +135,55 @@ fn seed_scenes_load_with_both_force_laws() {
         assert!(s.scene.multibody.load_run.is_some(), "{name}");
     }
 }
+
+#[test]
+fn misalignment_table_loads_and_defaults_to_zero() {
+    let s = scene_with("").unwrap();
+    assert!(s.scene.misalignment.is_zero());
+    let s = scene_with(
+        "[misalignment]\noffset_mm = 0.05\npinion_axial_mm = -0.03\nwheel_axial_mm = 0.02\nshaft_angle_deg = 0.01",
+    )
+    .unwrap();
+    assert_eq!(s.scene.misalignment.offset_mm, 0.05);
+    assert_eq!(s.scene.misalignment.pinion_axial_mm, -0.03);
+    assert_eq!(s.scene.misalignment.wheel_axial_mm, 0.02);
+    assert_eq!(s.scene.misalignment.shaft_angle_deg, 0.01);
+}
+
+#[test]
+fn misalignment_beyond_its_limit_or_unknown_is_rejected_naming_the_field() {
+    // 0.2 x the white-paper pair's 4.325 mm module = 0.865 mm; 0.5 deg.
+    for (field, bad) in [
+        ("offset_mm", "0.9"),
+        ("pinion_axial_mm", "-1.0"),
+        ("wheel_axial_mm", "nan"),
+        ("shaft_angle_deg", "0.6"),
+    ] {
+        let e = scene_with(&format!("[misalignment]\n{field} = {bad}")).unwrap_err();
+        assert!(
+            e.contains(&format!("misalignment.{field}")) && e.contains("at most"),
+            "{e}"
+        );
+    }
+    let e = scene_with("[misalignment]\noffset = 0.1").unwrap_err();
+    assert!(e.contains("unknown field") && e.contains("offset"), "{e}");
+}
+
+#[test]
+fn sensitivity_ranges_out_of_range_are_rejected_naming_the_field() {
+    let e = scene_with("[sensitivity]\nvalues = 8").unwrap_err();
+    assert!(e.contains("sensitivity.values") && e.contains("odd"), "{e}");
+    let e = scene_with("[sensitivity]\noffset_mm = 0.0").unwrap_err();
+    assert!(
+        e.contains("sensitivity.offset_mm") && e.contains("(0,"),
+        "{e}"
+    );
+    // The scene's own misalignment leaves less room for the sweep.
+    let e =
+        scene_with("[misalignment]\nshaft_angle_deg = 0.45\n[sensitivity]\nshaft_angle_deg = 0.1")
+            .unwrap_err();
+    assert!(
+        e.contains("sensitivity.shaft_angle_deg") && e.contains("0.05"),
+        "{e}"
+    );
+}

@@ -42,6 +42,8 @@ pub struct FlankInput {
     pub utca: UtcaSettings,
     /// Whether the scene asks for the UTCA (`[analyses] utca`; a design file alone does).
     pub wanted: bool,
+    /// The scene's misalignments (zero for a design file).
+    pub misalignment: geometry::misalignment::Misalignment,
 }
 
 /// Reads a scene file (it has a `design` key) or a design file (drive side, default settings).
@@ -62,6 +64,7 @@ pub fn load_input(path: &Path) -> Result<FlankInput, InputError> {
             side: s.scene.loaded_flank,
             utca: s.scene.utca,
             wanted: s.scene.analyses.utca,
+            misalignment: s.scene.misalignment,
         })
     } else {
         let pair = load_pair(path)?;
@@ -72,6 +75,7 @@ pub fn load_input(path: &Path) -> Result<FlankInput, InputError> {
             side: Side::Drive,
             utca: UtcaSettings::default(),
             wanted: true,
+            misalignment: Default::default(),
         })
     }
 }
@@ -269,6 +273,9 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankSt
         "design",
         &formats::manifest::sha256_text(&geometry::design::geometry_text(&design_text)),
     )?;
+    if let Some(sha) = formats::manifest::misalignment_sha256(&input.misalignment) {
+        set.record_input("misalignment", &sha)?;
+    }
     let summary = write_stage(input, set.path())?;
     set.commit()?;
     Ok(summary)
@@ -277,7 +284,8 @@ pub fn run_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankSt
 fn write_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStageError> {
     let mut timing = Timing::default();
     let t = Instant::now();
-    let g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
+    let mut g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
+    g.misalign(&input.misalignment);
     timing.geometry = t.elapsed().as_secs_f64();
     let pair = &g.data;
 

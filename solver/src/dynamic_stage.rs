@@ -219,7 +219,8 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &out.join(&sc.name).join("multibody"),
         &format!("solver dynamic {}", scene.path.display()),
     )?;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    g.misalign(&sc.misalignment);
     let side = sc.loaded_flank;
     let fp = g.side(side);
     let rs = roll_surface(fp, &sc.utca)?;

@@ -33,6 +33,7 @@ pub mod lumped_stage;
 pub mod mesh_table;
 pub mod multibody;
 pub mod plan;
+pub mod sensitivity_stage;
 pub mod slices;
 pub mod spectrum;
 pub mod time_step;

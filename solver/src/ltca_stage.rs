@@ -77,9 +77,10 @@ pub fn member_compliance_on(
     ))
 }
 
-/// Records in `set` the files that the pinion × wheel blanks' stiffness
-/// data rest on (design, body meshes, stiffness files, with their SHA-256
-/// from the manifest), for the loaded flanks and, with `coast`, the
+/// Records in `set` the scene's misalignment (if any) and the files that
+/// the pinion × wheel blanks' stiffness data rest on (design, body meshes,
+/// stiffness files, with their SHA-256 from the manifest), for the loaded
+/// flanks and, with `coast`, the
 /// opposite ones: so that a report can tell sets made from other files
 /// apart ([`formats::result_set::check_same_inputs`]).
 pub fn record_stiffness_inputs(
@@ -90,6 +91,11 @@ pub fn record_stiffness_inputs(
     [pb, wb]: [Blank; 2],
     coast: bool,
 ) -> anyhow::Result<()> {
+    // The misalignment is an input of the results, not of the stiffness
+    // files (body-fixed): recorded so that sets of other poses tell apart.
+    if let Some(sha) = formats::manifest::misalignment_sha256(&scene.scene.misalignment) {
+        set.record_input("misalignment", &sha)?;
+    }
     let side = scene.scene.loaded_flank;
     let sides: &[Side] = if coast {
         &[side, side.other()]
@@ -162,7 +168,8 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &out.join(&sc.name).join("ltca"),
         &format!("solver ltca {}", scene.path.display()),
     )?;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    g.misalign(&sc.misalignment);
     let side = sc.loaded_flank;
     let fp = g.side(side);
     let rs = roll_surface(fp, &sc.utca)?;

@@ -45,6 +45,16 @@ enum Cmd {
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+    /// Misalignment sensitivity: E, P, G, ΔΣ each swept over the scene's `[sensitivity]` range, LTCA at the scene's loads.
+    Sensitivity {
+        scene: PathBuf,
+        /// Root of the meshes and stiffness files (`<meshes>/<scene>/`).
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        /// Results go to `<out>/<scene>/sensitivity/`.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+    },
     /// 8-DOF lumped dynamic model (scene's `[lumped]`), driven by the LTCA's k(t) and e(t).
     Lumped {
         scene: PathBuf,
@@ -101,6 +111,20 @@ fn main() -> anyhow::Result<()> {
                     b.pinion_blank, b.wheel_blank, a.pinion_x, a.pinion_y, a.pinion_z, a.wheel_x, a.wheel_y, a.wheel_z, a.mesh_normal, b.impact_force_n
                 );
             }
+        }
+        Cmd::Sensitivity { scene, meshes, out } => {
+            let s = geometry::scene::Scene::load(&scene)?;
+            let r = solver::sensitivity_stage::run(&s, &meshes, &out)?;
+            for c in &r.curves {
+                for p in &c.points {
+                    let l = &p.loads[p.loads.len() - 1];
+                    println!(
+                        "{} {:+.4} {}: {} N·m TE ptp {:7.2} µrad, mean {:8.2} µrad, pattern centre L {:.2} mm d {:.2} mm, length {:.2} mm, p_max {:.0} MPa",
+                        c.symbol, p.value, c.unit, l.torque_nm, l.te_ptp_urad, l.te_mean_urad, l.pattern_centre_l_mm, l.pattern_centre_d_mm, l.pattern_length_mm, l.max_pressure_mpa
+                    );
+                }
+            }
+            println!("{:.1} s", r.wall_s);
         }
         Cmd::Ltca { scene, meshes, out } => {
             let s = geometry::scene::Scene::load(&scene)?;

@@ -115,6 +115,12 @@ impl Column<'_> {
         }
         let (p, jac) = self.point(eta)?;
         self.last.set(Some((p.uv, jac)));
+        if self.fp.pose.is_some() {
+            // Misaligned: the exact gap with the pair's pose, its closest
+            // wheel point checked against the wheel's bounds.
+            let m = geometry::mate::mate(self.fp, p.pos, self.target, p.uv)?;
+            return geometry::mate::on_wheel(self.fp, m.wheel_uv, 1e-12).then_some((m.lag, p));
+        }
         let (lo, hi) = self.trusted.get();
         if !(lo..=hi).contains(&eta) {
             let (lw, dw) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
@@ -145,7 +151,17 @@ impl Column<'_> {
         // the cell between the last active nodes of the two node columns.
         let cell = 1.0 / (self.rs.n_profile - 1) as f64;
         self.trusted.set((lo + cell, hi - cell));
-        let mut best = self.descend(start, lo, hi)?;
+        let mut best = match self.descend(start, lo, hi) {
+            Some(b) => b,
+            // Misaligned: the node flags hold at each node's own roll, and
+            // where the wheel point touched at this roll lies past the
+            // wheel's edge the start cannot be evaluated; start from the
+            // best point of the column that can.
+            None if self.fp.pose.is_some() => {
+                self.descend(self.evaluable_start(lo, hi)?, lo, hi)?
+            }
+            None => return None,
+        };
         let beyond = |end: f64, out: Option<f64>, towards: f64| {
             let out = out?;
             (self.value(end + towards * 1e-5) < best.lag).then(|| self.boundary(end, out))
@@ -169,6 +185,16 @@ impl Column<'_> {
             }
         }
         Some(best)
+    }
+
+    /// The smallest-lag point of [`START_SAMPLES`] equally spaced on
+    /// [lo, hi] that can be evaluated; None if none can.
+    fn evaluable_start(&self, lo: f64, hi: f64) -> Option<f64> {
+        (0..=START_SAMPLES)
+            .map(|k| lo + (hi - lo) * k as f64 / START_SAMPLES as f64)
+            .filter_map(|eta| self.eval(eta).map(|e| (e.0, eta)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map(|e| e.1)
     }
 
     /// Damped Newton for the smallest lag on [lo, hi] from `start`, with
@@ -266,6 +292,10 @@ impl Column<'_> {
     /// cannot be evaluated.
     fn margin(&self, eta: f64) -> Option<f64> {
         let p = self.point(eta)?.0;
+        if self.fp.pose.is_some() {
+            let m = geometry::mate::mate(self.fp, p.pos, self.target, p.uv)?;
+            return Some(geometry::mate::wheel_margin(self.fp, m.wheel_uv));
+        }
         let (l, d) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
         Some(self.fp.wheel.bounds.margin(l, d))
     }
@@ -336,6 +366,9 @@ impl Column<'_> {
     }
 }
 
+/// Samples of a misaligned column's start search ([`Column::evaluable_start`]).
+const START_SAMPLES: usize = 20;
+
 /// An end of a column's active interval: (last active η, first inactive η beyond it).
 type End = (f64, Option<f64>);
 
@@ -359,6 +392,13 @@ fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
             return None;
         }
         let d = target - lerp(&rs.roll, k);
+        if rs.misaligned() {
+            let gap = lerp(&rs.ease_off, k)
+                + lerp(&rs.offset, k)
+                + lerp(&rs.slope, k) * d
+                + 0.5 * lerp(&rs.k_sep, k) * d * d;
+            return Some(gap / lerp(&rs.lever, k));
+        }
         Some((lerp(&rs.ease_off, k) + 0.5 * lerp(&rs.k_sep, k) * d * d) / lerp(&rs.lever, k))
     };
     let values: Vec<Option<f64>> = (0..np).map(lag).collect();
@@ -491,7 +531,15 @@ pub fn pair_slices(
                 Some((h, dr)) => separation_curvature(&p, h, dr, dp),
                 None => geometric_curvature(fp, &p, dp),
             };
-            let (lw, dw) = fp.wheel.ld(p.uv[0], p.uv[1]);
+            // The wheel point the slice touches and the wheel's lever: the
+            // conjugate mate (same generating parameters) for the aligned
+            // pair, the closest point with the pose for a misaligned one.
+            let (wheel_uv, lever_wheel) = match fp.pose {
+                Some(_) => geometry::mate::mate(fp, p.pos, target, p.uv)
+                    .map_or((p.uv, p.wheel_lever), |m| (m.wheel_uv, m.lever)),
+                None => (p.uv, p.wheel_lever),
+            };
+            let (lw, dw) = fp.wheel.ld(wheel_uv[0], wheel_uv[1]);
             let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw);
             let friction_lever = friction_levers(fp, p.pos, p.normal, target);
             Slice {
@@ -502,7 +550,7 @@ pub fn pair_slices(
                 uv: p.uv,
                 wheel_xi_eta: [xw, ew],
                 lag: c.lag,
-                lever_wheel: p.wheel_lever,
+                lever_wheel,
                 lever_pinion: pinion_lever(p.pos, p.normal),
                 pos: p.pos,
                 normal: p.normal,
@@ -522,11 +570,25 @@ pub fn pair_slices(
 /// origin).
 fn rotation_velocities(fp: &FlankPair, pos: [f64; 3], phi: f64) -> ([f64; 3], [f64; 3], f64) {
     let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
-    let a2 = pf.to_member(&wf.axis(), phi);
+    let k = wf.roll_ratio / pf.roll_ratio;
+    let Some(pose) = &fp.pose else {
+        let a2 = pf.to_member(&wf.axis(), phi);
+        return (
+            cross([0.0, 0.0, 1.0], pos),
+            cross([a2[0], a2[1], a2[2]], pos),
+            k,
+        );
+    };
+    // Misaligned: the wheel axis through the fixed frame's origin, seen
+    // from the pinion, which the pose has turned and moved.
+    let back = pose.inverse();
+    let a2 = pf.to_member(&(back.rotation * wf.axis()), phi);
+    let c2 = pf.to_member(&back.translation, phi);
+    let r = sub(pos, [c2[0], c2[1], c2[2]]);
     (
         cross([0.0, 0.0, 1.0], pos),
-        cross([a2[0], a2[1], a2[2]], pos),
-        wf.roll_ratio / pf.roll_ratio,
+        cross([a2[0], a2[1], a2[2]], r),
+        k,
     )
 }
 

@@ -21,6 +21,7 @@ use crate::path_compliance::PathCompliance;
 use crate::penalty::{carried_load, nodal_normal_forces, solve, Constraint, ContactError};
 use fem::path_solve::{combine, gram, PathVec};
 use geometry::generation::{rot_z, MemberFrame};
+use geometry::misalignment::Pose;
 use geometry::pair::FlankPair;
 use nalgebra::Vector3;
 use preprocess::body_mesh::BodyMesh;
@@ -116,17 +117,21 @@ impl Member {
         )
     }
 
-    /// Node coordinates in the fixed frame at rotation `phi`, and the
-    /// fixed → member rotation.
-    fn placed(&self, phi: f64) -> (Vec<V3>, [[f64; 3]; 3]) {
-        let r = self.frame.axes * rot_z(phi);
+    /// Node coordinates in the fixed frame at rotation `phi`, the body
+    /// then moved by `pose` (a misalignment) if any, and the fixed →
+    /// member rotation.
+    fn placed(&self, phi: f64, pose: Option<&Pose>) -> (Vec<V3>, [[f64; 3]; 3]) {
+        let id = Pose::identity();
+        let pose = pose.unwrap_or(&id);
+        let r = pose.rotation * self.frame.axes * rot_z(phi);
+        let t = pose.translation;
         let nodes = self
             .mesh
             .mesh
             .nodes
             .iter()
             .map(|p| {
-                let x = r * Vector3::new(p[0], p[1], p[2]);
+                let x = r * Vector3::new(p[0], p[1], p[2]) + t;
                 [x[0], x[1], x[2]]
             })
             .collect();
@@ -429,11 +434,20 @@ impl ReferencePair<'_> {
     /// its slave point in the pinion's member frame.
     fn constraints(&self, phi: f64) -> Result<(Vec<Constraint>, Vec<V3>), ReferenceError> {
         let phi2 = self.flanks.conjugate_wheel_angle(phi);
-        let (pn, pr) = self.pinion.placed(phi);
-        let (wn, wr) = self.wheel.placed(phi2);
-        let axis = self.pinion.frame.axis();
+        // The pinion placed with the pair's pose (misalignment) relative
+        // to the wheel, which stays in the fixed frame; it turns about its
+        // moved axis.
+        let pose = self.flanks.pose;
+        let (pn, pr) = self.pinion.placed(phi, pose.as_ref());
+        let (wn, wr) = self.wheel.placed(phi2, None);
+        let (axis, c) = match &pose {
+            Some(p) => (p.rotation * self.pinion.frame.axis(), p.translation),
+            None => (self.pinion.frame.axis(), Vector3::zeros()),
+        };
         let (a, d) = ([axis[0], axis[1], axis[2]], self.direction);
+        let c = [c[0], c[1], c[2]];
         let spin = move |x: V3| -> V3 {
+            let x = [x[0] - c[0], x[1] - c[1], x[2] - c[2]];
             [
                 d * (a[1] * x[2] - a[2] * x[1]),
                 d * (a[2] * x[0] - a[0] * x[2]),
@@ -466,7 +480,7 @@ impl ReferencePair<'_> {
         let (cs, at): (Vec<Constraint>, Vec<V3>) = two_pass(&body_p, &body_w, &set)
             .into_iter()
             .filter(|(c, _)| c.rigid < 0.0)
-            .map(|(c, o)| (c, rot(&pr, o.at)))
+            .map(|(k, o)| (k, rot(&pr, [0, 1, 2].map(|i| o.at[i] - c[i]))))
             .unzip();
         if cs.is_empty() {
             return Err(ReferenceError::NoContact {

@@ -165,7 +165,15 @@ pub fn run(
         ),
         None => (Some(ResultSet::begin(&ref_dir, &what)?), None),
     };
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    // The pinion's nodes are placed with the scene's misalignment; the
+    // meshes are body-fixed and serve every pose.
+    g.misalign(&sc.misalignment);
+    if let Some(set) = set.as_mut() {
+        if let Some(sha) = formats::manifest::misalignment_sha256(&sc.misalignment) {
+            set.record_input("misalignment", &sha)?;
+        }
+    }
     let side = sc.loaded_flank;
     let fp = g.side(side);
     let direction = pinion_direction(&g.data, side);
@@ -257,7 +265,7 @@ pub fn run(
                 format!("{:x}", Sha256::digest(key.to_string().as_bytes()))
             };
             // What determines one position's result (not the stride).
-            let position_key = digest(serde_json::json!({
+            let mut key = serde_json::json!({
                 "schema": REFERENCE_SCHEMA,
                 "pinion_mesh": pm_hash,
                 "wheel_mesh": wm_hash,
@@ -265,7 +273,13 @@ pub fn run(
                 "settings": opt.settings,
                 "torques": sc.pinion_torque_nm,
                 "flank": side.flank_name(Which::Pinion),
-            }));
+            });
+            // Only a misaligned pair adds its pose: the aligned pair's
+            // cached positions keep their keys.
+            if !sc.misalignment.is_zero() {
+                key["misalignment"] = serde_json::json!(sc.misalignment);
+            }
+            let position_key = digest(key);
             let hash = digest(serde_json::json!({
                 "position_key": position_key,
                 "positions": positions,

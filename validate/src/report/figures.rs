@@ -37,6 +37,8 @@ pub struct ReportFigures {
     pub contact_laws: Option<crate::report::contact_laws::ContactLaws>,
     /// The lumped model's section with its charts.
     pub lumped: super::lumped::LumpedSection,
+    /// The misalignment sensitivity section with its charts.
+    pub sensitivity: super::sensitivity::SensitivitySection,
     /// The stress matrix's section and outcome grid.
     pub stress: crate::report::stress::StressSection,
 }
@@ -51,6 +53,7 @@ impl ReportFigures {
             .chain(&self.unloaded)
             .chain(self.contact_laws.iter().flat_map(|c| &c.figures))
             .chain(&self.lumped.figures)
+            .chain(&self.sensitivity.figures)
             .chain(&self.stress.figure)
     }
 }
@@ -93,6 +96,7 @@ pub fn report_figures(
             .filter_map(|(title, from, to)| copied(title, &flanks.join(from), reports, to))
             .collect(),
         lumped: super::lumped::section(out, reports),
+        sensitivity: super::sensitivity::section(out, scene.map(|s| s.name.as_str()), reports),
         ..Default::default()
     };
     let (Some(o), Some(s)) = (out, scene) else {

@@ -19,6 +19,7 @@ pub mod lumped_seed003;
 pub mod lumped_studies;
 pub mod published;
 pub mod results;
+pub mod sensitivity;
 pub mod stress;
 
 use crate::figures::{Figure, ReportFigures};
@@ -209,6 +210,7 @@ pub fn markdown(
         s.push_str(&p.details);
     }
     s.push_str(&figs.lumped.markdown);
+    s.push_str(&figs.sensitivity.markdown);
     while s.ends_with("\n\n") {
         s.pop();
     }
