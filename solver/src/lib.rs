@@ -11,7 +11,8 @@
 //! integration) → [`dynamic_stage`] (10 rpm and run-up files, with
 //! [`spectrum`] for the bearing-force spectrogram). [`bearings`]: a shaft
 //! on compliant bearings (reactions and the member's displacement under a
-//! mesh force).
+//! mesh force), and [`system_deflection`]: the quasi-static LTCA on the
+//! pose the loaded bearings give.
 
 pub mod backlash;
 pub mod bearings;
@@ -36,6 +37,7 @@ pub mod plan;
 pub mod sensitivity_stage;
 pub mod slices;
 pub mod spectrum;
+pub mod system_deflection;
 pub mod time_step;
 pub mod weber_banaschek;
 

@@ -1,0 +1,155 @@
+//! Quasi-static LTCA with compliant bearings ([`solver::system_deflection`])
+//! on the checked-in example-02 stiffness fixture (no gmsh): stiff bearings
+//! give the rigid-bearing TE, the bearing reactions balance the contact's
+//! wrench and the contact torque is the applied torque, and the TE added by
+//! soft bearings scales with their compliance.
+
+use geometry::design::Member;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, LoadedScene, Scene};
+use solver::bearings::{Bearing, Support};
+use solver::compliance::PairCompliance;
+use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::system_deflection::{
+    deflected_position, DeflectedPosition, DeflectionSettings, Supports,
+};
+use std::path::Path;
+
+fn fixture() -> (LoadedScene, PairGeometry, PairCompliance) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/02_ltca_fixture");
+    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
+    let meshes = dir.join("meshes").join(&scene.scene.name);
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
+    let c = |m: Member| {
+        member_compliance(&scene, &g, &meshes, m, Blank::Standard)
+            .unwrap()
+            .0
+    };
+    let pc = PairCompliance {
+        pinion: c(Member::Pinion),
+        wheel: c(Member::Wheel),
+    };
+    (scene, g, pc)
+}
+
+/// An overhung pinion (bearings 40 and 100 mm behind its mean point) and a
+/// wheel on bearings 20 and 120 mm behind its mean point, all of radial
+/// and axial stiffness `k` (the second bearing of each floating).
+fn supports(g: &PairGeometry, k: f64) -> Supports {
+    let one = |m: usize, near: f64, far: f64| {
+        let frame = &g.frames[m];
+        let s = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
+        Support::new(
+            if m == 0 {
+                "pinion.bearings"
+            } else {
+                "wheel.bearings"
+            },
+            frame.axis(),
+            nalgebra::Vector3::zeros(),
+            &[
+                Bearing {
+                    axial_position_m: s + near,
+                    radial_stiffness_n_per_m: k,
+                    axial_stiffness_n_per_m: k,
+                },
+                Bearing {
+                    axial_position_m: s + far,
+                    radial_stiffness_n_per_m: k,
+                    axial_stiffness_n_per_m: 0.0,
+                },
+            ],
+        )
+        .unwrap()
+    };
+    Supports {
+        pinion: one(0, 0.04, 0.10),
+        wheel: one(1, 0.02, 0.12),
+    }
+}
+
+const TORQUE_NM: f64 = 300.0;
+
+fn solve_with(k: f64) -> DeflectedPosition {
+    let (scene, mut g, pc) = fixture();
+    let sweep = scene_sweep(&scene, &g, Blank::Standard);
+    let phi = sweep.start + sweep.direction * 3.0 * sweep.step;
+    let sup = supports(&g, k);
+    deflected_position(
+        &mut g,
+        scene.scene.loaded_flank,
+        &scene.scene.utca,
+        &pc,
+        &sup,
+        None,
+        phi,
+        TORQUE_NM,
+        DeflectionSettings {
+            slices: scene.scene.ltca.slices,
+            tolerance_m: 1e-9,
+            max_iterations: 60,
+        },
+    )
+    .unwrap()
+}
+
+#[test]
+fn very_stiff_bearings_give_the_rigid_bearing_te() {
+    let r = solve_with(1e16);
+    assert!(
+        (r.te - r.te_rigid_bearings).abs() < 1e-9,
+        "TE {} against rigid {} rad",
+        r.te,
+        r.te_rigid_bearings
+    );
+}
+
+#[test]
+fn bearing_reactions_balance_the_contact_wrench_and_the_contact_torque_is_the_applied_torque() {
+    let (_, g, _) = fixture();
+    let k = 5e8;
+    let r = solve_with(k);
+    let sup = supports(&g, k);
+    assert!(r.iterations >= 2 && r.iterations < 60, "{}", r.iterations);
+    let w = r.pinion_wrench;
+    let scale = nalgebra::Vector3::new(w[0], w[1], w[2]).norm();
+    for (s, g, d) in [(&sup.pinion, w, &r.pinion), (&sup.wheel, -w, &r.wheel)] {
+        let (f, m) = s.residual(&g, d);
+        assert!(f.norm() < 1e-9 * scale, "force residual {f}");
+        assert!(m.norm() < 1e-9 * scale * 0.2, "moment residual {m}");
+    }
+    // The contact's torque about the moved pinion axis against the LTCA's
+    // applied torque: the wrench built from points and normals against the
+    // LTCA's levers.
+    assert!(
+        (r.pinion_contact_torque_nm.abs() - TORQUE_NM).abs() < 1e-9 * TORQUE_NM,
+        "{} N·m",
+        r.pinion_contact_torque_nm
+    );
+    // Reactions add up to the mesh force on each member.
+    let sum: nalgebra::Vector3<f64> = r.pinion_reactions.iter().sum();
+    assert!((sum + nalgebra::Vector3::new(w[0], w[1], w[2])).norm() < 1e-9 * scale);
+}
+
+#[test]
+fn te_added_by_soft_bearings_scales_with_their_compliance() {
+    let soft = solve_with(2e8);
+    let stiffer = solve_with(4e8);
+    let d_soft = soft.te - soft.te_rigid_bearings;
+    let d_stiff = stiffer.te - stiffer.te_rigid_bearings;
+    assert!(d_soft.abs() > 1e-7, "ΔTE {d_soft} rad");
+    let ratio = d_soft / d_stiff;
+    eprintln!(
+        "300 N·m: TE rigid {:.3} µrad; k 2e8: +{:.3} µrad ({} iterations, pinion apex moved {:.2} µm); k 4e8: +{:.3} µrad ({} iterations)",
+        soft.te_rigid_bearings * 1e6,
+        d_soft * 1e6,
+        soft.iterations,
+        soft.pinion.translation.norm() * 1e6,
+        d_stiff * 1e6,
+        stiffer.iterations
+    );
+    assert!(
+        (ratio - 2.0).abs() < 0.2,
+        "ΔTE ratio {ratio} (soft {d_soft}, stiffer {d_stiff})"
+    );
+}
