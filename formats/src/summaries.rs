@@ -98,6 +98,30 @@ pub struct BlankSummary {
     /// With coast-side contact (`multibody.coast_contact`): the same loads
     /// on the coast flanks.
     pub coast: Option<CoastSummary>,
+    /// With the scene's `[bearings]`: the loads solved with the members on
+    /// their compliant bearings (`bearings.csv` per position).
+    #[serde(default)]
+    pub bearings: Option<Vec<BearingLoadSummary>>,
+}
+
+/// One torque of the LTCA with bearing deflection, over the sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BearingLoadSummary {
+    pub torque_nm: f64,
+    /// Loaded TE with the bearings' deflection, µrad.
+    pub te_mean_urad: f64,
+    pub te_ptp_urad: f64,
+    /// The same positions with rigid bearings (same contact search), µrad.
+    pub rigid_te_mean_urad: f64,
+    pub rigid_te_ptp_urad: f64,
+    /// Largest displacement of each member's pitch apex on its bearings, µm.
+    pub pinion_apex_displacement_um: f64,
+    pub wheel_apex_displacement_um: f64,
+    /// Largest force of each bearing (in the scene's order), N.
+    pub pinion_bearing_force_n: Vec<f64>,
+    pub wheel_bearing_force_n: Vec<f64>,
+    /// Most iterations a position needed.
+    pub max_iterations: usize,
 }
 
 /// The coast flanks under the scene's loads: the pinion driving the other

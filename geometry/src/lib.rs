@@ -23,6 +23,7 @@ pub mod pair;
 pub mod placement;
 pub mod roughness;
 pub mod scene;
+pub mod scene_bearings;
 pub mod scene_checks;
 pub mod scene_contact_law;
 pub mod scene_lumped;

@@ -51,6 +51,10 @@ pub struct Scene {
     /// Ranges of `solver sensitivity`; defaults when absent.
     #[serde(default)]
     pub sensitivity: crate::scene_sensitivity::SensitivitySettings,
+    /// Each member's shaft on compliant bearings (`[bearings]`): the LTCA
+    /// then also solves every position with the bearings' deflection.
+    #[serde(default)]
+    pub bearings: Option<crate::scene_bearings::BearingSettings>,
 }
 
 /// Settings of the multibody runs (`solver dynamic`): rigid pinion and

@@ -49,6 +49,9 @@ impl Scene {
             limit: limit.into(),
         };
         crate::design_file::check_plain_name(path, "name", &self.name)?;
+        if let Some(b) = &self.bearings {
+            b.check(path)?;
+        }
         if let Some(l) = &self.lumped {
             l.check(path)?;
         }

@@ -187,3 +187,69 @@ fn sensitivity_ranges_out_of_range_are_rejected_naming_the_field() {
         "{e}"
     );
 }
+
+#[test]
+fn bearings_that_cannot_hold_the_shaft_or_out_of_range_are_rejected_naming_the_field() {
+    let b = |pos: &str, kr: &str, ka: &str| {
+        format!("{{ axial_position_mm = {pos}, radial_stiffness_n_per_m = {kr}, axial_stiffness_n_per_m = {ka} }}")
+    };
+    let good = format!(
+        "[{}, {}]",
+        b("90.0", "5e8", "5e8"),
+        b("150.0", "5e8", "0.0")
+    );
+    let table = |pinion: &str, extra: &str| {
+        format!("[bearings]\npinion = {pinion}\nwheel = {good}\n{extra}")
+    };
+    let s = scene_with(&table(&good, "")).unwrap();
+    let bs = s.scene.bearings.unwrap();
+    assert_eq!(
+        (bs.pinion.len(), bs.tolerance_nm, bs.max_iterations),
+        (2, 1.0, 60)
+    );
+    for (pinion, field, words) in [
+        (
+            format!("[{}]", b("90.0", "5e8", "5e8")),
+            "bearings.pinion",
+            "tilt",
+        ),
+        (
+            format!("[{}, {}]", b("90.0", "5e8", "5e8"), b("90.0", "5e8", "0.0")),
+            "bearings.pinion",
+            "tilt",
+        ),
+        (
+            format!(
+                "[{}, {}]",
+                b("90.0", "5e8", "0.0"),
+                b("150.0", "5e8", "0.0")
+            ),
+            "bearings.pinion",
+            "axial",
+        ),
+        (
+            format!(
+                "[{}, {}]",
+                b("90.0", "-5e8", "5e8"),
+                b("150.0", "5e8", "0.0")
+            ),
+            "bearings.pinion[0].radial_stiffness_n_per_m",
+            "[0, 1e14]",
+        ),
+        (
+            format!("[{}, {}]", b("nan", "5e8", "5e8"), b("150.0", "5e8", "0.0")),
+            "bearings.pinion[0].axial_position_mm",
+            "finite",
+        ),
+    ] {
+        let e = scene_with(&table(&pinion, "")).unwrap_err();
+        assert!(e.contains(field) && e.contains(words), "{e}");
+    }
+    let e = scene_with(&table(&good, "tolerance_nm = 0.0")).unwrap_err();
+    assert!(e.contains("bearings.tolerance_nm"), "{e}");
+    let e = scene_with(&table(&good, "stiffness = 1.0")).unwrap_err();
+    assert!(
+        e.contains("unknown field") && e.contains("stiffness"),
+        "{e}"
+    );
+}

@@ -169,6 +169,13 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &format!("solver ltca {}", scene.path.display()),
     )?;
     let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    // The bearings are checked before any work.
+    let supports = sc
+        .bearings
+        .as_ref()
+        .map(|b| crate::system_deflection::supports_of(b, &g))
+        .transpose()
+        .with_context(|| format!("scene {}: [bearings]", sc.name))?;
     g.misalign(&sc.misalignment);
     let side = sc.loaded_flank;
     let fp = g.side(side);
@@ -207,6 +214,17 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             std::fs::create_dir_all(&odir)?;
             write_outputs(&odir, &res, &sc.pinion_torque_nm)?;
             let (um, up) = mean_ptp(&res.iter().map(|p| p.utca_te).collect::<Vec<_>>());
+            let bearings = match (&supports, &sc.bearings) {
+                (Some(sup), Some(bs)) => Some(
+                    bearing_loads(scene, &g, &pc, sup, bs, &sweep, &odir).with_context(|| {
+                        format!(
+                            "scene {}: LTCA with bearing deflection, {wb:?} wheel blank",
+                            sc.name
+                        )
+                    })?,
+                ),
+                _ => None,
+            };
             let coast = match &coast_rs {
                 Some(crs) => Some(
                     coast_loads(
@@ -240,6 +258,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 loads: load_summaries(&res, &sc.pinion_torque_nm),
                 dir: final_dir,
                 coast,
+                bearings,
             };
             write_json(&odir.join("summary.json"), &summary)?;
             warn_edge_contact(&sc.name, &format!("{pb:?}/{wb:?} blanks"), &summary.loads);
@@ -273,6 +292,51 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     write_json(&set.path().join("summary.json"), &out_all)?;
     set.commit()?;
     Ok(out_all)
+}
+
+/// The scene's loads with the members on their compliant bearings
+/// ([`crate::system_deflection`]; frictionless), `bearings.csv` written
+/// into `odir`.
+fn bearing_loads(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    pc: &PairCompliance,
+    supports: &crate::system_deflection::Supports,
+    bs: &geometry::scene_bearings::BearingSettings,
+    sweep: &Sweep,
+    odir: &Path,
+) -> anyhow::Result<Vec<formats::summaries::BearingLoadSummary>> {
+    use crate::system_deflection::{
+        bearing_csv, bearing_summaries, bearing_sweep, DeflectionSettings,
+    };
+    let sc = &scene.scene;
+    let t = Instant::now();
+    let m = &sc.misalignment;
+    let rows = bearing_sweep(
+        g,
+        sc.loaded_flank,
+        &sc.utca,
+        pc,
+        supports,
+        (!m.is_zero()).then(|| m.poses(&g.data)),
+        sweep,
+        &sc.pinion_torque_nm,
+        DeflectionSettings {
+            slices: sweep.slices,
+            tolerance_m: bs.tolerance_nm * 1e-9,
+            max_iterations: bs.max_iterations,
+        },
+    )?;
+    write_atomic(&odir.join("bearings.csv"), bearing_csv(&rows).as_bytes())?;
+    let summaries = bearing_summaries(&rows, &sc.pinion_torque_nm);
+    for l in &summaries {
+        eprintln!(
+            "  {:6.1} N·m on compliant bearings: TE mean {:8.2} µrad (rigid {:8.2}), ptp {:7.2} µrad (rigid {:7.2}), pinion apex moved up to {:.2} µm, {} iterations at most",
+            l.torque_nm, l.te_mean_urad, l.rigid_te_mean_urad, l.te_ptp_urad, l.rigid_te_ptp_urad, l.pinion_apex_displacement_um, l.max_iterations
+        );
+    }
+    eprintln!("  bearing deflection: {:.1} s", t.elapsed().as_secs_f64());
+    Ok(summaries)
 }
 
 /// The scene's loads on the coast flanks of pinion blank `pb` × wheel

@@ -21,16 +21,19 @@
 //! frictionless (friction forces would add μ of the normal load to the
 //! wrench, and are left to the caller's friction-free check).
 
-use crate::bearings::{Displacement, Support};
+use crate::bearings::{Bearing, BearingError, Displacement, Support};
 use crate::compliance::PairCompliance;
-use crate::ltca::{assemble, geometry, solve};
+use crate::ltca::{assemble, geometry, mean_ptp, solve, Sweep};
 use crate::SolverError;
+use formats::summaries::BearingLoadSummary;
 use geometry::generation::Side;
 use geometry::misalignment::{BodyPoses, Pose};
 use geometry::pair::PairGeometry;
 use geometry::scene::UtcaSettings;
+use geometry::scene_bearings::BearingSettings;
 use geometry::utca::roll_surface;
 use nalgebra::{Rotation3, Vector3, Vector6};
+use rayon::prelude::*;
 
 /// Both members' supports, fixed frame (apices at the origin).
 #[derive(Debug, Clone)]
@@ -197,4 +200,166 @@ pub fn deflected_position(
         what: "bearing deflection".into(),
         iterations: settings.max_iterations,
     })
+}
+
+/// The scene's bearings as supports of `g`'s members (fixed frame, apices
+/// at the origin).
+pub fn supports_of(settings: &BearingSettings, g: &PairGeometry) -> Result<Supports, BearingError> {
+    let one = |m: usize, name: &str, list: &[geometry::scene_bearings::BearingMm]| {
+        let bearings: Vec<Bearing> = list
+            .iter()
+            .map(|b| Bearing {
+                axial_position_m: b.axial_position_mm * 1e-3,
+                radial_stiffness_n_per_m: b.radial_stiffness_n_per_m,
+                axial_stiffness_n_per_m: b.axial_stiffness_n_per_m,
+            })
+            .collect();
+        Support::new(name, g.frames[m].axis(), Vector3::zeros(), &bearings)
+    };
+    Ok(Supports {
+        pinion: one(0, "bearings.pinion", &settings.pinion)?,
+        wheel: one(1, "bearings.wheel", &settings.wheel)?,
+    })
+}
+
+/// One position × torque of [`bearing_sweep`].
+#[derive(Debug, Clone)]
+pub struct BearingRow {
+    /// Pinion rotation from the sweep start, rad.
+    pub rotation: f64,
+    pub torque_nm: f64,
+    pub state: DeflectedPosition,
+}
+
+/// Every position of `sweep` at every torque with the members on
+/// `supports` (positions in parallel, frictionless); rows by position,
+/// then torque.
+#[allow(clippy::too_many_arguments)]
+pub fn bearing_sweep(
+    g: &PairGeometry,
+    side: Side,
+    utca: &UtcaSettings,
+    pc: &PairCompliance,
+    supports: &Supports,
+    static_poses: Option<BodyPoses>,
+    sweep: &Sweep,
+    torques: &[f64],
+    settings: DeflectionSettings,
+) -> Result<Vec<BearingRow>, SolverError> {
+    let rows: Vec<Vec<BearingRow>> = (0..sweep.positions)
+        .into_par_iter()
+        .map(|k| {
+            let rotation = sweep.step * k as f64;
+            let phi = sweep.start + sweep.direction * rotation;
+            let mut g = g.clone();
+            torques
+                .iter()
+                .map(|&torque_nm| {
+                    deflected_position(
+                        &mut g,
+                        side,
+                        utca,
+                        pc,
+                        supports,
+                        static_poses,
+                        phi,
+                        torque_nm,
+                        settings,
+                    )
+                    .map(|state| BearingRow {
+                        rotation,
+                        torque_nm,
+                        state,
+                    })
+                })
+                .collect()
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(rows.into_iter().flatten().collect())
+}
+
+/// Per-torque statistics of [`bearing_sweep`]'s rows.
+pub fn bearing_summaries(rows: &[BearingRow], torques: &[f64]) -> Vec<BearingLoadSummary> {
+    torques
+        .iter()
+        .map(|&t| {
+            let sel: Vec<&DeflectedPosition> = rows
+                .iter()
+                .filter(|r| r.torque_nm == t)
+                .map(|r| &r.state)
+                .collect();
+            let te: Vec<f64> = sel.iter().map(|s| s.te).collect();
+            let rigid: Vec<f64> = sel.iter().map(|s| s.te_rigid_bearings).collect();
+            let (m, p) = mean_ptp(&te);
+            let (rm, rp) = mean_ptp(&rigid);
+            let most = |f: &dyn Fn(&DeflectedPosition) -> f64| {
+                sel.iter().map(|s| f(s)).fold(0.0, f64::max)
+            };
+            let forces = |f: &dyn Fn(&DeflectedPosition) -> &Vec<Vector3<f64>>| {
+                let n = sel.first().map_or(0, |s| f(s).len());
+                (0..n)
+                    .map(|i| sel.iter().map(|s| f(s)[i].norm()).fold(0.0, f64::max))
+                    .collect()
+            };
+            BearingLoadSummary {
+                torque_nm: t,
+                te_mean_urad: m * 1e6,
+                te_ptp_urad: p * 1e6,
+                rigid_te_mean_urad: rm * 1e6,
+                rigid_te_ptp_urad: rp * 1e6,
+                pinion_apex_displacement_um: most(&|s| s.pinion.translation.norm()) * 1e6,
+                wheel_apex_displacement_um: most(&|s| s.wheel.translation.norm()) * 1e6,
+                pinion_bearing_force_n: forces(&|s| &s.pinion_reactions),
+                wheel_bearing_force_n: forces(&|s| &s.wheel_reactions),
+                max_iterations: sel.iter().map(|s| s.iterations).max().unwrap_or(0),
+            }
+        })
+        .collect()
+}
+
+/// `bearings.csv`: one row per position and torque.
+pub fn bearing_csv(rows: &[BearingRow]) -> String {
+    use std::fmt::Write;
+    let nb = |f: &dyn Fn(&DeflectedPosition) -> usize| rows.first().map_or(0, |r| f(&r.state));
+    let (np, nw) = (
+        nb(&|s| s.pinion_reactions.len()),
+        nb(&|s| s.wheel_reactions.len()),
+    );
+    let mut out = String::from(
+        "pinion_rotation_deg,torque_nm,te_urad,te_rigid_bearings_urad,iterations,pinion_ux_um,pinion_uy_um,pinion_uz_um,pinion_rx_urad,pinion_ry_urad,pinion_rz_urad,wheel_ux_um,wheel_uy_um,wheel_uz_um,wheel_rx_urad,wheel_ry_urad,wheel_rz_urad",
+    );
+    for (member, n) in [("pinion", np), ("wheel", nw)] {
+        for i in 0..n {
+            let _ = write!(
+                out,
+                ",{member}_bearing{i}_fx_n,{member}_bearing{i}_fy_n,{member}_bearing{i}_fz_n"
+            );
+        }
+    }
+    out.push('\n');
+    for r in rows {
+        let s = &r.state;
+        let _ = write!(
+            out,
+            "{:.5},{},{:.5},{:.5},{}",
+            r.rotation.to_degrees(),
+            r.torque_nm,
+            s.te * 1e6,
+            s.te_rigid_bearings * 1e6,
+            s.iterations
+        );
+        for d in [&s.pinion, &s.wheel] {
+            for v in d.translation.iter() {
+                let _ = write!(out, ",{:.5}", v * 1e6);
+            }
+            for v in d.rotation.iter() {
+                let _ = write!(out, ",{:.5}", v * 1e6);
+            }
+        }
+        for f in s.pinion_reactions.iter().chain(&s.wheel_reactions) {
+            let _ = write!(out, ",{:.4},{:.4},{:.4}", f.x, f.y, f.z);
+        }
+        out.push('\n');
+    }
+    out
 }

@@ -177,3 +177,55 @@ fn plan_is_one_set_listing_its_checksum_and_the_scene_and_design_it_came_from() 
     assert_ne!(again.inputs["scene"], info.inputs["scene"]);
     assert_eq!(again.inputs["design"], info.inputs["design"]);
 }
+
+/// `[bearings]` for the fixture: an overhung pinion and a wheel on two
+/// bearings behind their mean points, all of stiffness `k` N/m.
+fn bearings_table(k: f64) -> String {
+    let b = |pos: f64, axial: f64| {
+        format!("{{ axial_position_mm = {pos}, radial_stiffness_n_per_m = {k:e}, axial_stiffness_n_per_m = {axial:e} }}")
+    };
+    format!(
+        "\n[bearings]\npinion = [{}, {}]\nwheel = [{}, {}]\n",
+        b(90.0, k),
+        b(150.0, 0.0),
+        b(80.0, k),
+        b(180.0, 0.0)
+    )
+}
+
+#[test]
+fn ltca_with_bearings_writes_bearings_csv_and_the_deflected_loads_into_the_set() {
+    let tmp = Scratch::new("bearings");
+    let meshes = example().join("meshes");
+    let out = tmp.path().join("out");
+    // Bearings far stiffer than the mesh: the TE is the rigid one.
+    let stiff = scene(tmp.path(), |t| t + &bearings_table(1e14));
+    let res = solver::ltca_stage::run(&stiff, &meshes, &out).unwrap();
+    let b = res[0].bearings.as_ref().expect("bearings summary");
+    assert_eq!(b.len(), 2);
+    for l in b {
+        // About 7 kN on 1e14 N/m moves the apex by 0.1 nm: 1e-3 µrad.
+        assert!(
+            (l.te_mean_urad - l.rigid_te_mean_urad).abs() < 1e-2,
+            "{l:?}"
+        );
+        assert_eq!(l.pinion_bearing_force_n.len(), 2);
+        assert!(l.pinion_bearing_force_n[0] > 0.0);
+    }
+    let csv = std::fs::read_to_string(res[0].dir.join("bearings.csv")).unwrap();
+    assert!(csv.starts_with("pinion_rotation_deg,torque_nm,te_urad"));
+    assert_eq!(csv.lines().count(), 1 + 2 * res[0].positions);
+    let info = formats::result_set::verify_files(&out.join("ltca_fixture/ltca"))
+        .unwrap()
+        .unwrap();
+    assert!(info.files.contains_key("standard_standard/bearings.csv"));
+    // Soft bearings add TE, more at the larger torque.
+    let soft = scene(tmp.path(), |t| t + &bearings_table(3e8));
+    let res = solver::ltca_stage::run(&soft, &meshes, &out).unwrap();
+    let b = res[0].bearings.as_ref().unwrap();
+    let added: Vec<f64> = b
+        .iter()
+        .map(|l| l.te_mean_urad - l.rigid_te_mean_urad)
+        .collect();
+    assert!(added[0] > 1.0 && added[1] > added[0], "{added:?}");
+}
