@@ -138,6 +138,21 @@ enum Cmd {
         #[arg(long)]
         grid_scene: Vec<PathBuf>,
     },
+    /// Run time against error for every stage of the scene's design (UTCA,
+    /// stiffness fields, LTCA, multibody, reference), as Pareto charts:
+    /// `<out>/<scene>/tradeoff/` (summary.json, <stage>.json, <stage>.svg).
+    StageTradeoffs {
+        /// Scene file.
+        scene: PathBuf,
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Scenes of the same design at other contact grids (their
+        /// stiffness files in `meshes/` beside each, or in `--meshes`).
+        #[arg(long)]
+        grid_scene: Vec<PathBuf>,
+    },
     /// Mesh convergence of the reference LTCA: TE at one position and torque
     /// on three mesh levels (standard blanks), observed order, extrapolation.
     Convergence {
@@ -406,6 +421,28 @@ fn main() -> anyhow::Result<()> {
                     ),
                 }
             }
+        }
+        Cmd::StageTradeoffs {
+            scene,
+            meshes,
+            out,
+            grid_scene,
+        } => {
+            let sc = geometry::scene::Scene::load(&scene)?;
+            let s = validate::stage_tradeoffs::run(&sc, &meshes, &out, &grid_scene)?;
+            for st in &s.stages {
+                println!(
+                    "{:24} {} points, {} not run: {}",
+                    st.stage,
+                    st.points.len(),
+                    st.not_run.len(),
+                    st.verdict()
+                );
+            }
+            for (stage, why) in &s.missing {
+                println!("{stage:24} not run: {why}");
+            }
+            println!("trade-off {}: {:.0} s", s.scene, s.wall_s);
         }
         Cmd::Tradeoff {
             scene,

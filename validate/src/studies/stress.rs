@@ -659,12 +659,7 @@ fn multibody_cells(
     bar: &ProgressBar,
 ) -> Vec<Cell> {
     let name = d.name();
-    let sc = &d.scene.scene;
-    let mb = &sc.multibody;
     let tau = d.g.data.mesh_cycle();
-    let ratio = d.g.data.members[0].teeth as f64 / d.g.data.members[1].teeth as f64;
-    let sweep = scene_sweep(&d.scene, &d.g, Blank::Standard);
-    let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
     let mut specs: Vec<(Study, f64, &str, String, f64, f64, f64)> = Vec::new();
     for h in MAX_STEPS_S {
         specs.push((
@@ -699,25 +694,7 @@ fn multibody_cells(
             STUDY_TOLERANCE_RAD,
         ));
     }
-    let (table, build_s) = timed(|| {
-        MeshTable::build(
-            fp,
-            rs,
-            pc,
-            &d.g.frames[0],
-            ratio,
-            TableSpec {
-                start: sweep.start,
-                direction: sweep.direction,
-                step: tau / per_cycle as f64,
-                positions: per_cycle,
-                periodic: true,
-                slices: sc.ltca.slices,
-                lag_nodes: mb.table_lag_nodes,
-                torque_max_nm: PROBE_NM * mb.table_torque_factor,
-            },
-        )
-    });
+    let (table, build_s) = timed(|| probe_table(&d.scene, &d.g, fp, rs, pc, PROBE_NM));
     let mut cells = Vec::new();
     for (study, value, unit, label, rpm, max_step, tol) in specs {
         let mut c = cell(name, study, value, unit, label);
@@ -736,6 +713,42 @@ fn multibody_cells(
         bar.inc(1);
     }
     cells
+}
+
+/// The scene's contact-element table over one mesh cycle (periodic, the
+/// scene's table step, lag nodes and slices), standard blanks, covering
+/// `torque_nm` × `multibody.table_torque_factor`.
+pub fn probe_table(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    fp: &geometry::pair::FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    torque_nm: f64,
+) -> Result<MeshTable, SolverError> {
+    let sc = &scene.scene;
+    let mb = &sc.multibody;
+    let tau = g.data.mesh_cycle();
+    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
+    let sweep = scene_sweep(scene, g, Blank::Standard);
+    let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
+    MeshTable::build(
+        fp,
+        rs,
+        pc,
+        &g.frames[0],
+        ratio,
+        TableSpec {
+            start: sweep.start,
+            direction: sweep.direction,
+            step: tau / per_cycle as f64,
+            positions: per_cycle,
+            periodic: true,
+            slices: sc.ltca.slices,
+            lag_nodes: mb.table_lag_nodes,
+            torque_max_nm: torque_nm * mb.table_torque_factor,
+        },
+    )
 }
 
 /// One line per finished cell (above the progress bar).
