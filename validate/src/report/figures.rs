@@ -39,6 +39,8 @@ pub struct ReportFigures {
     pub lumped: super::lumped::LumpedSection,
     /// The stress matrix's section and outcome grid.
     pub stress: crate::report::stress::StressSection,
+    /// Run time against error for every stage, with its Pareto charts.
+    pub stage_tradeoffs: crate::report::stage_tradeoffs::TradeoffSection,
 }
 
 impl ReportFigures {
@@ -52,6 +54,7 @@ impl ReportFigures {
             .chain(self.contact_laws.iter().flat_map(|c| &c.figures))
             .chain(&self.lumped.figures)
             .chain(&self.stress.figure)
+            .chain(&self.stage_tradeoffs.figures)
     }
 }
 
@@ -100,6 +103,7 @@ pub fn report_figures(
     };
     f.loaded_te = te_figures(o, &s.name, reports, &s.pinion_torque_nm);
     f.stress = crate::report::stress::section(o, &s.name, reports);
+    f.stage_tradeoffs = crate::report::stage_tradeoffs::section(o, &s.name, reports);
     f.tradeoff = copied(
         "Reduced model: error to the reference against run time",
         &o.join(&s.name).join("reference/tradeoff.svg"),

@@ -214,7 +214,7 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
             .filter_map(|c| c.active_set_changes)
             .max()
             .map_or("–".into(), |v| v.to_string()),
-        [Study::MaxStep, Study::Tolerance, Study::Speed]
+        [Study::MaxStep, Study::Tolerance, Study::Speed, Study::MultibodyLoad]
             .into_iter()
             .filter_map(iters)
             .max()

@@ -34,6 +34,7 @@ use anyhow::Context;
 use charts::{outcome_grid, GridCell};
 use formats::output::write_json;
 use formats::result_set::ResultSet;
+use crate::studies::grid_scenes::GridScene;
 use formats::summaries::EdgeContact;
 use geometry::design::Member;
 use geometry::pair::PairGeometry;
@@ -69,6 +70,9 @@ pub const MAX_STEPS_S: [f64; 5] = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2];
 pub const TOLERANCES_RAD: [f64; 4] = [1e-12, 1e-10, 1e-8, 1e-6];
 /// Pinion speeds, rpm.
 pub const SPEEDS_RPM: [f64; 5] = [10.0, 100.0, 1000.0, 3000.0, 10000.0];
+/// Pinion torques of the multibody load study, N·m (0: no load, the
+/// wheel free to cross the backlash).
+pub const MB_LOADS_NM: [f64; 6] = [0.0, 1.0, 10.0, 100.0, 1000.0, 3000.0];
 /// Pinion speed of the step and tolerance studies, rpm.
 pub const STEP_STUDY_RPM: f64 = 1000.0;
 /// Maximum step of the tolerance and speed studies, s.
@@ -93,10 +97,11 @@ pub enum Study {
     MaxStep,
     Tolerance,
     Speed,
+    MultibodyLoad,
 }
 
 impl Study {
-    pub const ALL: [Study; 7] = [
+    pub const ALL: [Study; 8] = [
         Study::Load,
         Study::Slices,
         Study::Grid,
@@ -104,6 +109,7 @@ impl Study {
         Study::MaxStep,
         Study::Tolerance,
         Study::Speed,
+        Study::MultibodyLoad,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -114,6 +120,7 @@ impl Study {
             Study::MaxStep => "multibody max step",
             Study::Tolerance => "multibody tolerance",
             Study::Speed => "pinion speed",
+            Study::MultibodyLoad => "multibody load",
         }
     }
 }
@@ -374,7 +381,8 @@ pub fn run(
         + 2
         + MAX_STEPS_S.len()
         + TOLERANCES_RAD.len()
-        + SPEEDS_RPM.len();
+        + SPEEDS_RPM.len()
+        + MB_LOADS_NM.len();
     let bar = ProgressBar::new((scenes.len() * per_design) as u64);
     bar.set_style(
         ProgressStyle::with_template("stress {bar:40} {pos}/{len} cells, {elapsed} {msg}")
@@ -445,7 +453,8 @@ fn design_cells(
                     + 2
                     + MAX_STEPS_S.len()
                     + TOLERANCES_RAD.len()
-                    + SPEEDS_RPM.len()) as u64,
+                    + SPEEDS_RPM.len()
+                    + MB_LOADS_NM.len()) as u64,
             );
             return Ok((None, v));
         }
@@ -488,7 +497,7 @@ fn design_cells(
     }
     cells.push(c);
     for gs in grid_scenes {
-        if let Some(c) = grid_scene_cell(&d, gs)? {
+        if let Some(c) = grid_scene_cell(&d, gs, meshes)? {
             cells.push(c);
         }
     }
@@ -522,6 +531,7 @@ fn design_cells(
 
     // Multibody.
     cells.extend(multibody_cells(&d, fp, &rs, &pc, inertia, bar));
+    cells.extend(multibody_load_cells(&d, fp, &rs, &pc, inertia, bar));
 
     Ok((
         Some(DesignSummary {
@@ -602,44 +612,30 @@ fn load_cells(
     (cells, e, largest)
 }
 
-/// The LTCA at [`PROBE_NM`] of `path`'s scene when its design is `d`'s
-/// (same design file), from the stiffness files in `meshes/` beside it.
-fn grid_scene_cell(d: &Design, path: &Path) -> anyhow::Result<Option<Cell>> {
-    let s = Scene::load(path).with_context(|| format!("grid scene {}", path.display()))?;
-    let same = std::fs::canonicalize(&s.design_path).ok()
-        == std::fs::canonicalize(&d.scene.design_path).ok();
-    if !same {
+/// The LTCA at [`PROBE_NM`] over `d`'s sweep on the stiffness files of
+/// `path`'s scene (another contact grid) when its design is `d`'s.
+fn grid_scene_cell(d: &Design, path: &Path, meshes: &Path) -> anyhow::Result<Option<Cell>> {
+    let s = GridScene::load(path, meshes)?;
+    if !s.same_design(&d.scene) {
         return Ok(None);
     }
-    let grid = s.scene.mesh.reduced_order;
     let mut c = cell(
         d.name(),
         Study::Grid,
-        (grid.profile * grid.face) as f64,
+        (s.grid[0] * s.grid[1]) as f64,
         "",
-        format!("{} × {}", grid.profile, grid.face),
+        s.label(),
     );
-    let dir = path
-        .parent()
-        .unwrap_or(Path::new("."))
-        .join("meshes")
-        .join(&s.scene.name);
-    let g = PairGeometry::build(&s.pair, Some(&s.design_path))?;
-    let fp = g.side(s.scene.loaded_flank);
-    let rs = roll_surface(fp, &s.scene.utca)?;
-    let pc = (|| -> anyhow::Result<PairCompliance> {
-        Ok(PairCompliance {
-            pinion: member_compliance(&s, &g, &dir, Member::Pinion, Blank::Standard)?.0,
-            wheel: member_compliance(&s, &g, &dir, Member::Wheel, Blank::Standard)?.0,
-        })
-    })();
-    match pc {
+    let sc = &d.scene.scene;
+    let fp = d.g.side(sc.loaded_flank);
+    let rs = roll_surface(fp, &sc.utca)?;
+    match s.compliance() {
         Err(e) => c.outcome = Outcome::Skipped(format!("{e:#}")),
         Ok(pc) => match run_sweep(
             fp,
             &rs,
             &pc,
-            &scene_sweep(&s, &g, Blank::Standard),
+            &scene_sweep(&d.scene, &d.g, Blank::Standard),
             &[PROBE_NM],
         ) {
             Ok(res) => ltca_record(&mut c, &res, 0, PROBE_NM),
@@ -826,6 +822,114 @@ fn free_run(
     c.iterations = Some(integ.newton_iterations);
     c.non_finite = !finite;
     c.energy_drift = Some(drift / scale);
+    c.te_mean_urad = Some(te_sum / n.max(1) as f64 * 1e6);
+    Ok(())
+}
+
+/// The multibody load cells: the pinion at [`STEP_STUDY_RPM`] (imposed),
+/// the wheel resisting each torque of [`MB_LOADS_NM`] (as a pinion torque),
+/// undamped, frictionless, over one mesh cycle from the static state, on a
+/// table covering the largest load. Without coast flanks a torque below the
+/// holding torque (the wheel would run ahead at the tooth changes and leave
+/// the mesh across the backlash, a rattle the model cannot follow) is
+/// refused, naming the limit. Torque balance: the wheel's angular impulse
+/// over the run, |∫(M_mesh − T₂) dt − J₂ Δω₂| / (max(T₂, 1 N·m) t), the
+/// mesh torque integrated by the trapezoid rule over the accepted steps.
+fn multibody_load_cells(
+    d: &Design,
+    fp: &geometry::pair::FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    inertia: [f64; 2],
+    bar: &ProgressBar,
+) -> Vec<Cell> {
+    let top = MB_LOADS_NM.iter().copied().fold(0.0, f64::max);
+    let (table, build_s) = timed(|| probe_table(&d.scene, &d.g, fp, rs, pc, top));
+    let mut cells = Vec::new();
+    for t in MB_LOADS_NM {
+        let mut c = cell(d.name(), Study::MultibodyLoad, t, "N·m", format!("{t} N·m"));
+        match &table {
+            Err(e) => c.outcome = classify(e),
+            Ok(table) => {
+                let cpu0 = thread_cpu_s();
+                if let Err(e) = loaded_run(&mut c, table, inertia, d.g.data.mesh_cycle(), t) {
+                    c.outcome = classify(&e);
+                }
+                c.cpu_s = thread_cpu_s() - cpu0 + build_s / MB_LOADS_NM.len() as f64;
+            }
+        }
+        log_cell(bar, &c);
+        cells.push(c);
+        bar.inc(1);
+    }
+    cells
+}
+
+/// One run of [`multibody_load_cells`].
+fn loaded_run(
+    c: &mut Cell,
+    table: &MeshTable,
+    inertia: [f64; 2],
+    tau: f64,
+    torque: f64,
+) -> Result<(), SolverError> {
+    let r = table.ratio;
+    let w1 = STEP_STUDY_RPM * std::f64::consts::PI / 30.0;
+    let wheel_torque = torque / r;
+    let m = Model {
+        table,
+        coast: None,
+        inertia,
+        damping: 0.0,
+        friction: 0.0,
+        drive: Drive::PinionSpeed {
+            speed: solver::multibody::Ramp {
+                from: w1,
+                to: w1,
+                duration: 0.0,
+            },
+            wheel_torque,
+        },
+    };
+    let holding = m.holding_torque()?;
+    if torque < holding {
+        return Err(SolverError::Table(format!(
+            "pinion torque {torque} N·m is below {holding:.3e} N·m, the torque that holds the wheel (inertia {:.4e} kg·m²) on the drive flanks at {STEP_STUDY_RPM} rpm; without coast flanks it would leave the mesh across the backlash (rattle), which this element cannot follow",
+            inertia[1]
+        )));
+    }
+    let s = m.static_state(0.0)?;
+    let t_end = (tau / w1).min(MAX_RUN_S);
+    let mut integ = Integrator::new(
+        Scheme::EnergyConserving,
+        StepControl {
+            max_step: STUDY_MAX_STEP_S,
+            min_step: STUDY_MAX_STEP_S * 1e-6,
+            tolerance: STUDY_TOLERANCE_RAD,
+        },
+    );
+    let w2_0 = s.v[1];
+    let (mut impulse, mut last): (f64, Option<(f64, f64)>) = (0.0, None);
+    let (mut finite, mut te_sum, mut n) = (true, 0.0, 0usize);
+    let (end, steps) = integrate(&m, s, &mut integ, t_end, |s| {
+        let (ms, _) = m.mesh(s.q)?;
+        let mw = -ms.grad[1];
+        if let Some((t0, m0)) = last {
+            impulse += 0.5 * (m0 + mw) * (s.t - t0);
+        }
+        last = Some((s.t, mw));
+        finite &= mw.is_finite() && s.q.iter().chain(&s.v).chain(&s.a).all(|x| x.is_finite());
+        te_sum += r * s.q[0] - s.q[1];
+        n += 1;
+        Ok(())
+    })?;
+    let residual = impulse - wheel_torque * t_end - inertia[1] * (end.v[1] - w2_0);
+    c.steps = Some(steps);
+    c.sim_time_s = Some(t_end);
+    c.rejected_steps = Some(integ.rejected);
+    c.iterations = Some(integ.newton_iterations);
+    c.non_finite = !finite;
+    c.torque_balance = Some(residual.abs() / (wheel_torque.max(1.0) * t_end));
     c.te_mean_urad = Some(te_sum / n.max(1) as f64 * 1e6);
     Ok(())
 }
