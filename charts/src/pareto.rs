@@ -100,7 +100,12 @@ pub fn pareto_chart(
     let mut entries: Vec<(String, Sample)> = series
         .iter()
         .enumerate()
-        .map(|(j, s)| (s.name.clone(), Sample::LineMarker(PALETTE[j % PALETTE.len()])))
+        .map(|(j, s)| {
+            (
+                s.name.clone(),
+                Sample::LineMarker(PALETTE[j % PALETTE.len()]),
+            )
+        })
         .collect();
     entries.push((
         format!("target {target} %"),
@@ -162,7 +167,11 @@ pub fn pareto_chart(
                     .draw_series(LineSeries::new(front, color.stroke_width(2)))
                     .map_err(de)?;
             }
-            for p in s.points.iter().filter(|p| p.cost > 0.0 && p.error.is_finite()) {
+            for p in s
+                .points
+                .iter()
+                .filter(|p| p.cost > 0.0 && p.error.is_finite())
+            {
                 let at = xy(p);
                 chart
                     .draw_series(std::iter::once(Circle::new(at, 5, color.filled())))
@@ -201,7 +210,13 @@ mod tests {
 
     #[test]
     fn pareto_front_drops_dominated_points_and_sorts_by_cost() {
-        let pts = [p(3.0, 1.0), p(1.0, 5.0), p(2.0, 6.0), p(4.0, 1.0), p(0.5, f64::NAN)];
+        let pts = [
+            p(3.0, 1.0),
+            p(1.0, 5.0),
+            p(2.0, 6.0),
+            p(4.0, 1.0),
+            p(0.5, f64::NAN),
+        ];
         assert_eq!(pareto_front(&pts), vec![1, 0]);
     }
 }

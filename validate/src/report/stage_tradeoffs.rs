@@ -45,7 +45,12 @@ pub fn section(out: &Path, scene: &str, reports: &Path) -> TradeoffSection {
     );
     for st in &s.stages {
         let fig = st.chart.as_ref().and_then(|c| {
-            copied(&st.title, &dir.join(c), Path::new(reports), &format!("tradeoff_{c}"))
+            copied(
+                &st.title,
+                &dir.join(c),
+                Path::new(reports),
+                &format!("tradeoff_{c}"),
+            )
         });
         stage(&mut m, st, fig.as_ref());
         figures.extend(fig);
@@ -67,7 +72,10 @@ fn stage(m: &mut String, st: &StageTradeoff, fig: Option<&Figure>) {
     if let Some(f) = fig {
         let _ = writeln!(m, "![{}]({})\n", f.title, f.file);
     }
-    let _ = writeln!(m, "| parameter | setting | cost (s) | error (%) | secondary (%) | default |");
+    let _ = writeln!(
+        m,
+        "| parameter | setting | cost (s) | error (%) | secondary (%) | default |"
+    );
     let _ = writeln!(m, "|---|---|---|---|---|---|");
     for p in &st.points {
         let _ = writeln!(
@@ -83,7 +91,11 @@ fn stage(m: &mut String, st: &StageTradeoff, fig: Option<&Figure>) {
     }
     m.push('\n');
     for n in &st.not_run {
-        let _ = writeln!(m, "- {} = {}: not run: {}", n.parameter, n.setting, n.reason);
+        let _ = writeln!(
+            m,
+            "- {} = {}: not run: {}",
+            n.parameter, n.setting, n.reason
+        );
     }
     if !st.not_run.is_empty() {
         m.push('\n');

@@ -3,11 +3,11 @@
 //! standard blanks' compliance and fields from them.
 
 use anyhow::Context;
+use formats::paths::MeshLevel;
 use formats::stiffness_file::StiffnessData;
 use formats::stiffness_plan;
 use geometry::design::Member;
 use geometry::pair::PairGeometry;
-use formats::paths::MeshLevel;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use solver::compliance::PairCompliance;
 use solver::ltca_stage::member_compliance;

@@ -24,7 +24,9 @@
 
 use crate::studies::grid_scenes::GridScene;
 use crate::studies::tradeoff_stage::StageTradeoff;
-use crate::studies::{tradeoff_fields, tradeoff_ltca, tradeoff_multibody, tradeoff_reference, tradeoff_utca};
+use crate::studies::{
+    tradeoff_fields, tradeoff_ltca, tradeoff_multibody, tradeoff_reference, tradeoff_utca,
+};
 use anyhow::Context;
 use formats::output::write_json;
 use formats::result_set::ResultSet;
@@ -105,7 +107,11 @@ pub fn run(
     note("utca", tradeoff_utca::run(scene).map(|s| vec![s]), &bar);
     bar.set_message("stiffness fields");
     let own = [sc.mesh.reduced_order.profile, sc.mesh.reduced_order.face];
-    note("stiffness", Ok(vec![tradeoff_fields::run(&grids, own)]), &bar);
+    note(
+        "stiffness",
+        Ok(vec![tradeoff_fields::run(&grids, own)]),
+        &bar,
+    );
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dir = meshes.join(&sc.name);
     let pair = (|| -> anyhow::Result<(PairCompliance, [f64; 2])> {
@@ -113,7 +119,13 @@ pub fn run(
         let (whl, wp) = member_compliance(scene, &g, &dir, Member::Wheel, Blank::Standard)?;
         let j1 = inertia(scene, &g, &dir, &pp, Member::Pinion)?.0;
         let j2 = inertia(scene, &g, &dir, &wp, Member::Wheel)?.0;
-        Ok((PairCompliance { pinion: pin, wheel: whl }, [j1, j2]))
+        Ok((
+            PairCompliance {
+                pinion: pin,
+                wheel: whl,
+            },
+            [j1, j2],
+        ))
     })();
     match pair {
         Err(e) => {
@@ -124,7 +136,11 @@ pub fn run(
         }
         Ok((pc, j)) => {
             bar.set_message("LTCA");
-            note("ltca", tradeoff_ltca::run(scene, out, &pc, &grids).map(|s| vec![s]), &bar);
+            note(
+                "ltca",
+                tradeoff_ltca::run(scene, out, &pc, &grids).map(|s| vec![s]),
+                &bar,
+            );
             bar.set_message("multibody");
             let fp = g.side(sc.loaded_flank);
             let r = roll_surface(fp, &sc.utca)

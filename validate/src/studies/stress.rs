@@ -8,8 +8,9 @@
 //!   refusal), at most [`DOUBLINGS`] times;
 //! - slices per tooth pair [`SLICES`] at [`PROBE_NM`];
 //! - the stiffness grid of the cached files, and of any `--grid-scene`
-//!   whose design is the same (the white-paper pair's 6 × 10 example-02
-//!   fixture); other grids need new stiffness files and are not run;
+//!   whose design is the same (`make stress`: the white-paper pair at
+//!   6 × 10 … 24 × 40, `reference/scenes/grids/`), over the design's sweep;
+//!   a grid scene without stiffness files is skipped, naming why;
 //! - the coast flanks at [`PROBE_NM`] where their stiffness files exist;
 //! - multibody, both members free with constant torques ([`PROBE_NM`] on
 //!   the pinion, the balancing torque on the wheel), undamped, without
@@ -20,7 +21,10 @@
 //!   1e-6 s run at 1,000 rpm to a few thousand steps; the 0.1 s cap keeps
 //!   the 10 rpm runs (an undamped mesh vibration resolved to 1e-9 rad
 //!   needs steps of a few µs: a whole cycle of seed 002 at 10 rpm would
-//!   take some 500,000 steps) to the matrix's 20 min.
+//!   take some 500,000 steps) to the matrix's 20 min;
+//! - multibody loads [`MB_LOADS_NM`] (0 N·m: the wheel free to cross the
+//!   backlash) at [`STEP_STUDY_RPM`] imposed on the pinion, with the
+//!   wheel's impulse balance (see [`loaded_run`]).
 //!
 //! Every cell records its outcome (converged, refused with the refusal's
 //! message, failed with the error, or skipped where its inputs are not
@@ -30,11 +34,11 @@
 //! Written as one result set to `<out>/<scene>/stress/` (`summary.json`,
 //! [`StressSummary`], and `outcomes.svg`).
 
+use crate::studies::grid_scenes::GridScene;
 use anyhow::Context;
 use charts::{outcome_grid, GridCell};
 use formats::output::write_json;
 use formats::result_set::ResultSet;
-use crate::studies::grid_scenes::GridScene;
 use formats::summaries::EdgeContact;
 use geometry::design::Member;
 use geometry::pair::PairGeometry;
@@ -833,8 +837,11 @@ fn free_run(
 /// holding torque (the wheel would run ahead at the tooth changes and leave
 /// the mesh across the backlash, a rattle the model cannot follow) is
 /// refused, naming the limit. Torque balance: the wheel's angular impulse
-/// over the run, |∫(M_mesh − T₂) dt − J₂ Δω₂| / (max(T₂, 1 N·m) t), the
-/// mesh torque integrated by the trapezoid rule over the accepted steps.
+/// over the run, |Σ h (−ḡ₂) − T₂ t − J₂ Δω₂| / (max(T₂, 1 N·m) t), with
+/// ḡ₂ the scheme's discrete gradient of the element's potential in each
+/// accepted step (the torque the integrator applied; the element's
+/// pointwise torque −∂V/∂q₂ at the step ends, trapezoid-integrated, does
+/// not balance the impulse: see the issue-28 notes).
 fn multibody_load_cells(
     d: &Design,
     fp: &geometry::pair::FlankPair,
@@ -865,8 +872,9 @@ fn multibody_load_cells(
     cells
 }
 
-/// One run of [`multibody_load_cells`].
-fn loaded_run(
+/// One run of [`multibody_load_cells`] into `c` (its torque balance, steps,
+/// TE); a refusal or failure as the error.
+pub fn loaded_run(
     c: &mut Cell,
     table: &MeshTable,
     inertia: [f64; 2],
@@ -909,16 +917,24 @@ fn loaded_run(
         },
     );
     let w2_0 = s.v[1];
-    let (mut impulse, mut last): (f64, Option<(f64, f64)>) = (0.0, None);
+    // The scheme's own wheel balance per step: J₂ (v⁺ − v) = −h T₂ − h ḡ₂,
+    // ḡ₂ = (V(q⁺) − V(q₁⁺, q₂)) / (q₂⁺ − q₂) its discrete gradient.
+    let (mut impulse, mut last): (f64, Option<(f64, [f64; 2])>) = (0.0, None);
     let (mut finite, mut te_sum, mut n) = (true, 0.0, 0usize);
     let (end, steps) = integrate(&m, s, &mut integ, t_end, |s| {
-        let (ms, _) = m.mesh(s.q)?;
-        let mw = -ms.grad[1];
-        if let Some((t0, m0)) = last {
-            impulse += 0.5 * (m0 + mw) * (s.t - t0);
+        if let Some((t0, q0)) = last {
+            let dq = s.q[1] - q0[1];
+            let g = if dq.abs() > 1e-10 {
+                (m.potential(s.q)? - m.potential([s.q[0], q0[1]])?) / dq
+            } else {
+                m.mesh([0.5 * (s.q[0] + q0[0]), 0.5 * (s.q[1] + q0[1])])?
+                    .0
+                    .grad[1]
+            };
+            impulse -= g * (s.t - t0);
         }
-        last = Some((s.t, mw));
-        finite &= mw.is_finite() && s.q.iter().chain(&s.v).chain(&s.a).all(|x| x.is_finite());
+        last = Some((s.t, s.q));
+        finite &= s.q.iter().chain(&s.v).chain(&s.a).all(|x| x.is_finite());
         te_sum += r * s.q[0] - s.q[1];
         n += 1;
         Ok(())

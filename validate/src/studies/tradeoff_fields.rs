@@ -30,11 +30,12 @@ const LEVEL: &str = "mesh level (same grid)";
 /// The loaded tooth's displacement under a uniform unit pressure, per grid
 /// point (index i_face · profile + i_profile).
 pub fn uniform_pressure_displacement(d: &StiffnessData) -> anyhow::Result<Vec<f64>> {
-    let o = d
-        .offsets
-        .iter()
-        .position(|&o| o == 0)
-        .ok_or_else(|| anyhow::anyhow!("stiffness file of the {} has no loaded tooth (offset 0)", d.member))?;
+    let o = d.offsets.iter().position(|&o| o == 0).ok_or_else(|| {
+        anyhow::anyhow!(
+            "stiffness file of the {} has no loaded tooth (offset 0)",
+            d.member
+        )
+    })?;
     let np = d.points();
     Ok((0..np)
         .map(|p| (0..np).map(|i| d.global_at(0, o, i, p)).sum::<f64>() / np as f64)
@@ -123,12 +124,20 @@ pub fn run(grids: &[GridScene], default_grid: [u32; 2]) -> StageTradeoff {
         }
     }
     if let Some((s, _)) = loaded.last() {
-        st.skip(GRID, &s.label(), "the finest grid run: nothing finer to compare with".into());
+        st.skip(
+            GRID,
+            &s.label(),
+            "the finest grid run: nothing finer to compare with".into(),
+        );
     }
     // Mesh level on the scene's own grid: reduced against medium.
     if let Some((s, (c, cost))) = loaded.iter().find(|(s, _)| s.grid == default_grid) {
         match fields(s, MeshLevel::Medium) {
-            Err(e) => st.skip(LEVEL, "reduced", format!("no medium-level stiffness files to compare with: {e:#}")),
+            Err(e) => st.skip(
+                LEVEL,
+                "reduced",
+                format!("no medium-level stiffness files to compare with: {e:#}"),
+            ),
             Ok((f, fcost)) => {
                 let err = (|| -> anyhow::Result<f64> {
                     Ok(field_error_pct(&c[0], &f[0])?.max(field_error_pct(&c[1], &f[1])?))

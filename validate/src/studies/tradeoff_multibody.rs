@@ -85,10 +85,23 @@ struct Setup<'a> {
 }
 
 impl Setup<'_> {
-    fn quasi_static(&self, max_step: f64, tol: f64, ltca: &[f64], step: f64) -> anyhow::Result<(f64, f64, f64)> {
+    fn quasi_static(
+        &self,
+        max_step: f64,
+        tol: f64,
+        ltca: &[f64],
+        step: f64,
+    ) -> anyhow::Result<(f64, f64, f64)> {
         let mb = &self.scene.scene.multibody;
         let w2 = mb.quasi_static_wheel_rpm * std::f64::consts::PI / 30.0;
-        let (m, s0) = wheel_driven(&self.table, self.inertia, w2, PROBE_NM, mb.damping_ratio, 0.0)?;
+        let (m, s0) = wheel_driven(
+            &self.table,
+            self.inertia,
+            w2,
+            PROBE_NM,
+            mb.damping_ratio,
+            0.0,
+        )?;
         let range = step * (ltca.len() - 1) as f64;
         let t_end = (range + 2.0 * step) / (w2 / self.table.ratio);
         let ((_, q1, te), cpu) = trace(&m, s0, self.scheme, max_step, tol, t_end)?;
@@ -165,7 +178,9 @@ pub fn run(
         scene,
         table,
         inertia,
-        scheme: Scheme::GeneralizedAlpha { rho_inf: mb.rho_inf },
+        scheme: Scheme::GeneralizedAlpha {
+            rho_inf: mb.rho_inf,
+        },
     };
     // The LTCA at the scene's rotation step over one mesh cycle.
     let base = scene_sweep(scene, g, Blank::Standard);
@@ -186,7 +201,11 @@ pub fn run(
         v
     };
     let tol0 = mb.te_tolerance_urad;
-    let add = |st: &mut StageTradeoff, par: &str, v: f64, d: bool, r: anyhow::Result<(f64, f64, Option<f64>)>| {
+    let add = |st: &mut StageTradeoff,
+               par: &str,
+               v: f64,
+               d: bool,
+               r: anyhow::Result<(f64, f64, Option<f64>)>| {
         let label = format!("{v:e}");
         match r {
             Ok((cpu, e, e2)) => st.push(TradeoffPoint {
@@ -203,11 +222,15 @@ pub fn run(
     };
     let h0 = mb.quasi_static_max_step_s;
     for h in with(&QS_STEPS_S, h0) {
-        let r = setup.quasi_static(h, tol0, &ltca, sweep.step).map(|(c, e, p)| (c, e, Some(p)));
+        let r = setup
+            .quasi_static(h, tol0, &ltca, sweep.step)
+            .map(|(c, e, p)| (c, e, Some(p)));
         add(&mut qs, QS_STEP, h, h == h0, r);
     }
     for tol in with(&TOLERANCES_URAD, tol0) {
-        let r = setup.quasi_static(h0, tol, &ltca, sweep.step).map(|(c, e, p)| (c, e, Some(p)));
+        let r = setup
+            .quasi_static(h0, tol, &ltca, sweep.step)
+            .map(|(c, e, p)| (c, e, Some(p)));
         add(&mut qs, QS_TOL, tol, tol == tol0, r);
     }
     // Run-up, against one reference run.
@@ -221,7 +244,11 @@ pub fn run(
         .map_err(anyhow::Error::from)
         .and_then(|(m, s0)| Ok(trace(&m, s0, setup.scheme, h_ref, tol_ref, RUNUP_WINDOW_S)?.0));
     match reference {
-        Err(e) => ru.skip(RU_STEP, "all", format!("reference run-up ({h_ref:e} s): {e:#}")),
+        Err(e) => ru.skip(
+            RU_STEP,
+            "all",
+            format!("reference run-up ({h_ref:e} s): {e:#}"),
+        ),
         Ok(reference) => {
             for h in steps {
                 let r = setup.runup(h, tol0, &reference).map(|(c, e)| (c, e, None));

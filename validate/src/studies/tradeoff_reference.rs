@@ -46,7 +46,11 @@ pub fn run(out: &Path, scene: &str) -> anyhow::Result<Option<StageTradeoff>> {
             .filter_map(|t| t.error_to_extrapolation_pct.get(k).copied().flatten())
             .collect();
         if errs.is_empty() {
-            st.skip(LEVEL, &label, "no torque has a Richardson extrapolation".into());
+            st.skip(
+                LEVEL,
+                &label,
+                "no torque has a Richardson extrapolation".into(),
+            );
             continue;
         }
         st.push(TradeoffPoint {

@@ -132,10 +132,7 @@ impl StageTradeoff {
             None => "no default setting was run".into(),
         };
         match (&self.cheapest, self.default_is_cheapest) {
-            (None, _) => format!(
-                "no setting reaches {} %; {d}",
-                self.target_pct
-            ),
+            (None, _) => format!("no setting reaches {} %; {d}", self.target_pct),
             (Some(_), Some(true)) => format!(
                 "the default is the cheapest setting within {} %: {d}",
                 self.target_pct

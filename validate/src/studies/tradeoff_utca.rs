@@ -52,11 +52,16 @@ fn point(
     let rot: Vec<f64> = (0..te.len()).map(|k| step * k as f64).collect();
     let (lo, hi) = direct
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), d| (a.min(d.1), b.max(d.1)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), d| {
+            (a.min(d.1), b.max(d.1))
+        });
     let worst = direct
         .iter()
         .map(|&(r, d)| (interpolate(&rot, &te, r) - d).abs())
-        .fold(0.0, |a: f64, b| if b.is_nan() { f64::NAN } else { a.max(b) });
+        .fold(
+            0.0,
+            |a: f64, b| if b.is_nan() { f64::NAN } else { a.max(b) },
+        );
     Ok((cpu, worst / (hi - lo) * 100.0))
 }
 
@@ -84,7 +89,10 @@ pub fn run(scene: &LoadedScene) -> anyhow::Result<StageTradeoff> {
         // 0.37 of a spacing off: on no studied step's grid.
         let r = (k as f64 + 0.37) * tau / DIRECT_POSITIONS as f64;
         let d = direct_te(fp, &nodes, fp.roll_range[0] + dir * r, dir).ok_or_else(|| {
-            anyhow::anyhow!("direct contact search found no contact at {:.3}°", r.to_degrees())
+            anyhow::anyhow!(
+                "direct contact search found no contact at {:.3}°",
+                r.to_degrees()
+            )
         })?;
         direct.push((r, d.te));
     }
