@@ -115,26 +115,29 @@ convergence: build
 # (reference/scenes/seed*_*x*.toml), standard blanks, reduced meshes and
 # stiffness files made where missing or stale and reused otherwise; the
 # white-paper pair also at the contact grids of reference/scenes/grids/
-# (6 x 10 ... 24 x 40; a grid whose stiffness stage fails is reported as
-# skipped, with the stage's error printed here). Then run time against
+# (6 x 10 ... 24 x 40), and every design's coast flanks from the scenes of
+# reference/scenes/coast/ (coast-flank contact: coast-refined meshes and
+# coast stiffness files); a grid or coast scene whose stiffness stage fails
+# is reported as skipped, with the stage's error printed here. Then run time against
 # error for every stage of the scene (`validate stage-tradeoffs`).
 # Writes $(OUT)/<scene>/stress/ (summary.json, outcomes.svg) and
 # $(OUT)/<scene>/tradeoff/ (summary.json, <stage>.json, <stage>.svg); the
 # report shows both.
 SEED_SCENES := $(wildcard reference/scenes/seed[0-9][0-9][0-9]_[0-9]*x[0-9]*.toml)
 GRID_SCENES := $(sort $(wildcard reference/scenes/grids/*.toml))
+COAST_SCENES := $(sort $(wildcard reference/scenes/coast/*.toml))
 stress: build
 	$(BIN)/preprocess mesh $(SCENE) --level reduced --out meshes
 	$(BIN)/preprocess stiffness $(SCENE) --meshes meshes
 	@for s in $(SEED_SCENES); do \
 	  $(BIN)/preprocess mesh $$s --level reduced --out meshes && \
 	  $(BIN)/preprocess stiffness $$s --meshes meshes || exit 1; done
-	@for s in $(GRID_SCENES); do \
+	@for s in $(GRID_SCENES) $(COAST_SCENES); do \
 	  $(BIN)/preprocess mesh $$s --level reduced --out meshes && \
 	  $(BIN)/preprocess stiffness $$s --meshes meshes || \
 	  echo "stress: stiffness files of $$s could not be made (above); its cells are skipped"; done
 	$(BIN)/validate stress $(SCENE) --meshes meshes --out $(OUT) \
-	  $(addprefix --grid-scene ,$(GRID_SCENES))
+	  $(addprefix --grid-scene ,$(GRID_SCENES)) $(addprefix --coast-scene ,$(COAST_SCENES))
 	$(BIN)/validate stage-tradeoffs $(SCENE) --meshes meshes --out $(OUT) \
 	  $(addprefix --grid-scene ,$(GRID_SCENES))
 

@@ -134,9 +134,13 @@ enum Cmd {
         #[arg(long, default_value = "out")]
         out: PathBuf,
         /// Scenes of the same designs at other stiffness grids, their
-        /// stiffness files in `meshes/` beside each.
+        /// stiffness files in `meshes/` beside each or in `--meshes`.
         #[arg(long)]
         grid_scene: Vec<PathBuf>,
+        /// Scenes of the same designs with coast-flank contact, whose
+        /// coast stiffness files serve the coast cells.
+        #[arg(long)]
+        coast_scene: Vec<PathBuf>,
     },
     /// Run time against error for every stage of the scene's design (UTCA,
     /// stiffness fields, LTCA, multibody, reference), as Pareto charts:
@@ -392,9 +396,10 @@ fn main() -> anyhow::Result<()> {
             meshes,
             out,
             grid_scene,
+            coast_scene,
         } => {
             let sc = geometry::scene::Scene::load(&scene)?;
-            let s = validate::stress::run(&sc, &meshes, &out, &grid_scene)?;
+            let s = validate::stress::run(&sc, &meshes, &out, &grid_scene, &coast_scene)?;
             let n = |k: usize| s.cells.iter().filter(|c| c.outcome.class() == k).count();
             println!(
                 "stress {}: {} cells, {} converged, {} refused, {} failed, {} skipped, {:.0} s",

@@ -364,13 +364,15 @@ pub fn seed_scenes(scene: &Path) -> Vec<PathBuf> {
 }
 
 /// Runs the matrix for `scene` and the seed scenes beside it; `grid_scenes`
-/// are scenes of the same designs at other stiffness grids, each with its
-/// meshes in a `meshes/` folder beside it.
+/// are scenes of the same designs at other stiffness grids, `coast_scenes`
+/// scenes of the same designs with coast-flank stiffness files (each with
+/// its meshes in a `meshes/` folder beside it, or in `meshes`).
 pub fn run(
     scene: &LoadedScene,
     meshes: &Path,
     out: &Path,
     grid_scenes: &[PathBuf],
+    coast_scenes: &[PathBuf],
 ) -> anyhow::Result<StressSummary> {
     let t0 = Instant::now();
     let name = scene.scene.name.clone();
@@ -408,7 +410,7 @@ pub fn run(
                 bar.inc(per_design as u64);
             }
             Ok(s) => {
-                let (d, c) = design_cells(s, meshes, grid_scenes, &bar)?;
+                let (d, c) = design_cells(s, meshes, grid_scenes, coast_scenes, &bar)?;
                 designs.extend(d);
                 cells.extend(c);
             }
@@ -432,6 +434,7 @@ fn design_cells(
     scene: LoadedScene,
     meshes: &Path,
     grid_scenes: &[PathBuf],
+    coast_scenes: &[PathBuf],
     bar: &ProgressBar,
 ) -> anyhow::Result<(Option<DesignSummary>, Vec<Cell>)> {
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
@@ -509,9 +512,9 @@ fn design_cells(
 
     // Coast flanks.
     let mut c = cell(&name, Study::Flank, 1.0, "", "coast".into());
-    match coast_compliance(&d.scene, &d.g, &d.dir, Blank::Standard, Blank::Standard) {
+    match coast_of(&d, meshes, coast_scenes)? {
         Err(e) => c.outcome = Outcome::Skipped(format!("{e:#}")),
-        Ok((cpc, _)) => {
+        Ok(cpc) => {
             let side = sc.loaded_flank.other();
             let cfp = d.g.side(side);
             match roll_surface(cfp, &sc.utca) {
@@ -552,6 +555,30 @@ fn design_cells(
 }
 
 type EdgeAt = Option<(f64, EdgeContact)>;
+
+/// The standard blanks' coast-flank compliance of `d`'s design: from its own
+/// stiffness files, else from the first of `coast_scenes` with its design
+/// (an outer error: a coast scene that does not load).
+fn coast_of(
+    d: &Design,
+    meshes: &Path,
+    coast_scenes: &[PathBuf],
+) -> anyhow::Result<anyhow::Result<PairCompliance>> {
+    let own = coast_compliance(&d.scene, &d.g, &d.dir, Blank::Standard, Blank::Standard);
+    let Err(own_err) = own else {
+        return Ok(own.map(|c| c.0));
+    };
+    for p in coast_scenes {
+        let s = GridScene::load(p, meshes)?;
+        if s.same_design(&d.scene) {
+            return Ok(
+                coast_compliance(&s.scene, &s.g, &s.dir, Blank::Standard, Blank::Standard)
+                    .map(|c| c.0),
+            );
+        }
+    }
+    Ok(Err(own_err))
+}
 
 /// The load study: [`LOADS_NM`] in one sweep (each load warm-started from
 /// the lighter one), then doubling. Returns the cells, the first load with
