@@ -115,3 +115,69 @@ pub fn text(s: &TradeoffSection) -> String {
         None => "## Run time against error\n\nNo trade-off study: `out/<scene>/tradeoff/summary.json` is absent (`make stress` writes it).\n\n".into(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::studies::tradeoff_stage::TradeoffPoint;
+
+    fn summary() -> TradeoffSummary {
+        let mut st = StageTradeoff::new("ltca", "LTCA title", "CPU (s)", "mean TE error");
+        for (n, cpu, err) in [(5, 0.02, 4.0), (10, 0.03, 0.86), (30, 0.08, 0.93)] {
+            st.push(TradeoffPoint {
+                parameter: "slices".into(),
+                setting: format!("{n}"),
+                value: n as f64,
+                cpu_s: cpu,
+                error_pct: err,
+                secondary_error_pct: Some(2.0 * err),
+                is_default: n == 30,
+            });
+        }
+        st.skip("grid", "24 × 40", "stiffness files missing".into());
+        st.finish();
+        TradeoffSummary {
+            scene: "s".into(),
+            stages: vec![st],
+            missing: vec![("reference".into(), "no convergence study".into())],
+            wall_s: 1.0,
+        }
+    }
+
+    #[test]
+    fn section_names_the_cheapest_setting_the_default_and_what_did_not_run() {
+        let out = tempfile::tempdir().unwrap();
+        let reports = tempfile::tempdir().unwrap();
+        let dir = out.path().join("s").join("tradeoff");
+        std::fs::create_dir_all(&dir).unwrap();
+        formats::output::write_json(&dir.join("summary.json"), &summary()).unwrap();
+        let sec = section(out.path(), "s", reports.path());
+        let m = text(&sec);
+        assert!(m.contains("## Run time against error"), "{m}");
+        assert!(
+            m.contains(
+                "Cheapest within 1 %: slices = 10 (0.03000 s, 0.860 %); the default (slices = 30)"
+            ),
+            "{m}"
+        );
+        assert!(
+            m.contains("| slices | 30 | 0.08000 | 0.9300 | 1.860 | yes |"),
+            "{m}"
+        );
+        assert!(
+            m.contains("grid = 24 × 40: not run: stiffness files missing"),
+            "{m}"
+        );
+        assert!(
+            m.contains("**reference**: not run: no convergence study"),
+            "{m}"
+        );
+    }
+
+    #[test]
+    fn no_summary_gives_the_line_that_says_how_to_make_one() {
+        let out = tempfile::tempdir().unwrap();
+        let sec = section(out.path(), "s", out.path());
+        assert!(text(&sec).contains("`make stress` writes it"));
+    }
+}
