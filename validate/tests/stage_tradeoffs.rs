@@ -89,6 +89,7 @@ fn blank_cell(t: f64) -> Cell {
         te_mean_urad: None,
         energy_drift: None,
         edge_contact: None,
+        deflection_to_thickness: None,
         cpu_s: 0.0,
     }
 }
@@ -138,4 +139,28 @@ fn multibody_at_0_nm_without_coast_flanks_is_refused_and_loaded_runs_balance_the
         assert!(!c.non_finite);
         assert!(b <= 1e-9, "{t} N·m: impulse balance {b}");
     }
+}
+
+#[test]
+fn deflection_to_tooth_thickness_is_zero_unloaded_and_grows_5_to_12_fold_from_300_to_3000_nm() {
+    let (scene, meshes) = fixture();
+    let gs = GridScene::load(&scene.path, &meshes).unwrap();
+    let pc = gs.compliance().unwrap();
+    let fp = gs.g.side(scene.scene.loaded_flank);
+    let rs = roll_surface(fp, &scene.scene.utca).unwrap();
+    let sweep = solver::ltca_stage::scene_sweep(&scene, &gs.g, Blank::Standard);
+    let loads = [0.0, 300.0, 3000.0];
+    let res = solver::ltca::run(fp, &rs, &pc, &sweep, &loads).unwrap();
+    let r: Vec<f64> = (0..3)
+        .map(|i| validate::stress::deflection_to_thickness(&res, i, &gs.g.data))
+        .collect();
+    println!("deflection / tooth thickness: {r:?}");
+    assert!(r[0].abs() < 1e-9, "{r:?}");
+    // Nearly linear above the light-load range (Hertzian softening aside).
+    let growth = r[2] / r[1];
+    assert!((5.0..12.0).contains(&growth), "{r:?}");
+    assert!(
+        r[2] < validate::stress::DEFLECTION_LIMIT,
+        "3000 N·m on the white-paper pair: {r:?}"
+    );
 }

@@ -40,7 +40,7 @@ use charts::{outcome_grid, GridCell};
 use formats::output::write_json;
 use formats::result_set::ResultSet;
 use formats::summaries::EdgeContact;
-use geometry::design::Member;
+use geometry::design::{Member, PairData};
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::{roll_surface, RollSurface};
@@ -87,6 +87,11 @@ const STUDY_TOLERANCE_RAD: f64 = 1e-9;
 pub const MAX_RUN_S: f64 = 0.1;
 /// Steps at most of one multibody cell (a run needing more fails).
 pub const MAX_RUN_STEPS: usize = 200_000;
+/// Largest plausible loaded deflection, as a share of the thinner member's
+/// normal tooth thickness: beyond it the linear, small-deflection model
+/// (influence coefficients of the unloaded geometry, contact on the
+/// unloaded flanks) no longer describes the teeth, and its TE is flagged.
+pub const DEFLECTION_LIMIT: f64 = 0.1;
 /// A TE lower than the lighter load's by more than this is a decrease, rad.
 const TE_DECREASE_TOL: f64 = 1e-13;
 
@@ -192,6 +197,12 @@ pub struct Cell {
     pub energy_drift: Option<f64>,
     /// LTCA: the first position whose contact reaches an edge of the flank.
     pub edge_contact: Option<EdgeContact>,
+    /// Load study: the largest loaded deflection over the positions, as an
+    /// arc at the wheel's mean pitch radius, (TE − unloaded TE) r₂ₘ, over
+    /// the thinner member's mean normal tooth thickness (above
+    /// [`DEFLECTION_LIMIT`]: implausible, see there).
+    #[serde(default)]
+    pub deflection_to_thickness: Option<f64>,
     /// CPU time of the cell, s (LTCA: all positions' threads).
     pub cpu_s: f64,
 }
@@ -264,6 +275,7 @@ fn cell(design: &str, study: Study, value: f64, unit: &str, label: String) -> Ce
         te_mean_urad: None,
         energy_drift: None,
         edge_contact: None,
+        deflection_to_thickness: None,
         cpu_s: 0.0,
     }
 }
@@ -297,6 +309,19 @@ pub fn ltca_record(c: &mut Cell, res: &[PositionResult], i: usize, t: f64) {
         .iter()
         .map(|p| p.loads[i].solve_s + (p.geometry_s + p.assembly_s) / n_t)
         .sum();
+}
+
+/// The largest loaded deflection at torque index `i` over the thinner
+/// member's normal tooth thickness (see [`Cell::deflection_to_thickness`]).
+pub fn deflection_to_thickness(res: &[PositionResult], i: usize, pair: &PairData) -> f64 {
+    let r2 = pair.mean_cone_distance * pair.members[1].pitch_angle.sin();
+    let s = pair
+        .normal_thickness(Member::Pinion)
+        .min(pair.normal_thickness(Member::Wheel));
+    res.iter()
+        .map(|p| (p.loads[i].te - p.utca_te) * r2)
+        .fold(0.0, f64::max)
+        / s
 }
 
 /// Where TE at torque index `i` < TE at `i − 1` anywhere (beyond rounding).
@@ -473,7 +498,7 @@ fn design_cells(
     let mut cells = Vec::new();
 
     // Loads.
-    let (loads, edge_at, largest) = load_cells(&name, fp, &rs, &pc, &sweep, bar);
+    let (loads, edge_at, largest) = load_cells(&name, &d.g.data, fp, &rs, &pc, &sweep, bar);
     loads.iter().for_each(|c| log_cell(bar, c));
     cells.extend(loads);
 
@@ -585,6 +610,7 @@ fn coast_of(
 /// edge contact and the largest load run.
 fn load_cells(
     name: &str,
+    pair: &PairData,
     fp: &geometry::pair::FlankPair,
     rs: &RollSurface,
     pc: &PairCompliance,
@@ -600,6 +626,7 @@ fn load_cells(
         Ok(res) => {
             for (i, c) in cells.iter_mut().enumerate() {
                 ltca_record(c, &res, i, LOADS_NM[i]);
+                c.deflection_to_thickness = Some(deflection_to_thickness(&res, i, pair));
                 if i > 0 {
                     c.te_monotonic = Some(!te_decreases(&res, i));
                 }
@@ -609,7 +636,10 @@ fn load_cells(
             // One load's error stops the sweep: each load alone, to name it.
             for c in cells.iter_mut() {
                 match run_sweep(fp, rs, pc, sweep, &[c.value]) {
-                    Ok(res) => ltca_record(c, &res, 0, c.value),
+                    Ok(res) => {
+                        ltca_record(c, &res, 0, c.value);
+                        c.deflection_to_thickness = Some(deflection_to_thickness(&res, 0, pair));
+                    }
                     Err(e) => c.outcome = classify(&e),
                 }
             }
@@ -632,6 +662,7 @@ fn load_cells(
         match run_sweep(fp, rs, pc, sweep, &[t / 2.0, t]) {
             Ok(res) => {
                 ltca_record(&mut c, &res, 1, t);
+                c.deflection_to_thickness = Some(deflection_to_thickness(&res, 1, pair));
                 c.te_monotonic = Some(!te_decreases(&res, 1));
             }
             Err(e) => c.outcome = classify(&e),
