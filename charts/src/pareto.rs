@@ -124,7 +124,7 @@ pub fn pareto_chart(
         },
     ));
     let legend_w = legend_width(&names).max(legend_width(&["default (ringed)"]));
-    let pow10 = |v: &f64| format!("{:.0e}", 10f64.powf(*v));
+    let pow10 = |v: &f64| log_tick(*v);
     render_to_file(path, (1100, 650), |root| {
         let (main, side) = frame(root, title, legend_w)?;
         let px = plot_pixel_range(&main)?;
@@ -195,6 +195,23 @@ pub fn pareto_chart(
     })
 }
 
+/// The label of a tick at log₁₀ value `v`: 10^v to two significant
+/// digits, plain between 0.001 and 10,000, else in e-notation.
+pub(crate) fn log_tick(v: f64) -> String {
+    let x = 10f64.powf(v);
+    if (1e-3..1e4).contains(&x) {
+        let d = (1 - x.log10().floor() as i32).max(0) as usize;
+        let s = format!("{x:.d$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        format!("{x:.1e}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -206,6 +223,15 @@ mod tests {
             label: String::new(),
             is_default: false,
         }
+    }
+
+    #[test]
+    fn log_ticks_are_plain_numbers_in_the_middle_range() {
+        assert_eq!(log_tick(0.0), "1");
+        assert_eq!(log_tick(-1.0), "0.1");
+        assert_eq!(log_tick(2f64.log10()), "2");
+        assert_eq!(log_tick(0.03f64.log10()), "0.03");
+        assert_eq!(log_tick(-5.0), "1.0e-5");
     }
 
     #[test]
