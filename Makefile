@@ -124,7 +124,7 @@ convergence: build
 # $(OUT)/<scene>/tradeoff/ (summary.json, <stage>.json, <stage>.svg); the
 # report shows both. Measured on 2 cores shared with other builds: 7 min 39 s
 # with everything cached (matrix 450 s, trade-offs 7 s); made cold, the grid
-# scenes' meshes and stiffness files take about 17 min more (24 x 40: 7 min)
+# scenes' meshes and stiffness files take about 20 min more (24 x 40: 8 min)
 # and the coast scenes' about 11 min more.
 SEED_SCENES := $(wildcard reference/scenes/seed[0-9][0-9][0-9]_[0-9]*x[0-9]*.toml)
 GRID_SCENES := $(sort $(wildcard reference/scenes/grids/*.toml))

@@ -11,7 +11,9 @@
 //!   whose design is the same (`make stress`: the white-paper pair at
 //!   6 × 10 … 24 × 40, `reference/scenes/grids/`), over the design's sweep;
 //!   a grid scene without stiffness files is skipped, naming why;
-//! - the coast flanks at [`PROBE_NM`] where their stiffness files exist;
+//! - the coast flanks at [`PROBE_NM`], from the design's own coast
+//!   stiffness files or a `--coast-scene` of the design (`make stress`:
+//!   `reference/scenes/coast/`);
 //! - multibody, both members free with constant torques ([`PROBE_NM`] on
 //!   the pinion, the balancing torque on the wheel), undamped, without
 //!   friction, the energy-conserving scheme, from the quasi-static state,
