@@ -55,13 +55,13 @@ pub(crate) const PALETTE: [RGBColor; 10] = [
 pub(crate) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 pub(crate) type DResult<T = ()> = Result<T, String>;
 
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 pub(crate) const TITLE_H: u32 = 48;
 pub(crate) const MARGIN: u32 = 14;
 pub(crate) const X_LABEL_AREA: u32 = 58;
 pub(crate) const Y_LABEL_AREA: u32 = 90;
 const TITLE_FONT: f64 = 27.0;
-const TICK_FONT: f64 = 18.0;
+pub(crate) const TICK_FONT: f64 = 18.0;
 pub(crate) const DESC_FONT: f64 = 20.0;
 
 pub(crate) fn de<E: std::fmt::Display>(e: E) -> String {

@@ -18,7 +18,7 @@
 //!
 //! One module per chart: [`te_curve`] (`curves`), [`flank_map()`]
 //! (`flank_map`), [`contact_path()`] (`contact_path`), [`tooth_section`]
-//! (`section`), [`outcome_grid()`] (`outcome_grid`); the equal-aspect plots share `equal_aspect`, every chart the
+//! (`section`), [`outcome_grid()`] (`outcome_grid`), [`pareto_chart`] (`pareto`); the equal-aspect plots share `equal_aspect`, every chart the
 //! layout of `frame` and the legend of `legend`; the numerical helpers are
 //! in `numeric`.
 
@@ -30,6 +30,7 @@ mod frame;
 mod legend;
 mod numeric;
 mod outcome_grid;
+mod pareto;
 mod section;
 
 pub use contact_path::{contact_path, Ellipse, PathSeries};
@@ -37,6 +38,7 @@ pub use curves::{te_curve, Series};
 pub use flank_map::{flank_map, FlankMap};
 pub use numeric::{equal_aspect_ranges, iso_segments, nice_ticks};
 pub use outcome_grid::{outcome_grid, GridCell};
+pub use pareto::{pareto_chart, pareto_front, ParetoPoint, ParetoSeries};
 pub use section::tooth_section;
 
 use std::path::PathBuf;

@@ -56,16 +56,13 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// A sparse weight vector over global dofs (3 · node + component).
 pub type Weights = Vec<(usize, f64)>;
 
-/// Weights of a unit force along `dir` at `center`, spread over `faces` by the
-/// bump q(r) ∝ (1 − r²/ρ²)² (r < ρ) and integrated consistently (6-point rule
-/// per tri6 face). The weights sum to `dir` (1 N).
-pub fn patch_weights(
+/// The bump's consistent nodal forces on `faces` (node → force) and their sum.
+fn bump_forces(
     mesh: &TetMesh,
     faces: &[[usize; 6]],
     center: [f64; 3],
-    dir: [f64; 3],
     radius: f64,
-) -> Option<Weights> {
+) -> (std::collections::BTreeMap<usize, f64>, f64) {
     let bump = |p: [f64; 3]| {
         let r2 = (0..3).map(|c| (p[c] - center[c]).powi(2)).sum::<f64>() / (radius * radius);
         if r2 < 1.0 {
@@ -88,6 +85,38 @@ pub fn patch_weights(
                 *acc.entry(node).or_default() += fe[l][0];
                 total += fe[l][0];
             }
+        }
+    }
+    (acc, total)
+}
+
+/// Weights of a unit force along `dir` at `center`, spread over `faces` by the
+/// bump q(r) ∝ (1 − r²/ρ²)² (r < ρ) and integrated consistently (6-point rule
+/// per tri6 face). The weights sum to `dir` (1 N).
+///
+/// Where the faces near `center` are so coarse that no quadrature point lies
+/// within ρ (a fine contact grid's small patch on a tooth the mesh did not
+/// refine: only its far-field response is used), ρ is widened to the
+/// nearest face's size, the smallest patch that face's quadrature can carry.
+pub fn patch_weights(
+    mesh: &TetMesh,
+    faces: &[[usize; 6]],
+    center: [f64; 3],
+    dir: [f64; 3],
+    radius: f64,
+) -> Option<Weights> {
+    let (mut acc, mut total) = bump_forces(mesh, faces, center, radius);
+    if total <= 0.0 {
+        let nearest = faces
+            .iter()
+            .map(|f| {
+                let x = f.map(|i| mesh.nodes[i]);
+                let size = (1..6).map(|k| dist(x[0], x[k])).fold(0.0, f64::max);
+                (dist(x[0], center), size)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0))?;
+        if nearest.0 <= radius + nearest.1 {
+            (acc, total) = bump_forces(mesh, faces, center, radius.max(nearest.1));
         }
     }
     if total <= 0.0 {
@@ -605,4 +634,42 @@ fn local_field(
         }
     }
     Ok((out, elements.len()))
+}
+
+#[cfg(test)]
+mod patch_tests {
+    use super::*;
+
+    /// One flat tri6 face of 10 mm legs in z = 0 (corners, then mid-edges).
+    fn coarse_face() -> (TetMesh, Vec<[usize; 6]>) {
+        let h = 0.01;
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [h, 0.0, 0.0],
+            [0.0, h, 0.0],
+            [h / 2.0, 0.0, 0.0],
+            [h / 2.0, h / 2.0, 0.0],
+            [0.0, h / 2.0, 0.0],
+        ];
+        (
+            TetMesh {
+                nodes,
+                tets: Vec::new(),
+            },
+            vec![[0, 1, 2, 3, 4, 5]],
+        )
+    }
+
+    #[test]
+    fn patch_smaller_than_a_coarse_face_is_widened_and_carries_one_newton() {
+        let (mesh, faces) = coarse_face();
+        let dir = [0.0, 0.0, -1.0];
+        // 0.1 mm patch inside a 10 mm face: no quadrature point within it.
+        let w = patch_weights(&mesh, &faces, [0.003, 0.003, 0.0], dir, 1e-4)
+            .expect("widened to the face");
+        let fz: f64 = w.iter().filter(|(d, _)| d % 3 == 2).map(|(_, v)| v).sum();
+        assert!((fz + 1.0).abs() < 1e-12, "sum of weights {fz}");
+        // Far from every face: still refused.
+        assert!(patch_weights(&mesh, &faces, [0.5, 0.5, 0.0], dir, 1e-4).is_none());
+    }
 }

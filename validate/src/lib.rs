@@ -19,4 +19,4 @@ pub use reference::{
     reference_stage,
 };
 pub use report::{comparison, comparison_row, differences, figures, published};
-pub use studies::{convergence, line_load, stress, tradeoff, utca_check};
+pub use studies::{convergence, line_load, stage_tradeoffs, stress, tradeoff, utca_check};

@@ -134,7 +134,26 @@ enum Cmd {
         #[arg(long, default_value = "out")]
         out: PathBuf,
         /// Scenes of the same designs at other stiffness grids, their
-        /// stiffness files in `meshes/` beside each.
+        /// stiffness files in `meshes/` beside each or in `--meshes`.
+        #[arg(long)]
+        grid_scene: Vec<PathBuf>,
+        /// Scenes of the same designs with coast-flank contact, whose
+        /// coast stiffness files serve the coast cells.
+        #[arg(long)]
+        coast_scene: Vec<PathBuf>,
+    },
+    /// Run time against error for every stage of the scene's design (UTCA,
+    /// stiffness fields, LTCA, multibody, reference), as Pareto charts:
+    /// `<out>/<scene>/tradeoff/` (summary.json, <stage>.json, <stage>.svg).
+    StageTradeoffs {
+        /// Scene file.
+        scene: PathBuf,
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Scenes of the same design at other contact grids (their
+        /// stiffness files in `meshes/` beside each, or in `--meshes`).
         #[arg(long)]
         grid_scene: Vec<PathBuf>,
     },
@@ -377,9 +396,10 @@ fn main() -> anyhow::Result<()> {
             meshes,
             out,
             grid_scene,
+            coast_scene,
         } => {
             let sc = geometry::scene::Scene::load(&scene)?;
-            let s = validate::stress::run(&sc, &meshes, &out, &grid_scene)?;
+            let s = validate::stress::run(&sc, &meshes, &out, &grid_scene, &coast_scene)?;
             let n = |k: usize| s.cells.iter().filter(|c| c.outcome.class() == k).count();
             println!(
                 "stress {}: {} cells, {} converged, {} refused, {} failed, {} skipped, {:.0} s",
@@ -406,6 +426,28 @@ fn main() -> anyhow::Result<()> {
                     ),
                 }
             }
+        }
+        Cmd::StageTradeoffs {
+            scene,
+            meshes,
+            out,
+            grid_scene,
+        } => {
+            let sc = geometry::scene::Scene::load(&scene)?;
+            let s = validate::stage_tradeoffs::run(&sc, &meshes, &out, &grid_scene)?;
+            for st in &s.stages {
+                println!(
+                    "{:24} {} points, {} not run: {}",
+                    st.stage,
+                    st.points.len(),
+                    st.not_run.len(),
+                    st.verdict()
+                );
+            }
+            for (stage, why) in &s.missing {
+                println!("{stage:24} not run: {why}");
+            }
+            println!("trade-off {}: {:.0} s", s.scene, s.wall_s);
         }
         Cmd::Tradeoff {
             scene,

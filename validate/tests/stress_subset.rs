@@ -89,6 +89,7 @@ fn blank_cell(design: &str, study: Study, value: f64) -> Cell {
         te_mean_urad: None,
         energy_drift: None,
         edge_contact: None,
+        deflection_to_thickness: None,
         cpu_s: 0.0,
     }
 }

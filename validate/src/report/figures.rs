@@ -41,6 +41,8 @@ pub struct ReportFigures {
     pub sensitivity: super::sensitivity::SensitivitySection,
     /// The stress matrix's section and outcome grid.
     pub stress: crate::report::stress::StressSection,
+    /// Run time against error for every stage, with its Pareto charts.
+    pub stage_tradeoffs: crate::report::stage_tradeoffs::TradeoffSection,
 }
 
 impl ReportFigures {
@@ -55,6 +57,7 @@ impl ReportFigures {
             .chain(&self.lumped.figures)
             .chain(&self.sensitivity.figures)
             .chain(&self.stress.figure)
+            .chain(&self.stage_tradeoffs.figures)
     }
 }
 
@@ -104,6 +107,7 @@ pub fn report_figures(
     };
     f.loaded_te = te_figures(o, &s.name, reports, &s.pinion_torque_nm);
     f.stress = crate::report::stress::section(o, &s.name, reports);
+    f.stage_tradeoffs = crate::report::stage_tradeoffs::section(o, &s.name, reports);
     // Only the plot the trade-off study recorded, of the sweep there now.
     let ref_dir = o.join(&s.name).join("reference");
     f.tradeoff = matches!(

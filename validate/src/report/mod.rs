@@ -20,6 +20,7 @@ pub mod lumped_studies;
 pub mod published;
 pub mod results;
 pub mod sensitivity;
+pub mod stage_tradeoffs;
 pub mod stress;
 
 use crate::figures::{Figure, ReportFigures};
@@ -206,6 +207,7 @@ pub fn markdown(
     unloaded_section(&mut s, c, published, &figs.unloaded);
     roll_surface_section(&mut s, c);
     s.push_str(&stress::text(&figs.stress));
+    s.push_str(&stage_tradeoffs::text(&figs.stage_tradeoffs));
     if let Some(p) = &parts {
         s.push_str(&p.details);
     }

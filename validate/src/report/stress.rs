@@ -120,6 +120,34 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
         }
     }
     let _ = writeln!(m, "| cells with a tensile slice force | {tensile} |");
+    let mut implausible: Vec<String> = Vec::new();
+    for c in &s.cells {
+        let Some(r) = c.deflection_to_thickness else {
+            continue;
+        };
+        if r > crate::stress::DEFLECTION_LIMIT
+            && !implausible
+                .iter()
+                .any(|d| d.starts_with(&format!("{} ", c.design)))
+        {
+            implausible.push(format!(
+                "{} from {} ({:.0} %)",
+                c.design,
+                c.label,
+                r * 100.0
+            ));
+        }
+    }
+    let _ = writeln!(
+        m,
+        "| loaded deflection above {:.0} % of the tooth thickness (TE flagged implausible) | {} |",
+        crate::stress::DEFLECTION_LIMIT * 100.0,
+        if implausible.is_empty() {
+            "nowhere".to_string()
+        } else {
+            implausible.join("; ")
+        }
+    );
     let _ = writeln!(
         m,
         "| TE decreasing with load | {} |",
@@ -214,7 +242,7 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
             .filter_map(|c| c.active_set_changes)
             .max()
             .map_or("–".into(), |v| v.to_string()),
-        [Study::MaxStep, Study::Tolerance, Study::Speed]
+        [Study::MaxStep, Study::Tolerance, Study::Speed, Study::MultibodyLoad]
             .into_iter()
             .filter_map(iters)
             .max()
@@ -250,6 +278,7 @@ mod tests {
             te_mean_urad: Some(100.0),
             energy_drift: None,
             edge_contact: None,
+            deflection_to_thickness: None,
             cpu_s: 0.1,
         }
     }

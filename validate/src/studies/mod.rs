@@ -5,10 +5,21 @@
 //! - [`line_load`]: the stiffness files' global field + Weber–Banaschek
 //!   against fine-mesh FE under a line load;
 //! - [`stress`]: issue 28's stress matrix on cached stiffness files;
-//! - [`tradeoff`]: the reduced model's error to the reference against its run time.
+//! - [`tradeoff`]: the reduced model's error to the reference against its run time;
+//! - [`stage_tradeoffs`]: run time against error for every stage (one
+//!   module per stage, `tradeoff_*`, the shared point type in
+//!   [`tradeoff_stage`], other contact grids' scenes in [`grid_scenes`]).
 
 pub mod convergence;
+pub mod grid_scenes;
 pub mod line_load;
+pub mod stage_tradeoffs;
 pub mod stress;
 pub mod tradeoff;
+pub mod tradeoff_fields;
+pub mod tradeoff_ltca;
+pub mod tradeoff_multibody;
+pub mod tradeoff_reference;
+pub mod tradeoff_stage;
+pub mod tradeoff_utca;
 pub mod utca_check;

@@ -8,9 +8,12 @@
 //!   refusal), at most [`DOUBLINGS`] times;
 //! - slices per tooth pair [`SLICES`] at [`PROBE_NM`];
 //! - the stiffness grid of the cached files, and of any `--grid-scene`
-//!   whose design is the same (the white-paper pair's 6 × 10 example-02
-//!   fixture); other grids need new stiffness files and are not run;
-//! - the coast flanks at [`PROBE_NM`] where their stiffness files exist;
+//!   whose design is the same (`make stress`: the white-paper pair at
+//!   6 × 10 … 24 × 40, `reference/scenes/grids/`), over the design's sweep;
+//!   a grid scene without stiffness files is skipped, naming why;
+//! - the coast flanks at [`PROBE_NM`], from the design's own coast
+//!   stiffness files or a `--coast-scene` of the design (`make stress`:
+//!   `reference/scenes/coast/`);
 //! - multibody, both members free with constant torques ([`PROBE_NM`] on
 //!   the pinion, the balancing torque on the wheel), undamped, without
 //!   friction, the energy-conserving scheme, from the quasi-static state,
@@ -20,7 +23,10 @@
 //!   1e-6 s run at 1,000 rpm to a few thousand steps; the 0.1 s cap keeps
 //!   the 10 rpm runs (an undamped mesh vibration resolved to 1e-9 rad
 //!   needs steps of a few µs: a whole cycle of seed 002 at 10 rpm would
-//!   take some 500,000 steps) to the matrix's 20 min.
+//!   take some 500,000 steps) to the matrix's 20 min;
+//! - multibody loads [`MB_LOADS_NM`] (0 N·m: the wheel free to cross the
+//!   backlash) at [`STEP_STUDY_RPM`] imposed on the pinion, with the
+//!   wheel's impulse balance (see [`loaded_run`]).
 //!
 //! Every cell records its outcome (converged, refused with the refusal's
 //! message, failed with the error, or skipped where its inputs are not
@@ -30,12 +36,13 @@
 //! Written as one result set to `<out>/<scene>/stress/` (`summary.json`,
 //! [`StressSummary`], and `outcomes.svg`).
 
+use crate::studies::grid_scenes::GridScene;
 use anyhow::Context;
 use charts::{outcome_grid, GridCell};
 use formats::output::write_json;
 use formats::result_set::ResultSet;
 use formats::summaries::EdgeContact;
-use geometry::design::Member;
+use geometry::design::{Member, PairData};
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::{roll_surface, RollSurface};
@@ -69,6 +76,9 @@ pub const MAX_STEPS_S: [f64; 5] = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2];
 pub const TOLERANCES_RAD: [f64; 4] = [1e-12, 1e-10, 1e-8, 1e-6];
 /// Pinion speeds, rpm.
 pub const SPEEDS_RPM: [f64; 5] = [10.0, 100.0, 1000.0, 3000.0, 10000.0];
+/// Pinion torques of the multibody load study, N·m (0: no load, the
+/// wheel free to cross the backlash).
+pub const MB_LOADS_NM: [f64; 6] = [0.0, 1.0, 10.0, 100.0, 1000.0, 3000.0];
 /// Pinion speed of the step and tolerance studies, rpm.
 pub const STEP_STUDY_RPM: f64 = 1000.0;
 /// Maximum step of the tolerance and speed studies, s.
@@ -79,6 +89,11 @@ const STUDY_TOLERANCE_RAD: f64 = 1e-9;
 pub const MAX_RUN_S: f64 = 0.1;
 /// Steps at most of one multibody cell (a run needing more fails).
 pub const MAX_RUN_STEPS: usize = 200_000;
+/// Largest plausible loaded deflection, as a share of the thinner member's
+/// normal tooth thickness: beyond it the linear, small-deflection model
+/// (influence coefficients of the unloaded geometry, contact on the
+/// unloaded flanks) no longer describes the teeth, and its TE is flagged.
+pub const DEFLECTION_LIMIT: f64 = 0.1;
 /// A TE lower than the lighter load's by more than this is a decrease, rad.
 const TE_DECREASE_TOL: f64 = 1e-13;
 
@@ -93,10 +108,11 @@ pub enum Study {
     MaxStep,
     Tolerance,
     Speed,
+    MultibodyLoad,
 }
 
 impl Study {
-    pub const ALL: [Study; 7] = [
+    pub const ALL: [Study; 8] = [
         Study::Load,
         Study::Slices,
         Study::Grid,
@@ -104,6 +120,7 @@ impl Study {
         Study::MaxStep,
         Study::Tolerance,
         Study::Speed,
+        Study::MultibodyLoad,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -114,6 +131,7 @@ impl Study {
             Study::MaxStep => "multibody max step",
             Study::Tolerance => "multibody tolerance",
             Study::Speed => "pinion speed",
+            Study::MultibodyLoad => "multibody load",
         }
     }
 }
@@ -181,6 +199,12 @@ pub struct Cell {
     pub energy_drift: Option<f64>,
     /// LTCA: the first position whose contact reaches an edge of the flank.
     pub edge_contact: Option<EdgeContact>,
+    /// Load study: the largest loaded deflection over the positions, as an
+    /// arc at the wheel's mean pitch radius, (TE − unloaded TE) r₂ₘ, over
+    /// the thinner member's mean normal tooth thickness (above
+    /// [`DEFLECTION_LIMIT`]: implausible, see there).
+    #[serde(default)]
+    pub deflection_to_thickness: Option<f64>,
     /// CPU time of the cell, s (LTCA: all positions' threads).
     pub cpu_s: f64,
 }
@@ -253,6 +277,7 @@ fn cell(design: &str, study: Study, value: f64, unit: &str, label: String) -> Ce
         te_mean_urad: None,
         energy_drift: None,
         edge_contact: None,
+        deflection_to_thickness: None,
         cpu_s: 0.0,
     }
 }
@@ -286,6 +311,19 @@ pub fn ltca_record(c: &mut Cell, res: &[PositionResult], i: usize, t: f64) {
         .iter()
         .map(|p| p.loads[i].solve_s + (p.geometry_s + p.assembly_s) / n_t)
         .sum();
+}
+
+/// The largest loaded deflection at torque index `i` over the thinner
+/// member's normal tooth thickness (see [`Cell::deflection_to_thickness`]).
+pub fn deflection_to_thickness(res: &[PositionResult], i: usize, pair: &PairData) -> f64 {
+    let r2 = pair.mean_cone_distance * pair.members[1].pitch_angle.sin();
+    let s = pair
+        .normal_thickness(Member::Pinion)
+        .min(pair.normal_thickness(Member::Wheel));
+    res.iter()
+        .map(|p| (p.loads[i].te - p.utca_te) * r2)
+        .fold(0.0, f64::max)
+        / s
 }
 
 /// Where TE at torque index `i` < TE at `i − 1` anywhere (beyond rounding).
@@ -353,13 +391,15 @@ pub fn seed_scenes(scene: &Path) -> Vec<PathBuf> {
 }
 
 /// Runs the matrix for `scene` and the seed scenes beside it; `grid_scenes`
-/// are scenes of the same designs at other stiffness grids, each with its
-/// meshes in a `meshes/` folder beside it.
+/// are scenes of the same designs at other stiffness grids, `coast_scenes`
+/// scenes of the same designs with coast-flank stiffness files (each with
+/// its meshes in a `meshes/` folder beside it, or in `meshes`).
 pub fn run(
     scene: &LoadedScene,
     meshes: &Path,
     out: &Path,
     grid_scenes: &[PathBuf],
+    coast_scenes: &[PathBuf],
 ) -> anyhow::Result<StressSummary> {
     let t0 = Instant::now();
     let name = scene.scene.name.clone();
@@ -374,7 +414,8 @@ pub fn run(
         + 2
         + MAX_STEPS_S.len()
         + TOLERANCES_RAD.len()
-        + SPEEDS_RPM.len();
+        + SPEEDS_RPM.len()
+        + MB_LOADS_NM.len();
     let bar = ProgressBar::new((scenes.len() * per_design) as u64);
     bar.set_style(
         ProgressStyle::with_template("stress {bar:40} {pos}/{len} cells, {elapsed} {msg}")
@@ -396,7 +437,7 @@ pub fn run(
                 bar.inc(per_design as u64);
             }
             Ok(s) => {
-                let (d, c) = design_cells(s, meshes, grid_scenes, &bar)?;
+                let (d, c) = design_cells(s, meshes, grid_scenes, coast_scenes, &bar)?;
                 designs.extend(d);
                 cells.extend(c);
             }
@@ -420,6 +461,7 @@ fn design_cells(
     scene: LoadedScene,
     meshes: &Path,
     grid_scenes: &[PathBuf],
+    coast_scenes: &[PathBuf],
     bar: &ProgressBar,
 ) -> anyhow::Result<(Option<DesignSummary>, Vec<Cell>)> {
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
@@ -445,7 +487,8 @@ fn design_cells(
                     + 2
                     + MAX_STEPS_S.len()
                     + TOLERANCES_RAD.len()
-                    + SPEEDS_RPM.len()) as u64,
+                    + SPEEDS_RPM.len()
+                    + MB_LOADS_NM.len()) as u64,
             );
             return Ok((None, v));
         }
@@ -457,7 +500,7 @@ fn design_cells(
     let mut cells = Vec::new();
 
     // Loads.
-    let (loads, edge_at, largest) = load_cells(&name, fp, &rs, &pc, &sweep, bar);
+    let (loads, edge_at, largest) = load_cells(&name, &d.g.data, fp, &rs, &pc, &sweep, bar);
     loads.iter().for_each(|c| log_cell(bar, c));
     cells.extend(loads);
 
@@ -488,7 +531,7 @@ fn design_cells(
     }
     cells.push(c);
     for gs in grid_scenes {
-        if let Some(c) = grid_scene_cell(&d, gs)? {
+        if let Some(c) = grid_scene_cell(&d, gs, meshes)? {
             cells.push(c);
         }
     }
@@ -496,9 +539,9 @@ fn design_cells(
 
     // Coast flanks.
     let mut c = cell(&name, Study::Flank, 1.0, "", "coast".into());
-    match coast_compliance(&d.scene, &d.g, &d.dir, Blank::Standard, Blank::Standard) {
+    match coast_of(&d, meshes, coast_scenes)? {
         Err(e) => c.outcome = Outcome::Skipped(format!("{e:#}")),
-        Ok((cpc, _)) => {
+        Ok(cpc) => {
             let side = sc.loaded_flank.other();
             let cfp = d.g.side(side);
             match roll_surface(cfp, &sc.utca) {
@@ -522,6 +565,7 @@ fn design_cells(
 
     // Multibody.
     cells.extend(multibody_cells(&d, fp, &rs, &pc, inertia, bar));
+    cells.extend(multibody_load_cells(&d, fp, &rs, &pc, inertia, bar));
 
     Ok((
         Some(DesignSummary {
@@ -539,11 +583,36 @@ fn design_cells(
 
 type EdgeAt = Option<(f64, EdgeContact)>;
 
+/// The standard blanks' coast-flank compliance of `d`'s design: from its own
+/// stiffness files, else from the first of `coast_scenes` with its design
+/// (an outer error: a coast scene that does not load).
+fn coast_of(
+    d: &Design,
+    meshes: &Path,
+    coast_scenes: &[PathBuf],
+) -> anyhow::Result<anyhow::Result<PairCompliance>> {
+    let own = coast_compliance(&d.scene, &d.g, &d.dir, Blank::Standard, Blank::Standard);
+    let Err(own_err) = own else {
+        return Ok(own.map(|c| c.0));
+    };
+    for p in coast_scenes {
+        let s = GridScene::load(p, meshes)?;
+        if s.same_design(&d.scene) {
+            return Ok(
+                coast_compliance(&s.scene, &s.g, &s.dir, Blank::Standard, Blank::Standard)
+                    .map(|c| c.0),
+            );
+        }
+    }
+    Ok(Err(own_err))
+}
+
 /// The load study: [`LOADS_NM`] in one sweep (each load warm-started from
 /// the lighter one), then doubling. Returns the cells, the first load with
 /// edge contact and the largest load run.
 fn load_cells(
     name: &str,
+    pair: &PairData,
     fp: &geometry::pair::FlankPair,
     rs: &RollSurface,
     pc: &PairCompliance,
@@ -559,6 +628,7 @@ fn load_cells(
         Ok(res) => {
             for (i, c) in cells.iter_mut().enumerate() {
                 ltca_record(c, &res, i, LOADS_NM[i]);
+                c.deflection_to_thickness = Some(deflection_to_thickness(&res, i, pair));
                 if i > 0 {
                     c.te_monotonic = Some(!te_decreases(&res, i));
                 }
@@ -568,7 +638,10 @@ fn load_cells(
             // One load's error stops the sweep: each load alone, to name it.
             for c in cells.iter_mut() {
                 match run_sweep(fp, rs, pc, sweep, &[c.value]) {
-                    Ok(res) => ltca_record(c, &res, 0, c.value),
+                    Ok(res) => {
+                        ltca_record(c, &res, 0, c.value);
+                        c.deflection_to_thickness = Some(deflection_to_thickness(&res, 0, pair));
+                    }
                     Err(e) => c.outcome = classify(&e),
                 }
             }
@@ -591,6 +664,7 @@ fn load_cells(
         match run_sweep(fp, rs, pc, sweep, &[t / 2.0, t]) {
             Ok(res) => {
                 ltca_record(&mut c, &res, 1, t);
+                c.deflection_to_thickness = Some(deflection_to_thickness(&res, 1, pair));
                 c.te_monotonic = Some(!te_decreases(&res, 1));
             }
             Err(e) => c.outcome = classify(&e),
@@ -602,44 +676,30 @@ fn load_cells(
     (cells, e, largest)
 }
 
-/// The LTCA at [`PROBE_NM`] of `path`'s scene when its design is `d`'s
-/// (same design file), from the stiffness files in `meshes/` beside it.
-fn grid_scene_cell(d: &Design, path: &Path) -> anyhow::Result<Option<Cell>> {
-    let s = Scene::load(path).with_context(|| format!("grid scene {}", path.display()))?;
-    let same = std::fs::canonicalize(&s.design_path).ok()
-        == std::fs::canonicalize(&d.scene.design_path).ok();
-    if !same {
+/// The LTCA at [`PROBE_NM`] over `d`'s sweep on the stiffness files of
+/// `path`'s scene (another contact grid) when its design is `d`'s.
+fn grid_scene_cell(d: &Design, path: &Path, meshes: &Path) -> anyhow::Result<Option<Cell>> {
+    let s = GridScene::load(path, meshes)?;
+    if !s.same_design(&d.scene) {
         return Ok(None);
     }
-    let grid = s.scene.mesh.reduced_order;
     let mut c = cell(
         d.name(),
         Study::Grid,
-        (grid.profile * grid.face) as f64,
+        (s.grid[0] * s.grid[1]) as f64,
         "",
-        format!("{} × {}", grid.profile, grid.face),
+        s.label(),
     );
-    let dir = path
-        .parent()
-        .unwrap_or(Path::new("."))
-        .join("meshes")
-        .join(&s.scene.name);
-    let g = PairGeometry::build(&s.pair, Some(&s.design_path))?;
-    let fp = g.side(s.scene.loaded_flank);
-    let rs = roll_surface(fp, &s.scene.utca)?;
-    let pc = (|| -> anyhow::Result<PairCompliance> {
-        Ok(PairCompliance {
-            pinion: member_compliance(&s, &g, &dir, Member::Pinion, Blank::Standard)?.0,
-            wheel: member_compliance(&s, &g, &dir, Member::Wheel, Blank::Standard)?.0,
-        })
-    })();
-    match pc {
+    let sc = &d.scene.scene;
+    let fp = d.g.side(sc.loaded_flank);
+    let rs = roll_surface(fp, &sc.utca)?;
+    match s.compliance() {
         Err(e) => c.outcome = Outcome::Skipped(format!("{e:#}")),
         Ok(pc) => match run_sweep(
             fp,
             &rs,
             &pc,
-            &scene_sweep(&s, &g, Blank::Standard),
+            &scene_sweep(&d.scene, &d.g, Blank::Standard),
             &[PROBE_NM],
         ) {
             Ok(res) => ltca_record(&mut c, &res, 0, PROBE_NM),
@@ -659,12 +719,7 @@ fn multibody_cells(
     bar: &ProgressBar,
 ) -> Vec<Cell> {
     let name = d.name();
-    let sc = &d.scene.scene;
-    let mb = &sc.multibody;
     let tau = d.g.data.mesh_cycle();
-    let ratio = d.g.data.members[0].teeth as f64 / d.g.data.members[1].teeth as f64;
-    let sweep = scene_sweep(&d.scene, &d.g, Blank::Standard);
-    let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
     let mut specs: Vec<(Study, f64, &str, String, f64, f64, f64)> = Vec::new();
     for h in MAX_STEPS_S {
         specs.push((
@@ -699,25 +754,7 @@ fn multibody_cells(
             STUDY_TOLERANCE_RAD,
         ));
     }
-    let (table, build_s) = timed(|| {
-        MeshTable::build(
-            fp,
-            rs,
-            pc,
-            &d.g.frames[0],
-            ratio,
-            TableSpec {
-                start: sweep.start,
-                direction: sweep.direction,
-                step: tau / per_cycle as f64,
-                positions: per_cycle,
-                periodic: true,
-                slices: sc.ltca.slices,
-                lag_nodes: mb.table_lag_nodes,
-                torque_max_nm: PROBE_NM * mb.table_torque_factor,
-            },
-        )
-    });
+    let (table, build_s) = timed(|| probe_table(&d.scene, &d.g, fp, rs, pc, PROBE_NM));
     let mut cells = Vec::new();
     for (study, value, unit, label, rpm, max_step, tol) in specs {
         let mut c = cell(name, study, value, unit, label);
@@ -736,6 +773,42 @@ fn multibody_cells(
         bar.inc(1);
     }
     cells
+}
+
+/// The scene's contact-element table over one mesh cycle (periodic, the
+/// scene's table step, lag nodes and slices), standard blanks, covering
+/// `torque_nm` × `multibody.table_torque_factor`.
+pub fn probe_table(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    fp: &geometry::pair::FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    torque_nm: f64,
+) -> Result<MeshTable, SolverError> {
+    let sc = &scene.scene;
+    let mb = &sc.multibody;
+    let tau = g.data.mesh_cycle();
+    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
+    let sweep = scene_sweep(scene, g, Blank::Standard);
+    let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
+    MeshTable::build(
+        fp,
+        rs,
+        pc,
+        &g.frames[0],
+        ratio,
+        TableSpec {
+            start: sweep.start,
+            direction: sweep.direction,
+            step: tau / per_cycle as f64,
+            positions: per_cycle,
+            periodic: true,
+            slices: sc.ltca.slices,
+            lag_nodes: mb.table_lag_nodes,
+            torque_max_nm: torque_nm * mb.table_torque_factor,
+        },
+    )
 }
 
 /// One line per finished cell (above the progress bar).
@@ -813,6 +886,126 @@ fn free_run(
     c.iterations = Some(integ.newton_iterations);
     c.non_finite = !finite;
     c.energy_drift = Some(drift / scale);
+    c.te_mean_urad = Some(te_sum / n.max(1) as f64 * 1e6);
+    Ok(())
+}
+
+/// The multibody load cells: the pinion at [`STEP_STUDY_RPM`] (imposed),
+/// the wheel resisting each torque of [`MB_LOADS_NM`] (as a pinion torque),
+/// undamped, frictionless, over one mesh cycle from the static state, on a
+/// table covering the largest load. Without coast flanks a torque below the
+/// holding torque (the wheel would run ahead at the tooth changes and leave
+/// the mesh across the backlash, a rattle the model cannot follow) is
+/// refused, naming the limit. Torque balance: the wheel's angular impulse
+/// over the run, |Σ h (−ḡ₂) − T₂ t − J₂ Δω₂| / (max(T₂, 1 N·m) t), with
+/// ḡ₂ the scheme's discrete gradient of the element's potential in each
+/// accepted step (the torque the integrator applied; the element's
+/// pointwise torque −∂V/∂q₂ at the step ends, trapezoid-integrated, does
+/// not balance the impulse: see the issue-28 notes).
+fn multibody_load_cells(
+    d: &Design,
+    fp: &geometry::pair::FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    inertia: [f64; 2],
+    bar: &ProgressBar,
+) -> Vec<Cell> {
+    let top = MB_LOADS_NM.iter().copied().fold(0.0, f64::max);
+    let (table, build_s) = timed(|| probe_table(&d.scene, &d.g, fp, rs, pc, top));
+    let mut cells = Vec::new();
+    for t in MB_LOADS_NM {
+        let mut c = cell(d.name(), Study::MultibodyLoad, t, "N·m", format!("{t} N·m"));
+        match &table {
+            Err(e) => c.outcome = classify(e),
+            Ok(table) => {
+                let cpu0 = thread_cpu_s();
+                if let Err(e) = loaded_run(&mut c, table, inertia, d.g.data.mesh_cycle(), t) {
+                    c.outcome = classify(&e);
+                }
+                c.cpu_s = thread_cpu_s() - cpu0 + build_s / MB_LOADS_NM.len() as f64;
+            }
+        }
+        log_cell(bar, &c);
+        cells.push(c);
+        bar.inc(1);
+    }
+    cells
+}
+
+/// One run of [`multibody_load_cells`] into `c` (its torque balance, steps,
+/// TE); a refusal or failure as the error.
+pub fn loaded_run(
+    c: &mut Cell,
+    table: &MeshTable,
+    inertia: [f64; 2],
+    tau: f64,
+    torque: f64,
+) -> Result<(), SolverError> {
+    let r = table.ratio;
+    let w1 = STEP_STUDY_RPM * std::f64::consts::PI / 30.0;
+    let wheel_torque = torque / r;
+    let m = Model {
+        table,
+        coast: None,
+        inertia,
+        damping: 0.0,
+        friction: 0.0,
+        drive: Drive::PinionSpeed {
+            speed: solver::multibody::Ramp {
+                from: w1,
+                to: w1,
+                duration: 0.0,
+            },
+            wheel_torque,
+        },
+    };
+    let holding = m.holding_torque()?;
+    if torque < holding {
+        return Err(SolverError::Table(format!(
+            "pinion torque {torque} N·m is below {holding:.3e} N·m, the torque that holds the wheel (inertia {:.4e} kg·m²) on the drive flanks at {STEP_STUDY_RPM} rpm; without coast flanks it would leave the mesh across the backlash (rattle), which this element cannot follow",
+            inertia[1]
+        )));
+    }
+    let s = m.static_state(0.0)?;
+    let t_end = (tau / w1).min(MAX_RUN_S);
+    let mut integ = Integrator::new(
+        Scheme::EnergyConserving,
+        StepControl {
+            max_step: STUDY_MAX_STEP_S,
+            min_step: STUDY_MAX_STEP_S * 1e-6,
+            tolerance: STUDY_TOLERANCE_RAD,
+        },
+    );
+    let w2_0 = s.v[1];
+    // The scheme's own wheel balance per step: J₂ (v⁺ − v) = −h T₂ − h ḡ₂,
+    // ḡ₂ = (V(q⁺) − V(q₁⁺, q₂)) / (q₂⁺ − q₂) its discrete gradient.
+    let (mut impulse, mut last): (f64, Option<(f64, [f64; 2])>) = (0.0, None);
+    let (mut finite, mut te_sum, mut n) = (true, 0.0, 0usize);
+    let (end, steps) = integrate(&m, s, &mut integ, t_end, |s| {
+        if let Some((t0, q0)) = last {
+            let dq = s.q[1] - q0[1];
+            let g = if dq.abs() > 1e-10 {
+                (m.potential(s.q)? - m.potential([s.q[0], q0[1]])?) / dq
+            } else {
+                m.mesh([0.5 * (s.q[0] + q0[0]), 0.5 * (s.q[1] + q0[1])])?
+                    .0
+                    .grad[1]
+            };
+            impulse -= g * (s.t - t0);
+        }
+        last = Some((s.t, s.q));
+        finite &= s.q.iter().chain(&s.v).chain(&s.a).all(|x| x.is_finite());
+        te_sum += r * s.q[0] - s.q[1];
+        n += 1;
+        Ok(())
+    })?;
+    let residual = impulse - wheel_torque * t_end - inertia[1] * (end.v[1] - w2_0);
+    c.steps = Some(steps);
+    c.sim_time_s = Some(t_end);
+    c.rejected_steps = Some(integ.rejected);
+    c.iterations = Some(integ.newton_iterations);
+    c.non_finite = !finite;
+    c.torque_balance = Some(residual.abs() / (wheel_torque.max(1.0) * t_end));
     c.te_mean_urad = Some(te_sum / n.max(1) as f64 * 1e6);
     Ok(())
 }
