@@ -81,6 +81,18 @@ pub fn mesh_samples(
     pinion_speed_rad_s: f64,
     mesh_cycle_rad: f64,
 ) -> Result<MeshSamples, LumpedError> {
+    span_samples(res, torque_nm, pinion_speed_rad_s, mesh_cycle_rad, 1.0)
+}
+
+/// As [`mesh_samples`], keeping the positions within `mesh_cycles` mesh
+/// cycles of the first (`period_s` stays the mesh period).
+pub fn span_samples(
+    res: &[PositionResult],
+    torque_nm: f64,
+    pinion_speed_rad_s: f64,
+    mesh_cycle_rad: f64,
+    mesh_cycles: f64,
+) -> Result<MeshSamples, LumpedError> {
     super::model::positive("torque", torque_nm, false)?;
     super::model::positive("pinion speed", pinion_speed_rad_s, false)?;
     let torques = tangent_torques(torque_nm);
@@ -98,7 +110,7 @@ pub fn mesh_samples(
     };
     let keep: Vec<&PositionResult> = res
         .iter()
-        .filter(|p| p.rotation < mesh_cycle_rad * (1.0 - 1e-9))
+        .filter(|p| p.rotation < mesh_cycles * mesh_cycle_rad - 1e-9 * mesh_cycle_rad)
         .collect();
     if keep.len() < 3 {
         return Err(LumpedError::Input(format!(
