@@ -161,7 +161,7 @@ pub fn plot(
 /// Draws an order map: one row per pinion speed (`speeds_rpm`, ascending),
 /// the amplitude `amp[row][k]` at pinion order `orders[k]` in dB re the
 /// largest (60 dB range), each row a band reaching half-way to its
-/// neighbours, with the marked orders as vertical lines.
+/// neighbours, with the marked orders as labelled ticks along the top.
 pub fn plot_order_map(
     path: &Path,
     title: &str,
@@ -235,8 +235,9 @@ pub fn plot_order_map(
             })
         }))?;
         for m in marks.iter().filter(|m| m.order >= o0 && m.order <= o1) {
+            // A tick along the top only: the lines under it stay visible.
             chart.draw_series(LineSeries::new(
-                [(m.order, y0), (m.order, y1)],
+                [(m.order, y1 - 0.05 * (y1 - y0)), (m.order, y1)],
                 WHITE.stroke_width(1),
             ))?;
             chart.draw_series(std::iter::once(Text::new(

@@ -50,18 +50,7 @@ fn cycle(x: f64) -> [f64; 2] {
 fn span(lobe: f64) -> (MeshSamples, Vec<f64>) {
     let period = 1.0 / MESH_HZ;
     let n = SPAN_CYCLES * PER_CYCLE + 1;
-    let mut s = MeshSamples {
-        time_s: Vec::new(),
-        tangent_n_per_m: Vec::new(),
-        secant_n_per_m: Vec::new(),
-        te_m: Vec::new(),
-        deflection_m: Vec::new(),
-        loaded_te_rad: Vec::new(),
-        unloaded_te_rad: Vec::new(),
-        levers_m: model().levers_m,
-        period_s: period,
-        torque_nm: TORQUE_NM,
-    };
+    let mut s = MeshSamples::empty(model().levers_m, period, TORQUE_NM);
     let mut teeth = Vec::new();
     for i in 0..n {
         let c = i as f64 / PER_CYCLE as f64;

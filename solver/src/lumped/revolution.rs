@@ -31,6 +31,7 @@
 
 use super::excitation::{FittedSeries, FourierSeries};
 use super::from_ltca::MeshSamples;
+use super::response::ptp;
 use super::LumpedError;
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
@@ -64,15 +65,6 @@ pub struct Revolution {
     /// Largest residual of the model above at the LTCA positions over the
     /// samples' peak-to-peak: stiffness, deflection.
     pub max_residual_of_ptp: [f64; 2],
-}
-
-fn ptp(v: &[f64]) -> f64 {
-    let (lo, hi) = v
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-    hi - lo
 }
 
 /// Least squares of `y` on the columns `cols`.
