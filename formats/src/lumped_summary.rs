@@ -215,7 +215,7 @@ pub struct OrderMapSummary {
     /// k lobe term c₀, a, b (relative) and δ's d₀, d_a, d_b (m).
     pub stiffness_lobe: [f64; 3],
     pub deflection_lobe_m: [f64; 3],
-    /// 2√(a² + b²): the lobe's peak-to-peak over k̃.
+    /// 2√(a² + b²)/(1 + c₀): the lobe's peak-to-peak over k's revolution mean.
     pub stiffness_lobe_ptp_relative: f64,
     /// Wheel tooth (within one lobe, z₂/n teeth) where the fitted lobe of k
     /// is least; None for an axisymmetric wheel.

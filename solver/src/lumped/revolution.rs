@@ -15,13 +15,17 @@
 //! δ(t) = δ̃(p) + d₀ + d_a cos nψ + d_b sin nψ
 //! ```
 //!
-//! with p the position within the mesh cycle, k̃, δ̃ the mean over the span's
-//! cycles at p, n the number of web holes (the lobes per revolution) and ψ
+//! with p the position within the mesh cycle, k̃, δ̃ the cycle shape, n
+//! the number of web holes (the lobes per revolution) and ψ
 //! the wheel angle of the loaded teeth, 2π w/z₂ with w the force-weighted
 //! wheel tooth of the loaded pairs (pinion tooth j meshes wheel tooth −j),
 //! advanced one tooth per mesh cycle. c₀, a, b and d₀, d_a, d_b are the
-//! least-squares fit over the span's positions: the lowest harmonic of the
-//! n-lobe family, all that a span shorter than one lobe can tell; the
+//! least-squares fit over the span's positions, alternated with k̃, δ̃ as
+//! the span's mean at p of k/(1 + c₀ + a cos nψ + b sin nψ) and
+//! δ − (d₀ + …), until the coefficients settle: k̃ is then the cycle
+//! without the lobe and joins up across the cycle's end (the span's plain
+//! mean at p would carry the lobe's drift over the cycle, a jump at its
+//! end). The lobe is the lowest harmonic of the n-lobe family, all that a span shorter than one lobe can tell; the
 //! residual it leaves is reported. For an axisymmetric wheel (n = 0) the
 //! excitation is k̃, δ̃ repeated.
 //!
@@ -36,6 +40,9 @@ use super::LumpedError;
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 use std::f64::consts::PI;
+
+/// Most alternations of the lobe fit and the cycle shape.
+const LOBE_ITERATIONS: usize = 50;
 
 /// The per-revolution excitation derived from an LTCA span.
 #[derive(Debug, Clone, Serialize)]
@@ -125,8 +132,8 @@ impl Revolution {
         let mean_at = |v: &[f64], p: usize| {
             (0..span_cycles).map(|c| v[c * per_cycle + p]).sum::<f64>() / span_cycles as f64
         };
-        let kc: Vec<f64> = (0..per_cycle).map(|p| mean_at(k, p)).collect();
-        let dc: Vec<f64> = (0..per_cycle).map(|p| mean_at(d, p)).collect();
+        let mut kc: Vec<f64> = (0..per_cycle).map(|p| mean_at(k, p)).collect();
+        let mut dc: Vec<f64> = (0..per_cycle).map(|p| mean_at(d, p)).collect();
         // Wheel tooth, linear in time at ±1 tooth per mesh cycle.
         let w = &wheel_tooth[..m];
         let (cm, wm) = (
@@ -159,12 +166,30 @@ impl Revolution {
                 cyc.iter().map(|c| (nl * psi(*c)).cos()).collect(),
                 cyc.iter().map(|c| (nl * psi(*c)).sin()).collect(),
             ];
-            let rk: Vec<f64> = (0..m).map(|i| k[i] / kc[i % per_cycle] - 1.0).collect();
-            let rd: Vec<f64> = (0..m).map(|i| d[i] - dc[i % per_cycle]).collect();
-            let xk = least_squares(&cols, &rk)?;
-            let xd = least_squares(&cols, &rd)?;
-            kl = [xk[0], xk[1], xk[2]];
-            dl = [xd[0], xd[1], xd[2]];
+            let term = |x: &[f64; 3], i: usize| x[0] + x[1] * cols[1][i] + x[2] * cols[2][i];
+            // Alternately: the lobe fitted to k/k̃ − 1 (δ − δ̃), then k̃ (δ̃)
+            // the span's mean of k/(1 + lobe) (δ − lobe) at each position
+            // of the cycle, until the lobe's coefficients settle.
+            for _ in 0..LOBE_ITERATIONS {
+                let rk: Vec<f64> = (0..m).map(|i| k[i] / kc[i % per_cycle] - 1.0).collect();
+                let rd: Vec<f64> = (0..m).map(|i| d[i] - dc[i % per_cycle]).collect();
+                let xk = least_squares(&cols, &rk)?;
+                let xd = least_squares(&cols, &rd)?;
+                let next = [xk[0], xk[1], xk[2]];
+                let change = (0..3).map(|j| (next[j] - kl[j]).abs()).fold(0.0, f64::max);
+                kl = next;
+                dl = [xd[0], xd[1], xd[2]];
+                let ku: Vec<f64> = (0..m).map(|i| k[i] / (1.0 + term(&kl, i))).collect();
+                let du: Vec<f64> = (0..m).map(|i| d[i] - term(&dl, i)).collect();
+                let (kn, dn): (Vec<f64>, Vec<f64>) = (0..per_cycle)
+                    .map(|p| (mean_at(&ku, p), mean_at(&du, p)))
+                    .unzip();
+                kc = kn;
+                dc = dn;
+                if change < 1e-12 {
+                    break;
+                }
+            }
         }
         let mut r = Self {
             per_cycle,
@@ -213,9 +238,11 @@ impl Revolution {
         ]
     }
 
-    /// Relative peak-to-peak of the lobe term of k, 2√(a² + b²).
+    /// Peak-to-peak of the lobe of k over its revolution mean,
+    /// 2√(a² + b²)/(1 + c₀).
     pub fn stiffness_lobe_ptp(&self) -> f64 {
-        2.0 * self.stiffness_lobe[1].hypot(self.stiffness_lobe[2])
+        let [c0, a, b] = self.stiffness_lobe;
+        2.0 * a.hypot(b) / (1.0 + c0)
     }
 
     /// Wheel tooth (in [0, z₂/n)) where the fitted lobe term of k is least:

@@ -54,7 +54,7 @@ pub fn subsection(out: &Path, reports: &Path) -> (String, Vec<Figure>) {
     );
     let _ = writeln!(
         s,
-        "| Wheel | Teeth in the stiffness file | LTCA span, mesh cycles | Mean k per span cycle (MN/m) | Loaded wheel tooth per cycle | Lobe k peak-to-peak / k̃ | Least k at wheel tooth | Span fit residual / ptp (k, δ) | Series harmonics (mesh, revolution) | Series residual / ptp (k, δ) | LTCA (s) |\n|---|---|---|---|---|---|---|---|---|---|---|"
+        "| Wheel | Teeth in the stiffness file | LTCA span, mesh cycles | Mean k per span cycle (MN/m) | Loaded wheel tooth per cycle | Lobe k peak-to-peak / mean k | Least k at wheel tooth | Span fit residual / ptp (k, δ) | Series harmonics (mesh, revolution) | Series residual / ptp (k, δ) | LTCA (s) |\n|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for m in &maps {
         let list = |v: &[f64], scale: f64, d: usize| {
