@@ -193,3 +193,63 @@ fn zero_directions() -> Directions {
         mesh_normal: 0.0,
     }
 }
+
+/// `order_map.json` of `solver lumped` with `[lumped.order_map]`: per blank
+/// pair, the per-revolution excitation and, per pinion speed, the wheel
+/// bearing-force amplitude at the marked pinion orders.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OrderMapSummary {
+    pub pinion_blank: Blank,
+    pub wheel_blank: Blank,
+    pub pinion_teeth: usize,
+    pub wheel_teeth: usize,
+    /// Lobes per wheel revolution fitted (0: axisymmetric wheel).
+    pub lobes: usize,
+    /// Wheel teeth whose influence data the wheel's stiffness file holds.
+    pub wheel_solved_teeth: Vec<usize>,
+    /// Whole mesh cycles of the LTCA span the revolution is derived from.
+    pub ltca_span_mesh_cycles: usize,
+    /// Per span cycle: mean tangent k (N/m) and force-weighted loaded wheel tooth.
+    pub cycle_mean_stiffness_n_per_m: Vec<f64>,
+    pub cycle_wheel_tooth: Vec<f64>,
+    /// k lobe term c₀, a, b (relative) and δ's d₀, d_a, d_b (m).
+    pub stiffness_lobe: [f64; 3],
+    pub deflection_lobe_m: [f64; 3],
+    /// 2√(a² + b²)/(1 + c₀): the lobe's peak-to-peak over k's revolution mean.
+    pub stiffness_lobe_ptp_relative: f64,
+    /// Wheel tooth (within one lobe, z₂/n teeth) where the fitted lobe of k
+    /// is least; None for an axisymmetric wheel.
+    pub stiffness_lobe_minimum_wheel_tooth: Option<f64>,
+    /// The span model's largest residual at the LTCA positions over their
+    /// peak-to-peak: stiffness, deflection.
+    pub span_fit_residual_of_ptp: [f64; 2],
+    /// Mesh harmonics of the one-cycle fit; harmonics of the revolution series.
+    pub mesh_harmonics: usize,
+    pub revolution_harmonics: usize,
+    /// Revolution series' largest residual at its samples over their ptp: k, δ.
+    pub revolution_series_residual_of_ptp: [f64; 2],
+    /// LTCA wall time, s.
+    pub ltca_wall_s: f64,
+    pub speeds: Vec<OrderMapSpeed>,
+}
+
+/// One row of the order map.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OrderMapSpeed {
+    pub pinion_speed_rpm: f64,
+    pub mesh_frequency_hz: f64,
+    /// Integration and whole-run wall time, s.
+    pub integration_wall_s: f64,
+    pub run_wall_s: f64,
+    /// Spectral line spacing, pinion orders.
+    pub order_resolution: f64,
+    /// (label, pinion order, wheel bearing-force amplitude N) at the marked orders.
+    pub marked: Vec<MarkedOrder>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MarkedOrder {
+    pub label: String,
+    pub pinion_order: f64,
+    pub wheel_bearing_force_n: f64,
+}

@@ -121,6 +121,9 @@ impl BlankDimensions {
     }
 }
 
+/// Web holes of the lightweight wheel, equally spaced.
+pub const WHEEL_WEB_HOLES: usize = 3;
+
 /// The blank of one member: the polygon of its half-section (counter-clockwise
 /// in (z, ρ)), the bore radius, and for the lightweight wheel the web holes.
 #[derive(Debug, Clone, Serialize)]
@@ -208,7 +211,7 @@ pub fn blank_shape(
             let w0 = on_rim(zw0);
             let w1 = on_rim(zw1);
             let holes = (blank == Blank::Lightweight).then(|| Holes {
-                count: 3,
+                count: WHEEL_WEB_HOLES,
                 circle_radius: 0.5 * (rh + w0[1].min(w1[1])),
                 diameter: dims.wheel_hole_diameter,
                 z: [zh0 - 1e-3, zh1 + 1e-3],

@@ -81,6 +81,26 @@ pub struct LumpedSettings {
     /// design's FE meshes and stiffness files: an ease-off is a few µm,
     /// far below the meshes' element size.
     pub design_variants: Vec<DesignVariant>,
+    /// Order map: instead of the one-mesh-cycle run, the excitation over a
+    /// whole wheel revolution (the lightweight wheel's web holes make it
+    /// repeat only once per wheel turn) and runs at several speeds.
+    pub order_map: Option<OrderMapSettings>,
+}
+
+/// `[lumped.order_map]`: the bearing-force spectrum over pinion orders at
+/// several pinion speeds, the excitation k(t), δ(t) a series over one
+/// wheel revolution sampled from the LTCA.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OrderMapSettings {
+    /// Pinion speeds of the runs, rpm (the map's rows).
+    pub pinion_speeds_rpm: Vec<f64>,
+    /// Simulated wheel revolutions per run.
+    pub wheel_revolutions: f64,
+    /// Wheel revolutions dropped before the spectrum (start transient).
+    pub dropped_wheel_revolutions: f64,
+    /// Highest pinion order of the map.
+    pub max_pinion_order: f64,
 }
 
 /// One ease-off variant: the design's ease-off with these values replaced.
@@ -147,6 +167,7 @@ impl Default for LumpedSettings {
             friction: None,
             roughness: None,
             design_variants: Vec::new(),
+            order_map: None,
         }
     }
 }
@@ -338,6 +359,46 @@ impl LumpedSettings {
                         return Err(fail(field, c.to_string(), "must lie in [0, 500] µm"));
                     }
                 }
+            }
+        }
+        if let Some(o) = &self.order_map {
+            if o.pinion_speeds_rpm.is_empty() {
+                return Err(fail(
+                    "order_map.pinion_speeds_rpm",
+                    "[]".into(),
+                    "must hold at least one speed",
+                ));
+            }
+            for &v in &o.pinion_speeds_rpm {
+                if !(v.is_finite() && v > 0.0 && v <= 100_000.0) {
+                    return Err(fail(
+                        "order_map.pinion_speeds_rpm",
+                        v.to_string(),
+                        "must lie in (0, 100000] rpm",
+                    ));
+                }
+            }
+            if !(o.wheel_revolutions.is_finite() && (1.0..=20.0).contains(&o.wheel_revolutions)) {
+                return Err(fail(
+                    "order_map.wheel_revolutions",
+                    o.wheel_revolutions.to_string(),
+                    "must lie in [1, 20]",
+                ));
+            }
+            let d = o.dropped_wheel_revolutions;
+            if !(d.is_finite() && d >= 0.0 && o.wheel_revolutions - d >= 1.0) {
+                return Err(fail(
+                    "order_map.dropped_wheel_revolutions",
+                    d.to_string(),
+                    "must be >= 0 and leave at least one wheel revolution",
+                ));
+            }
+            if !(o.max_pinion_order.is_finite() && o.max_pinion_order > 0.0) {
+                return Err(fail(
+                    "order_map.max_pinion_order",
+                    o.max_pinion_order.to_string(),
+                    "must be finite and > 0",
+                ));
             }
         }
         Ok(())

@@ -3,7 +3,7 @@
 //! unknown key is refused.
 
 use geometry::scene_lumped::{
-    DirectionSource, ImpactModel, LumpedFriction, LumpedRoughness, LumpedSettings,
+    DirectionSource, ImpactModel, LumpedFriction, LumpedRoughness, LumpedSettings, OrderMapSettings,
 };
 use std::path::Path;
 
@@ -109,4 +109,58 @@ fn scene_lumped_section_parses_and_refuses_unknown_keys() {
         toml::from_str::<LumpedSettings>("[friction]\nbase_coefficient = 0.6\nmu_r = 0.01\n")
             .is_err()
     );
+}
+
+/// A valid `[order_map]` table, one line per field.
+const ORDER_MAP: [&str; 4] = [
+    "pinion_speeds_rpm = [1000.0, 3000.0]",
+    "wheel_revolutions = 3.0",
+    "dropped_wheel_revolutions = 1.0",
+    "max_pinion_order = 50.0",
+];
+
+/// `[order_map]` with line `line` replaced by `with` (None: as it is).
+fn order_map_toml(line: usize, with: Option<&str>) -> String {
+    let mut t = String::from("[order_map]\n");
+    for (i, l) in ORDER_MAP.iter().enumerate() {
+        t.push_str(if i == line { with.unwrap_or(l) } else { l });
+        t.push('\n');
+    }
+    t
+}
+
+#[test]
+fn scene_lumped_order_map_refuses_no_speed_a_bad_speed_and_no_kept_revolution() {
+    let p = Path::new("scene.toml");
+    let ok: LumpedSettings = toml::from_str(&order_map_toml(0, None)).unwrap();
+    ok.check(p).unwrap();
+    let o: &OrderMapSettings = ok.order_map.as_ref().unwrap();
+    assert_eq!(o.pinion_speeds_rpm, vec![1000.0, 3000.0]);
+    let refused = [
+        (0, "pinion_speeds_rpm = []", "pinion_speeds_rpm", "[]"),
+        (
+            0,
+            "pinion_speeds_rpm = [1000.0, -5.0]",
+            "pinion_speeds_rpm",
+            "-5",
+        ),
+        (1, "wheel_revolutions = 0.5", "wheel_revolutions", "0.5"),
+        (
+            2,
+            "dropped_wheel_revolutions = 2.5",
+            "dropped_wheel_revolutions",
+            "2.5",
+        ),
+        (3, "max_pinion_order = inf", "max_pinion_order", "inf"),
+    ];
+    for (line, with, field, value) in refused {
+        let s: LumpedSettings = toml::from_str(&order_map_toml(line, Some(with))).unwrap();
+        let e = s.check(p).expect_err(field).to_string();
+        assert!(
+            e.contains(&format!("lumped.order_map.{field}")) && e.contains(value),
+            "{e}"
+        );
+    }
+    let unknown = order_map_toml(3, Some("max_pinion_order = 50.0\nlobes = 3"));
+    assert!(toml::from_str::<LumpedSettings>(&unknown).is_err());
 }

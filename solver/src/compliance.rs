@@ -118,6 +118,11 @@ impl MemberCompliance {
         }
     }
 
+    /// The body teeth whose data the stiffness file holds.
+    pub fn solved_teeth(&self) -> &[usize] {
+        &self.solved
+    }
+
     /// Index of the solved tooth whose data serve tooth `tooth` (pair numbering, any sign).
     pub fn solved_index(&self, tooth: i64) -> Result<usize, SolverError> {
         self.body_index(tooth + self.tooth_shift)

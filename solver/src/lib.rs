@@ -28,6 +28,7 @@ pub mod load_run;
 pub mod ltca;
 pub mod ltca_stage;
 pub mod lumped;
+pub mod lumped_order_map;
 pub mod lumped_plots;
 pub mod lumped_roughness;
 pub mod lumped_stage;

@@ -175,6 +175,12 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let manifest = Manifest::read(&dir)?;
     let torques = torques(ls);
     let variants = flank_variants(ls);
+    if let Some(om) = &ls.order_map {
+        let all = crate::lumped_order_map::run(scene, ls, om, &g, &dir, &manifest, &mut set)?;
+        write_json(&set.path().join("summary.json"), &all)?;
+        set.commit()?;
+        return Ok(all);
+    }
     let omega = ls.pinion_speed_rpm * std::f64::consts::PI / 30.0;
     let mut all = Vec::new();
     for &pb in &sc.blanks.pinion {
@@ -288,8 +294,9 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                         design: design.clone(),
                         contact_ratio: loaded_contact_ratio(&res, samples.time_s.len()),
                         variant,
+                        max_order: MAX_ORDER,
                     };
-                    let summary = run_blank(&case, &odir)?;
+                    let (summary, _) = run_blank(&case, &odir)?;
                     eprintln!(
                         "lumped {pb:?}/{wb:?} {}: k mean {:.4e} N/m ({} harmonics), μ {:.3}, RMS along the normal {:.2} m/s², pinion velocity RMS {:.3} mm/s, {} steps, {:.2} s",
                         summary.variant,
@@ -353,25 +360,31 @@ pub fn slice_friction(
 
 /// One run: the settings, the operating torque, the LTCA's excitation and
 /// what else the run takes.
-struct Case<'a> {
-    ls: &'a LumpedSettings,
-    torque: f64,
-    blanks: [Blank; 2],
-    side: Side,
-    g: &'a PairGeometry,
-    bodies: [formats::manifest::BodyProperties; 2],
-    samples: &'a MeshSamples,
-    fits: [&'a FittedSeries; 3],
-    eng: Option<crate::lumped::impact::Engagement>,
-    slice_friction: Vec<Vec<SliceFriction>>,
-    roughness: Option<formats::lumped_summary::RoughnessSummary>,
-    design: Option<DesignVariantSummary>,
-    contact_ratio: f64,
-    variant: String,
+pub(crate) struct Case<'a> {
+    pub(crate) ls: &'a LumpedSettings,
+    pub(crate) torque: f64,
+    pub(crate) blanks: [Blank; 2],
+    pub(crate) side: Side,
+    pub(crate) g: &'a PairGeometry,
+    pub(crate) bodies: [formats::manifest::BodyProperties; 2],
+    pub(crate) samples: &'a MeshSamples,
+    pub(crate) fits: [&'a FittedSeries; 3],
+    pub(crate) eng: Option<crate::lumped::impact::Engagement>,
+    pub(crate) slice_friction: Vec<Vec<SliceFriction>>,
+    pub(crate) roughness: Option<formats::lumped_summary::RoughnessSummary>,
+    pub(crate) design: Option<DesignVariantSummary>,
+    pub(crate) contact_ratio: f64,
+    pub(crate) variant: String,
+    /// Spectrum range, mesh orders.
+    pub(crate) max_order: f64,
 }
 
-/// One run: model, excitation, integration, files.
-fn run_blank(case: &Case, odir: &Path) -> anyhow::Result<LumpedSummary> {
+/// One run: model, excitation, integration, files; the summary and the
+/// bearing-force spectrum (mesh order, pinion N, wheel N).
+pub(crate) fn run_blank(
+    case: &Case,
+    odir: &Path,
+) -> anyhow::Result<(LumpedSummary, Vec<[f64; 3]>)> {
     let Case {
         ls,
         torque,
@@ -496,7 +509,7 @@ fn run_blank(case: &Case, odir: &Path) -> anyhow::Result<LumpedSummary> {
         h.t.iter()
             .position(|t| *t >= ls.dropped_mesh_cycles * period * (1.0 - 1e-12))
             .unwrap_or(0);
-    let r = response(&model, &exc, &h, first, mesh_hz, MAX_ORDER);
+    let r = response(&model, &exc, &h, first, mesh_hz, case.max_order);
     write_files(odir, &model, &exc, &h, samples, &r)?;
     let label = format!(
         "{pinion_blank:?} pinion / {wheel_blank:?} wheel, {} rpm",
@@ -510,13 +523,13 @@ fn run_blank(case: &Case, odir: &Path) -> anyhow::Result<LumpedSummary> {
         mesh_hz,
         model.mean_mesh_force(),
         &r,
-        MAX_ORDER,
+        case.max_order,
     )?;
     let share = r
         .rms_acceleration
         .map(|a| 100.0 * a / r.rms_acceleration[6]);
     let f_static = model.mean_mesh_force();
-    Ok(LumpedSummary {
+    let summary = LumpedSummary {
         pinion_blank,
         wheel_blank,
         pinion_speed_rpm: ls.pinion_speed_rpm,
@@ -576,7 +589,8 @@ fn run_blank(case: &Case, odir: &Path) -> anyhow::Result<LumpedSummary> {
         ltca_normal_model_axes: normal,
         rms_velocity_m_s: directions(r.rms_velocity),
         member_velocity_rms_m_s: r.member_velocity_rms,
-    })
+    };
+    Ok((summary, r.bearing_spectrum))
 }
 
 fn write_files(

@@ -158,6 +158,100 @@ pub fn plot(
     Ok(())
 }
 
+/// Draws an order map: one row per pinion speed (`speeds_rpm`, ascending),
+/// the amplitude `amp[row][k]` at pinion order `orders[k]` in dB re the
+/// largest (60 dB range), each row a band reaching half-way to its
+/// neighbours, with the marked orders as labelled ticks along the top.
+pub fn plot_order_map(
+    path: &Path,
+    title: &str,
+    orders: &[f64],
+    speeds_rpm: &[f64],
+    amp: &[Vec<f64>],
+    marks: &[OrderLine],
+) -> anyhow::Result<()> {
+    let (nr, no) = (speeds_rpm.len(), orders.len());
+    anyhow::ensure!(
+        nr >= 1 && no >= 2 && amp.len() == nr && amp.iter().all(|r| r.len() == no),
+        "order map {}: {nr} speeds, {no} orders, {} rows",
+        path.display(),
+        amp.len()
+    );
+    let peak = amp
+        .iter()
+        .flatten()
+        .copied()
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let edge = |i: usize| -> [f64; 2] {
+        let s = speeds_rpm[i];
+        let lo = if i > 0 {
+            0.5 * (s + speeds_rpm[i - 1])
+        } else {
+            s - 0.5 * if nr > 1 { speeds_rpm[1] - s } else { 0.1 * s }
+        };
+        let hi = if i + 1 < nr {
+            0.5 * (s + speeds_rpm[i + 1])
+        } else {
+            s + 0.5
+                * if nr > 1 {
+                    s - speeds_rpm[nr - 2]
+                } else {
+                    0.1 * s
+                }
+        };
+        [lo, hi]
+    };
+    let (y0, y1) = (edge(0)[0], edge(nr - 1)[1]);
+    let (o0, o1) = (orders[0], orders[no - 1]);
+    let dor = (o1 - o0) / (no - 1) as f64;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 480)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(o0 - 0.5 * dor..o1 + 0.5 * dor, y0..y1)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("pinion order")
+            .y_desc("pinion speed (rpm)")
+            .label_style(("sans-serif", 12))
+            .draw()?;
+        chart.draw_series((0..nr).flat_map(|i| {
+            let [lo, hi] = edge(i);
+            (0..no).map(move |k| {
+                let db = 20.0 * (amp[i][k] / peak).max(1e-3).log10();
+                let x = (1.0 + db / 60.0).clamp(0.0, 1.0);
+                let c = HSLColor(0.7 * (1.0 - x), 0.9, 0.1 + 0.45 * x);
+                Rectangle::new(
+                    [(orders[k] - 0.5 * dor, lo), (orders[k] + 0.5 * dor, hi)],
+                    c.filled(),
+                )
+            })
+        }))?;
+        for m in marks.iter().filter(|m| m.order >= o0 && m.order <= o1) {
+            // A tick along the top only: the lines under it stay visible.
+            chart.draw_series(LineSeries::new(
+                [(m.order, y1 - 0.05 * (y1 - y0)), (m.order, y1)],
+                WHITE.stroke_width(1),
+            ))?;
+            chart.draw_series(std::iter::once(Text::new(
+                m.label.clone(),
+                (m.order, y1),
+                ("sans-serif", 11).into_font().color(&WHITE),
+            )))?;
+        }
+        root.present()?;
+    }
+    formats::output::write_atomic(path, svg.as_bytes())?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

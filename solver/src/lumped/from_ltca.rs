@@ -71,6 +71,24 @@ pub struct MeshSamples {
     pub torque_nm: f64,
 }
 
+impl MeshSamples {
+    /// No samples yet: levers (m), mesh period (s), torque (N·m).
+    pub fn empty(levers_m: [f64; 2], period_s: f64, torque_nm: f64) -> Self {
+        Self {
+            time_s: Vec::new(),
+            tangent_n_per_m: Vec::new(),
+            secant_n_per_m: Vec::new(),
+            te_m: Vec::new(),
+            deflection_m: Vec::new(),
+            loaded_te_rad: Vec::new(),
+            unloaded_te_rad: Vec::new(),
+            levers_m,
+            period_s,
+            torque_nm,
+        }
+    }
+}
+
 /// Samples from an LTCA run at [`tangent_torques`]`(torque_nm)`, the
 /// pinion turning at `pinion_speed_rad_s`; `mesh_cycle_rad` = 2π/z₁.
 /// Positions at or past one mesh cycle from the first are left out (the
@@ -81,24 +99,25 @@ pub fn mesh_samples(
     pinion_speed_rad_s: f64,
     mesh_cycle_rad: f64,
 ) -> Result<MeshSamples, LumpedError> {
+    span_samples(res, torque_nm, pinion_speed_rad_s, mesh_cycle_rad, 1.0)
+}
+
+/// As [`mesh_samples`], keeping the positions within `mesh_cycles` mesh
+/// cycles of the first (`period_s` stays the mesh period).
+pub fn span_samples(
+    res: &[PositionResult],
+    torque_nm: f64,
+    pinion_speed_rad_s: f64,
+    mesh_cycle_rad: f64,
+    mesh_cycles: f64,
+) -> Result<MeshSamples, LumpedError> {
     super::model::positive("torque", torque_nm, false)?;
     super::model::positive("pinion speed", pinion_speed_rad_s, false)?;
     let torques = tangent_torques(torque_nm);
-    let mut s = MeshSamples {
-        time_s: Vec::new(),
-        tangent_n_per_m: Vec::new(),
-        secant_n_per_m: Vec::new(),
-        te_m: Vec::new(),
-        deflection_m: Vec::new(),
-        loaded_te_rad: Vec::new(),
-        unloaded_te_rad: Vec::new(),
-        levers_m: [0.0; 2],
-        period_s: mesh_cycle_rad / pinion_speed_rad_s,
-        torque_nm,
-    };
+    let mut s = MeshSamples::empty([0.0; 2], mesh_cycle_rad / pinion_speed_rad_s, torque_nm);
     let keep: Vec<&PositionResult> = res
         .iter()
-        .filter(|p| p.rotation < mesh_cycle_rad * (1.0 - 1e-9))
+        .filter(|p| p.rotation < mesh_cycles * mesh_cycle_rad - 1e-9 * mesh_cycle_rad)
         .collect();
     if keep.len() < 3 {
         return Err(LumpedError::Input(format!(

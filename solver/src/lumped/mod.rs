@@ -17,6 +17,7 @@ pub mod impact;
 pub mod integrate;
 pub mod model;
 pub mod response;
+pub mod revolution;
 pub mod run;
 
 /// Errors of the lumped model.

@@ -47,7 +47,8 @@ fn rms(x: &[f64]) -> f64 {
     (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / n).sqrt()
 }
 
-fn ptp(x: &[f64]) -> f64 {
+/// Peak-to-peak (max − min) of `x`.
+pub fn ptp(x: &[f64]) -> f64 {
     let (lo, hi) = x
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {

@@ -1,0 +1,284 @@
+//! `solver lumped` with `[lumped.order_map]`: the 8-DOF model of every
+//! pinion × wheel blank driven by k(t), δ(t) over one wheel revolution
+//! ([`crate::lumped::revolution`]) at each pinion speed of the section,
+//! to `<out>/<scene>/lumped/<pinion>_<wheel>_<rpm>rpm/` (the files of
+//! one lumped run), `order_map_<pinion>_<wheel>.svg` (the wheel
+//! bearing-force spectrum over pinion orders and speed, the mesh orders
+//! z₁, 2z₁, the lobe family n·z₁/z₂ and its side bands z₁ ± n·z₁/z₂
+//! marked) and `order_map.json` ([`OrderMapSummary`] per blank pair).
+//!
+//! The lobe count n is the lightweight wheel's web holes
+//! ([`geometry::gear_body::WHEEL_WEB_HOLES`]); the standard wheel is
+//! axisymmetric (n = 0). The marked orders are the same for both, so the
+//! standard wheel's amplitudes at the lobe orders show what it has there.
+
+use crate::compliance::PairCompliance;
+use crate::ltca::{geometry, run as run_sweep};
+use crate::ltca_stage::{member_compliance, record_stiffness_inputs, scene_sweep};
+use crate::lumped::from_ltca::{fit_series, mesh_samples, span_samples, tangent_torques};
+use crate::lumped::revolution::Revolution;
+use crate::lumped_stage::{run_blank, slice_friction, Case};
+use crate::spectrum::{plot_order_map, OrderLine};
+use anyhow::Context;
+use formats::lumped_summary::{LumpedSummary, MarkedOrder, OrderMapSpeed, OrderMapSummary};
+use formats::manifest::Manifest;
+use formats::output::write_json;
+use formats::result_set::ResultSet;
+use geometry::design::Member as Which;
+use geometry::gear_body::WHEEL_WEB_HOLES;
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, LoadedScene};
+use geometry::scene_lumped::{ImpactModel, LumpedSettings, OrderMapSettings};
+use geometry::utca::roll_surface;
+use std::path::Path;
+use std::time::Instant;
+
+/// The marked pinion orders: (label, order) for z₁, 2z₁, the lobe family
+/// o = n z₁/z₂ and 2o, and z₁ ± o, 2z₁ ± o.
+pub fn marked_orders(z1: usize, z2: usize, holes: usize) -> Vec<(String, f64)> {
+    let (z, o) = (z1 as f64, holes as f64 * z1 as f64 / z2 as f64);
+    vec![
+        (format!("{holes}·{z1}/{z2}"), o),
+        (format!("2·{holes}·{z1}/{z2}"), 2.0 * o),
+        (format!("{z1}-{o:.2}"), z - o),
+        (format!("{z1}"), z),
+        (format!("{z1}+{o:.2}"), z + o),
+        (format!("{}-{o:.2}", 2 * z1), 2.0 * z - o),
+        (format!("{}", 2 * z1), 2.0 * z),
+        (format!("{}+{o:.2}", 2 * z1), 2.0 * z + o),
+    ]
+}
+
+/// Amplitude of `spectrum` (pinion order, amplitude) at the line nearest `order`.
+pub fn amplitude_at(spectrum: &[(f64, f64)], order: f64) -> f64 {
+    spectrum
+        .iter()
+        .min_by(|a, b| (a.0 - order).abs().total_cmp(&(b.0 - order).abs()))
+        .map_or(0.0, |l| l.1)
+}
+
+/// Force-weighted wheel tooth of the loaded pairs (pinion tooth j meshes
+/// wheel tooth −j) at the operating torque.
+fn loaded_wheel_tooth(p: &crate::ltca::PositionResult) -> f64 {
+    let (fw, f) = p.loads[1]
+        .pair_force
+        .iter()
+        .fold((0.0, 0.0), |(fw, f), (j, x)| (fw - *j as f64 * x, f + x));
+    if f > 0.0 {
+        fw / f
+    } else {
+        f64::NAN
+    }
+}
+
+/// Runs the order map of the scene (see the module's doc).
+pub fn run(
+    scene: &LoadedScene,
+    ls: &LumpedSettings,
+    om: &OrderMapSettings,
+    g: &PairGeometry,
+    dir: &Path,
+    manifest: &Manifest,
+    set: &mut ResultSet,
+) -> anyhow::Result<Vec<LumpedSummary>> {
+    let sc = &scene.scene;
+    anyhow::ensure!(
+        ls.impact == ImpactModel::Engagement && ls.friction.is_none() && ls.roughness.is_none(),
+        "scene {}: [lumped.order_map] runs the design's smooth flanks without friction and with impact = \"engagement\"",
+        sc.name
+    );
+    anyhow::ensure!(
+        ls.design_variants.is_empty() && ls.more_pinion_torques_nm.is_empty(),
+        "scene {}: [lumped.order_map] runs one torque on the design (no design_variants, no more_pinion_torques_nm)",
+        sc.name
+    );
+    let side = sc.loaded_flank;
+    let fp = g.side(side);
+    let rs = roll_surface(fp, &sc.utca)?;
+    let (z1, z2) = (
+        g.data.members[0].teeth as usize,
+        g.data.members[1].teeth as usize,
+    );
+    let tau = g.data.mesh_cycle();
+    let torque = ls.pinion_torque_nm;
+    let marks = marked_orders(z1, z2, WHEEL_WEB_HOLES);
+    let mut all = Vec::new();
+    let mut maps = Vec::new();
+    for &pb in &sc.blanks.pinion {
+        let (pin, pin_plan) = member_compliance(scene, g, dir, Which::Pinion, pb)?;
+        for &wb in &sc.blanks.wheel {
+            let (whl, whl_plan) = member_compliance(scene, g, dir, Which::Wheel, wb)?;
+            let solved = whl.solved_teeth().to_vec();
+            record_stiffness_inputs(set, scene, g, dir, [pb, wb], false)?;
+            let body = |stem: &str| -> anyhow::Result<_> { Ok(manifest.mesh(dir, stem)?.body) };
+            let bodies = [body(&pin_plan.mesh_stem)?, body(&whl_plan.mesh_stem)?];
+            let pc = PairCompliance {
+                pinion: pin.clone(),
+                wheel: whl,
+            };
+            let sweep = scene_sweep(scene, g, wb);
+            let t0 = Instant::now();
+            let res = run_sweep(fp, &rs, &pc, &sweep, &tangent_torques(torque))
+                .with_context(|| format!("scene {}: LTCA for the order map", sc.name))?;
+            let ltca_wall = t0.elapsed().as_secs_f64();
+            let lobes = if wb == Blank::Lightweight {
+                WHEEL_WEB_HOLES
+            } else {
+                0
+            };
+            let cycles = sc.rotation.mesh_cycles(wb);
+            // The revolution depends on positions in mesh cycles only: any
+            // speed serves; the first one's.
+            let omega0 = om.pinion_speeds_rpm[0] * std::f64::consts::PI / 30.0;
+            let span = span_samples(&res, torque, omega0, tau, cycles)?;
+            let teeth: Vec<f64> = res[..span.time_s.len()]
+                .iter()
+                .map(loaded_wheel_tooth)
+                .collect();
+            let rev = Revolution::from_span(&span, &teeth, tau, sweep.step, z2, lobes)
+                .with_context(|| format!("scene {}: {wb:?} wheel's revolution", sc.name))?;
+            let tau_p = fp.pinion.gen.frame.pitch();
+            let mut rows = Vec::new();
+            let mut speeds = Vec::new();
+            let mut orders = Vec::new();
+            let mut info = None;
+            for &rpm in &om.pinion_speeds_rpm {
+                let tr = Instant::now();
+                let omega = rpm * std::f64::consts::PI / 30.0;
+                let samples = mesh_samples(&res, torque, omega, tau)?;
+                let [kf, ef, df] = fit_series(&samples, ls.fourier_tolerance_of_ptp)?;
+                let mesh_harmonics = kf.series.harmonics().max(df.series.harmonics());
+                let [kr, dr] = rev.series(
+                    samples.period_s,
+                    mesh_harmonics,
+                    ls.fourier_tolerance_of_ptp,
+                )?;
+                let slice_friction = (0..samples.time_s.len())
+                    .map(|k| {
+                        let phi = sweep.start + sweep.direction * res[k].rotation;
+                        let gk = geometry(fp, &rs, phi, tau_p, sweep.slices);
+                        slice_friction(fp, phi, tau_p, &gk.slices, &res[k].loads[1].slices)
+                    })
+                    .collect::<Vec<_>>();
+                let run_ls = LumpedSettings {
+                    pinion_speed_rpm: rpm,
+                    mesh_cycles: om.wheel_revolutions * z2 as f64,
+                    dropped_mesh_cycles: om.dropped_wheel_revolutions * z2 as f64,
+                    ..ls.clone()
+                };
+                let variant = format!("{rpm}rpm");
+                let name = format!("{pb:?}_{wb:?}_{variant}").to_lowercase();
+                let odir = set.path().join(&name);
+                std::fs::create_dir_all(&odir)?;
+                let case = Case {
+                    ls: &run_ls,
+                    torque,
+                    blanks: [pb, wb],
+                    side,
+                    g,
+                    bodies,
+                    samples: &samples,
+                    fits: [&kr, &ef, &dr],
+                    eng: None,
+                    slice_friction,
+                    roughness: None,
+                    design: None,
+                    contact_ratio: 0.0,
+                    variant,
+                    max_order: om.max_pinion_order / z1 as f64,
+                };
+                let (summary, spectrum) = run_blank(&case, &odir)?;
+                let run_wall = tr.elapsed().as_secs_f64();
+                write_json(&odir.join("summary.json"), &summary)?;
+                let wheel: Vec<(f64, f64)> =
+                    spectrum.iter().map(|l| (l[0] * z1 as f64, l[2])).collect();
+                if orders.is_empty() {
+                    orders = wheel.iter().map(|l| l.0).collect();
+                }
+                anyhow::ensure!(
+                    wheel.len() == orders.len(),
+                    "order map: the runs' spectra differ in length"
+                );
+                rows.push(wheel.iter().map(|l| l.1).collect::<Vec<_>>());
+                eprintln!(
+                    "order map {pb:?}/{wb:?} {rpm} rpm: k series {} harmonics, {} steps, integration {:.2} s, run {:.2} s",
+                    kr.series.harmonics(),
+                    summary.steps[0],
+                    summary.integration_wall_s,
+                    run_wall
+                );
+                speeds.push(OrderMapSpeed {
+                    pinion_speed_rpm: rpm,
+                    mesh_frequency_hz: summary.mesh_frequency_hz,
+                    integration_wall_s: summary.integration_wall_s,
+                    run_wall_s: run_wall,
+                    order_resolution: if orders.len() > 1 {
+                        orders[1] - orders[0]
+                    } else {
+                        0.0
+                    },
+                    marked: marks
+                        .iter()
+                        .map(|(label, o)| MarkedOrder {
+                            label: label.clone(),
+                            pinion_order: *o,
+                            wheel_bearing_force_n: amplitude_at(&wheel, *o),
+                        })
+                        .collect(),
+                });
+                info = Some((
+                    mesh_harmonics,
+                    kr.series.harmonics(),
+                    [kr.max_residual_of_ptp, dr.max_residual_of_ptp],
+                ));
+                all.push(summary);
+            }
+            let (mesh_harmonics, revolution_harmonics, residual) =
+                info.context("order map: no speeds")?;
+            let mut order_rows: Vec<(f64, Vec<f64>)> =
+                om.pinion_speeds_rpm.iter().copied().zip(rows).collect();
+            order_rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let (sp, am): (Vec<f64>, Vec<Vec<f64>>) = order_rows.into_iter().unzip();
+            plot_order_map(
+                &set.path()
+                    .join(format!("order_map_{pb:?}_{wb:?}.svg").to_lowercase()),
+                &format!(
+                    "Wheel bearing force, 8-DOF model, {torque} N·m ({pb:?} pinion / {wb:?} wheel)"
+                ),
+                &orders,
+                &sp,
+                &am,
+                &marks
+                    .iter()
+                    .map(|(label, o)| OrderLine {
+                        order: *o,
+                        label: label.clone(),
+                    })
+                    .collect::<Vec<_>>(),
+            )?;
+            maps.push(OrderMapSummary {
+                pinion_blank: pb,
+                wheel_blank: wb,
+                pinion_teeth: z1,
+                wheel_teeth: z2,
+                lobes,
+                wheel_solved_teeth: solved,
+                ltca_span_mesh_cycles: rev.span_cycles,
+                cycle_mean_stiffness_n_per_m: rev.cycle_mean_stiffness_n_per_m.clone(),
+                cycle_wheel_tooth: rev.cycle_wheel_tooth.clone(),
+                stiffness_lobe: rev.stiffness_lobe,
+                deflection_lobe_m: rev.deflection_lobe_m,
+                stiffness_lobe_ptp_relative: rev.stiffness_lobe_ptp(),
+                stiffness_lobe_minimum_wheel_tooth: rev.stiffness_lobe_minimum_wheel_tooth(),
+                span_fit_residual_of_ptp: rev.max_residual_of_ptp,
+                mesh_harmonics,
+                revolution_harmonics,
+                revolution_series_residual_of_ptp: residual,
+                ltca_wall_s: ltca_wall,
+                speeds,
+            });
+        }
+    }
+    write_json(&set.path().join("order_map.json"), &maps)?;
+    Ok(all)
+}
