@@ -4,33 +4,15 @@
 //! wrench and the contact torque is the applied torque, and the TE added by
 //! soft bearings scales with their compliance.
 
-use geometry::design::Member;
+#[path = "support/fixture.rs"]
+mod fixture;
+
+use fixture::Fixture;
 use geometry::pair::PairGeometry;
-use geometry::scene::{Blank, LoadedScene, Scene};
 use solver::bearings::{Bearing, Support};
-use solver::compliance::PairCompliance;
-use solver::ltca_stage::{member_compliance, scene_sweep};
 use solver::system_deflection::{
     deflected_position, DeflectedPosition, DeflectionSettings, Supports,
 };
-use std::path::Path;
-
-fn fixture() -> (LoadedScene, PairGeometry, PairCompliance) {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/02_ltca_fixture");
-    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
-    let meshes = dir.join("meshes").join(&scene.scene.name);
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let c = |m: Member| {
-        member_compliance(&scene, &g, &meshes, m, Blank::Standard)
-            .unwrap()
-            .0
-    };
-    let pc = PairCompliance {
-        pinion: c(Member::Pinion),
-        wheel: c(Member::Wheel),
-    };
-    (scene, g, pc)
-}
 
 /// An overhung pinion (bearings 40 and 100 mm behind its mean point) and a
 /// wheel on bearings 20 and 120 mm behind its mean point, all of radial
@@ -71,21 +53,20 @@ fn supports(g: &PairGeometry, k: f64) -> Supports {
 const TORQUE_NM: f64 = 300.0;
 
 fn solve_with(k: f64) -> DeflectedPosition {
-    let (scene, mut g, pc) = fixture();
-    let sweep = scene_sweep(&scene, &g, Blank::Standard);
-    let phi = sweep.start + sweep.direction * 3.0 * sweep.step;
-    let sup = supports(&g, k);
+    let mut f = Fixture::example_02();
+    let phi = f.sweep.start + f.sweep.direction * 3.0 * f.sweep.step;
+    let sup = supports(&f.g, k);
     deflected_position(
-        &mut g,
-        scene.scene.loaded_flank,
-        &scene.scene.utca,
-        &pc,
+        &mut f.g,
+        f.scene.scene.loaded_flank,
+        &f.scene.scene.utca,
+        &f.pc,
         &sup,
         None,
         phi,
         TORQUE_NM,
         DeflectionSettings {
-            slices: scene.scene.ltca.slices,
+            slices: f.scene.scene.ltca.slices,
             tolerance_m: 1e-9,
             max_iterations: 60,
         },
@@ -106,10 +87,9 @@ fn very_stiff_bearings_give_the_rigid_bearing_te() {
 
 #[test]
 fn bearing_reactions_balance_the_contact_wrench_and_the_contact_torque_is_the_applied_torque() {
-    let (_, g, _) = fixture();
     let k = 5e8;
     let r = solve_with(k);
-    let sup = supports(&g, k);
+    let sup = supports(&Fixture::example_02().g, k);
     assert!(r.iterations >= 2 && r.iterations < 60, "{}", r.iterations);
     let w = r.pinion_wrench;
     let scale = nalgebra::Vector3::new(w[0], w[1], w[2]).norm();

@@ -6,37 +6,19 @@
 //! secant (the Hertzian mesh stiffens with load), and the model's
 //! quasi-static deflection e + F/k is the LTCA's loaded TE.
 
-#[path = "../../examples/golden.rs"]
-mod golden;
+#[path = "support/fixture.rs"]
+mod fixture;
 
-use geometry::design::Member;
-use geometry::pair::PairGeometry;
-use geometry::scene::Scene;
-use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
-use solver::ltca_stage::{member_compliance, scene_sweep};
+use fixture::Fixture;
+
 use solver::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques};
 
 #[test]
 fn lumped_fourier_series_of_ltca_stiffness_and_te_reproduce_the_samples_within_their_error() {
-    let dir = golden::example_dir(env!("CARGO_MANIFEST_DIR"), "02_ltca_fixture");
-    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let side = scene.scene.loaded_flank;
-    let fp = g.side(side);
-    let rs = roll_surface(fp, &scene.scene.utca).unwrap();
-    let mdir = dir.join("meshes").join(&scene.scene.name);
-    let pb = scene.scene.blanks.pinion[0];
-    let wb = scene.scene.blanks.wheel[0];
-    let (pin, _) = member_compliance(&scene, &g, &mdir, Member::Pinion, pb).unwrap();
-    let (whl, _) = member_compliance(&scene, &g, &mdir, Member::Wheel, wb).unwrap();
-    let pc = PairCompliance {
-        pinion: pin,
-        wheel: whl,
-    };
+    let f = Fixture::example_02();
+    let g = &f.g;
     let torque = 300.0;
-    let sweep = scene_sweep(&scene, &g, wb);
-    let res = solver::ltca::run(fp, &rs, &pc, &sweep, &tangent_torques(torque)).unwrap();
+    let res = f.ltca(&tangent_torques(torque));
     let omega = 1000.0 * std::f64::consts::PI / 30.0;
     let s = mesh_samples(&res, torque, omega, g.data.mesh_cycle()).unwrap();
     assert!(s.time_s.len() >= 15, "{} samples", s.time_s.len());

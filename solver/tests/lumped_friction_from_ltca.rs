@@ -20,16 +20,12 @@
 //!    balance 3.1e-6, wheel 1.4e-5, drift 1.5e-5; T₂ = 600.66 N·m against
 //!    T₁r₂/r₁ = 645.00 N·m (a mesh efficiency of 93.1 % at μ = 0.6).
 
-#[path = "../../examples/golden.rs"]
-mod golden;
+#[path = "support/fixture.rs"]
+mod fixture;
 
-use geometry::design::Member as Which;
-use geometry::pair::PairGeometry;
-use geometry::scene::Scene;
-use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
+use fixture::Fixture;
+
 use solver::ltca::geometry;
-use solver::ltca_stage::{member_compliance, scene_sweep};
 use solver::lumped::excitation::{MeshExcitation, StaticError};
 use solver::lumped::friction::{per_unit_force, FrictionExcitation};
 use solver::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques};
@@ -40,32 +36,18 @@ use solver::lumped_stage::slice_friction;
 
 #[test]
 fn lumped_friction_from_the_ltca_is_tangent_dissipative_and_keeps_the_torque_balance() {
-    let dir = golden::example_dir(env!("CARGO_MANIFEST_DIR"), "02_ltca_fixture");
-    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let side = scene.scene.loaded_flank;
-    let fp = g.side(side);
-    let rs = roll_surface(fp, &scene.scene.utca).unwrap();
-    let mdir = dir.join("meshes").join(&scene.scene.name);
-    let (pb, wb) = (scene.scene.blanks.pinion[0], scene.scene.blanks.wheel[0]);
-    let pc = PairCompliance {
-        pinion: member_compliance(&scene, &g, &mdir, Which::Pinion, pb)
-            .unwrap()
-            .0,
-        wheel: member_compliance(&scene, &g, &mdir, Which::Wheel, wb)
-            .unwrap()
-            .0,
-    };
+    let f = Fixture::example_02();
+    let (g, fp, rs, sweep) = (&f.g, f.fp(), &f.rs, &f.sweep);
+    let side = f.scene.scene.loaded_flank;
     let torque = 300.0;
-    let sweep = scene_sweep(&scene, &g, wb);
-    let res = solver::ltca::run(fp, &rs, &pc, &sweep, &tangent_torques(torque)).unwrap();
+    let res = f.ltca(&tangent_torques(torque));
     let omega = 2000.0 * std::f64::consts::PI / 30.0;
     let s = mesh_samples(&res, torque, omega, g.data.mesh_cycle()).unwrap();
     let tau = fp.pinion.gen.frame.pitch();
     let positions: Vec<_> = (0..s.time_s.len())
         .map(|k| {
             let phi = sweep.start + sweep.direction * res[k].rotation;
-            let geo = geometry(fp, &rs, phi, tau, sweep.slices);
+            let geo = geometry(fp, rs, phi, tau, sweep.slices);
             slice_friction(fp, phi, tau, &geo.slices, &res[k].loads[1].slices)
         })
         .collect();

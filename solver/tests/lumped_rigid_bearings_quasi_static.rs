@@ -7,15 +7,11 @@
 //! the second of two mesh cycles is compared (the first lets the start
 //! transient of the torsional mode decay).
 
-#[path = "../../examples/golden.rs"]
-mod golden;
+#[path = "support/fixture.rs"]
+mod fixture;
 
-use geometry::design::Member as Which;
-use geometry::pair::PairGeometry;
-use geometry::scene::Scene;
-use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
-use solver::ltca_stage::{member_compliance, scene_sweep};
+use fixture::Fixture;
+
 use solver::lumped::excitation::{MeshExcitation, StaticError};
 use solver::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques};
 use solver::lumped::integrate::{integrate, Equations, Settings};
@@ -23,24 +19,10 @@ use solver::lumped::model::{direction_cosines, mesh_damping_for_ratio, Member, M
 
 #[test]
 fn lumped_rigid_bearings_at_10_rpm_give_the_quasi_static_ltca_te_within_1_percent_of_ptp() {
-    let dir = golden::example_dir(env!("CARGO_MANIFEST_DIR"), "02_ltca_fixture");
-    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let fp = g.side(scene.scene.loaded_flank);
-    let rs = roll_surface(fp, &scene.scene.utca).unwrap();
-    let mdir = dir.join("meshes").join(&scene.scene.name);
-    let (pb, wb) = (scene.scene.blanks.pinion[0], scene.scene.blanks.wheel[0]);
-    let pc = PairCompliance {
-        pinion: member_compliance(&scene, &g, &mdir, Which::Pinion, pb)
-            .unwrap()
-            .0,
-        wheel: member_compliance(&scene, &g, &mdir, Which::Wheel, wb)
-            .unwrap()
-            .0,
-    };
+    let f = Fixture::example_02();
+    let g = &f.g;
     let torque = 300.0;
-    let sweep = scene_sweep(&scene, &g, wb);
-    let res = solver::ltca::run(fp, &rs, &pc, &sweep, &tangent_torques(torque)).unwrap();
+    let res = f.ltca(&tangent_torques(torque));
     let omega = 10.0 * std::f64::consts::PI / 30.0;
     let s = mesh_samples(&res, torque, omega, g.data.mesh_cycle()).unwrap();
     let [k, _, d] = fit_series(&s, 0.005).unwrap();

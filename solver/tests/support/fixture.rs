@@ -1,0 +1,63 @@
+//! The checked-in example-02 stiffness fixture (white-paper pair, standard
+//! blanks, one mesh cycle in 1° steps; no gmsh) as the solver tests set it
+//! up: the scene, the pair geometry, the surface of roll angles, both
+//! members' compliance and the scene's sweep.
+
+#![allow(dead_code)]
+
+use geometry::design::Member;
+use geometry::pair::{FlankPair, PairGeometry};
+use geometry::scene::{LoadedScene, Scene};
+use geometry::utca::{roll_surface, RollSurface};
+use solver::compliance::PairCompliance;
+use solver::ltca::Sweep;
+use solver::ltca_stage::{member_compliance, scene_sweep};
+use std::path::PathBuf;
+
+pub struct Fixture {
+    /// The example's folder.
+    pub dir: PathBuf,
+    pub scene: LoadedScene,
+    pub g: PairGeometry,
+    /// Of the loaded flanks.
+    pub rs: RollSurface,
+    pub pc: PairCompliance,
+    /// The scene's sweep for its first wheel blank.
+    pub sweep: Sweep,
+}
+
+impl Fixture {
+    pub fn example_02() -> Fixture {
+        let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/02_ltca_fixture");
+        let dir = dir.canonicalize().unwrap_or(dir);
+        let scene = Scene::load(&dir.join("scene.toml")).unwrap();
+        let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
+        let rs = roll_surface(g.side(scene.scene.loaded_flank), &scene.scene.utca).unwrap();
+        let mdir = dir.join("meshes").join(&scene.scene.name);
+        let (pb, wb) = (scene.scene.blanks.pinion[0], scene.scene.blanks.wheel[0]);
+        let c = |m, b| member_compliance(&scene, &g, &mdir, m, b).unwrap().0;
+        let pc = PairCompliance {
+            pinion: c(Member::Pinion, pb),
+            wheel: c(Member::Wheel, wb),
+        };
+        let sweep = scene_sweep(&scene, &g, wb);
+        Fixture {
+            dir,
+            scene,
+            g,
+            rs,
+            pc,
+            sweep,
+        }
+    }
+
+    /// The loaded flank pair.
+    pub fn fp(&self) -> &FlankPair {
+        self.g.side(self.scene.scene.loaded_flank)
+    }
+
+    /// The LTCA over the scene's sweep at `torques`.
+    pub fn ltca(&self, torques: &[f64]) -> Vec<solver::ltca::PositionResult> {
+        solver::ltca::run(self.fp(), &self.rs, &self.pc, &self.sweep, torques).unwrap()
+    }
+}
