@@ -224,27 +224,48 @@ fn alpha_step(m: &Model, s: &State, h: f64, rho: f64) -> Result<(State, usize), 
     })
 }
 
-/// Coordinate-wise discrete gradient of V between q and q'; `g_mid`, the
-/// gradient at the midpoint, stands in where a coordinate does not move.
-fn discrete_gradient(
+/// Symmetrized coordinate-wise discrete gradient of V between q and q'
+/// (Itoh & Abe 1988, averaged over both coordinate orders): with the
+/// corners c₁ = (q₁', q₂) and c₂ = (q₁, q₂'),
+///
+///   ḡ₁ = ½ [(V(c₁) − V(q)) + (V(q') − V(c₂))] / (q₁' − q₁),
+///   ḡ₂ = ½ [(V(c₂) − V(q)) + (V(q') − V(c₁))] / (q₂' − q₂),
+///
+/// so that ḡ · (q' − q) = V(q') − V(q) exactly (the scheme conserves
+/// energy) and ḡ is the gradient at the midpoint to second order in the
+/// step. One order alone (c₁ only) evaluates ḡ₂ at q₁' instead of the
+/// midpoint: a torque error of ½ ∂²V/∂q₁∂q₂ Δq₁ that grows with step and
+/// speed (11 % of the wheel torque at 300 N·m, 1,000 rpm and 1.4 µs steps
+/// on the white-paper pair). A coordinate that does not move takes
+/// `g_mid`, the gradient at the midpoint, and the other the rest of the
+/// change of V, so that the identity stays exact.
+pub fn discrete_gradient(
     m: &Model,
     q: [f64; 2],
     qn: [f64; 2],
     g_mid: [f64; 2],
 ) -> Result<[f64; 2], SolverError> {
     let v = |a: [f64; 2]| m.potential(a);
-    let corner = [qn[0], q[1]];
-    let g0 = if (qn[0] - q[0]).abs() > 1e-10 {
-        (v(corner)? - v(q)?) / (qn[0] - q[0])
-    } else {
-        g_mid[0]
-    };
-    let g1 = if (qn[1] - q[1]).abs() > 1e-10 {
-        (v(qn)? - v(corner)?) / (qn[1] - q[1])
-    } else {
-        g_mid[1]
-    };
-    Ok([g0, g1])
+    let d = [qn[0] - q[0], qn[1] - q[1]];
+    let moves = d.map(|x| x.abs() > 1e-10);
+    if !moves[0] && !moves[1] {
+        return Ok(g_mid);
+    }
+    let v0 = v(q)?;
+    let change = v(qn)? - v0;
+    // One coordinate (nearly) still: it takes the midpoint gradient and the
+    // other the rest of the change, so that ḡ · Δq = ΔV stays exact.
+    if !moves[0] {
+        return Ok([g_mid[0], (change - g_mid[0] * d[0]) / d[1]]);
+    }
+    if !moves[1] {
+        return Ok([(change - g_mid[1] * d[1]) / d[0], g_mid[1]]);
+    }
+    let (c1, c2) = (v([qn[0], q[1]])? - v0, v([q[0], qn[1]])? - v0);
+    Ok([
+        0.5 * (c1 + change - c2) / d[0],
+        0.5 * (c2 + change - c1) / d[1],
+    ])
 }
 
 /// Energy-conserving midpoint step: Newton on q_{n+1} with the midpoint tangent.
