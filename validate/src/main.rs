@@ -54,9 +54,10 @@ enum Cmd {
         /// Positions per mesh cycle for the direct search.
         #[arg(long, default_value_t = 12)]
         positions: usize,
-        /// Writes the comparison as JSON to this file.
+        /// Writes the comparison as one result set in this folder
+        /// (`utca_check.json` and its `run.json`).
         #[arg(long)]
-        out_json: Option<PathBuf>,
+        out: Option<PathBuf>,
     },
     /// Reference loaded TCA: fine FE bodies in penalty contact.
     Reference {
@@ -320,7 +321,7 @@ fn main() -> anyhow::Result<()> {
         Cmd::Utca {
             scene,
             positions,
-            out_json,
+            out,
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
@@ -343,9 +344,9 @@ fn main() -> anyhow::Result<()> {
                 c.fast_ms_per_position,
                 c.direct_ms_per_position
             );
-            if let Some(p) = out_json {
-                formats::output::write_json(&p, &c)?;
-                println!("written {}", p.display());
+            if let Some(dir) = out {
+                validate::utca_check::write_set(&c, &scene, &input.design_path, &dir)?;
+                println!("written {}", dir.join("utca_check.json").display());
             }
         }
         Cmd::Reference {
