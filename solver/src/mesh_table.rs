@@ -497,8 +497,15 @@ impl MeshTable {
 
     /// Unloaded TE θ₀(q₁) and its first two derivatives.
     pub fn unloaded(&self, q1: f64) -> Result<[f64; 3], SolverError> {
+        self.along_q1(|k| self.te0[k], q1)
+    }
+
+    /// A per-node quantity (`value(k)` at table node k, lead first)
+    /// interpolated at q₁ as θ₀ is (Catmull–Rom, periodic or continued
+    /// linearly), with its first two derivatives.
+    pub fn along_q1(&self, value: impl Fn(usize) -> f64, q1: f64) -> Result<[f64; 3], SolverError> {
         let (i, t) = self.cell(q1)?;
-        let v = stencil(self.nodes(), self.spec.periodic, i, |k| self.te0[k]);
+        let v = stencil(self.nodes(), self.spec.periodic, i, value);
         let w = catmull_rom(t);
         let h = self.spec.step;
         let d = |r: usize| (0..4).map(|o| w[r][o] * v[o]).sum::<f64>();

@@ -121,7 +121,12 @@ impl Integrator {
 /// in a run-up); the step control takes this floor, 16 times over, as the
 /// least tolerance (the scene checks refuse tolerances near it).
 pub fn lag_resolution(r: f64, s: &State) -> f64 {
-    16.0 * (1.0 + r) * 1e-15 * (1.0 + s.q[0].abs().max(s.q[1].abs()))
+    lag_resolution_at(r, s.q[0].abs().max(s.q[1].abs()))
+}
+
+/// [`lag_resolution`] for rotations up to `q_max` (rad) in magnitude.
+pub fn lag_resolution_at(r: f64, q_max: f64) -> f64 {
+    16.0 * (1.0 + r) * 1e-15 * (1.0 + q_max)
 }
 
 /// Solves the 1 × 1 or 2 × 2 system J x = b on the free coordinates.
