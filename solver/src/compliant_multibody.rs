@@ -94,6 +94,18 @@ impl MemberBody {
     }
 }
 
+/// Where the element's forces on the misalignments come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BearingLoad {
+    /// F_m = g₂ s(q₁): the wheel torque times the unloaded TE's shift, the
+    /// normal force of the first contact point along its line of action.
+    UnloadedShift,
+    /// F_m from the LTCA's wrench on the wheel at the equivalent lag
+    /// ([`crate::mesh_table::MeshTable::wrench`]): F_c = T⁻ᵀ W (T the twist
+    /// map), the load shared among the slices and tooth pairs as loaded.
+    LoadedWrench,
+}
+
 /// The compliant-bearing model.
 #[derive(Debug, Clone)]
 pub struct CompliantModel<'a> {
@@ -102,7 +114,10 @@ pub struct CompliantModel<'a> {
     pub rigid: Model<'a>,
     pub shift: &'a LagShift,
     pub members: [MemberBody; 2],
+    pub bearing_load: BearingLoad,
     twist: TwistMap,
+    /// T⁻ᵀ: the contact coordinates' forces of a wrench on the wheel.
+    wrench_map: M6,
     /// c = L x.
     l: SMatrix<f64, 6, 12>,
     mass: M12,
@@ -196,11 +211,23 @@ impl<'a> CompliantModel<'a> {
                 .fixed_view_mut::<5, 5>(o, o)
                 .copy_from(&(q.transpose() * mb.support.damping(&mb.damping) * q));
         }
+        let mut t = M6::zeros();
+        for k in 0..6 {
+            let mut e = Vector6::zeros();
+            e[k] = 1.0;
+            t.set_column(k, &twist.of_displacements(&e, &Vector6::zeros()));
+        }
+        let wrench_map = t
+            .try_inverse()
+            .ok_or_else(|| SolverError::Table("singular twist map".into()))?
+            .transpose();
         Ok(CompliantModel {
             rigid,
             shift,
             members,
+            bearing_load: BearingLoad::LoadedWrench,
             twist,
+            wrench_map,
             l,
             mass,
             stiffness,
@@ -257,10 +284,28 @@ impl<'a> CompliantModel<'a> {
         let r2 = row(h[1][0], h[1][1]);
         df.set_row(0, &r1);
         df.set_row(1, &r2);
-        for i in 0..4 {
-            let mut ri = r2 * s[i];
-            ri[0] += g[1] * ds[i];
-            df.set_row(2 + i, &ri);
+        match self.bearing_load {
+            BearingLoad::UnloadedShift => {
+                for i in 0..4 {
+                    let mut ri = r2 * s[i];
+                    ri[0] += g[1] * ds[i];
+                    df.set_row(2 + i, &ri);
+                }
+            }
+            BearingLoad::LoadedWrench => {
+                // W(q₁, θ'), θ' = r c₁ − c₂ − s(c₁)·m.
+                let w = table.wrench_state(c[0], ms.theta)?;
+                let value = Vector6::from_fn(|k, _| w[k][0]);
+                let dq = Vector6::from_fn(|k, _| w[k][1]);
+                let dt = Vector6::from_fn(|k, _| w[k][2]);
+                let lag_grad = Vector6::new(r - dsm, -1.0, -s[0], -s[1], -s[2], -s[3]).transpose();
+                let fc = self.wrench_map * value;
+                let dfc = self.wrench_map * (dq * Vector6::x().transpose() + dt * lag_grad);
+                for i in 2..6 {
+                    f[i] = fc[i];
+                    df.set_row(i, &dfc.row(i));
+                }
+            }
         }
         // Mesh damping on the equivalent lag's rate.
         let (step, _) = crate::multibody::smoothstep(ms.u / table.du());

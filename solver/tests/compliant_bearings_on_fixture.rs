@@ -175,7 +175,10 @@ fn slow_run_on_compliant_bearings_follows_the_quasi_static_ltca_on_the_deflected
     let c = Compliant::example_02(32, 900.0);
     let rigid = ten_rpm(&c, 0.05);
     let sup = supports(&c.f.g, k);
-    let cm = CompliantModel::new(rigid, &c.shift, bodies(&c.f.g, &sup, 5e3), c.hand).unwrap();
+    let mut cm = CompliantModel::new(rigid, &c.shift, bodies(&c.f.g, &sup, 5e3), c.hand).unwrap();
+    if std::env::var("UNLOADED_SHIFT").is_ok() {
+        cm.bearing_load = solver::compliant_multibody::BearingLoad::UnloadedShift;
+    }
     let t_end = c.table.span() / (WHEEL_10_RPM / c.ratio);
     let states = run(&cm, t_end, 2e-4);
     let r = c.ratio;
@@ -210,6 +213,36 @@ fn slow_run_on_compliant_bearings_follows_the_quasi_static_ltca_on_the_deflected
         )
         .unwrap();
         let added = sd.te - sd.te_rigid_bearings;
+        if std::env::var("DIAGNOSE").is_ok() {
+            // The model's TE on the LTCA's converged displacements: the
+            // rigid loaded lag + s·m − (r δq₁ − δq₂).
+            let dv = |d: &solver::bearings::Displacement| {
+                Vector6::new(
+                    d.translation.x,
+                    d.translation.y,
+                    d.translation.z,
+                    d.rotation.x,
+                    d.rotation.y,
+                    d.rotation.z,
+                )
+            };
+            let cc = cm.twist().of_displacements(&dv(&sd.pinion), &dv(&sd.wheel));
+            let (sh, _) = c.shift.at(&c.table, q1).unwrap();
+            let sm: f64 = (0..4).map(|i| sh[i] * cc[2 + i]).sum();
+            let mm = [cc[2], cc[3], cc[4], cc[5]];
+            let model_te = sd.te_rigid_bearings + sm - (r * cc[0] - cc[1]);
+            let cm_c = cm
+                .twist()
+                .of_displacements(&cm.displacement(&s.x, 0), &cm.displacement(&s.x, 1));
+            eprintln!(
+                "  on the LTCA's displacements the model's TE is {:.3} µrad (LTCA {:.3}); m LTCA (µm, µm, µm, µrad) {:.2?}, run {:.2?}; nonlinearity estimate {:.3} µrad",
+                model_te * 1e6,
+                sd.te * 1e6,
+                mm.map(|x| x * 1e6),
+                [cm_c[2], cm_c[3], cm_c[4], cm_c[5]].map(|x| x * 1e6),
+                c.shift.nonlinearity(&c.table, q1, &mm) * 1e6
+            );
+        }
         let fb = [
             cm.bearing_forces(&s.x, &s.v, 0),
             cm.bearing_forces(&s.x, &s.v, 1),
@@ -327,4 +360,53 @@ fn bearing_forces_balance_the_mesh_wrench_and_the_inertia_forces_every_step() {
         "the run does not exercise the inertia forces"
     );
     assert!(worst < 1e-9, "imbalance {worst}");
+}
+
+#[test]
+fn tabulated_wrench_turns_the_pinion_with_the_tables_torque() {
+    // The wrench on the wheel from the slices' points and normals, seen by
+    // the twist map as a torque on the pinion's turn, against the torque
+    // from the LTCA's levers (both interpolated alike).
+    let c = Compliant::example_02(24, 600.0);
+    let g = &c.f.g;
+    let map = TwistMap::new(
+        g.frames[0].axis(),
+        g.frames[1].axis(),
+        c.f.sweep.direction,
+        c.hand,
+    );
+    let mut t = nalgebra::Matrix6::zeros();
+    for k in 0..6 {
+        let mut e = Vector6::zeros();
+        e[k] = 1.0;
+        t.set_column(k, &map.of_displacements(&e, &Vector6::zeros()));
+    }
+    let to_c = t.try_inverse().unwrap().transpose();
+    let r = c.ratio;
+    let mut worst: f64 = 0.0;
+    for (q1_deg, load) in [
+        (0.3, 0.2),
+        (4.7, 0.5),
+        (9.1, 0.9),
+        (13.6, 0.35),
+        (16.2, 0.7),
+    ] {
+        let q1 = f64::to_radians(q1_deg);
+        let te0 = c.table.unloaded(q1).unwrap()[0];
+        let top = c.table.lags[c.table.lags.len() - 1];
+        let theta = te0 + load * (top - te0);
+        let ms = c.table.state(q1, r * q1 - theta).unwrap();
+        let w = c.table.wrench_state(q1, theta).unwrap();
+        let fc = to_c * Vector6::from_fn(|k, _| w[k][0]);
+        let rel = (fc[0] - ms.grad[0]).abs() / ms.grad[0].abs();
+        eprintln!(
+            "q1 {q1_deg}°, θ {:.1} µrad: pinion torque {:.6} N·m from the wrench, {:.6} N·m from the levers",
+            theta * 1e6,
+            fc[0],
+            ms.grad[0]
+        );
+        assert!(ms.grad[0] > 10.0);
+        worst = worst.max(rel);
+    }
+    assert!(worst < 1e-9, "relative difference {worst}");
 }
