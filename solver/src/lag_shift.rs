@@ -48,13 +48,15 @@ pub struct LagShift {
 }
 
 impl LagShift {
-    /// The shifts at `table`'s nodes for the pair `g` (aligned: its own
-    /// scene misalignment is not composed in) on flank `side`.
+    /// The shifts at `table`'s nodes for the pair `g` on flank `side`,
+    /// about the static misalignment `base` the table was built on (±hᵢ
+    /// added to it).
     pub fn build(
         g: &PairGeometry,
         side: Side,
         utca: &UtcaSettings,
         table: &MeshTable,
+        base: &Misalignment,
     ) -> Result<LagShift, SolverError> {
         let t0 = std::time::Instant::now();
         let spec = table.spec;
@@ -65,7 +67,8 @@ impl LagShift {
             .par_iter()
             .map(|&(i, sign)| {
                 let mut gm = g.clone();
-                gm.misalign(&Misalignment::default().with(Component::ALL[i], sign * STEPS[i]));
+                let c = Component::ALL[i];
+                gm.misalign(&base.with(c, base.get(c) + sign * STEPS[i]));
                 let fp = gm.side(side);
                 let rs = roll_surface(fp, utca).map_err(|e| {
                     SolverError::Table(format!("roll surface of the misaligned pair: {e}"))

@@ -18,6 +18,7 @@ pub mod backlash;
 pub mod bearings;
 pub mod compliance;
 pub mod compliant_multibody;
+pub mod compliant_stage;
 pub mod contact_problem;
 pub mod cpu_clock;
 pub mod dynamic_stage;

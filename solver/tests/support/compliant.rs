@@ -52,6 +52,7 @@ impl Compliant {
             f.scene.scene.loaded_flank,
             &f.scene.scene.utca,
             &table,
+            &geometry::misalignment::Misalignment::default(),
         )
         .unwrap();
         let mdir = f.dir.join("meshes").join(&f.scene.scene.name);
