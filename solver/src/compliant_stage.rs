@@ -177,8 +177,8 @@ fn record(
         }
         let _ = writeln!(tr.rows, ",{:.5}", linear * 1e6);
         tr.wheel_force.push(wheel.norm());
-        for i in 0..4 {
-            tr.most_m[i] = tr.most_m[i].max(m[i].abs());
+        for (most, v) in tr.most_m.iter_mut().zip(m) {
+            *most = most.max(v.abs());
         }
         tr.most_linear = tr.most_linear.max(linear);
         Ok(())
