@@ -242,6 +242,11 @@ pub struct CompliantRunSummary {
     /// Largest estimate of the TE the linear shift of the unloaded TE
     /// leaves out, ½ Σ |∂²θ₀/∂mᵢ²| mᵢ², µrad.
     pub largest_linearization_urad: f64,
+    /// Its mean over the run's steps, µrad (the largest comes from the
+    /// tooth changes, where θ₀(m) has a kink: the next pair's first contact
+    /// moves with m).
+    #[serde(default)]
+    pub mean_linearization_urad: f64,
     /// Largest force magnitude per bearing, N.
     pub pinion_bearing_force_n: Vec<f64>,
     pub wheel_bearing_force_n: Vec<f64>,

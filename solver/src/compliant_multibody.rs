@@ -535,34 +535,19 @@ impl CompliantIntegrator {
             if h <= 0.0 {
                 return Ok((*s, *s));
             }
-            let (next, mid, iters) = match alpha_step(m, s, h, self.rho_inf) {
-                Ok(x) => x,
-                Err(e) => {
-                    if h <= self.control.min_step {
-                        return Err(e);
-                    }
-                    self.rejected += 1;
-                    self.h = (0.25 * h).max(self.control.min_step);
-                    continue;
-                }
-            };
-            self.newton_iterations += iters;
-            let pred = |i: usize| s.x[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
-            let err = (r * (next.x[0] - pred(0)) - (next.x[1] - pred(1))).abs();
-            let floor = lag_resolution_at(r, next.x[0].abs().max(next.x[1].abs()));
-            let ratio = err / self.control.tolerance.max(floor);
-            let grow = if ratio > 0.0 {
-                (0.9 * ratio.powf(-1.0 / 3.0)).clamp(0.2, 2.0)
-            } else {
-                2.0
-            };
-            if ratio > 1.0 && h > self.control.min_step {
-                self.rejected += 1;
-                self.h = (h * grow).max(self.control.min_step);
-                continue;
+            let judged = alpha_step(m, s, h, self.rho_inf).map(|(next, mid, iters)| {
+                self.newton_iterations += iters;
+                let pred = |i: usize| s.x[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
+                let err = (r * (next.x[0] - pred(0)) - (next.x[1] - pred(1))).abs();
+                let floor = lag_resolution_at(r, next.x[0].abs().max(next.x[1].abs()));
+                ((next, mid), err / self.control.tolerance.max(floor))
+            });
+            if let Some(accepted) =
+                self.control
+                    .judge(&mut self.h, &mut self.rejected, h, judged)?
+            {
+                return Ok(accepted);
             }
-            self.h = (h * grow).min(self.control.max_step);
-            return Ok((next, mid));
         }
     }
 }

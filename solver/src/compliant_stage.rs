@@ -18,7 +18,7 @@ use crate::compliant_multibody::{
 use crate::lag_shift::LagShift;
 use crate::ltca::mean_ptp;
 use crate::mesh_table::MeshTable;
-use crate::multibody::{wheel_driven, Drive, Model, Ramp};
+use crate::multibody::{wheel_driven, Model};
 use crate::system_deflection::supports_of;
 use crate::time_step::StepControl;
 use anyhow::Context;
@@ -101,6 +101,7 @@ struct Trace {
     wheel_force: Vec<f64>,
     most_m: [f64; 4],
     most_linear: f64,
+    sum_linear: f64,
     most_force: [Vec<f64>; 2],
 }
 
@@ -181,6 +182,7 @@ fn record(
             *most = most.max(v.abs());
         }
         tr.most_linear = tr.most_linear.max(linear);
+        tr.sum_linear += linear;
         Ok(())
     })?;
     Ok((tr, steps))
@@ -207,6 +209,7 @@ fn summary(
         te_ptp_urad: ptp * 1e6,
         largest_misalignment: tr.most_m.map(|v| v * 1e6),
         largest_linearization_urad: tr.most_linear * 1e6,
+        mean_linearization_urad: tr.sum_linear / tr.te.len().max(1) as f64 * 1e6,
         pinion_bearing_force_n: tr.most_force[0].clone(),
         wheel_bearing_force_n: tr.most_force[1].clone(),
         csv: csv.into(),
@@ -235,7 +238,11 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
     let shift = LagShift::build(s.g, sc.loaded_flank, &sc.utca, s.table, &sc.misalignment)
         .context("shift of the unloaded TE per misalignment")?;
     let lag_shift_s = t0.elapsed().as_secs_f64();
-    eprintln!("  compliant bearings: unloaded TE's shift per misalignment in {lag_shift_s:.1} s");
+    eprintln!(
+        "  compliant bearings: unloaded TE's shift per misalignment at {} of the table's {} positions in {lag_shift_s:.1} s",
+        shift.solved_nodes,
+        s.table.nodes()
+    );
     let (members, mass_source) = bodies(s.g, bearings, s.inertia, s.mesh_mass_kg)?;
     let masses = [members[0].mass_kg, members[1].mass_kg];
     let hand = trace_sign(s.g.data.members[0].hand);
@@ -266,9 +273,11 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
         formats::output::write_atomic(&s.odir.join(&csv), tr.rows.as_bytes())?;
         let sum = summary("10 rpm", torque, &tr, steps, &integ, cpu, &csv);
         eprintln!(
-            "  compliant 10 rpm {torque:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, |E|,|P|,|G| up to {:.2}, {:.2}, {:.2} µm, |ΔΣ| {:.2} µrad, {steps} steps, {:.1} µs/step",
+            "  compliant 10 rpm {torque:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, linearization estimate mean {:.2} µrad (largest {:.2}), |E|,|P|,|G| up to {:.2}, {:.2}, {:.2} µm, |ΔΣ| {:.2} µrad, {steps} steps, {:.1} µs/step",
             sum.te_mean_urad,
             sum.te_ptp_urad,
+            sum.mean_linearization_urad,
+            sum.largest_linearization_urad,
             sum.largest_misalignment[0],
             sum.largest_misalignment[1],
             sum.largest_misalignment[2],
@@ -297,12 +306,6 @@ fn run_up(
     hand: f64,
 ) -> anyhow::Result<CompliantRunSummary> {
     let mb = &s.scene.scene.multibody;
-    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
-    let ramp = Ramp {
-        from: w(mb.runup_rpm[0]),
-        to: w(mb.runup_rpm[1]),
-        duration: mb.runup_time_s,
-    };
     let torque = mb.runup_pinion_torque_nm;
     let mut m = Model {
         table: s.table,
@@ -310,10 +313,7 @@ fn run_up(
         inertia: s.inertia,
         damping: 0.0,
         friction: 0.0,
-        drive: Drive::PinionSpeed {
-            speed: ramp,
-            wheel_torque: torque / s.table.ratio,
-        },
+        drive: crate::dynamic_stage::runup_drive(mb, s.table.ratio),
     };
     let rs0 = m.static_state(0.0)?;
     m.damping = m.damping_for_ratio(mb.damping_ratio, &rs0)?;

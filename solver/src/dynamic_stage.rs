@@ -600,12 +600,6 @@ fn run_up(
     impact_law: bool,
     coast: Option<&Coast>,
 ) -> anyhow::Result<RunupSummary> {
-    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
-    let ramp = Ramp {
-        from: w(mb.runup_rpm[0]),
-        to: w(mb.runup_rpm[1]),
-        duration: mb.runup_time_s,
-    };
     let torque = mb.runup_pinion_torque_nm;
     let mut m = Model {
         table,
@@ -613,10 +607,7 @@ fn run_up(
         inertia,
         damping: 0.0,
         friction,
-        drive: Drive::PinionSpeed {
-            speed: ramp,
-            wheel_torque: torque / table.ratio,
-        },
+        drive: runup_drive(mb, table.ratio),
     };
     // Without coast flanks the wheel must stay on the drive flanks up to
     // the top speed: below the holding torque it runs ahead at the tooth
@@ -723,6 +714,25 @@ fn run_up(
     })
 }
 
+/// The run-up's pinion speed ramp, rad/s.
+pub(crate) fn runup_ramp(mb: &geometry::scene::MultibodySettings) -> Ramp {
+    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
+    Ramp {
+        from: w(mb.runup_rpm[0]),
+        to: w(mb.runup_rpm[1]),
+        duration: mb.runup_time_s,
+    }
+}
+
+/// The run-up's drive: the pinion on [`runup_ramp`], the wheel resisting
+/// the run-up torque (at the pinion) through the ratio `ratio`.
+pub(crate) fn runup_drive(mb: &geometry::scene::MultibodySettings, ratio: f64) -> Drive {
+    Drive::PinionSpeed {
+        speed: runup_ramp(mb),
+        wheel_torque: mb.runup_pinion_torque_nm / ratio,
+    }
+}
+
 /// The run-up's spectrogram of a force magnitude `series` (times, |F|)
 /// over the pinion speed, with the tooth orders (and, with the lightweight
 /// wheel, its 3-hole side bands) marked.
@@ -735,12 +745,7 @@ pub(crate) fn runup_spectrogram(
     ratio: f64,
     wb: Blank,
 ) -> anyhow::Result<()> {
-    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
-    let ramp = Ramp {
-        from: w(mb.runup_rpm[0]),
-        to: w(mb.runup_rpm[1]),
-        duration: mb.runup_time_s,
-    };
+    let ramp = runup_ramp(mb);
     let dt = mb.runup_max_step_s.max(mb.runup_time_s / 2e5);
     let y = resample(series.0, series.1, dt);
     let window = ((mb.runup_time_s / 8.0) / dt).round().max(16.0) as usize;

@@ -36,6 +36,20 @@ pub fn si_per_unit(i: usize) -> f64 {
     }
 }
 
+/// Nodes per mesh cycle of a non-periodic table whose step divides the
+/// mesh cycle `tau` (pinion rad) and whose unloaded TE repeats from cycle
+/// to cycle (within 1e-10 rad): the flanks' geometry repeats from tooth to
+/// tooth whatever the blank, so the shifts need solving over one cycle
+/// only (a lightweight wheel's table spans many). None otherwise.
+fn mesh_cycle_phases(table: &MeshTable, tau: f64) -> Option<usize> {
+    let spec = table.spec;
+    let n = (tau / spec.step).round() as usize;
+    let nodes = table.nodes();
+    let divides = (n as f64 * spec.step - tau).abs() <= 1e-9 * tau;
+    let repeats = (n..nodes).all(|k| (table.te0[k] - table.te0[k % n]).abs() <= 1e-10);
+    (!spec.periodic && n >= 4 && nodes > n && divides && repeats).then_some(n)
+}
+
 /// sᵢ and κᵢ at the nodes of a table.
 #[derive(Debug, Clone)]
 pub struct LagShift {
@@ -45,6 +59,9 @@ pub struct LagShift {
     pub curvature: Vec<[f64; 4]>,
     /// Wall time of the 8 misaligned contact searches, s (all cores).
     pub wall_s: f64,
+    /// Table nodes the searches solved (one mesh cycle's where the table's
+    /// unloaded TE repeats, else all).
+    pub solved_nodes: usize,
 }
 
 impl LagShift {
@@ -62,6 +79,8 @@ impl LagShift {
         let spec = table.spec;
         let lead = table.lead as i64;
         let nodes = table.nodes();
+        let phases = mesh_cycle_phases(table, g.side(side).pinion.gen.frame.pitch());
+        let solved = phases.unwrap_or(nodes);
         let runs: Vec<(usize, f64)> = (0..4).flat_map(|i| [(i, 1.0), (i, -1.0)]).collect();
         let te: Vec<Vec<f64>> = runs
             .par_iter()
@@ -74,7 +93,7 @@ impl LagShift {
                     SolverError::Table(format!("roll surface of the misaligned pair: {e}"))
                 })?;
                 let tau = fp.pinion.gen.frame.pitch();
-                (0..nodes as i64)
+                (0..solved as i64)
                     .map(|k| {
                         let phi = spec.start + spec.direction * spec.step * (k - lead) as f64;
                         let geo = geometry(fp, &rs, phi, tau, spec.slices);
@@ -92,14 +111,16 @@ impl LagShift {
             let h = STEPS[i] * si_per_unit(i);
             let (plus, minus) = (&te[2 * i], &te[2 * i + 1]);
             for k in 0..nodes {
-                slope[k][i] = (plus[k] - minus[k]) / (2.0 * h);
-                curvature[k][i] = (plus[k] - 2.0 * table.te0[k] + minus[k]) / (h * h);
+                let p = k % solved;
+                slope[k][i] = (plus[p] - minus[p]) / (2.0 * h);
+                curvature[k][i] = (plus[p] - 2.0 * table.te0[p] + minus[p]) / (h * h);
             }
         }
         Ok(LagShift {
             slope,
             curvature,
             wall_s: t0.elapsed().as_secs_f64(),
+            solved_nodes: solved,
         })
     }
 

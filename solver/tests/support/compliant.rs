@@ -7,12 +7,13 @@
 
 #![allow(dead_code)]
 
+pub use super::fixture::supports;
 use super::fixture::Fixture;
 use geometry::design::Member;
 use geometry::generation::trace_sign;
 use geometry::pair::PairGeometry;
 use geometry::scene::Blank;
-use solver::bearings::{Bearing, Support};
+use solver::bearings::Support;
 use solver::compliant_multibody::MemberBody;
 use solver::dynamic_stage::inertia;
 use solver::lag_shift::LagShift;
@@ -73,40 +74,6 @@ impl Compliant {
             ratio,
             hand,
         }
-    }
-}
-
-/// Both supports with bearings of radial and axial stiffness `k` (N/m).
-pub fn supports(g: &PairGeometry, k: f64) -> Supports {
-    let one = |m: usize, near: f64, far: f64| {
-        let frame = &g.frames[m];
-        let s = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
-        Support::new(
-            if m == 0 {
-                "pinion.bearings"
-            } else {
-                "wheel.bearings"
-            },
-            frame.axis(),
-            nalgebra::Vector3::zeros(),
-            &[
-                Bearing {
-                    axial_position_m: s + near,
-                    radial_stiffness_n_per_m: k,
-                    axial_stiffness_n_per_m: k,
-                },
-                Bearing {
-                    axial_position_m: s + far,
-                    radial_stiffness_n_per_m: k,
-                    axial_stiffness_n_per_m: 0.0,
-                },
-            ],
-        )
-        .unwrap()
-    };
-    Supports {
-        pinion: one(0, 0.04, 0.10),
-        wheel: one(1, 0.02, 0.12),
     }
 }
 
