@@ -151,3 +151,64 @@ impl LagShift {
             .sum()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh_table::TableSpec;
+
+    /// A table of `nodes` nodes in steps of `step` with unloaded TE `te0(k)`.
+    fn table(periodic: bool, step: f64, te0: Vec<f64>) -> MeshTable {
+        let nodes = te0.len();
+        MeshTable {
+            spec: TableSpec {
+                start: 0.0,
+                direction: 1.0,
+                step,
+                positions: nodes - 2,
+                periodic,
+                slices: 10,
+                lag_nodes: 8,
+                torque_max_nm: 1.0,
+            },
+            lead: if periodic { 0 } else { 2 },
+            ratio: 0.5,
+            lags: vec![],
+            te0,
+            torque: vec![],
+            force: vec![],
+            wrench: vec![],
+            friction: vec![],
+            cpu_s_per_position: 0.0,
+            impact: None,
+        }
+    }
+
+    #[test]
+    fn shifts_are_solved_over_one_mesh_cycle_only_where_the_unloaded_te_repeats() {
+        let tau = 0.3;
+        let n = 12;
+        let cycle = |k: usize| 1e-5 * ((k % n) as f64).sin();
+        let repeating: Vec<f64> = (0..5 * n + 3).map(cycle).collect();
+        let lw = table(false, tau / n as f64, repeating.clone());
+        assert_eq!(mesh_cycle_phases(&lw, tau), Some(n));
+        // A periodic table is solved at its own nodes.
+        assert_eq!(
+            mesh_cycle_phases(&table(true, tau / n as f64, repeating.clone()), tau),
+            None
+        );
+        // A TE that does not repeat (a 2e-10 rad drift), or a step that does
+        // not divide the mesh cycle, is solved everywhere.
+        let drifting: Vec<f64> = (0..5 * n + 3)
+            .map(|k| cycle(k) + 2e-10 * (k / n) as f64)
+            .collect();
+        assert_eq!(
+            mesh_cycle_phases(&table(false, tau / n as f64, drifting), tau),
+            None
+        );
+        assert_eq!(
+            mesh_cycle_phases(&table(false, tau / (n as f64 + 0.5), repeating), tau),
+            None
+        );
+    }
+}
