@@ -8,7 +8,6 @@
 //! Target: ≤ 1 ms per step (issue 32; the white paper ~0.4 s per step).
 //! Results in `bench/compliant_multibody.json`.
 
-use geometry::design::Member;
 use geometry::generation::trace_sign;
 use geometry::misalignment::Misalignment;
 use geometry::pair::PairGeometry;
@@ -16,13 +15,12 @@ use geometry::scene::{Blank, Scene};
 use geometry::utca::roll_surface;
 use serde_json::json;
 use solver::bearings::{Bearing, Support};
-use solver::compliance::PairCompliance;
 use solver::compliant_multibody::{
     integrate as c_integrate, CompliantIntegrator, CompliantModel, MemberBody,
 };
-use solver::dynamic_stage::inertia;
+use solver::dynamic_stage::pair_and_inertia;
 use solver::lag_shift::LagShift;
-use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::ltca_stage::scene_sweep;
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{wheel_driven, Drive, Model, Ramp};
 use solver::time_step::{integrate, Integrator, Scheme, StepControl};
@@ -60,6 +58,29 @@ fn bodies(g: &PairGeometry, inertia: [f64; 2]) -> [MemberBody; 2] {
     [one(0, 0.04, 0.10, 1.5), one(1, 0.02, 0.12, 12.0)]
 }
 
+/// Runs `run` (which records the shaft TE and returns its steps) on one
+/// thread's CPU clock: (steps, µs per step, TE peak-to-peak in µrad).
+fn timed(run: impl FnOnce(&mut Vec<f64>) -> usize) -> (usize, f64, f64) {
+    let mut te = Vec::new();
+    let clock = solver::cpu_clock::thread_cpu_s();
+    let steps = run(&mut te);
+    let us = (solver::cpu_clock::thread_cpu_s() - clock) / steps as f64 * 1e6;
+    (steps, us, solver::ltca::mean_ptp(&te).1 * 1e6)
+}
+
+/// Prints and returns one row of the table.
+fn row(
+    run: &str,
+    bearings: &str,
+    steps: usize,
+    rejected: usize,
+    us: f64,
+    ptp: f64,
+) -> serde_json::Value {
+    println!("{run:>8} {bearings:>10} {steps:>8} {rejected:>9} {us:>10.1} {ptp:>10.2}");
+    json!({"run": run, "bearings": bearings, "steps": steps, "rejected_steps": rejected, "us_per_step": us, "te_ptp_urad": ptp})
+}
+
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
@@ -67,13 +88,8 @@ fn main() {
     let mb = &sc.multibody;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
     let dir = root.join("meshes").join(&sc.name);
-    let load = |m: Member| {
-        let (c, plan) = member_compliance(&scene, &g, &dir, m, Blank::Standard)
-            .expect("meshes/default: run `make preprocess` first");
-        (c, inertia(&scene, &g, &dir, &plan, m).unwrap().0)
-    };
-    let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
-    let pc = PairCompliance { pinion, wheel };
+    let (pc, [j1, j2]) = pair_and_inertia(&scene, &g, &dir, [Blank::Standard; 2])
+        .expect("meshes/default: run `make preprocess` first");
     let fp = g.side(sc.loaded_flank);
     let rs = roll_surface(fp, &sc.utca).unwrap();
     let tau = g.data.mesh_cycle();
@@ -158,7 +174,7 @@ fn main() {
     ];
     let mut rows = Vec::new();
     for (name, m, t_end, max_step) in cases {
-        // Rigid bearings.
+        // Rigid bearings, then compliant ones.
         let mut integ = Integrator::new(
             Scheme::GeneralizedAlpha {
                 rho_inf: mb.rho_inf,
@@ -166,39 +182,27 @@ fn main() {
             control(max_step),
         );
         let s0 = m.static_state(0.0).unwrap();
-        let mut te = Vec::new();
-        let clock = solver::cpu_clock::thread_cpu_s();
-        let (_, steps) = integrate(&m, s0, &mut integ, t_end, |s| {
-            te.push(ratio * s.q[0] - s.q[1]);
-            Ok(())
-        })
-        .unwrap();
-        let us = (solver::cpu_clock::thread_cpu_s() - clock) / steps as f64 * 1e6;
-        let ptp = solver::ltca::mean_ptp(&te).1 * 1e6;
-        println!(
-            "{name:>8} {:>10} {steps:>8} {:>9} {us:>10.1} {ptp:>10.2}",
-            "rigid", integ.rejected
-        );
-        rows.push(json!({"run": name, "bearings": "rigid", "steps": steps, "rejected_steps": integ.rejected, "us_per_step": us, "te_ptp_urad": ptp}));
-        // Compliant bearings.
+        let (steps, us, ptp) = timed(|te| {
+            integrate(&m, s0, &mut integ, t_end, |s| {
+                te.push(ratio * s.q[0] - s.q[1]);
+                Ok(())
+            })
+            .unwrap()
+            .1
+        });
+        rows.push(row(name, "rigid", steps, integ.rejected, us, ptp));
         let cm = CompliantModel::new(m, &shift, bodies(&g, inertia), hand).unwrap();
         let s0 = cm.static_state(0.0).unwrap();
         let mut ci = CompliantIntegrator::new(mb.rho_inf, control(max_step));
-        let mut te = Vec::new();
-        let clock = solver::cpu_clock::thread_cpu_s();
-        let (_, steps) = c_integrate(&cm, s0, &mut ci, t_end, |s, _| {
-            te.push(ratio * s.x[0] - s.x[1]);
-            Ok(())
-        })
-        .unwrap();
-        let us = (solver::cpu_clock::thread_cpu_s() - clock) / steps as f64 * 1e6;
-        let ptp = solver::ltca::mean_ptp(&te).1 * 1e6;
-        println!(
-            "{name:>8} {:>10} {steps:>8} {:>9} {us:>10.1} {ptp:>10.2}",
-            "compliant", ci.rejected
-        );
-        rows.push(json!({"run": name, "bearings": "compliant", "steps": steps, "rejected_steps": ci.rejected,
-            "newton_iterations_per_step": ci.newton_iterations as f64 / steps as f64, "us_per_step": us, "te_ptp_urad": ptp}));
+        let (steps, us, ptp) = timed(|te| {
+            c_integrate(&cm, s0, &mut ci, t_end, |s, _| {
+                te.push(ratio * s.x[0] - s.x[1]);
+                Ok(())
+            })
+            .unwrap()
+            .1
+        });
+        rows.push(row(name, "compliant", steps, ci.rejected, us, ptp));
     }
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();

@@ -202,6 +202,24 @@ pub fn inertia(
     Ok((body.polar_moment_kgm2, "mesh"))
 }
 
+/// Both members' compliance and polar moments (scene or mesh) for the
+/// blanks `[pinion, wheel]` from the mesh folder `dir` (benches and tests
+/// that set up one pair by hand).
+pub fn pair_and_inertia(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    blanks: [Blank; 2],
+) -> anyhow::Result<(PairCompliance, [f64; 2])> {
+    let load = |m: Member, b: Blank| -> anyhow::Result<_> {
+        let (c, plan) = member_compliance(scene, g, dir, m, b)?;
+        Ok((c, inertia(scene, g, dir, &plan, m)?.0))
+    };
+    let (pinion, j1) = load(Member::Pinion, blanks[0])?;
+    let (wheel, j2) = load(Member::Wheel, blanks[1])?;
+    Ok((PairCompliance { pinion, wheel }, [j1, j2]))
+}
+
 /// Runs the multibody analyses of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<DynamicSummary>> {
     if !scene.scene.analyses.multibody {
