@@ -234,7 +234,8 @@ pub struct CompliantRunSummary {
     pub rejected_steps: usize,
     pub cpu_s: f64,
     pub cpu_s_per_step: f64,
-    /// Shaft TE r q₁ − q₂ over the run, µrad.
+    /// Shaft TE r q₁ − q₂, µrad: the 10 rpm runs at the table's positions
+    /// they pass, the run-up over its steps.
     pub te_mean_urad: f64,
     pub te_ptp_urad: f64,
     /// Largest |E|, |P|, |G| (µm) and |ΔΣ| (µrad) the bearings give.

@@ -18,7 +18,7 @@ use crate::compliant_multibody::{
 use crate::lag_shift::LagShift;
 use crate::ltca::mean_ptp;
 use crate::mesh_table::MeshTable;
-use crate::multibody::{wheel_driven, Model};
+use crate::multibody::{interpolate, wheel_driven, Model};
 use crate::system_deflection::supports_of;
 use crate::time_step::StepControl;
 use anyhow::Context;
@@ -96,6 +96,7 @@ fn bodies(
 #[derive(Default)]
 struct Trace {
     t: Vec<f64>,
+    q1: Vec<f64>,
     te: Vec<f64>,
     rows: String,
     wheel_force: Vec<f64>,
@@ -148,6 +149,7 @@ fn record(
         let te = r * s.x[0] - s.x[1];
         let linear = cm.shift.nonlinearity(cm.rigid.table, c[0], &m);
         tr.t.push(s.t);
+        tr.q1.push(s.x[0]);
         tr.te.push(te);
         let _ = write!(
             tr.rows,
@@ -188,6 +190,10 @@ fn record(
     Ok((tr, steps))
 }
 
+/// The run's summary; its TE mean and peak-to-peak over the steps, or with
+/// `q1_step` (rad) at the pinion rotations k·q1_step the run passes (as the
+/// rigid 10 rpm runs sample theirs).
+#[allow(clippy::too_many_arguments)]
 fn summary(
     case: &str,
     torque: f64,
@@ -196,8 +202,20 @@ fn summary(
     integ: &CompliantIntegrator,
     cpu: f64,
     csv: &str,
+    q1_step: Option<f64>,
 ) -> CompliantRunSummary {
-    let (mean, ptp) = mean_ptp(&tr.te);
+    let sampled: Vec<f64> = match q1_step {
+        Some(h) => {
+            let (lo, hi) = (tr.q1[0], tr.q1[tr.q1.len() - 1]);
+            let first = (lo / h).ceil() as i64;
+            let last = (hi / h).floor() as i64;
+            (first..=last)
+                .map(|k| interpolate(&tr.q1, &tr.te, k as f64 * h))
+                .collect()
+        }
+        None => tr.te.clone(),
+    };
+    let (mean, ptp) = mean_ptp(&sampled);
     CompliantRunSummary {
         case: case.into(),
         torque_nm: torque,
@@ -271,7 +289,16 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
         let cpu = t.elapsed().as_secs_f64();
         let csv = format!("bearings_quasi_static_{torque}nm.csv");
         formats::output::write_atomic(&s.odir.join(&csv), tr.rows.as_bytes())?;
-        let sum = summary("10 rpm", torque, &tr, steps, &integ, cpu, &csv);
+        let sum = summary(
+            "10 rpm",
+            torque,
+            &tr,
+            steps,
+            &integ,
+            cpu,
+            &csv,
+            Some(s.table.spec.step),
+        );
         eprintln!(
             "  compliant 10 rpm {torque:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, linearization estimate mean {:.2} µrad (largest {:.2}), |E|,|P|,|G| up to {:.2}, {:.2}, {:.2} µm, |ΔΣ| {:.2} µrad, {steps} steps, {:.1} µs/step",
             sum.te_mean_urad,
@@ -338,7 +365,7 @@ fn run_up(
         s.table.ratio,
         s.blanks[1],
     )?;
-    let sum = summary("run-up", torque, &tr, steps, &integ, cpu, csv);
+    let sum = summary("run-up", torque, &tr, steps, &integ, cpu, csv, None);
     eprintln!(
         "  compliant run-up: {steps} steps ({} rejected), {:.1} µs/step, |E|,|P|,|G| up to {:.2}, {:.2}, {:.2} µm, |ΔΣ| {:.2} µrad",
         integ.rejected,
