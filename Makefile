@@ -81,6 +81,7 @@ bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench influence_convergence
 	$(CARGO) bench -p solver --bench ltca
 	$(CARGO) bench -p solver --bench multibody
+	$(CARGO) bench -p solver --bench compliant_multibody
 	$(CARGO) bench -p solver --bench lumped
 	$(CARGO) bench -p solver --bench sensitivity
 	$(CARGO) bench -p validate --bench reference

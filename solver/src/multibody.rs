@@ -270,7 +270,7 @@ impl Impacts {
 }
 
 /// Smooth step 0 → 1 on [0, 1] (C¹).
-fn smoothstep(x: f64) -> (f64, f64) {
+pub(crate) fn smoothstep(x: f64) -> (f64, f64) {
     let x = x.clamp(0.0, 1.0);
     (x * x * (3.0 - 2.0 * x), 6.0 * x * (1.0 - x))
 }
