@@ -186,6 +186,42 @@ enum Cmd {
         #[arg(long, default_value_t = 96)]
         block: usize,
     },
+    /// Mesh stiffness at one position: the FE reference (smooth flanks) on
+    /// the scene's mesh levels against our LTCA at the same position and
+    /// torques, k = dF/dδ and F/δ; `<out>/<scene>/mesh_stiffness/summary.json`.
+    MeshStiffness {
+        /// Scene file.
+        scene: PathBuf,
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// FE mesh levels, coarse to fine.
+        #[arg(
+            long,
+            value_delimiter = ',',
+            default_value = "reduced,medium,reference"
+        )]
+        levels: Vec<String>,
+        /// Position index in the scene's sweep (default: the middle of the
+        /// longest run with the fewest tooth pairs in contact).
+        #[arg(long)]
+        position: Option<usize>,
+        #[arg(long, default_value_t = 100.0)]
+        penalty: f64,
+        #[arg(long, default_value_t = 200.0)]
+        penalty_check: f64,
+        #[arg(long, default_value_t = 96)]
+        block: usize,
+        /// Memory the two FE factors may take together, GB (default: what
+        /// the system has available); a level estimated above it is skipped.
+        #[arg(long)]
+        memory_gb: Option<f64>,
+        /// The lumped scene whose reduced meshes and roughness grades the
+        /// study relates to.
+        #[arg(long)]
+        lumped_scene: Option<PathBuf>,
+    },
     /// Issue 4's line-load check: a Hertzian line load on one pinion tooth,
     /// fine-mesh FE against the reduced model's global FE + Weber–Banaschek.
     LineLoad {
@@ -525,6 +561,68 @@ fn main() -> anyhow::Result<()> {
                     ),
                 }
             }
+        }
+        Cmd::MeshStiffness {
+            scene,
+            meshes,
+            out,
+            levels,
+            position,
+            penalty,
+            penalty_check,
+            block,
+            memory_gb,
+            lumped_scene,
+        } => {
+            if !(1..=100_000).contains(&block) {
+                anyhow::bail!("--block {block}: must lie in [1, 100000] right-hand sides");
+            }
+            let memory_bytes = match memory_gb {
+                Some(gb) if !(gb.is_finite() && gb > 0.0) => {
+                    anyhow::bail!("--memory-gb = {gb}: must be a positive number of GB")
+                }
+                gb => gb.map(|gb| (gb * 1e9) as usize),
+            };
+            let settings = penalty_settings(penalty, penalty_check, 2.0, 60.0)?;
+            let sc = geometry::scene::Scene::load(&scene)?;
+            let study = validate::mesh_stiffness::StiffnessStudy {
+                levels,
+                position,
+                settings,
+                block,
+                memory_bytes,
+                lumped_scene,
+            };
+            let s = validate::mesh_stiffness::run(&sc, &meshes, &out, &study)?;
+            println!(
+                "mesh stiffness {}: position {} ({:.2} deg), {}",
+                s.scene, s.position_index, s.pinion_rotation_deg, s.position_choice
+            );
+            for t in &s.torques {
+                println!(
+                    "{} N m (levers {:.2} / {:.2} mm):",
+                    t.torque_nm,
+                    t.levers_m[0] * 1e3,
+                    t.levers_m[1] * 1e3
+                );
+                for m in &t.models {
+                    println!(
+                        "  {:4} {:9} {:2} x {:2}: k = dF/dd {:.4e} N/m, F/d {:.4e} N/m, vs finest FE {}",
+                        m.model,
+                        m.level,
+                        m.elements[0],
+                        m.elements[1],
+                        m.tangent_n_per_m,
+                        m.secant_n_per_m,
+                        m.tangent_vs_finest_fe_pct
+                            .map_or("-".into(), |p| format!("{p:+.2} %"))
+                    );
+                }
+            }
+            for (l, why) in s.fe_levels_skipped.iter().chain(&s.ltca_levels_skipped) {
+                println!("  skipped {l}: {why}");
+            }
+            println!("{:.0} s, peak {:.2} GB", s.wall_s, s.peak_memory_gb);
         }
         Cmd::LineLoad {
             scene,
