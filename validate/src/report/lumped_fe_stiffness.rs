@@ -26,7 +26,7 @@ fn model<'a>(t: &'a TorqueStiffness, m: &str, level: &str) -> Option<&'a ModelSt
 }
 
 fn finest_fe(t: &TorqueStiffness) -> Option<&ModelStiffness> {
-    t.models.iter().filter(|x| x.model == "fe").last()
+    t.models.iter().rfind(|x| x.model == "fe")
 }
 
 /// The markdown of the part from the output root `out`.

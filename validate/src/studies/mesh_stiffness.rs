@@ -80,6 +80,11 @@ pub struct ModelStiffness {
     pub secant_n_per_m: f64,
     /// FE only: the tangent at the check penalty factor, N/m.
     pub tangent_check_n_per_m: Option<f64>,
+    /// LTCA only: tooth pairs carrying load at T(1 − ε), T, T(1 + ε) (a
+    /// change inside the stencil makes the tangent the slope across an
+    /// engagement).
+    #[serde(default)]
+    pub pairs_in_contact: Option<[usize; 3]>,
     /// (tangent − the finest FE level's tangent) / that, %.
     pub tangent_vs_finest_fe_pct: Option<f64>,
 }
@@ -150,6 +155,12 @@ pub struct MeshStiffnessSummary {
     /// Peak resident memory of the study's process, GiB, and its wall time, s.
     pub peak_memory_gb: f64,
     pub wall_s: f64,
+}
+
+/// Tooth pairs carrying more than 0.1 % of the total normal force.
+fn loaded_pairs(l: &solver::ltca::PositionLoad) -> usize {
+    let total: f64 = l.pair_force.iter().map(|f| f.1).sum();
+    l.pair_force.iter().filter(|f| f.1 > 1e-3 * total).count()
 }
 
 /// The middle of the longest run of consecutive entries equal to the
@@ -245,14 +256,7 @@ pub fn run(
     let samples = mesh_samples(&cycle, first_torque, 1.0, g.data.mesh_cycle())?;
     let pairs: Vec<usize> = cycle[..samples.time_s.len()]
         .iter()
-        .map(|p| {
-            let total: f64 = p.loads[1].pair_force.iter().map(|f| f.1).sum();
-            p.loads[1]
-                .pair_force
-                .iter()
-                .filter(|f| f.1 > 1e-3 * total)
-                .count()
-        })
+        .map(|p| loaded_pairs(&p.loads[1]))
         .collect();
     let k = &samples.tangent_n_per_m;
     let cycle_tangent = [
@@ -377,6 +381,7 @@ pub fn run(
                 tangent_n_per_m: to_n_per_m(kt),
                 secant_n_per_m: to_n_per_m(ks),
                 tangent_check_n_per_m: check,
+                pairs_in_contact: None,
                 tangent_vs_finest_fe_pct: None,
             });
         }
@@ -395,6 +400,10 @@ pub fn run(
                 tangent_n_per_m: to_n_per_m(kt),
                 secant_n_per_m: to_n_per_m(ks),
                 tangent_check_n_per_m: None,
+                pairs_in_contact: Some(t3.map(|x| {
+                    let i = torques.iter().position(|&y| y == x).unwrap_or(mid);
+                    loaded_pairs(&r.loads[i])
+                })),
                 tangent_vs_finest_fe_pct: None,
             });
         }
