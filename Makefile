@@ -141,11 +141,15 @@ convergence: build
 # scenes' torques, the roughness the slices and meshes resolve. Writes
 # $(OUT)/seed00{3,4}_fe_stiffness/mesh_stiffness/summary.json, which
 # `make validate`'s report shows in its lumped section (run this first).
-# Measured cold on 2 shared cores (2026-11-24, other jobs beside it):
-# seed 003 about 7 min (meshes 76 s, stiffness files 140 s, the study
-# 191 s, peak 5.3 GB: the reference level's factors 2.35 + 2.65 GB), seed
-# 004 FE_STIFFNESS_SEED004_COST; with everything cached both together take
-# FE_STIFFNESS_WARM. Not in `make validate` for its cold cost.
+# Measured cold on 2 shared cores (2026-11-24, load average about 9 from
+# other jobs): about 28 min and 6.9 GiB peak. Seed 003 about 7 min (meshes
+# 41 + 18 + 17 s reference / reduced / medium, stiffness files 4 + 18 +
+# 119 s reduced / medium / reference, the study 191 s, peak 5.3 GiB: the
+# reference level's factors 2.35 + 2.65 GB); seed 004 about 21 min (meshes
+# 261 + 147 + 220 s, the 86-tooth wheel's cut, stiffness files 64 + 94 +
+# 210 s, the study 279 s, peak 6.9 GiB: factors 3.22 + 3.38 GB, just under
+# the 7 GB cap). With everything cached both take 3 s (the study reuses
+# the FE levels it solved). Not in `make validate` for its cold cost.
 # FE_STIFFNESS_MEMORY_GB caps the two factors held at once (a level over it
 # is skipped and reported).
 FE_STIFFNESS_MEMORY_GB ?= 7
