@@ -219,7 +219,7 @@ pub fn run(
     let Some(&first_torque) = sc.pinion_torque_nm.first() else {
         anyhow::bail!("scene {}: pinion_torque_nm is empty", sc.name);
     };
-    let set = ResultSet::begin(
+    let mut set = ResultSet::begin(
         &out.join(&sc.name).join("mesh_stiffness"),
         &format!("validate mesh-stiffness {}", scene.path.display()),
     )?;
@@ -230,7 +230,8 @@ pub fn run(
     let fp = g.side(pos0.side);
     let rs = geometry::utca::roll_surface(fp, &sc.utca)?;
     let scene_meshes = meshes.join(&sc.name);
-    let compliance = |level: MeshLevel| -> anyhow::Result<solver::compliance::PairCompliance> {
+    // Each level's stiffness files, recorded as inputs of the set.
+    let mut compliance = |level: MeshLevel| -> anyhow::Result<solver::compliance::PairCompliance> {
         let load = |m| {
             solver::ltca_stage::member_compliance_at(
                 scene,
@@ -241,11 +242,16 @@ pub fn run(
                 pos0.side,
                 level,
             )
-            .map(|c| c.0)
         };
+        let (pinion, wheel) = (load(Which::Pinion)?, load(Which::Wheel)?);
+        for plan in [&pinion.1, &wheel.1] {
+            for (key, sha) in formats::stiffness_plan::inputs_of(&scene_meshes, plan)? {
+                set.record_input(&key, &sha)?;
+            }
+        }
         Ok(solver::compliance::PairCompliance {
-            pinion: load(Which::Pinion)?,
-            wheel: load(Which::Wheel)?,
+            pinion: pinion.0,
+            wheel: wheel.0,
         })
     };
     let reduced = compliance(MeshLevel::Reduced)?;
@@ -336,6 +342,12 @@ pub fn run(
                 ltca.push((level, r.into_iter().next().context("one position")?));
             }
             Err(e) => ltca_skipped.push((level.name().to_string(), format!("{e:#}"))),
+        }
+    }
+    for l in &fe {
+        for (m, sha) in [Which::Pinion, Which::Wheel].iter().zip(&l.mesh_sha256) {
+            let stem = formats::paths::stem_named(*m, Blank::Standard, &l.level);
+            set.record_input(&format!("mesh:{stem}"), sha)?;
         }
     }
     let elements = |level: &str| {
