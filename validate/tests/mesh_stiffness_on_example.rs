@@ -6,7 +6,8 @@
 //! at the position the study picks (the middle of the fewest-pairs stretch)
 //! and the example's two torques. Besides, the study's κ and k are
 //! recomputed from its cached FE result and levers.
-//! κ = 2εT / (θ(T(1+ε)) − θ(T(1−ε))), k = κ/(r₁r₂).
+//! κ = 2εT / (θ(T(1+ε)) − θ(T(1−ε))), k = κ/(r₁r₂). Last, a memory cap
+//! below the factors' estimate skips the FE level before factoring.
 //!
 //! Tolerance: where our LTCA's tooth pairs in contact stay the same over
 //! T(1 ± 5 %), the two models on the same meshes agree within 5 %. The
@@ -154,4 +155,24 @@ fn fe_tangent_mesh_stiffness_matches_the_ltca_on_the_same_coarse_meshes() {
         compared >= 1,
         "no torque without an engagement inside its stencil"
     );
+
+    // A level whose factors the memory cap cannot hold is refused before
+    // factoring and reported, and the LTCA rows stand alone.
+    let capped = StiffnessStudy {
+        memory_bytes: Some(100_000_000),
+        ..study
+    };
+    let s = run(&scene, &meshes, &tmp.path().join("out_capped"), &capped).unwrap();
+    assert_eq!(s.fe_levels_skipped.len(), 1, "{:?}", s.fe_levels_skipped);
+    assert_eq!(s.fe_levels_skipped[0].0, "reduced");
+    assert!(
+        s.fe_levels_skipped[0].1.contains("0.1 GB are available"),
+        "{}",
+        s.fe_levels_skipped[0].1
+    );
+    assert!(s.fe_levels.is_empty());
+    assert!(s
+        .torques
+        .iter()
+        .all(|t| t.models.iter().all(|m| m.model == "ltca")));
 }

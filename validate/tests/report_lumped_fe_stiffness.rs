@@ -104,6 +104,8 @@ fn fe_stiffness_part_formats_the_summaries_and_judges_the_ltca_by_its_distance_t
         // 3.5e8 / 1.0e8 from the constant and the synthetic FE value.
         "the FE reference at this position is 1.00e8 N/m, 3.5 times smaller than the published value",
         "the same (same inputs hash) as",
+        // Cycle mean and largest (6e7, 7e7) scaled by FE/LTCA = 1e8/1.2e8.
+        "is 5.00e7 N/m, 7.0 times smaller, and the largest value of the cycle so scaled, 5.83e7 N/m, 6.0 times",
     ] {
         assert!(md.contains(row), "{row} missing in\n{md}");
     }
