@@ -222,6 +222,22 @@ pub struct CompliantSummary {
     /// What the compliant runs leave out that the rigid runs have.
     pub notes: Vec<String>,
     pub runs: Vec<CompliantRunSummary>,
+    /// The bearings and the members' mass properties as the runs used them
+    /// (None in files written before it was recorded).
+    #[serde(default)]
+    pub used: Option<CompliantBodiesUsed>,
+}
+
+/// The bearings of both shafts (the scene's) and the members' mass
+/// properties the runs used (the scene's `*_body` or the approximation
+/// named in [`CompliantSummary::mass_source`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CompliantBodiesUsed {
+    pub pinion_bearings: Vec<geometry::scene_bearings::BearingMm>,
+    pub wheel_bearings: Vec<geometry::scene_bearings::BearingMm>,
+    /// Pinion, wheel: mass, centre of mass from the pitch apex (mm) and
+    /// transverse moment about it.
+    pub bodies: [geometry::scene_bearings::BodyMass; 2],
 }
 
 /// One run with compliant bearings.

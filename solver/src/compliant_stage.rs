@@ -22,7 +22,7 @@ use crate::multibody::{interpolate, wheel_driven, Model};
 use crate::system_deflection::supports_of;
 use crate::time_step::StepControl;
 use anyhow::Context;
-use formats::summaries::{CompliantRunSummary, CompliantSummary};
+use formats::summaries::{CompliantBodiesUsed, CompliantRunSummary, CompliantSummary};
 use geometry::generation::trace_sign;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
@@ -316,12 +316,22 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
     if s.runs_up {
         runs.push(run_up(s, &shift, &members, hand)?);
     }
+    let used = |b: &MemberBody| BodyMass {
+        mass_kg: b.mass_kg,
+        centroid_mm: b.centroid_m * 1e3,
+        transverse_inertia_kgm2: b.transverse_inertia_kgm2,
+    };
     Ok(CompliantSummary {
         lag_shift_s,
         masses_kg: masses,
         mass_source,
         notes,
         runs,
+        used: Some(CompliantBodiesUsed {
+            pinion_bearings: bearings.pinion.clone(),
+            wheel_bearings: bearings.wheel.clone(),
+            bodies: [used(&members[0]), used(&members[1])],
+        }),
     })
 }
 

@@ -39,6 +39,8 @@ pub struct ReportFigures {
     pub lumped: super::lumped::LumpedSection,
     /// The misalignment sensitivity section with its charts.
     pub sensitivity: super::sensitivity::SensitivitySection,
+    /// The compliant-bearing multibody section with its spectrograms.
+    pub compliant: super::compliant_bearings::CompliantSection,
     /// The stress matrix's section and outcome grid.
     pub stress: crate::report::stress::StressSection,
     /// Run time against error for every stage, with its Pareto charts.
@@ -56,6 +58,7 @@ impl ReportFigures {
             .chain(self.contact_laws.iter().flat_map(|c| &c.figures))
             .chain(&self.lumped.figures)
             .chain(&self.sensitivity.figures)
+            .chain(&self.compliant.figures)
             .chain(&self.stress.figure)
             .chain(&self.stage_tradeoffs.figures)
     }
@@ -100,6 +103,7 @@ pub fn report_figures(
             .collect(),
         lumped: super::lumped::section(out, reports),
         sensitivity: super::sensitivity::section(out, scene.map(|s| s.name.as_str()), reports),
+        compliant: super::compliant_bearings::section(out, reports, &super::results::Stamp::now()),
         ..Default::default()
     };
     let (Some(o), Some(s)) = (out, scene) else {

@@ -9,6 +9,7 @@
 
 pub mod comparison;
 pub mod comparison_row;
+pub mod compliant_bearings;
 pub mod contact_laws;
 pub mod differences;
 pub mod figures;
@@ -215,6 +216,7 @@ pub fn markdown(
     }
     s.push_str(&figs.lumped.markdown);
     s.push_str(&figs.sensitivity.markdown);
+    s.push_str(&figs.compliant.markdown);
     while s.ends_with("\n\n") {
         s.pop();
     }
