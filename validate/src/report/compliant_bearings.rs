@@ -368,7 +368,7 @@ fn te_table(s: &mut String, dynamic: &[DynamicSummary], ltca: &[BlankSummary], r
     s.push('\n');
 }
 
-fn runs<'a>(d: &'a DynamicSummary) -> impl Iterator<Item = &'a CompliantRunSummary> {
+fn runs(d: &DynamicSummary) -> impl Iterator<Item = &CompliantRunSummary> {
     d.compliant.iter().flat_map(|c| &c.runs)
 }
 
