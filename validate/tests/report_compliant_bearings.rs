@@ -146,16 +146,35 @@ fn ltca() -> BlankSummary {
 
 const FORCES: [&str; 2] = ["pinion_bearing0", "wheel_bearing1"];
 
-/// A multibody CSV at rotations 0, 0.3, …, 2.1°: TE 600 + 10 q, E from −54
-/// to −33 µm (−54 + 10 q), P = 12, G = −18, ΔΣ = 60 + q; forces linear in q.
-fn multibody_csv(path: &Path) {
-    let mut s = String::from("time_s,pinion_rotation_deg,te_urad,e_um,p_um,g_um,shaft_angle_urad");
+/// The bearing-force columns' names and the line's end.
+fn force_header(s: &mut String) {
     for b in FORCES {
         for d in ["x", "y", "z"] {
             let _ = write!(s, ",{b}_f{d}_n");
         }
     }
     s.push('\n');
+}
+
+/// Bearing i's force in direction d: 1000 (i + 1) + 100 q − 3000 d + `shift`, N.
+fn force_row(s: &mut String, q: f64, shift: f64) {
+    for i in 0..FORCES.len() {
+        for d in 0..3 {
+            let _ = write!(
+                s,
+                ",{}",
+                1000.0 * (i + 1) as f64 + 100.0 * q - d as f64 * 3000.0 + shift
+            );
+        }
+    }
+    s.push('\n');
+}
+
+/// A multibody CSV at rotations 0, 0.3, …, 2.1°: TE 600 + 10 q, E from −54
+/// to −33 µm (−54 + 10 q), P = 12, G = −18, ΔΣ = 60 + q; forces linear in q.
+fn multibody_csv(path: &Path) {
+    let mut s = String::from("time_s,pinion_rotation_deg,te_urad,e_um,p_um,g_um,shaft_angle_urad");
+    force_header(&mut s);
     for k in 0..8 {
         let q = 0.3 * k as f64;
         let _ = write!(
@@ -166,16 +185,7 @@ fn multibody_csv(path: &Path) {
             -54.0 + 10.0 * q,
             60.0 + q
         );
-        for (i, _) in FORCES.iter().enumerate() {
-            for d in 0..3 {
-                let _ = write!(
-                    s,
-                    ",{}",
-                    (1000.0 * (i + 1) as f64) + 100.0 * q - d as f64 * 3000.0
-                );
-            }
-        }
-        s.push('\n');
+        force_row(&mut s, q, 0.0);
     }
     std::fs::write(path, s).unwrap();
 }
@@ -185,12 +195,7 @@ fn multibody_csv(path: &Path) {
 /// the multibody's; a 100 N·m row that must be ignored.
 fn ltca_csv(path: &Path) {
     let mut s = String::from("pinion_rotation_deg,torque_nm,te_urad,te_rigid_bearings_urad");
-    for b in FORCES {
-        for d in ["x", "y", "z"] {
-            let _ = write!(s, ",{b}_f{d}_n");
-        }
-    }
-    s.push('\n');
+    force_header(&mut s);
     for (k, t) in (0..6).map(|k| (k, 300.0)).chain([(1, 100.0)]) {
         let q = 0.5 * k as f64;
         let _ = write!(
@@ -198,16 +203,7 @@ fn ltca_csv(path: &Path) {
             "{q},{t},{},300",
             if t == 300.0 { 598.0 + 10.0 * q } else { 0.0 }
         );
-        for (i, _) in FORCES.iter().enumerate() {
-            for d in 0..3 {
-                let _ = write!(
-                    s,
-                    ",{}",
-                    (1000.0 * (i + 1) as f64) + 100.0 * q - d as f64 * 3000.0 - 5.0
-                );
-            }
-        }
-        s.push('\n');
+        force_row(&mut s, q, -5.0);
     }
     std::fs::write(path, s).unwrap();
 }

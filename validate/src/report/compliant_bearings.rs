@@ -41,24 +41,16 @@ pub fn range(v: &[f64]) -> Option<(f64, f64)> {
         })
 }
 
-/// Mean and peak-to-peak of `v`'s finite values.
+/// Mean and peak-to-peak of `v`'s finite values; None when there is none.
 fn mean_ptp(v: &[f64]) -> Option<(f64, f64)> {
     let f: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
-    let (lo, hi) = range(&f)?;
-    Some((f.iter().sum::<f64>() / f.len() as f64, hi - lo))
+    (!f.is_empty()).then(|| solver::ltca::mean_ptp(&f))
 }
 
 /// `y(x)` at `at` by linear interpolation on increasing `x`; None outside.
 fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
-    if x.len() < 2 || at < x[0] || at > x[x.len() - 1] {
-        return None;
-    }
-    let k = x.partition_point(|v| *v < at).clamp(1, x.len() - 1);
-    let (a, b) = (k - 1, k);
-    if x[b] == x[a] {
-        return Some(y[a]);
-    }
-    Some(y[a] + (y[b] - y[a]) * (at - x[a]) / (x[b] - x[a]))
+    (x.len() >= 2 && at >= x[0] && at <= x[x.len() - 1])
+        .then(|| solver::multibody::interpolate(x, y, at))
 }
 
 /// The bearing-force columns both CSV files share (`<member>_bearing<k>_f<d>_n`).
@@ -375,61 +367,62 @@ fn runs(d: &DynamicSummary) -> impl Iterator<Item = &CompliantRunSummary> {
 /// Ranges of E, P, G and ΔΣ over each run.
 fn misalignment_table(s: &mut String, dynamic: &[DynamicSummary], root: &Path) {
     s.push_str("### Relative pose from the bearings\n\nThe misalignment the loaded bearings give (docs/misalignment.md's signs), smallest to largest over each run.\n\n| blanks | run | E (µm) | P (µm) | G (µm) | ΔΣ (µrad) |\n|---|---|---:|---:|---:|---:|\n");
-    for d in dynamic {
-        for r in runs(d) {
-            let Some(csv) = run_csv(root, d, &r.csv) else {
-                continue;
-            };
-            let cell = |h: &str| {
-                column(&csv, h)
+    for (d, r, csv) in run_files(dynamic, root) {
+        let cell = |h: &str| {
+            column(&csv, h)
+                .and_then(range)
+                .map_or("–".into(), |(a, b)| format!("{a:.2} … {b:.2}"))
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} |",
+            blank_name(d),
+            r.case,
+            cell("e_um"),
+            cell("p_um"),
+            cell("g_um"),
+            cell("shaft_angle_urad")
+        );
+    }
+    s.push('\n');
+}
+
+/// Every compliant run of `dynamic` with its CSV file (runs whose file
+/// cannot be read are left out).
+fn run_files<'a>(
+    dynamic: &'a [DynamicSummary],
+    root: &'a Path,
+) -> impl Iterator<Item = (&'a DynamicSummary, &'a CompliantRunSummary, Csv)> + 'a {
+    dynamic
+        .iter()
+        .flat_map(|d| runs(d).map(move |r| (d, r)))
+        .filter_map(move |(d, r)| Some((d, r, run_csv(root, d, &r.csv)?)))
+}
+
+/// Ranges of every bearing's force per direction over each run.
+fn force_table(s: &mut String, dynamic: &[DynamicSummary], root: &Path) {
+    s.push_str("### Bearing forces\n\nEach bearing's force on the shaft in the fixed frame (x, y, z as in the CSV files), smallest to largest over each run, N.\n\n| blanks | run | bearing | x (N) | y (N) | z (N) |\n|---|---|---|---:|---:|---:|\n");
+    for (d, r, csv) in run_files(dynamic, root) {
+        let bearings: Vec<String> = force_columns(&csv)
+            .iter()
+            .filter_map(|h| h.strip_suffix("_fx_n").map(str::to_string))
+            .collect();
+        for b in bearings {
+            let cell = |dir: &str| {
+                column(&csv, &format!("{b}_f{dir}_n"))
                     .and_then(range)
-                    .map_or("–".into(), |(a, b)| format!("{a:.2} … {b:.2}"))
+                    .map_or("–".into(), |(a, z)| format!("{a:.0} … {z:.0}"))
             };
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {} | {} | {} |",
                 blank_name(d),
                 r.case,
-                cell("e_um"),
-                cell("p_um"),
-                cell("g_um"),
-                cell("shaft_angle_urad")
+                b.replace('_', " "),
+                cell("x"),
+                cell("y"),
+                cell("z")
             );
-        }
-    }
-    s.push('\n');
-}
-
-/// Ranges of every bearing's force per direction over each run.
-fn force_table(s: &mut String, dynamic: &[DynamicSummary], root: &Path) {
-    s.push_str("### Bearing forces\n\nEach bearing's force on the shaft in the fixed frame (x, y, z as in the CSV files), smallest to largest over each run, N.\n\n| blanks | run | bearing | x (N) | y (N) | z (N) |\n|---|---|---|---:|---:|---:|\n");
-    for d in dynamic {
-        for r in runs(d) {
-            let Some(csv) = run_csv(root, d, &r.csv) else {
-                continue;
-            };
-            let mut bearings: Vec<String> = force_columns(&csv)
-                .iter()
-                .filter_map(|h| h.strip_suffix("_fx_n").map(str::to_string))
-                .collect();
-            bearings.dedup();
-            for b in bearings {
-                let cell = |dir: &str| {
-                    column(&csv, &format!("{b}_f{dir}_n"))
-                        .and_then(range)
-                        .map_or("–".into(), |(a, z)| format!("{a:.0} … {z:.0}"))
-                };
-                let _ = writeln!(
-                    s,
-                    "| {} | {} | {} | {} | {} | {} |",
-                    blank_name(d),
-                    r.case,
-                    b.replace('_', " "),
-                    cell("x"),
-                    cell("y"),
-                    cell("z")
-                );
-            }
         }
     }
     s.push('\n');
