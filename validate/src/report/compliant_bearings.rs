@@ -364,15 +364,18 @@ fn runs(d: &DynamicSummary) -> impl Iterator<Item = &CompliantRunSummary> {
     d.compliant.iter().flat_map(|c| &c.runs)
 }
 
+/// "smallest … largest" of column `h` with `decimals`, "–" without it.
+fn range_cell(csv: &Csv, h: &str, decimals: usize) -> String {
+    column(csv, h).and_then(range).map_or("–".into(), |(a, b)| {
+        format!("{a:.decimals$} … {b:.decimals$}")
+    })
+}
+
 /// Ranges of E, P, G and ΔΣ over each run.
 fn misalignment_table(s: &mut String, dynamic: &[DynamicSummary], root: &Path) {
     s.push_str("### Relative pose from the bearings\n\nThe misalignment the loaded bearings give (docs/misalignment.md's signs), smallest to largest over each run.\n\n| blanks | run | E (µm) | P (µm) | G (µm) | ΔΣ (µrad) |\n|---|---|---:|---:|---:|---:|\n");
     for (d, r, csv) in run_files(dynamic, root) {
-        let cell = |h: &str| {
-            column(&csv, h)
-                .and_then(range)
-                .map_or("–".into(), |(a, b)| format!("{a:.2} … {b:.2}"))
-        };
+        let cell = |h: &str| range_cell(&csv, h, 2);
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} |",
@@ -408,11 +411,7 @@ fn force_table(s: &mut String, dynamic: &[DynamicSummary], root: &Path) {
             .filter_map(|h| h.strip_suffix("_fx_n").map(str::to_string))
             .collect();
         for b in bearings {
-            let cell = |dir: &str| {
-                column(&csv, &format!("{b}_f{dir}_n"))
-                    .and_then(range)
-                    .map_or("–".into(), |(a, z)| format!("{a:.0} … {z:.0}"))
-            };
+            let cell = |dir: &str| range_cell(&csv, &format!("{b}_f{dir}_n"), 0);
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {} | {} | {} |",
