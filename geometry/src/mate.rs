@@ -5,9 +5,18 @@
 //! the closest point. The aligned pair does not need it: there the
 //! surface of roll angles gives the mate of every point in closed form
 //! (the same generating parameters on both flanks, see [`crate::utca`]).
+//!
+//! The misaligned analyses use the pose's *change* to the contact,
+//! [`pose_correction`]: the exact mate with the pose less the exact mate
+//! without it, added to the aligned pair's surface-of-roll-angles model.
+//! With the identity pose the correction is exactly zero, so the
+//! misaligned path reproduces the aligned one bit for bit; with a pose it
+//! carries the pose's whole effect exactly, and only the aligned model's
+//! own error (second order in the distance from the contact line) remains.
 
+use crate::misalignment::Pose;
 use crate::pair::FlankPair;
-use crate::placement::{pinion_in_wheel, project_point, Placement};
+use crate::placement::{pinion_in_wheel_with, project_point, Placement};
 use nalgebra::Vector3;
 
 /// A pinion point's closest wheel point at one pinion roll.
@@ -32,6 +41,18 @@ pub struct Mate {
 /// the wheel point is the one touched at that lag. None where a projection
 /// fails or the lever vanishes.
 pub fn mate(fp: &FlankPair, pos: [f64; 3], target: f64, start: [f64; 2]) -> Option<Mate> {
+    mate_with(fp, fp.pose.as_ref(), pos, target, start)
+}
+
+/// As [`mate`], with the pinion's pose `pose` in place of the pair's
+/// (None: aligned).
+pub fn mate_with(
+    fp: &FlankPair,
+    pose: Option<&Pose>,
+    pos: [f64; 3],
+    target: f64,
+    start: [f64; 2],
+) -> Option<Mate> {
     let conj = fp.conjugate_wheel_angle(target);
     let p = Vector3::from(pos);
     let foot = |wheel: f64, start: [f64; 2]| {
@@ -39,7 +60,7 @@ pub fn mate(fp: &FlankPair, pos: [f64; 3], target: f64, start: [f64; 2]) -> Opti
             pinion: target,
             wheel,
         };
-        let f = project_point(&fp.wheel, &pinion_in_wheel(fp, at, 0, &p), start)?;
+        let f = project_point(&fp.wheel, &pinion_in_wheel_with(fp, pose, at, 0, &p), start)?;
         // d(gap)/d(wheel angle) = −n · (e_z × w).
         let lever = f.pos[0] * f.normal[1] - f.pos[1] * f.normal[0];
         (lever != 0.0).then_some((f, lever))
@@ -62,6 +83,56 @@ pub fn mate(fp: &FlankPair, pos: [f64; 3], target: f64, start: [f64; 2]) -> Opti
         wheel_uv: f.uv,
         lever,
     })
+}
+
+/// What the pair's pose changes in the contact of a pinion point: the
+/// exact mates ([`mate_with`]) with the pose (p) and without it (a), at
+/// the same roll `target` and from the same start,
+///
+///   Δlag = lag_p − lag_a,  Δλ₂ = λ₂,p − λ₂,a,  Δ(L, d) = (L, d)_p − (L, d)_a
+///
+/// of the wheel point touched. The misaligned contact of the point is the
+/// aligned model's (lag from the surface of roll angles, the conjugate
+/// wheel point, its lever) plus these. Zero, exactly, for the identity
+/// pose. None where either mate fails.
+pub fn pose_correction(
+    fp: &FlankPair,
+    pose: &Pose,
+    pos: [f64; 3],
+    target: f64,
+    start: [f64; 2],
+) -> Option<PoseCorrection> {
+    let a = mate_with(fp, None, pos, target, start)?;
+    let p = mate_with(fp, Some(pose), pos, target, start)?;
+    let (la, da) = fp.wheel.ld(a.wheel_uv[0], a.wheel_uv[1]);
+    let (lp, dp) = fp.wheel.ld(p.wheel_uv[0], p.wheel_uv[1]);
+    Some(PoseCorrection {
+        lag: p.lag - a.lag,
+        lever: p.lever - a.lever,
+        wheel_ld: [lp - la, dp - da],
+    })
+}
+
+/// The pose's change to a pinion point's contact ([`pose_correction`]).
+#[derive(Debug, Clone, Copy)]
+pub struct PoseCorrection {
+    /// Wheel lag, rad.
+    pub lag: f64,
+    /// Wheel normal lever, m/rad.
+    pub lever: f64,
+    /// Axial-section coordinates (L, d) of the wheel point touched, m.
+    pub wheel_ld: [f64; 2],
+}
+
+impl PoseCorrection {
+    /// The wheel point touched, (L, d): the conjugate point `conjugate`
+    /// (same generating parameters as the pinion point) moved by the pose.
+    pub fn wheel_point(&self, conjugate: (f64, f64)) -> (f64, f64) {
+        (
+            conjugate.0 + self.wheel_ld[0],
+            conjugate.1 + self.wheel_ld[1],
+        )
+    }
 }
 
 /// Newton steps of [`mate`] at most, and the gap (m) at which it stops:
