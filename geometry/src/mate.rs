@@ -110,6 +110,7 @@ pub fn pose_correction(
         lag: p.lag - a.lag,
         lever: p.lever - a.lever,
         wheel_ld: [lp - la, dp - da],
+        aligned_wheel_uv: a.wheel_uv,
     })
 }
 
@@ -122,6 +123,9 @@ pub struct PoseCorrection {
     pub lever: f64,
     /// Axial-section coordinates (L, d) of the wheel point touched, m.
     pub wheel_ld: [f64; 2],
+    /// Generating parameters of the wheel point the aligned mate touches: a
+    /// start for the projections of a nearby point.
+    pub aligned_wheel_uv: [f64; 2],
 }
 
 impl PoseCorrection {

@@ -94,6 +94,41 @@ struct Column<'a> {
     /// node columns), where the wheel-bounds check is skipped: the mate of a
     /// point between active nodes lies on the wheel flank.
     trusted: std::cell::Cell<(f64, f64)>,
+    /// Misaligned: the wheel parameters the last pose correction's aligned
+    /// mate touched, which start both mates of the next point (the same
+    /// start for both keeps the correction exactly zero for the identity
+    /// pose).
+    wheel_start: std::cell::Cell<Option<[f64; 2]>>,
+}
+
+impl<'a> Column<'a> {
+    fn new(fp: &'a FlankPair, rs: &'a RollSurface, target: f64, xi: f64) -> Self {
+        Column {
+            fp,
+            rs,
+            target,
+            xi,
+            last: Default::default(),
+            trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
+            wheel_start: Default::default(),
+        }
+    }
+
+    /// The pose's change to the contact of the pinion point `p` of this
+    /// column ([`geometry::mate::pose_correction`]); None for the aligned
+    /// pair, Some(None) where a projection fails.
+    fn correction(
+        &self,
+        p: &geometry::flank::FlankPoint,
+    ) -> Option<Option<geometry::mate::PoseCorrection>> {
+        let pose = self.fp.pose.as_ref()?;
+        let start = self.wheel_start.get().unwrap_or(p.uv);
+        let c = geometry::mate::pose_correction(self.fp, pose, p.pos, self.target, start);
+        if let Some(c) = &c {
+            self.wheel_start.set(Some(c.aligned_wheel_uv));
+        }
+        Some(c)
+    }
 }
 
 impl Column<'_> {
@@ -118,14 +153,8 @@ impl Column<'_> {
         // Misaligned: the pose's exact change to the aligned model
         // ([`geometry::mate::pose_correction`]); it moves the wheel point
         // touched, which is checked against the wheel's bounds in its place.
-        let correction = match &self.fp.pose {
-            Some(pose) => Some(geometry::mate::pose_correction(
-                self.fp,
-                pose,
-                p.pos,
-                self.target,
-                p.uv,
-            )?),
+        let correction = match self.correction(&p) {
+            Some(c) => Some(c?),
             None => None,
         };
         let (lo, hi) = self.trusted.get();
@@ -300,14 +329,8 @@ impl Column<'_> {
     /// cannot be evaluated.
     fn margin(&self, eta: f64) -> Option<f64> {
         let p = self.point(eta)?.0;
-        let correction = match &self.fp.pose {
-            Some(pose) => Some(geometry::mate::pose_correction(
-                self.fp,
-                pose,
-                p.pos,
-                self.target,
-                p.uv,
-            )?),
+        let correction = match self.correction(&p) {
+            Some(c) => Some(c?),
             None => None,
         };
         let (l, d) = wheel_point(self.fp, &p, correction.as_ref());
@@ -515,14 +538,7 @@ pub fn pair_slices(
             continue;
         }
         let xi = c.clamp(0.0, 1.0);
-        let col = Column {
-            fp,
-            rs,
-            target,
-            xi,
-            last: Default::default(),
-            trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
-        };
+        let col = Column::new(fp, rs, target, xi);
         // No active node on the column: no contact there either.
         let Some(start) = tabulated_minimum(rs, xi, target) else {
             continue;
@@ -737,14 +753,7 @@ mod tests {
                 let target = phi + pair as f64 * tau;
                 for ic in 0..=30 {
                     let xi = ic as f64 / 30.0;
-                    let column = || Column {
-                        fp,
-                        rs: &rs,
-                        target,
-                        xi,
-                        last: Default::default(),
-                        trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
-                    };
+                    let column = || Column::new(fp, &rs, target, xi);
                     let Some(own) = tabulated_minimum(&rs, xi, target) else {
                         continue;
                     };
