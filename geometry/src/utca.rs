@@ -262,6 +262,9 @@ pub struct LineSearch<'a> {
     pub fp: &'a FlankPair,
     pub rs: &'a RollSurface,
     k1: f64,
+    /// Misaligned: the last pose correction, whose mates start those of the
+    /// next point ([`crate::mate::pose_correction_near`]).
+    near: std::cell::Cell<Option<crate::mate::PoseCorrection>>,
 }
 
 impl<'a> LineSearch<'a> {
@@ -270,6 +273,7 @@ impl<'a> LineSearch<'a> {
             fp,
             rs,
             k1: fp.pinion.gen.frame.roll_ratio,
+            near: Default::default(),
         }
     }
 
@@ -340,7 +344,11 @@ impl<'a> LineSearch<'a> {
             if !fp.pinion.bounds.contains(p.l, p.d, 1e-12) {
                 return None;
             }
-            let c = crate::mate::pose_correction(fp, pose, p.pos, target, uv)?;
+            let c = match self.near.get() {
+                Some(near) => crate::mate::pose_correction_near(fp, pose, p.pos, target, &near),
+                None => crate::mate::pose_correction(fp, pose, p.pos, target, uv),
+            }?;
+            self.near.set(Some(c));
             let (lw, dw) = c.wheel_point(fp.wheel.ld(uv[0], uv[1]));
             return fp
                 .wheel

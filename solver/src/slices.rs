@@ -94,11 +94,9 @@ struct Column<'a> {
     /// node columns), where the wheel-bounds check is skipped: the mate of a
     /// point between active nodes lies on the wheel flank.
     trusted: std::cell::Cell<(f64, f64)>,
-    /// Misaligned: the wheel parameters the last pose correction's aligned
-    /// mate touched, which start both mates of the next point (the same
-    /// start for both keeps the correction exactly zero for the identity
-    /// pose).
-    wheel_start: std::cell::Cell<Option<[f64; 2]>>,
+    /// Misaligned: the last pose correction, whose two mates start those of
+    /// the next point ([`geometry::mate::pose_correction_near`]).
+    near: std::cell::Cell<Option<geometry::mate::PoseCorrection>>,
 }
 
 impl<'a> Column<'a> {
@@ -110,7 +108,7 @@ impl<'a> Column<'a> {
             xi,
             last: Default::default(),
             trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
-            wheel_start: Default::default(),
+            near: Default::default(),
         }
     }
 
@@ -122,10 +120,14 @@ impl<'a> Column<'a> {
         p: &geometry::flank::FlankPoint,
     ) -> Option<Option<geometry::mate::PoseCorrection>> {
         let pose = self.fp.pose.as_ref()?;
-        let start = self.wheel_start.get().unwrap_or(p.uv);
-        let c = geometry::mate::pose_correction(self.fp, pose, p.pos, self.target, start);
-        if let Some(c) = &c {
-            self.wheel_start.set(Some(c.aligned_wheel_uv));
+        let c = match self.near.get() {
+            Some(near) => {
+                geometry::mate::pose_correction_near(self.fp, pose, p.pos, self.target, &near)
+            }
+            None => geometry::mate::pose_correction(self.fp, pose, p.pos, self.target, p.uv),
+        };
+        if c.is_some() {
+            self.near.set(c);
         }
         Some(c)
     }
