@@ -216,19 +216,6 @@ impl PoseCorrection {
 const MATE_ITERATIONS: usize = 8;
 const MATE_GAP_TOL: f64 = 1e-12;
 
-/// Signed distance (m) of the wheel point at generating parameters `uv`
-/// inside the wheel flank's blank bounds (negative outside).
-pub fn wheel_margin(fp: &FlankPair, uv: [f64; 2]) -> f64 {
-    let (l, d) = fp.wheel.ld(uv[0], uv[1]);
-    fp.wheel.bounds.margin(l, d)
-}
-
-/// Whether the wheel point at `uv` lies on the wheel flank (within `tol`, m).
-pub fn on_wheel(fp: &FlankPair, uv: [f64; 2], tol: f64) -> bool {
-    let (l, d) = fp.wheel.ld(uv[0], uv[1]);
-    fp.wheel.bounds.contains(l, d, tol)
-}
-
 /// Whether the pinion point at `uv` lies on the pinion flank (within `tol`, m).
 pub fn on_pinion(fp: &FlankPair, uv: [f64; 2], tol: f64) -> bool {
     let (l, d) = fp.pinion.ld(uv[0], uv[1]);
