@@ -326,9 +326,9 @@ impl<'a> LineSearch<'a> {
     }
 
     /// Wheel lag needed for contact at pinion point `uv` of the tooth at
-    /// roll `target`: from the surface of roll angles for the aligned pair,
-    /// from the exact gap with the pair's pose ([`crate::mate`]) for a
-    /// misaligned one.
+    /// roll `target`: from the surface of roll angles, plus the pose's
+    /// exact change ([`crate::mate::pose_correction`]) for a misaligned
+    /// pair.
     pub fn lag(&self, uv: [f64; 2], target: f64) -> Option<f64> {
         let fp = self.fp;
         let aligned = |p: &crate::flank::FlankPoint| {
