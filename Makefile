@@ -67,11 +67,12 @@ SENSITIVITY   ?= 1
 # with the bearings' deflection, `solver dynamic` with the compliant runs);
 # the report's section "Compliant bearings (multibody)" reads
 # out/white_paper_bearings/{ltca,multibody}. Measured warm (meshes and
-# stiffness files made; 2 cores shared with other jobs, 2026-11-24): about
-# 2 min 40 s (flanks, mesh and stiffness 0.8 s, ltca 69 s, dynamic 93 s, of
-# it 35 s the lag shift's contact searches per blank). Cold it meshes and
-# solves the default scene's pair again under its own name, as the order
-# map's scene does (about 2 min 45 s more, measured there). BEARINGS=0
+# stiffness files made; 2 cores shared with other jobs, 2026-11-24, after
+# the posed contact path): about 66 s (flanks, mesh and stiffness 0.8 s,
+# ltca 47 s, dynamic 18 s, of it 2.7 + 5.2 s the lag shift's contact
+# searches). Cold it meshes and solves the default scene's pair again under
+# its own name, as the order map's scene did (about 2 min 45 s more,
+# measured there). BEARINGS=0
 # leaves it out.
 BEARINGS      ?= 1
 BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml

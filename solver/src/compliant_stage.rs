@@ -99,7 +99,8 @@ struct Trace {
     q1: Vec<f64>,
     te: Vec<f64>,
     rows: String,
-    wheel_force: Vec<f64>,
+    /// Both wheel bearings' forces together (fixed frame), N.
+    wheel_force: Vec<[f64; 3]>,
     most_m: [f64; 4],
     most_linear: f64,
     sum_linear: f64,
@@ -179,7 +180,7 @@ fn record(
             }
         }
         let _ = writeln!(tr.rows, ",{:.5}", linear * 1e6);
-        tr.wheel_force.push(wheel.norm());
+        tr.wheel_force.push([wheel.x, wheel.y, wheel.z]);
         for (most, v) in tr.most_m.iter_mut().zip(m) {
             *most = most.max(v.abs());
         }
@@ -363,13 +364,18 @@ fn run_up(
     let cpu = t.elapsed().as_secs_f64();
     let csv = "bearings_runup.csv";
     formats::output::write_atomic(&s.odir.join(csv), tr.rows.as_bytes())?;
+    let magnitude: Vec<f64> = tr
+        .wheel_force
+        .iter()
+        .map(|f| f.iter().map(|c| c * c).sum::<f64>().sqrt())
+        .collect();
     crate::dynamic_stage::runup_spectrogram(
         &s.odir.join("bearings_runup_spectrogram.svg"),
         &format!(
             "Wheel bearings' force |F|, compliant bearings, run-up at {torque} N·m ({:?}/{:?})",
             s.blanks[0], s.blanks[1]
         ),
-        (&tr.t, &tr.wheel_force),
+        (&tr.t, &magnitude),
         mb,
         s.g.data.members[0].teeth as f64,
         s.table.ratio,

@@ -255,7 +255,7 @@ fn compliant_section_tabulates_runs_and_checks_the_10rpm_run_against_the_ltca() 
         // Check: 5 LTCA positions inside 0 … 2.1 (0, 0.5, …, 2.0); added
         // TE mean 298 + 10·1.0 = 308; difference +2 everywhere (0.6 % of
         // 308); forces 5 N apart, largest LTCA force |−4000 + 200 − 5| = 3805 (0.1 %).
-        "| standard_standard | 300 | 5 | 308.00 | +2.00 / 2.00 | 0.6 | 5 | 0.1 |",
+        "| standard_standard | 300 | 5 | 308.00 | +2.00 / 2.00 | 0.6 | 8.75 | 5 | 0.1 |",
         "| 1.00 | 300.00 | 608.00 | 610.00 |",
     ] {
         assert!(md.contains(row), "row {row} missing in\n{md}");
