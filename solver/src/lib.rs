@@ -35,6 +35,7 @@ pub mod lumped_stage;
 pub mod mesh_table;
 pub mod multibody;
 pub mod plan;
+pub mod runup_orders;
 pub mod sensitivity_stage;
 pub mod slices;
 pub mod spectrum;
