@@ -314,6 +314,8 @@ pub fn run(
                 speeds,
                 excitation: if rev.solved.is_some() {
                     "solved revolution"
+                } else if lobes == 0 {
+                    "mesh cycle repeated (axisymmetric wheel)"
                 } else {
                     "lobe fitted to the span"
                 }

@@ -15,6 +15,7 @@ pub mod figures;
 pub mod html;
 pub mod layout;
 pub mod lumped;
+pub mod lightweight_revolution;
 pub mod lumped_order_map;
 pub mod lumped_seed003;
 pub mod lumped_studies;
