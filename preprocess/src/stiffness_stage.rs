@@ -345,6 +345,29 @@ fn run_one(
             replaced_because.as_deref().unwrap_or("")
         );
     }
+    let mesh_stem = paths::mesh_stem(member, blank, level);
+    let root = dir.parent().unwrap_or(Path::new("."));
+    if let Some(from) = crate::sibling_reuse::stiffness(root, dir, &mesh_stem, &stem, &hash) {
+        if let Ok(d) = stiffness_file::read(&path, Some(&hash)) {
+            eprintln!(
+                "{stem}: same inputs as {}, copied",
+                paths::stiffness_h5(&from, &stem).display()
+            );
+            record(dir, level, member, blank, &stem, &hash, &d.solved_teeth)?;
+            return Ok(StiffnessReport {
+                member: member.name().into(),
+                blank: blank_name,
+                level: level.name().into(),
+                path,
+                reused: true,
+                replaced_because: None,
+                input_hash: hash,
+                stats: None,
+                total_s: t0.elapsed().as_secs_f64(),
+                reciprocity_error: None,
+            });
+        }
+    }
     eprintln!("{stem}: reading {}", msh.display());
     let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
     let req = request(&config, &fg, &body, g, member, side, st.solve_block);
