@@ -62,7 +62,18 @@ LUMPED_SCENES := seed004_lumped seed003_lumped white_paper_lightweight_lumped
 # (2 cores shared with other jobs): 104 s. SENSITIVITY=0 leaves it out.
 SENSITIVITY   ?= 1
 
-.PHONY: setup build test bench preprocess solve validate convergence stress clean
+# The lightweight wheel over its whole revolution (issues 31 and 32):
+# reference/scenes/white_paper_lightweight_runup.toml meshes and solves
+# every wheel tooth of the lightweight blank (reduced level), runs the
+# multibody run-up of both wheel blanks (0 -> 1100 rpm in 1.1 s, 4.7 wheel
+# revolutions; `runup_orders.json`) and the 8-DOF order map on the solved
+# revolution, then checks the results (the ignored tests of
+# validate/tests/lightweight_revolution_data.rs). The report's subsection
+# "lightweight wheel over its whole revolution" reads them. Costs: see
+# docs/performance.md. Not part of `make validate`.
+LW_SCENE := reference/scenes/white_paper_lightweight_runup.toml
+
+.PHONY: setup build test bench preprocess solve validate convergence stress lightweight clean
 
 setup:
 	@bash scripts/setup.sh
@@ -170,6 +181,15 @@ stress: build
 	  $(addprefix --grid-scene ,$(GRID_SCENES)) $(addprefix --coast-scene ,$(COAST_SCENES))
 	$(BIN)/validate stage-tradeoffs $(SCENE) --meshes meshes --out $(OUT) \
 	  $(addprefix --grid-scene ,$(GRID_SCENES))
+
+lightweight: build
+	$(BIN)/preprocess flanks $(LW_SCENE) --out $(OUT)/$(notdir $(basename $(LW_SCENE)))/flanks
+	$(BIN)/preprocess mesh $(LW_SCENE) --level reduced --out meshes
+	$(BIN)/preprocess stiffness $(LW_SCENE) --meshes meshes
+	$(BIN)/solver dynamic $(LW_SCENE) --meshes meshes --out $(OUT)
+	$(BIN)/solver lumped $(LW_SCENE) --meshes meshes --out $(OUT)
+	LIGHTWEIGHT_OUT=$(abspath $(OUT)) $(CARGO) test $(RELEASE) -p validate \
+	  --test lightweight_revolution_data -- --ignored
 
 clean:
 	$(CARGO) clean

@@ -180,7 +180,8 @@ pub fn run(
                     reports.push(r);
                     continue;
                 }
-                let same_inputs = |t: &str| serde_json::from_str::<Inputs>(t).is_ok_and(|i| i == inputs);
+                let same_inputs =
+                    |t: &str| serde_json::from_str::<Inputs>(t).is_ok_and(|i| i == inputs);
                 if let Some(from) = crate::sibling_reuse::mesh(root, &dir, &stem, same_inputs) {
                     let read = std::fs::read_to_string(&report_path)
                         .ok()

@@ -75,19 +75,29 @@ pub fn mesh(
 /// manifest lists with inputs hash `hash` and whose bytes match the listed
 /// SHA-256: the `.stiffness.h5` and `.stiffness.json` are copied into
 /// `dir`. Returns the folder copied from.
-pub fn stiffness(root: &Path, dir: &Path, mesh_stem: &str, stem: &str, hash: &str) -> Option<PathBuf> {
+pub fn stiffness(
+    root: &Path,
+    dir: &Path,
+    mesh_stem: &str,
+    stem: &str,
+    hash: &str,
+) -> Option<PathBuf> {
     for other in siblings(root, dir) {
-        let Some(entry) = Manifest::read(&other)
-            .ok()
-            .and_then(|m| m.meshes.get(mesh_stem).and_then(|e| e.stiffness.get(stem).cloned()))
-        else {
+        let Some(entry) = Manifest::read(&other).ok().and_then(|m| {
+            m.meshes
+                .get(mesh_stem)
+                .and_then(|e| e.stiffness.get(stem).cloned())
+        }) else {
             continue;
         };
         let h5 = formats::paths::stiffness_h5(&other, stem);
         if entry.input_hash != hash || !sha256_file(&h5).is_ok_and(|x| x == entry.sha256) {
             continue;
         }
-        let names = vec![format!("{stem}.stiffness.json"), format!("{stem}.stiffness.h5")];
+        let names = vec![
+            format!("{stem}.stiffness.json"),
+            format!("{stem}.stiffness.h5"),
+        ];
         if !names.iter().all(|n| other.join(n).is_file()) {
             continue;
         }

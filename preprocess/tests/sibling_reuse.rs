@@ -3,7 +3,9 @@
 //! SHA-256 agree, not when the inputs differ or the file is not the one the
 //! sibling's manifest lists.
 
-use formats::manifest::{sha256_file, BodyProperties, Manifest, MeshEntry, MeshInputs, StiffnessEntry};
+use formats::manifest::{
+    sha256_file, BodyProperties, Manifest, MeshEntry, MeshInputs, StiffnessEntry,
+};
 use formats::paths::MeshLevel;
 use geometry::design::Member;
 use geometry::gear_body::Blank;
@@ -39,7 +41,10 @@ fn sibling(root: &Path, inputs: &str) {
             inputs: MeshInputs {
                 design_sha256: "d".into(),
                 blank_dimensions: serde_json::Value::Null,
-                flank_elements: FlankElements { profile: 12, face: 20 },
+                flank_elements: FlankElements {
+                    profile: 12,
+                    face: 20,
+                },
                 loaded_flank: Side::Drive,
                 refined_teeth: vec![0],
                 opposite_refined_teeth: vec![],
@@ -83,7 +88,10 @@ fn sibling_mesh_and_stiffness_file_are_copied_only_from_the_same_inputs_and_inta
         sibling_reuse::mesh(r, &b, STEM, |t| t == "same").as_deref(),
         Some(r.join("a").as_path())
     );
-    assert_eq!(std::fs::read_to_string(b.join(format!("{STEM}.msh"))).unwrap(), "mesh bytes");
+    assert_eq!(
+        std::fs::read_to_string(b.join(format!("{STEM}.msh"))).unwrap(),
+        "mesh bytes"
+    );
     assert!(b.join(format!("{STEM}.inputs.json")).is_file());
     assert!(sibling_reuse::stiffness(r, &b, STEM, STEM, "h1").is_some());
     assert_eq!(

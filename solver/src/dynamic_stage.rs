@@ -46,9 +46,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+pub use formats::summaries::{DynamicSummary, QuasiStaticSummary, RattleSummary, RunupSummary};
 use formats::summaries::{ImpactLawSummary, RunupOrders};
 use geometry::gear_body::WHEEL_WEB_HOLES;
-pub use formats::summaries::{DynamicSummary, QuasiStaticSummary, RattleSummary, RunupSummary};
 
 /// The impact law of the scene's settings in SI ([`ImpactLaw`]), its
 /// friction (None when both coefficients are zero), and its summary: K

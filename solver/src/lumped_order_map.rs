@@ -128,7 +128,9 @@ pub fn run(
             let whole = lobes > 0 && solved.len() == z2;
             let mut sweep = scene_sweep(scene, g, wb);
             if whole {
-                sweep.positions = sweep.positions.max((z2 as f64 * tau / sweep.step).round() as usize + 1);
+                sweep.positions = sweep
+                    .positions
+                    .max((z2 as f64 * tau / sweep.step).round() as usize + 1);
             }
             let t0 = Instant::now();
             let res = run_sweep(fp, &rs, &pc, &sweep, &tangent_torques(torque))
@@ -164,7 +166,10 @@ pub fn run(
                 None
             };
             let lobe_repeat = if whole {
-                Some(lobe_repeat_mismatch(&rev.cycle_mean_stiffness_n_per_m, lobes)?)
+                Some(lobe_repeat_mismatch(
+                    &rev.cycle_mean_stiffness_n_per_m,
+                    lobes,
+                )?)
             } else {
                 None
             };

@@ -53,7 +53,11 @@ fn phase_teeth(a: f64, b: f64, lobe: f64) -> f64 {
 #[ignore = "needs the white_paper_lightweight_runup scene's results (make lightweight)"]
 fn solved_revolution_mean_stiffness_repeats_every_third_of_the_wheel() {
     let m = lightweight_map();
-    assert_eq!(m.wheel_solved_teeth.len(), m.wheel_teeth, "not every tooth solved");
+    assert_eq!(
+        m.wheel_solved_teeth.len(),
+        m.wheel_teeth,
+        "not every tooth solved"
+    );
     assert_eq!(m.excitation, "solved revolution");
     let [max, rms] = m.lobe_repeat_mismatch_of_mean.expect("no repeat check");
     let ptp = m.stiffness_lobe_ptp_relative;
@@ -103,6 +107,9 @@ fn runup_side_bands_of_the_lightweight_wheel_stand_above_the_standard_wheels() {
     for rpm in [500.0, 750.0, 1000.0] {
         let (l, s) = (band(&light, rpm), band(&std, rpm));
         eprintln!("{rpm} rpm: side bands lightweight {l:.3e} N, standard {s:.3e} N");
-        assert!(l > 10.0 * s, "{rpm} rpm: lightweight {l:.3e} N, standard {s:.3e} N");
+        assert!(
+            l > 10.0 * s,
+            "{rpm} rpm: lightweight {l:.3e} N, standard {s:.3e} N"
+        );
     }
 }

@@ -6,8 +6,8 @@
 
 use formats::lumped_summary::{LobeFit, MarkedOrder, OrderMapSpeed, OrderMapSummary};
 use formats::summaries::{RunupOrderWindow, RunupOrders};
-use validate::report::lightweight_revolution::{self, RUNUP_SCENE};
 use geometry::gear_body::Blank;
+use validate::report::lightweight_revolution::{self, RUNUP_SCENE};
 use validate::report::lumped_order_map::{subsection, ORDER_MAP_SCENE};
 
 fn map(wheel: Blank, lobe_line_n: f64) -> OrderMapSummary {
@@ -161,7 +161,11 @@ fn whole_revolution_subsection_checks_the_lobe_and_puts_the_runup_windows_beside
             wheel_teeth: 43,
             samples_per_window: 1376,
             order_resolution: 20.0 / 43.0,
-            windows: vec![window(2400.0, 9.0), window(2950.0, band), window(3500.0, 9.0)],
+            windows: vec![
+                window(2400.0, 9.0),
+                window(2950.0, band),
+                window(3500.0, 9.0),
+            ],
         };
         std::fs::write(
             dir.join("runup_orders.json"),
@@ -173,18 +177,36 @@ fn whole_revolution_subsection_checks_the_lobe_and_puts_the_runup_windows_beside
     let (md, _) = lightweight_revolution::subsection(out.path(), reports.path(), &extrapolated);
     // Lobe rows: the whole revolution, its first 5 cycles, the 8-tooth
     // scene; least k against the nearest hole (3.1 of each 14.33-tooth lobe).
-    assert!(md.contains("| the whole revolution | 43 | 0.0812 | 3.60 | +0.50 |"), "{md}");
-    assert!(md.contains("| its first mesh cycles only | 5 | 0.1093 | 2.49 | -0.60 |"), "{md}");
-    assert!(md.contains("| the order-map scene's 8-tooth file | 5 | 0.1093 | 2.49 | -0.60 |"), "{md}");
+    assert!(
+        md.contains("| the whole revolution | 43 | 0.0812 | 3.60 | +0.50 |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| its first mesh cycles only | 5 | 0.1093 | 2.49 | -0.60 |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| the order-map scene's 8-tooth file | 5 | 0.1093 | 2.49 | -0.60 |"),
+        "{md}"
+    );
     assert!(md.contains("max 0.0071 and rms 0.0032"), "{md}");
     // The nearest window (2950 rpm) beside the 8-DOF runs at 3000 rpm.
     assert!(
         md.contains("| 3000 | Lightweight | multibody run-up, 2950 rpm (2890–3010) | 1.200e2 | — | — | 2.500e0 | 2.500e0 |"),
         "{md}"
     );
-    assert!(md.contains("| 3000 | Lightweight | 8-DOF, solved revolution |"), "{md}");
-    assert!(md.contains("| 3000 | Lightweight | 8-DOF, lobe fitted to 8 teeth |"), "{md}");
-    assert!(md.contains("lightweight over standard wheel: 3000 rpm: 250.0"), "{md}");
+    assert!(
+        md.contains("| 3000 | Lightweight | 8-DOF, solved revolution |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| 3000 | Lightweight | 8-DOF, lobe fitted to 8 teeth |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("lightweight over standard wheel: 3000 rpm: 250.0"),
+        "{md}"
+    );
 }
 
 #[test]

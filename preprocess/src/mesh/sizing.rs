@@ -12,11 +12,13 @@ pub(super) struct RefinedFace {
     pub tooth: usize,
     pub flank: &'static str,
     pub surface: i32,
-    /// The four sides in loop order: whether the side runs along the face
-    /// width, and its curves (more than one where the blank's seam splits
-    /// a side).
-    pub sides: Vec<(bool, Vec<i32>)>,
+    /// The four sides in loop order.
+    pub sides: Vec<Side>,
 }
+
+/// A side of a refined flank: whether it runs along the face width, and
+/// its curves (more than one where the blank's seam splits it).
+pub(super) type Side = (bool, Vec<i32>);
 
 /// The refined flank surfaces and the surfaces along their edges (root
 /// fillets and top lands).
@@ -125,8 +127,8 @@ fn flank_sides(
     s: &Session,
     req: &MeshRequest,
     curves: &[DimTag],
-) -> gmsh::Result<Option<Vec<(bool, Vec<i32>)>>> {
-    let mut sides: Vec<(bool, Vec<i32>)> = Vec::new();
+) -> gmsh::Result<Option<Vec<Side>>> {
+    let mut sides: Vec<Side> = Vec::new();
     for &(_, c) in curves {
         let c = c.abs();
         let along = curve_span(s, req, c)? > 0.5 * curve_chord(s, c)?;

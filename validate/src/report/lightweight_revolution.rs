@@ -140,7 +140,11 @@ pub fn subsection(
 /// The lobe of the 8-DOF model against the solved revolution.
 fn lobe_check(s: &mut String, m: &OrderMapSummary, extrapolated: &[OrderMapSummary]) {
     let lobe = m.wheel_teeth as f64 / m.lobes.max(1) as f64;
-    let holes: Vec<f64> = m.hole_wheel_teeth.iter().map(|h| h.rem_euclid(lobe)).collect();
+    let holes: Vec<f64> = m
+        .hole_wheel_teeth
+        .iter()
+        .map(|h| h.rem_euclid(lobe))
+        .collect();
     let _ = writeln!(
         s,
         "The {:?} wheel's stiffness file holds {} of its {} teeth ({}), so the LTCA sweeps a whole wheel revolution ({} mesh cycles) and its k(t), δ(t) drive the 8-DOF runs ({}). The web holes' centres lie at the loaded flank of wheel teeth {} ({} within one lobe of {lobe:.2} teeth).\n",
@@ -213,7 +217,12 @@ fn lobe_check(s: &mut String, m: &OrderMapSummary, extrapolated: &[OrderMapSumma
 }
 
 /// Multibody run-up windows beside the 8-DOF runs at the same speeds.
-fn comparison(s: &mut String, out: &Path, maps: &[OrderMapSummary], extrapolated: &[OrderMapSummary]) {
+fn comparison(
+    s: &mut String,
+    out: &Path,
+    maps: &[OrderMapSummary],
+    extrapolated: &[OrderMapSummary],
+) {
     let _ = writeln!(
         s,
         "Wheel bearing-force amplitude (resultant of X, Y, Z, N) at the marked pinion orders. Multibody: the run-up's window of one wheel revolution of pinion angle whose mean speed is nearest (`runup_orders.json`: orders on lines {:.4} pinion orders apart whatever the ramp, amplitudes averaged over the window's speed range; rigid bearings, torsional model). 8-DOF: the order map's run at that speed (bearings 1 GN/m). Both at 300 N·m.\n",
@@ -222,7 +231,11 @@ fn comparison(s: &mut String, out: &Path, maps: &[OrderMapSummary], extrapolated
     let _ = writeln!(
         s,
         "| Pinion speed (rpm) | Wheel | Model | {} |\n|---|---|---|{}",
-        SHOWN.iter().map(|l| format!("{l} (N)")).collect::<Vec<_>>().join(" | "),
+        SHOWN
+            .iter()
+            .map(|l| format!("{l} (N)"))
+            .collect::<Vec<_>>()
+            .join(" | "),
         "---|".repeat(SHOWN.len())
     );
     let runups: Vec<Option<RunupOrders>> = maps
@@ -249,7 +262,16 @@ fn comparison(s: &mut String, out: &Path, maps: &[OrderMapSummary], extrapolated
             let w = format!("{:?}", m.wheel_blank);
             let row = |v: &OrderMapSpeed| cells(&v.marked);
             if let Some(v) = m.speeds.iter().find(|v| v.pinion_speed_rpm == rpm) {
-                let _ = writeln!(s, "| {rpm:.0} | {w} | 8-DOF, {} | {} |", if m.excitation.is_empty() { "revolution" } else { &m.excitation }, row(v));
+                let _ = writeln!(
+                    s,
+                    "| {rpm:.0} | {w} | 8-DOF, {} | {} |",
+                    if m.excitation.is_empty() {
+                        "revolution"
+                    } else {
+                        &m.excitation
+                    },
+                    row(v)
+                );
             }
             if let Some(e) = extrapolated.iter().find(|e| e.wheel_blank == m.wheel_blank) {
                 if let Some(v) = e.speeds.iter().find(|v| v.pinion_speed_rpm == rpm) {
@@ -276,7 +298,10 @@ fn comparison(s: &mut String, out: &Path, maps: &[OrderMapSummary], extrapolated
                     side[usize::from(m.lobes > 0)] = Some(sb);
                 }
                 None => {
-                    let _ = writeln!(s, "| {rpm:.0} | {w} | multibody run-up | no `runup_orders.json` |");
+                    let _ = writeln!(
+                        s,
+                        "| {rpm:.0} | {w} | multibody run-up | no `runup_orders.json` |"
+                    );
                 }
             }
         }
