@@ -10,7 +10,8 @@
 //!   one 43/3 teeth on (an independent check of the 43 teeth's meshes and
 //!   solves: nothing in them is copied from tooth to tooth).
 //! - The 8-DOF model's lobe fitted to 5 mesh cycles (an 8-tooth stiffness
-//!   file) against the lobe of the whole revolution: size and phase.
+//!   file) against the lobe of the whole revolution: its phase agrees, its
+//!   size does not (the finding is asserted, see the test).
 //! - The multibody run-up shows the lightweight wheel's side bands
 //!   20 ± 1.40 well above the standard wheel's.
 
@@ -72,7 +73,7 @@ fn solved_revolution_mean_stiffness_repeats_every_third_of_the_wheel() {
 
 #[test]
 #[ignore = "needs the white_paper_lightweight_runup scene's results (make lightweight)"]
-fn lobe_fitted_to_five_mesh_cycles_matches_the_solved_revolution_in_size_and_phase() {
+fn lobe_fitted_to_five_mesh_cycles_has_the_solved_revolutions_phase_but_not_its_size() {
     let m = lightweight_map();
     let lobe = m.wheel_teeth as f64 / m.lobes as f64;
     let short = m.short_span_lobe.as_ref().expect("no short-span lobe");
@@ -86,9 +87,17 @@ fn lobe_fitted_to_five_mesh_cycles_matches_the_solved_revolution_in_size_and_pha
         "lobe ptp: revolution {:.4}, 5 cycles {:.4} (ratio {ratio:.3}); least k at tooth {a:.2} and {b:.2} (phase {dphase:+.2} teeth of {lobe:.2}); holes at {:?}",
         m.stiffness_lobe_ptp_relative, short.stiffness_lobe_ptp_relative, m.hole_wheel_teeth
     );
-    // Phase within 1.5 teeth (38° of lobe phase), size within 35 %.
+    // Phase within 1.5 teeth (38° of lobe phase).
     assert!(dphase.abs() < 1.5, "phase {dphase:+.2} teeth");
-    assert!((ratio - 1.0).abs() < 0.35, "size ratio {ratio:.3}");
+    // Size: the bound set before the whole revolution was solved (within
+    // 35 %) failed, measured 2026-11-24: the 5 cycles lie on the steep
+    // side of the per-tooth stiffness (a sharp dip past each hole and a
+    // slow rise: not one harmonic), and their fit is 1.6 times the
+    // revolution's first harmonic. What this asserts is that finding: the
+    // short span's lobe is too large by more than a quarter, so the
+    // extrapolated order map overstates the hole family; the solved
+    // revolution replaces it where every tooth is solved.
+    assert!(ratio > 1.25, "size ratio {ratio:.3}: the short span's lobe is no longer too large");
 }
 
 #[test]
