@@ -120,6 +120,7 @@ fn window(rpm: f64, band: f64) -> RunupOrderWindow {
         pinion_rpm: [rpm - 60.0, rpm + 60.0],
         marked: vec![
             mk("20", 20.0, 120.0),
+            mk("3·20/43", 1.395, 1.0),
             mk("20-1.40", 18.605, band),
             mk("20+1.40", 21.395, band),
         ],
@@ -192,7 +193,7 @@ fn whole_revolution_subsection_checks_the_lobe_and_puts_the_runup_windows_beside
     assert!(md.contains("max 0.0071 and rms 0.0032"), "{md}");
     // The nearest window (2950 rpm) beside the 8-DOF runs at 3000 rpm.
     assert!(
-        md.contains("| 3000 | Lightweight | multibody run-up, 2950 rpm (2890–3010) | 1.200e2 | — | — | 2.500e0 | 2.500e0 |"),
+        md.contains("| 3000 | Lightweight | multibody run-up, 2950 rpm (2890–3010) | 1.200e2 | — | 1.000e0 | 2.500e0 | 2.500e0 |"),
         "{md}"
     );
     assert!(
@@ -204,7 +205,7 @@ fn whole_revolution_subsection_checks_the_lobe_and_puts_the_runup_windows_beside
         "{md}"
     );
     assert!(
-        md.contains("lightweight over standard wheel: 3000 rpm: 250.0"),
+        md.contains("(sum of both): 3000 rpm: 1.0 and 250.0."),
         "{md}"
     );
 }
