@@ -143,7 +143,15 @@ fn lobe_check(s: &mut String, m: &OrderMapSummary, extrapolated: &[OrderMapSumma
     let holes: Vec<f64> = m
         .hole_wheel_teeth
         .iter()
-        .map(|h| h.rem_euclid(lobe))
+        .map(|h| {
+            // Within one lobe, [0, lobe) (a hole at a whole lobe is at 0).
+            let x = h.rem_euclid(lobe);
+            if lobe - x < 1e-9 * lobe {
+                0.0
+            } else {
+                x
+            }
+        })
         .collect();
     let _ = writeln!(
         s,
@@ -273,7 +281,12 @@ fn comparison(
                     row(v)
                 );
             }
-            if let Some(e) = extrapolated.iter().find(|e| e.wheel_blank == m.wheel_blank) {
+            // The extrapolated lobe: lightweight wheels only (a standard
+            // wheel's runs are the same in both scenes).
+            let lobed = extrapolated
+                .iter()
+                .find(|e| e.wheel_blank == m.wheel_blank && e.lobes > 0);
+            if let Some(e) = lobed {
                 if let Some(v) = e.speeds.iter().find(|v| v.pinion_speed_rpm == rpm) {
                     let _ = writeln!(
                         s,
