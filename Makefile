@@ -75,7 +75,7 @@ SENSITIVITY   ?= 1
 # docs/performance.md. Not part of `make validate`.
 LW_SCENE := reference/scenes/white_paper_lightweight_runup.toml
 
-.PHONY: setup build test bench preprocess solve validate convergence stress lightweight clean
+.PHONY: setup build test bench preprocess solve validate convergence fe-stiffness stress lightweight clean
 
 setup:
 	@bash scripts/setup.sh
@@ -94,6 +94,7 @@ bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench influence_convergence
 	$(CARGO) bench -p solver --bench ltca
 	$(CARGO) bench -p solver --bench multibody
+	$(CARGO) bench -p solver --bench compliant_multibody
 	$(CARGO) bench -p solver --bench lumped
 	$(CARGO) bench -p solver --bench sensitivity
 	$(CARGO) bench -p validate --bench reference
@@ -145,6 +146,36 @@ convergence: build
 	$(BIN)/preprocess mesh $(SCENE) --level reference --out meshes
 	$(BIN)/validate convergence $(SCENE) --meshes meshes --out $(OUT)
 	$(BIN)/validate line-load $(SCENE) --meshes meshes --out $(OUT)
+
+# Issue 31: the mesh stiffness of seeds 003 and 004 at one position (the
+# middle of the fewest-pairs stretch of the mesh cycle) from the FE
+# reference (both tet10 bodies in penalty contact, smooth flanks) on the
+# reduced (6 x 10), medium and reference (35 x 75) meshes, against our LTCA
+# on the same levels' stiffness files: k = dF/dδ and F/δ at the lumped
+# scenes' torques, the roughness the slices and meshes resolve. Writes
+# $(OUT)/seed00{3,4}_fe_stiffness/mesh_stiffness/summary.json, which
+# `make validate`'s report shows in its lumped section (run this first).
+# Measured cold on 2 shared cores (2026-11-24, load average about 9 from
+# other jobs): about 28 min and 6.9 GiB peak. Seed 003 about 7 min (meshes
+# 41 + 18 + 17 s reference / reduced / medium, stiffness files 4 + 18 +
+# 119 s reduced / medium / reference, the study 191 s, peak 5.3 GiB: the
+# reference level's factors 2.35 + 2.65 GB); seed 004 about 21 min (meshes
+# 261 + 147 + 220 s, the 86-tooth wheel's cut, stiffness files 64 + 94 +
+# 210 s, the study 279 s, peak 6.9 GiB: factors 3.22 + 3.38 GB, just under
+# the 7 GB cap). With everything cached both take 3 s (the study reuses
+# the FE levels it solved). Not in `make validate` for its cold cost.
+# FE_STIFFNESS_MEMORY_GB caps the two factors held at once (a level over it
+# is skipped and reported).
+FE_STIFFNESS_MEMORY_GB ?= 7
+FE_STIFFNESS_SCENES    := seed003_fe_stiffness:seed003_lumped seed004_fe_stiffness:seed004_lumped
+fe-stiffness: build
+	@for p in $(FE_STIFFNESS_SCENES); do s=$${p%%:*}; l=$${p##*:}; f=reference/scenes/$$s.toml; \
+	  for lv in reduced medium reference; do \
+	    $(BIN)/preprocess mesh $$f --level $$lv --out meshes && \
+	    $(BIN)/preprocess stiffness $$f --meshes meshes --level $$lv || exit 1; done; \
+	  $(BIN)/validate mesh-stiffness $$f --meshes meshes --out $(OUT) \
+	    --memory-gb $(FE_STIFFNESS_MEMORY_GB) --lumped-scene reference/scenes/$$l.toml || exit 1; \
+	done
 
 # Issue 28's stress matrix: the scene's design and the seed pairs
 # (reference/scenes/seed*_*x*.toml), standard blanks, reduced meshes and

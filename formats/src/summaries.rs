@@ -235,7 +235,55 @@ pub struct DynamicSummary {
     /// The imposed-speed load run (seeds 001/002), when the scene has one.
     #[serde(default)]
     pub load_run: Option<LoadRunSummary>,
+    /// The runs with compliant bearings, when the scene has `[bearings]`.
+    #[serde(default)]
+    pub compliant: Option<CompliantSummary>,
     pub dir: PathBuf,
+}
+
+/// The multibody with compliant bearings of one pinion × wheel blank.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CompliantSummary {
+    /// Wall time of the unloaded TE's shift per misalignment (8 misaligned
+    /// contact searches over the table's positions), s.
+    pub lag_shift_s: f64,
+    pub masses_kg: [f64; 2],
+    /// Where the masses, centres and transverse moments come from.
+    pub mass_source: String,
+    /// What the compliant runs leave out that the rigid runs have.
+    pub notes: Vec<String>,
+    pub runs: Vec<CompliantRunSummary>,
+}
+
+/// One run with compliant bearings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CompliantRunSummary {
+    /// "10 rpm" or "run-up".
+    pub case: String,
+    pub torque_nm: f64,
+    pub steps: usize,
+    pub rejected_steps: usize,
+    pub cpu_s: f64,
+    pub cpu_s_per_step: f64,
+    /// Shaft TE r q₁ − q₂, µrad: the 10 rpm runs at the table's positions
+    /// they pass, the run-up over its steps.
+    pub te_mean_urad: f64,
+    pub te_ptp_urad: f64,
+    /// Largest |E|, |P|, |G| (µm) and |ΔΣ| (µrad) the bearings give.
+    pub largest_misalignment: [f64; 4],
+    /// Largest estimate of the TE the linear shift of the unloaded TE
+    /// leaves out, ½ Σ |∂²θ₀/∂mᵢ²| mᵢ², µrad.
+    pub largest_linearization_urad: f64,
+    /// Its mean over the run's steps, µrad (the largest comes from the
+    /// tooth changes, where θ₀(m) has a kink: the next pair's first contact
+    /// moves with m).
+    #[serde(default)]
+    pub mean_linearization_urad: f64,
+    /// Largest force magnitude per bearing, N.
+    pub pinion_bearing_force_n: Vec<f64>,
+    pub wheel_bearing_force_n: Vec<f64>,
+    /// The run's CSV, in the blank pair's folder.
+    pub csv: String,
 }
 
 fn element_law() -> String {

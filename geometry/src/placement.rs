@@ -84,10 +84,22 @@ pub fn project_point(flank: &Flank, q: &Vector3<f64>, start: [f64; 2]) -> Option
 /// moved by the pair's pose (misalignment) if any, then seen from the
 /// turned wheel.
 pub fn pinion_in_wheel(fp: &FlankPair, at: Placement, j: i32, p: &Vector3<f64>) -> Vector3<f64> {
+    pinion_in_wheel_with(fp, fp.pose.as_ref(), at, j, p)
+}
+
+/// As [`pinion_in_wheel`], with the pinion's pose `pose` in place of the
+/// pair's (None: aligned).
+pub fn pinion_in_wheel_with(
+    fp: &FlankPair,
+    pose: Option<&crate::misalignment::Pose>,
+    at: Placement,
+    j: i32,
+    p: &Vector3<f64>,
+) -> Vector3<f64> {
     let f1 = &fp.pinion.gen.frame;
     let f2 = &fp.wheel.gen.frame;
     let x = f1.to_fixed(p, at.pinion + j as f64 * f1.pitch());
-    let x = match &fp.pose {
+    let x = match pose {
         Some(pose) => pose.apply(&x),
         None => x,
     };

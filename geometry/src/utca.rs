@@ -59,14 +59,14 @@ pub struct RollSurface {
     pub k_sep: Vec<f64>,
     /// Node lies on both flanks.
     pub active: Vec<bool>,
-    /// Misaligned pair only (empty otherwise): the gap at the node's own
-    /// roll less its ease-off, m, and the gap's slope in the roll, m/rad;
-    /// with them and K the node's lag at roll φ is
-    /// (E + offset + slope (φ − φ(p)) + ½ K (φ − φ(p))²) / λ₂, the quadratic
-    /// through the gaps at φ(p) and φ(p) ± δ, which starts the exact search
-    /// ([`crate::mate`]).
-    pub offset: Vec<f64>,
-    pub slope: Vec<f64>,
+    /// Misaligned pair only (empty otherwise): the pose's change to the
+    /// node's lag ([`crate::mate::pose_correction`]) as the parabola
+    /// [c₀, c₁, c₂] through its values at the node's own roll φ(p) and at
+    /// φ(p) ± δ (rad, rad/rad, rad/rad²); the node's lag at roll φ is the
+    /// aligned one plus c₀ + c₁ (φ − φ(p)) + ½ c₂ (φ − φ(p))². It starts the
+    /// searches, which then use the exact correction. All the other fields
+    /// are the aligned pair's.
+    pub correction: Vec<[f64; 3]>,
 }
 
 /// The contact point of one tooth pair at one position.
@@ -126,39 +126,26 @@ impl RollSurface {
             active: Vec::new(),
             uv: Vec::new(),
             k_sep: Vec::new(),
-            offset: Vec::new(),
-            slope: Vec::new(),
+            correction: Vec::new(),
         };
-        if fp.pose.is_none() {
-            rs.k_sep = uv
-                .iter()
-                .zip(&pts)
-                .map(|(&uv, p)| separation_growth(fp, uv, p.pinion_roll))
-                .collect();
-            rs.active = uv
-                .iter()
-                .map(|&[u, v]| fp.is_active(u, v, crate::pair::EDGE_TOL))
-                .collect();
-        } else {
-            for (n, (&uv, p)) in uv.iter().zip(&pts).enumerate() {
-                let q = misaligned_node(fp, uv, p.pos, p.pinion_roll);
-                let on_pinion = crate::mate::on_pinion(fp, uv, crate::pair::EDGE_TOL);
-                let (k, slope, offset, active) = match q {
-                    Some(q) => (
-                        q.k,
-                        q.slope,
-                        q.gap - p.ease_off,
-                        on_pinion && crate::mate::on_wheel(fp, q.wheel_uv, crate::pair::EDGE_TOL),
-                    ),
-                    None => (0.0, 0.0, 0.0, false),
-                };
-                if let Some(q) = q {
-                    rs.lever[n] = q.lever;
+        rs.k_sep = uv
+            .iter()
+            .zip(&pts)
+            .map(|(&uv, p)| separation_growth(fp, uv, p.pinion_roll))
+            .collect();
+        match &fp.pose {
+            None => {
+                rs.active = uv
+                    .iter()
+                    .map(|&[u, v]| fp.is_active(u, v, crate::pair::EDGE_TOL))
+                    .collect();
+            }
+            Some(pose) => {
+                for (&uv, p) in uv.iter().zip(&pts) {
+                    let node = posed_node(fp, pose, uv, p.pos, p.pinion_roll);
+                    rs.active.push(node.is_some_and(|q| q.active));
+                    rs.correction.push(node.map_or([0.0; 3], |q| q.lag));
                 }
-                rs.k_sep.push(k);
-                rs.slope.push(slope);
-                rs.offset.push(offset);
-                rs.active.push(active);
             }
         }
         rs.uv = uv;
@@ -167,17 +154,16 @@ impl RollSurface {
 
     /// Whether the surface was made for a misaligned pair.
     pub fn misaligned(&self) -> bool {
-        !self.offset.is_empty()
+        !self.correction.is_empty()
     }
 
     /// The node model's lag of node `n` when its tooth is at roll `target`, rad.
     pub fn node_lag(&self, n: usize, target: f64) -> f64 {
         let d = target - self.roll[n];
-        if self.misaligned() {
-            (self.ease_off[n] + self.offset[n] + self.slope[n] * d + 0.5 * self.k_sep[n] * d * d)
-                / self.lever[n]
-        } else {
-            (self.ease_off[n] + 0.5 * self.k_sep[n] * d * d) / self.lever[n]
+        let aligned = (self.ease_off[n] + 0.5 * self.k_sep[n] * d * d) / self.lever[n];
+        match self.correction.get(n) {
+            Some(c) => aligned + correction_at(*c, d),
+            None => aligned,
         }
     }
 
@@ -226,37 +212,48 @@ fn separation_growth(fp: &FlankPair, uv: [f64; 2], roll: f64) -> f64 {
     }
 }
 
-/// A node of a misaligned pair: the gap's quadratic in the roll about the
-/// node's own roll angle, and its mate there.
-#[derive(Clone, Copy)]
-struct MisalignedNode {
-    gap: f64,
-    slope: f64,
-    k: f64,
-    lever: f64,
-    wheel_uv: [f64; 2],
+/// The pose correction's lag parabola [c₀, c₁, c₂] at roll offset `d`
+/// (rad): c₀ + c₁ d + ½ c₂ d².
+pub fn correction_at(c: [f64; 3], d: f64) -> f64 {
+    c[0] + c[1] * d + 0.5 * c[2] * d * d
 }
 
-/// The gaps of the pinion point `pos` (at `uv`) at rolls φ(p) and
-/// φ(p) ± δ with the pair's pose ([`crate::mate::mate`]): value, slope and
-/// curvature (K ≥ 0) of their parabola. None where a projection fails.
-fn misaligned_node(
+/// A node of a misaligned pair: the pose correction's lag parabola in the
+/// roll about the node's own roll angle, and whether the node can touch.
+#[derive(Clone, Copy)]
+struct PosedNode {
+    lag: [f64; 3],
+    active: bool,
+}
+
+/// The pose corrections ([`crate::mate::pose_correction`]) of the pinion
+/// point `pos` (at `uv`) at rolls φ(p) and φ(p) ± δ: value, slope and
+/// curvature of their parabola. The node is active when it lies on the
+/// pinion flank and the wheel point it touches at φ(p) (its conjugate
+/// point moved by the correction) on the wheel flank, the aligned pair's
+/// test ([`FlankPair::is_active`]) with the pose. None where a projection
+/// fails.
+fn posed_node(
     fp: &FlankPair,
+    pose: &crate::misalignment::Pose,
     uv: [f64; 2],
     pos: [f64; 3],
     roll: f64,
-) -> Option<MisalignedNode> {
+) -> Option<PosedNode> {
     let delta = GROWTH_STEP_DEG.to_radians();
-    let m0 = crate::mate::mate(fp, pos, roll, uv)?;
-    let gp = crate::mate::mate(fp, pos, roll + delta, m0.wheel_uv)?.gap;
-    let gm = crate::mate::mate(fp, pos, roll - delta, m0.wheel_uv)?.gap;
-    let k = (gp + gm - 2.0 * m0.gap) / (delta * delta);
-    Some(MisalignedNode {
-        gap: m0.gap,
-        slope: (gp - gm) / (2.0 * delta),
-        k: if k.is_finite() { k.max(0.0) } else { 0.0 },
-        lever: m0.lever,
-        wheel_uv: m0.wheel_uv,
+    let c = |d: f64| crate::mate::pose_correction(fp, pose, pos, roll + d, uv);
+    let c0 = c(0.0)?;
+    let (cp, cm) = (c(delta)?.lag, c(-delta)?.lag);
+    let tol = crate::pair::EDGE_TOL;
+    let (l, d) = fp.pinion.ld(uv[0], uv[1]);
+    let (lw, dw) = c0.wheel_point(fp.wheel.ld(uv[0], uv[1]));
+    Some(PosedNode {
+        lag: [
+            c0.lag,
+            (cp - cm) / (2.0 * delta),
+            (cp + cm - 2.0 * c0.lag) / (delta * delta),
+        ],
+        active: fp.pinion.bounds.contains(l, d, tol) && fp.wheel.bounds.contains(lw, dw, tol),
     })
 }
 
@@ -265,6 +262,9 @@ pub struct LineSearch<'a> {
     pub fp: &'a FlankPair,
     pub rs: &'a RollSurface,
     k1: f64,
+    /// Misaligned: the last pose correction, whose mates start those of the
+    /// next point ([`crate::mate::pose_correction_near`]).
+    near: std::cell::Cell<Option<crate::mate::PoseCorrection>>,
 }
 
 impl<'a> LineSearch<'a> {
@@ -273,6 +273,7 @@ impl<'a> LineSearch<'a> {
             fp,
             rs,
             k1: fp.pinion.gen.frame.roll_ratio,
+            near: Default::default(),
         }
     }
 
@@ -325,45 +326,66 @@ impl<'a> LineSearch<'a> {
     }
 
     /// Wheel lag needed for contact at pinion point `uv` of the tooth at
-    /// roll `target`: from the surface of roll angles for the aligned pair,
-    /// from the exact gap with the pair's pose ([`crate::mate`]) for a
-    /// misaligned one.
+    /// roll `target`: from the surface of roll angles, plus the pose's
+    /// exact change ([`crate::mate::pose_correction`]) for a misaligned
+    /// pair.
     pub fn lag(&self, uv: [f64; 2], target: f64) -> Option<f64> {
-        if self.fp.pose.is_some() {
-            if !crate::mate::on_pinion(self.fp, uv, 1e-12) {
+        let fp = self.fp;
+        let aligned = |p: &crate::flank::FlankPoint| {
+            let (xi, eta) = fp.pinion.bounds.to_unit(p.l, p.d);
+            let k = self.rs.interpolate(&self.rs.k_sep, xi, eta);
+            let dphi = target - p.pinion_roll;
+            (p.ease_off + 0.5 * k * dphi * dphi) / p.wheel_lever
+        };
+        if let Some(pose) = &fp.pose {
+            // The aligned model plus the pose's exact change, the touched
+            // wheel point (the conjugate one moved by it) on the wheel.
+            let p = fp.pinion.eval_uv(uv[0], uv[1]);
+            if !fp.pinion.bounds.contains(p.l, p.d, 1e-12) {
                 return None;
             }
-            let p = self.fp.pinion.eval_uv(uv[0], uv[1]);
-            let m = crate::mate::mate(self.fp, p.pos, target, uv)?;
-            return crate::mate::on_wheel(self.fp, m.wheel_uv, 1e-12).then_some(m.lag);
+            let c = match self.near.get() {
+                Some(near) => crate::mate::pose_correction_near(fp, pose, p.pos, target, &near),
+                None => crate::mate::pose_correction(fp, pose, p.pos, target, uv),
+            }?;
+            self.near.set(Some(c));
+            let (lw, dw) = c.wheel_point(fp.wheel.ld(uv[0], uv[1]));
+            return fp
+                .wheel
+                .bounds
+                .contains(lw, dw, 1e-12)
+                .then(|| aligned(&p) + c.lag);
         }
-        let (p, ok) = self.fp.point(uv[0], uv[1], 1e-12);
+        let (p, ok) = fp.point(uv[0], uv[1], 1e-12);
         if !ok {
             return None;
         }
-        let (xi, eta) = self.fp.pinion.bounds.to_unit(p.l, p.d);
-        let k = self.rs.interpolate(&self.rs.k_sep, xi, eta);
-        let dphi = target - p.pinion_roll;
-        Some((p.ease_off + 0.5 * k * dphi * dphi) / p.wheel_lever)
+        Some(aligned(&p))
     }
 
     /// Smallest wheel lag for contact of the tooth at roll `target`, and where:
-    /// the best grid node, refined by damped Newton on the active flank.
+    /// the best grid node, refined by damped Newton on the active flank. A
+    /// misaligned pair's node activity holds at the node's own roll, so the
+    /// best node may not be able to touch at `target`; then the next best
+    /// that can starts the search (the aligned pair keeps its old rule:
+    /// the best node or nothing).
     pub fn min_contact(&self, target: f64) -> Option<(f64, [f64; 2])> {
         let rs = self.rs;
-        let mut best: Option<(f64, usize)> = None;
-        for n in 0..rs.uv.len() {
-            if !rs.active[n] {
-                continue;
-            }
-            let v = rs.node_lag(n, target);
-            if best.is_none_or(|b| v < b.0) {
-                best = Some((v, n));
-            }
-        }
-        let (_, n) = best?;
-        let uv = rs.uv[n];
-        let val = self.lag(uv, target)?;
+        let mut nodes: Vec<(f64, usize)> = (0..rs.uv.len())
+            .filter(|&n| rs.active[n])
+            .map(|n| (rs.node_lag(n, target), n))
+            .collect();
+        // Stable: of equal lags the first node, as a plain scan for the minimum.
+        nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let tries = if self.fp.pose.is_some() {
+            nodes.len()
+        } else {
+            1
+        };
+        let (uv, val) = nodes
+            .iter()
+            .take(tries)
+            .find_map(|&(_, n)| self.lag(rs.uv[n], target).map(|v| (rs.uv[n], v)))?;
         let (uv, val) = crate::minimize::newton_2d(|c| self.lag(c, target), uv, val, 1e-5, 25);
         Some((val, uv))
     }

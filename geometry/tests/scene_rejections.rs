@@ -253,3 +253,57 @@ fn bearings_that_cannot_hold_the_shaft_or_out_of_range_are_rejected_naming_the_f
         "{e}"
     );
 }
+
+#[test]
+fn bearing_damping_and_member_masses_are_read_and_out_of_range_rejected_naming_the_field() {
+    let b = |pos: &str, ka: &str, damping: &str| {
+        format!("{{ axial_position_mm = {pos}, radial_stiffness_n_per_m = 5e8, axial_stiffness_n_per_m = {ka}{damping} }}")
+    };
+    let shaft =
+        |damping: &str| format!("[{}, {}]", b("90.0", "5e8", damping), b("150.0", "0.0", ""));
+    let table = |damping: &str, extra: &str| {
+        format!(
+            "[bearings]\npinion = {}\nwheel = {}\n{extra}",
+            shaft(damping),
+            shaft("")
+        )
+    };
+    let damped = ", radial_damping_n_s_per_m = 2e3, axial_damping_n_s_per_m = 1e3";
+    let body =
+        "pinion_body = { mass_kg = 1.5, centroid_mm = 110.0, transverse_inertia_kgm2 = 2e-3 }";
+    let s = scene_with(&table(damped, body)).unwrap();
+    let bs = s.scene.bearings.unwrap();
+    assert_eq!(
+        (
+            bs.pinion[0].radial_damping_n_s_per_m,
+            bs.pinion[0].axial_damping_n_s_per_m
+        ),
+        (2e3, 1e3)
+    );
+    assert_eq!(
+        (bs.pinion[1].radial_damping_n_s_per_m, bs.wheel_body),
+        (0.0, None)
+    );
+    let pb = bs.pinion_body.unwrap();
+    assert_eq!(
+        (pb.mass_kg, pb.centroid_mm, pb.transverse_inertia_kgm2),
+        (1.5, 110.0, 2e-3)
+    );
+    let e = scene_with(&table(", radial_damping_n_s_per_m = -1.0", "")).unwrap_err();
+    assert!(
+        e.contains("bearings.pinion[0].radial_damping_n_s_per_m") && e.contains("[0, 1e9]"),
+        "{e}"
+    );
+    let e = scene_with(&table(
+        "",
+        "wheel_body = { mass_kg = 0.0, centroid_mm = 50.0, transverse_inertia_kgm2 = 0.1 }",
+    ))
+    .unwrap_err();
+    assert!(e.contains("bearings.wheel_body.mass_kg"), "{e}");
+    let e = scene_with(&table(
+        "",
+        "pinion_body = { mass_kg = 1.0, centroid_mm = 50.0 }",
+    ))
+    .unwrap_err();
+    assert!(e.contains("transverse_inertia_kgm2"), "{e}");
+}

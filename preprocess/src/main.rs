@@ -91,8 +91,13 @@ fn main() -> anyhow::Result<()> {
                     .first()
                     .map(|f| format!("{} x {}", f.elements_profile, f.elements_face))
                     .unwrap_or_else(|| "-".into());
+                let made = if r.reused {
+                    "reused; made earlier in"
+                } else {
+                    "made in"
+                };
                 println!(
-                    "{} {:?} {}: {} nodes, {} tet10, min SICN {:.3}, refined flanks {} ({} of them: {flank} requested {} x {}), volume mesh/CAD - 1 = {:.2e}, geometry {:.1} s, mesh {:.1} s",
+                    "{} {:?} {}: {} nodes, {} tet10, min SICN {:.3}, refined flanks {} ({} of them: {flank} requested {} x {}), volume mesh/CAD - 1 = {:.2e}, {made} geometry {:.1} s + mesh {:.1} s",
                     r.member,
                     r.blank,
                     r.level,

@@ -99,6 +99,7 @@ pub fn mesh_member(req: &MeshRequest, out: &Path) -> Result<MeshReport, MeshErro
         periodic_copy_deviation_m: mesh.periodic_copy_deviation,
         time_geometry_s: time_geometry,
         time_mesh_s: mesh.time_mesh,
+        reused: false,
         time_cut_s: body.time_cut,
         time_generate_s: mesh.time_generate,
         time_order2_s: mesh.time_order2,

@@ -174,9 +174,10 @@ pub fn run(
                         &g,
                     )
                 };
-                if let (true, Some(r)) = (unchanged, cached) {
+                if let (true, Some(mut r)) = (unchanged, cached) {
                     eprintln!("{stem}: inputs unchanged, reusing {}", msh.display());
                     record(&stem)?;
+                    r.reused = true;
                     reports.push(r);
                     continue;
                 }

@@ -103,6 +103,14 @@ fn meshes_with_periodic_sectors(name: &str, max_copy_deviation: f64) {
     let reports: Vec<MeshReport> = preprocess::mesh_stage::run(&scene, &root, Level::Reduced)
         .unwrap_or_else(|e| panic!("{name}: {e:#}"));
     assert_eq!(reports.len(), 2);
+    assert!(reports.iter().all(|r| !r.reused), "{name}: fresh meshes");
+    // A second run finds the inputs unchanged: it reuses both meshes and
+    // says so (the times it reports are those of the run that made them).
+    let again = preprocess::mesh_stage::run(&scene, &root, Level::Reduced).unwrap();
+    for (a, r) in again.iter().zip(&reports) {
+        assert!(a.reused, "{name} {}: not reused", a.member);
+        assert_eq!((a.nodes, a.time_mesh_s), (r.nodes, r.time_mesh_s));
+    }
     for r in &reports {
         let what = format!("{name} {}", r.member);
         assert!(

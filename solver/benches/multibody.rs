@@ -8,16 +8,15 @@
 //! run: pinion at 300 rpm, the wheel load of 300 N·m at the pinion rising
 //! by STEP over 20 ms, 0.1 s. Results in `bench/multibody.json`.
 
-use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, ImpactSettings, LoadRun, Scene};
 use geometry::utca::roll_surface;
 use serde_json::json;
 use solver::compliance::PairCompliance;
-use solver::dynamic_stage::{impact_law, inertia};
+use solver::dynamic_stage::{impact_law, pair_and_inertia};
 use solver::load_run;
 use solver::ltca::{mean_ptp, run};
-use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::ltca_stage::scene_sweep;
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{interpolate, wheel_driven, Drive, Model};
 use solver::time_step::{integrate, Integrator, Scheme, StepControl};
@@ -31,13 +30,8 @@ fn main() {
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
     let dir = root.join("meshes").join(&sc.name);
     // Compliance and polar moment (from the body mesh, as `solver dynamic`) per member.
-    let load = |m: Member| {
-        let (c, plan) = member_compliance(&scene, &g, &dir, m, Blank::Standard)
-            .expect("meshes/default: run `make preprocess` first");
-        (c, inertia(&scene, &g, &dir, &plan, m).unwrap().0)
-    };
-    let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
-    let pc = PairCompliance { pinion, wheel };
+    let (pc, [j1, j2]) = pair_and_inertia(&scene, &g, &dir, [Blank::Standard; 2])
+        .expect("meshes/default: run `make preprocess` first");
     let fp = g.side(sc.loaded_flank);
     let rs = roll_surface(fp, &sc.utca).unwrap();
     let tau = g.data.mesh_cycle();

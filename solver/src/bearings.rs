@@ -190,6 +190,55 @@ impl Support {
             .sum()
     }
 
+    /// The support damping C = Σ Bᵢᵀ Cᵢ Bᵢ about the apex, with
+    /// Cᵢ = c_r,i (I − a aᵀ) + c_a,i a aᵀ from `damping[i]` =
+    /// (radial, axial) viscous damping of bearing i, N·s/m (bearings
+    /// without an entry: none).
+    pub fn damping(&self, damping: &[(f64, f64)]) -> Matrix6<f64> {
+        let aat = self.axis * self.axis.transpose();
+        self.bearings
+            .iter()
+            .zip(damping)
+            .map(|(b, &(cr, ca))| {
+                let bi = self.kinematics(b);
+                let ci = (Matrix3::identity() - aat) * cr + aat * ca;
+                bi.transpose() * ci * bi
+            })
+            .sum()
+    }
+
+    /// Orthonormal basis (columns) of the five directions the bearings
+    /// hold, as [u; θ]: translations along e₁, e₂, a, rotations about e₁,
+    /// e₂ (e₁, e₂ ⊥ a).
+    pub fn basis(&self) -> Matrix6x5<f64> {
+        self.held
+    }
+
+    /// The bearings, in the order given.
+    pub fn bearings(&self) -> &[Bearing] {
+        &self.bearings
+    }
+
+    /// The force each bearing exerts on the member moving at velocity `v`
+    /// ([u̇; θ̇]) with `damping` as in [`Support::damping`], N.
+    pub fn damping_reactions(&self, v: &Vector6<f64>, damping: &[(f64, f64)]) -> Vec<Vector3<f64>> {
+        let aat = self.axis * self.axis.transpose();
+        self.bearings
+            .iter()
+            .enumerate()
+            .map(|(i, b)| {
+                let (cr, ca) = damping.get(i).copied().unwrap_or((0.0, 0.0));
+                let ci = (Matrix3::identity() - aat) * cr + aat * ca;
+                -(ci * (self.kinematics(b) * v))
+            })
+            .collect()
+    }
+
+    /// The bearing point of `b` relative to the apex, m.
+    pub fn arm_of(&self, b: &Bearing) -> Vector3<f64> {
+        self.arm(b)
+    }
+
     /// The generalized load [F; (x − o) × F] of force `force` (N) applied
     /// at `point` (m, fixed frame).
     pub fn load(&self, force: Vector3<f64>, point: Vector3<f64>) -> Vector6<f64> {

@@ -203,6 +203,24 @@ pub fn inertia(
     Ok((body.polar_moment_kgm2, "mesh"))
 }
 
+/// Both members' compliance and polar moments (scene or mesh) for the
+/// blanks `[pinion, wheel]` from the mesh folder `dir` (benches and tests
+/// that set up one pair by hand).
+pub fn pair_and_inertia(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    blanks: [Blank; 2],
+) -> anyhow::Result<(PairCompliance, [f64; 2])> {
+    let load = |m: Member, b: Blank| -> anyhow::Result<_> {
+        let (c, plan) = member_compliance(scene, g, dir, m, b)?;
+        Ok((c, inertia(scene, g, dir, &plan, m)?.0))
+    };
+    let (pinion, j1) = load(Member::Pinion, blanks[0])?;
+    let (wheel, j2) = load(Member::Wheel, blanks[1])?;
+    Ok((PairCompliance { pinion, wheel }, [j1, j2]))
+}
+
 /// Runs the multibody analyses of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<DynamicSummary>> {
     if !scene.scene.analyses.multibody {
@@ -522,7 +540,37 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                 )?),
                 _ => None,
             };
+            let compliant = match (&sc.bearings, &impact) {
+                (Some(_), None) => {
+                    let manifest = Manifest::read(&dir)?;
+                    let mass = |stem: &str| -> anyhow::Result<f64> {
+                        let b = manifest.mesh(&dir, stem)?.body;
+                        Ok(b.volume_m3 * b.density_kg_m3)
+                    };
+                    Some(crate::compliant_stage::run(
+                        &crate::compliant_stage::Setup {
+                            scene,
+                            g: &g,
+                            table: &table,
+                            inertia,
+                            mesh_mass_kg: [mass(&pin_plan.mesh_stem)?, mass(&whl_plan.mesh_stem)?],
+                            blanks: [pb, wb],
+                            odir: &odir,
+                            control: &control,
+                            runs_up,
+                        },
+                    )?)
+                }
+                (Some(_), Some(_)) => {
+                    eprintln!(
+                        "  [bearings] with the impact law: no compliant-bearing runs (they take the element's table)"
+                    );
+                    None
+                }
+                _ => None,
+            };
             let summary = DynamicSummary {
+                compliant,
                 backlash_urad: coast.as_ref().map(|c| c.backlash * 1e6),
                 free_play_urad: free_play,
                 rattle,
@@ -571,12 +619,6 @@ fn run_up(
     impact_law: bool,
     coast: Option<&Coast>,
 ) -> anyhow::Result<RunupSummary> {
-    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
-    let ramp = Ramp {
-        from: w(mb.runup_rpm[0]),
-        to: w(mb.runup_rpm[1]),
-        duration: mb.runup_time_s,
-    };
     let torque = mb.runup_pinion_torque_nm;
     let mut m = Model {
         table,
@@ -584,10 +626,7 @@ fn run_up(
         inertia,
         damping: 0.0,
         friction,
-        drive: Drive::PinionSpeed {
-            speed: ramp,
-            wheel_torque: torque / table.ratio,
-        },
+        drive: runup_drive(mb, table.ratio),
     };
     // Without coast flanks the wheel must stay on the drive flanks up to
     // the top speed: below the holding torque it runs ahead at the tooth
@@ -660,41 +699,19 @@ fn run_up(
         ],
     )?;
     // Spectrogram of the wheel bearing force magnitude.
-    let dt = mb.runup_max_step_s.max(mb.runup_time_s / 2e5);
     let mag: Vec<f64> = tr
         .force
         .iter()
         .map(|f| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt())
         .collect();
-    let y = resample(&tr.t, &mag, dt);
-    let window = ((mb.runup_time_s / 8.0) / dt).round().max(16.0) as usize;
-    let fmax = 3.2 * z1 * ramp.to / (2.0 * std::f64::consts::PI);
-    let freq: Vec<f64> = (0..200).map(|k| fmax * k as f64 / 199.0).collect();
-    let spec = stft(&y, dt, window.min(y.len()), (window / 8).max(1), &freq);
-    let hz = |t: f64| ramp.at(t)[1] / (2.0 * std::f64::consts::PI);
-    let mut orders: Vec<OrderLine> = (1..=3)
-        .map(|k| OrderLine {
-            order: z1 * k as f64,
-            label: format!("{}", z1 * k as f64),
-        })
-        .collect();
-    if wb == Blank::Lightweight {
-        let o = 3.0 * table.ratio;
-        orders.push(OrderLine {
-            order: z1 + o,
-            label: format!("{z1}+{o:.2}"),
-        });
-        orders.push(OrderLine {
-            order: z1 - o,
-            label: format!("{z1}-{o:.2}"),
-        });
-    }
-    plot(
+    runup_spectrogram(
         &odir.join("runup_spectrogram.svg"),
         &format!("Wheel bearing force |F|, run-up at {torque} N·m ({pb:?}/{wb:?})"),
-        &spec,
-        &hz,
-        &orders,
+        (&tr.t, &mag),
+        mb,
+        z1,
+        table.ratio,
+        wb,
     )?;
     // Order analysis in the pinion's angle domain, one wheel revolution per
     // window (32 samples per mesh cycle).
@@ -734,6 +751,66 @@ fn run_up(
         cpu_s_per_step: cpu / steps.max(1) as f64,
         te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
     })
+}
+
+/// The run-up's pinion speed ramp, rad/s.
+pub(crate) fn runup_ramp(mb: &geometry::scene::MultibodySettings) -> Ramp {
+    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
+    Ramp {
+        from: w(mb.runup_rpm[0]),
+        to: w(mb.runup_rpm[1]),
+        duration: mb.runup_time_s,
+    }
+}
+
+/// The run-up's drive: the pinion on [`runup_ramp`], the wheel resisting
+/// the run-up torque (at the pinion) through the ratio `ratio`.
+pub(crate) fn runup_drive(mb: &geometry::scene::MultibodySettings, ratio: f64) -> Drive {
+    Drive::PinionSpeed {
+        speed: runup_ramp(mb),
+        wheel_torque: mb.runup_pinion_torque_nm / ratio,
+    }
+}
+
+/// The run-up's spectrogram of a force magnitude `series` (times, |F|)
+/// over the pinion speed, with the tooth orders (and, with the lightweight
+/// wheel, its 3-hole side bands) marked.
+pub(crate) fn runup_spectrogram(
+    path: &Path,
+    title: &str,
+    series: (&[f64], &[f64]),
+    mb: &geometry::scene::MultibodySettings,
+    z1: f64,
+    ratio: f64,
+    wb: Blank,
+) -> anyhow::Result<()> {
+    let ramp = runup_ramp(mb);
+    let dt = mb.runup_max_step_s.max(mb.runup_time_s / 2e5);
+    let y = resample(series.0, series.1, dt);
+    let window = ((mb.runup_time_s / 8.0) / dt).round().max(16.0) as usize;
+    let fmax = 3.2 * z1 * ramp.to / (2.0 * std::f64::consts::PI);
+    let freq: Vec<f64> = (0..200).map(|k| fmax * k as f64 / 199.0).collect();
+    let spec = stft(&y, dt, window.min(y.len()), (window / 8).max(1), &freq);
+    let hz = |t: f64| ramp.at(t)[1] / (2.0 * std::f64::consts::PI);
+    let mut orders: Vec<OrderLine> = (1..=3)
+        .map(|k| OrderLine {
+            order: z1 * k as f64,
+            label: format!("{}", z1 * k as f64),
+        })
+        .collect();
+    if wb == Blank::Lightweight {
+        let o = 3.0 * ratio;
+        orders.push(OrderLine {
+            order: z1 + o,
+            label: format!("{z1}+{o:.2}"),
+        });
+        orders.push(OrderLine {
+            order: z1 - o,
+            label: format!("{z1}-{o:.2}"),
+        });
+    }
+    plot(path, title, &spec, &hz, &orders)?;
+    Ok(())
 }
 
 /// The rattle run: the pinion at a fluctuating speed, the wheel free under

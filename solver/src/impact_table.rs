@@ -172,6 +172,7 @@ pub fn build(
                     te0: g.utca_te,
                     torque: Vec::with_capacity(lags.len()),
                     force: Vec::with_capacity(lags.len()),
+                    wrench: Vec::with_capacity(lags.len()),
                     friction: Vec::with_capacity(lags.len()),
                     cpu: 0.0,
                 },
@@ -180,6 +181,7 @@ pub fn build(
             };
             for &lag in &lags {
                 let (mut t1, mut f, mut phi_f, mut a) = (0.0, [0.0; 3], [0.0; 2], [0.0; 4]);
+                let mut wr = [0.0; 6];
                 let (mut sum_f, mut sum_fg) = (0.0, 0.0);
                 for p in pairs_at(&g, &law, lag) {
                     let s = &g.slices[p.slice];
@@ -190,6 +192,16 @@ pub fn build(
                     );
                     for (fi, ni) in f.iter_mut().zip(n.iter()) {
                         *fi += p.force * ni;
+                    }
+                    let wk = crate::mesh_table::slice_wrench(
+                        frame,
+                        fp.pose.as_ref(),
+                        s,
+                        g.phi + s.pair as f64 * tau,
+                        p.force,
+                    );
+                    for (x, y) in wr.iter_mut().zip(wk) {
+                        *x += y;
                     }
                     for (pf, l) in phi_f.iter_mut().zip(s.friction_lever) {
                         *pf += p.force * l;
@@ -205,6 +217,7 @@ pub fn build(
                 }
                 c.base.torque.push(t1);
                 c.base.force.push(f);
+                c.base.wrench.push(wr);
                 c.base.friction.push(phi_f);
                 c.damping.push(a);
                 c.slip.push(if sum_f > 0.0 { sum_fg / sum_f } else { 0.0 });

@@ -60,15 +60,33 @@ pub fn member_compliance_on(
     blank: Blank,
     side: Side,
 ) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
-    let level = MeshLevel::Reduced;
+    member_compliance_at(scene, g, dir, member, blank, side, MeshLevel::Reduced)
+}
+
+/// As [`member_compliance_on`], from the stiffness file that `preprocess
+/// stiffness --level <level>` made from that level's meshes (same contact
+/// grid): the mesh-level studies' LTCA.
+pub fn member_compliance_at(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+    side: Side,
+    level: MeshLevel,
+) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
     let p = stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
     let data = stiffness_plan::check(scene, g, dir, &p, member, blank, level).with_context(|| {
         format!(
-            "scene {}: stiffness file of the {} ({blank:?} blank, {} flank) is missing or stale; run `preprocess stiffness {}`",
+            "scene {}: stiffness file of the {} ({blank:?} blank, {} flank) is missing or stale; run `preprocess stiffness {}{}`",
             scene.scene.name,
             member.name(),
             side.flank_name(member),
-            scene.path.display()
+            scene.path.display(),
+            match level {
+                MeshLevel::Reduced => String::new(),
+                l => format!(" --level {}", l.name()),
+            }
         )
     })?;
     Ok((

@@ -71,6 +71,11 @@ pub struct MeshTable {
     /// fixed frame (N): row-major positions × lag nodes.
     pub torque: Vec<f64>,
     pub force: Vec<[f64; 3]>,
+    /// The contact's wrench on the wheel about the pitch apex, [N; N·m],
+    /// in the frame of the wheel's bearings (the pair's relative pose
+    /// applied to the pinion's points and normals): Σ F [n; x × n], same
+    /// layout ([`slice_wrench`]).
+    pub wrench: Vec<[f64; 6]>,
     /// Friction moments per unit friction coefficient (Φ₁, Φ₂) = (Σ F ℓ₁,
     /// Σ F ℓ₂), N·m (see [`crate::slices::friction_levers`]), same layout.
     pub friction: Vec<[f64; 2]>,
@@ -310,12 +315,34 @@ fn gauss4() -> [(f64, f64); 4] {
     ]
 }
 
+/// The wrench on the wheel about the pitch apex, [N; N·m], of normal force
+/// `f` (N) at slice `sl` with the pinion turned by `turn` (rad):
+/// F [n; x × n], x and n the pinion's contact point and outward normal in
+/// the fixed frame, the pair's relative `pose` (misalignment) applied.
+pub fn slice_wrench(
+    frame: &MemberFrame,
+    pose: Option<&geometry::misalignment::Pose>,
+    sl: &crate::slices::Slice,
+    turn: f64,
+    f: f64,
+) -> [f64; 6] {
+    let mut x = frame.to_fixed(&nalgebra::Vector3::from(sl.pos), turn);
+    let mut n = frame.to_fixed(&nalgebra::Vector3::from(sl.normal), turn);
+    if let Some(p) = pose {
+        x = p.apply(&x);
+        n = p.rotation * n;
+    }
+    let m = x.cross(&n) * f;
+    [f * n.x, f * n.y, f * n.z, m.x, m.y, m.z]
+}
+
 /// One position's column of the table (both force laws): the unloaded TE,
 /// and per lag node the pinion torque, contact force and friction moments.
 pub(crate) struct Column {
     pub(crate) te0: f64,
     pub(crate) torque: Vec<f64>,
     pub(crate) force: Vec<[f64; 3]>,
+    pub(crate) wrench: Vec<[f64; 6]>,
     pub(crate) friction: Vec<[f64; 2]>,
     pub(crate) cpu: f64,
 }
@@ -338,6 +365,7 @@ impl MeshTable {
             te0: cols.iter().map(|c| c.te0).collect(),
             torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
             force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
+            wrench: cols.iter().flat_map(|c| c.wrench.iter().copied()).collect(),
             friction: cols
                 .iter()
                 .flat_map(|c| c.friction.iter().copied())
@@ -399,6 +427,7 @@ impl MeshTable {
                 };
                 let mut torque = Vec::with_capacity(spec.lag_nodes);
                 let mut force = Vec::with_capacity(spec.lag_nodes);
+                let mut wrench = Vec::with_capacity(spec.lag_nodes);
                 let mut friction = Vec::with_capacity(spec.lag_nodes);
                 let mut warm: Option<Vec<bool>> = None;
                 for &lag in &lags {
@@ -419,6 +448,17 @@ impl MeshTable {
                         }
                     }
                     force.push(f);
+                    let mut w = [0.0; 6];
+                    for (sl, &fk) in g.slices.iter().zip(&s.force) {
+                        if fk > 0.0 {
+                            let turn = g.phi + sl.pair as f64 * tau;
+                            let wk = slice_wrench(frame, fp.pose.as_ref(), sl, turn, fk);
+                            for (a, b) in w.iter_mut().zip(wk) {
+                                *a += b;
+                            }
+                        }
+                    }
+                    wrench.push(w);
                     friction.push([0, 1].map(|i| {
                         g.slices
                             .iter()
@@ -434,6 +474,7 @@ impl MeshTable {
                     te0: g.utca_te,
                     torque,
                     force,
+                    wrench,
                     friction,
                     cpu: cpu0 + t.elapsed().as_secs_f64(),
                 })
@@ -497,8 +538,15 @@ impl MeshTable {
 
     /// Unloaded TE θ₀(q₁) and its first two derivatives.
     pub fn unloaded(&self, q1: f64) -> Result<[f64; 3], SolverError> {
+        self.along_q1(|k| self.te0[k], q1)
+    }
+
+    /// A per-node quantity (`value(k)` at table node k, lead first)
+    /// interpolated at q₁ as θ₀ is (Catmull–Rom, periodic or continued
+    /// linearly), with its first two derivatives.
+    pub fn along_q1(&self, value: impl Fn(usize) -> f64, q1: f64) -> Result<[f64; 3], SolverError> {
         let (i, t) = self.cell(q1)?;
-        let v = stencil(self.nodes(), self.spec.periodic, i, |k| self.te0[k]);
+        let v = stencil(self.nodes(), self.spec.periodic, i, value);
         let w = catmull_rom(t);
         let h = self.spec.step;
         let d = |r: usize| (0..4).map(|o| w[r][o] * v[o]).sum::<f64>();
@@ -576,6 +624,22 @@ impl MeshTable {
             grad[i] = [fq + r * ft, -ft];
         }
         Ok((phi, grad))
+    }
+
+    /// The contact's wrench on the wheel ([`MeshTable::wrench`]) at
+    /// (q₁, θ), per component [value, ∂/∂q₁ at fixed θ, ∂/∂θ]; zero below
+    /// the first lag node (interpolated as the torque is).
+    pub fn wrench_state(&self, q1: f64, theta: f64) -> Result<[[f64; 3]; 6], SolverError> {
+        let mut out = [[0.0; 3]; 6];
+        if theta <= self.theta_lo() {
+            return Ok(out);
+        }
+        let nu = self.spec.lag_nodes;
+        for (c, o) in out.iter_mut().enumerate() {
+            let [f, fq, ft, ..] = self.field(|p, m| self.wrench[p * nu + m][c], q1, theta)?;
+            *o = [f, fq, ft];
+        }
+        Ok(out)
     }
 
     /// The impact law's damping levers and slip speed at (q₁, q₂); None

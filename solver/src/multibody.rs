@@ -19,8 +19,10 @@
 //! - generalized-α (Chung & Hulbert 1993) with spectral radius ρ∞ (numerical
 //!   damping of the high modes for ρ∞ < 1),
 //! - the energy-conserving midpoint rule with the coordinate-wise discrete
-//!   gradient of V (Itoh & Abe 1988): without damping, kinetic energy + V −
-//!   work of the torques is constant to the Newton tolerance.
+//!   gradient of V (Itoh & Abe 1988), averaged over both coordinate orders
+//!   so that it is the midpoint gradient to second order
+//!   ([`crate::time_step::discrete_gradient`]): without damping, kinetic
+//!   energy + V − work of the torques is constant to the Newton tolerance.
 //!
 //! With an impact-law table ([`crate::impact_table`]) V is that law's
 //! stiffness term on the same grid; its damping and speed-dependent friction
@@ -268,7 +270,7 @@ impl Impacts {
 }
 
 /// Smooth step 0 → 1 on [0, 1] (C¹).
-fn smoothstep(x: f64) -> (f64, f64) {
+pub(crate) fn smoothstep(x: f64) -> (f64, f64) {
     let x = x.clamp(0.0, 1.0);
     (x * x * (3.0 - 2.0 * x), 6.0 * x * (1.0 - x))
 }

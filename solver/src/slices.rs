@@ -19,7 +19,7 @@
 use crate::weber_banaschek::LineContact;
 use geometry::flank::Flank;
 use geometry::pair::FlankPair;
-use geometry::utca::{LineSearch, RollSurface};
+use geometry::utca::{correction_at, LineSearch, RollSurface};
 use geometry::Material;
 use serde::Serialize;
 
@@ -94,6 +94,43 @@ struct Column<'a> {
     /// node columns), where the wheel-bounds check is skipped: the mate of a
     /// point between active nodes lies on the wheel flank.
     trusted: std::cell::Cell<(f64, f64)>,
+    /// Misaligned: the last pose correction, whose two mates start those of
+    /// the next point ([`geometry::mate::pose_correction_near`]).
+    near: std::cell::Cell<Option<geometry::mate::PoseCorrection>>,
+}
+
+impl<'a> Column<'a> {
+    fn new(fp: &'a FlankPair, rs: &'a RollSurface, target: f64, xi: f64) -> Self {
+        Column {
+            fp,
+            rs,
+            target,
+            xi,
+            last: Default::default(),
+            trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
+            near: Default::default(),
+        }
+    }
+
+    /// The pose's change to the contact of the pinion point `p` of this
+    /// column ([`geometry::mate::pose_correction`]); None for the aligned
+    /// pair, Some(None) where a projection fails.
+    fn correction(
+        &self,
+        p: &geometry::flank::FlankPoint,
+    ) -> Option<Option<geometry::mate::PoseCorrection>> {
+        let pose = self.fp.pose.as_ref()?;
+        let c = match self.near.get() {
+            Some(near) => {
+                geometry::mate::pose_correction_near(self.fp, pose, p.pos, self.target, &near)
+            }
+            None => geometry::mate::pose_correction(self.fp, pose, p.pos, self.target, p.uv),
+        };
+        if c.is_some() {
+            self.near.set(c);
+        }
+        Some(c)
+    }
 }
 
 impl Column<'_> {
@@ -115,22 +152,24 @@ impl Column<'_> {
         }
         let (p, jac) = self.point(eta)?;
         self.last.set(Some((p.uv, jac)));
-        if self.fp.pose.is_some() {
-            // Misaligned: the exact gap with the pair's pose, its closest
-            // wheel point checked against the wheel's bounds.
-            let m = geometry::mate::mate(self.fp, p.pos, self.target, p.uv)?;
-            return geometry::mate::on_wheel(self.fp, m.wheel_uv, 1e-12).then_some((m.lag, p));
-        }
+        // Misaligned: the pose's exact change to the aligned model
+        // ([`geometry::mate::pose_correction`]); it moves the wheel point
+        // touched, which is checked against the wheel's bounds in its place.
+        let correction = match self.correction(&p) {
+            Some(c) => Some(c?),
+            None => None,
+        };
         let (lo, hi) = self.trusted.get();
         if !(lo..=hi).contains(&eta) {
-            let (lw, dw) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
+            let (lw, dw) = wheel_point(self.fp, &p, correction.as_ref());
             if !self.fp.wheel.bounds.contains(lw, dw, 1e-12) {
                 return None;
             }
         }
         let k = self.rs.interpolate(&self.rs.k_sep, self.xi, eta);
         let d = self.target - p.pinion_roll;
-        Some(((p.ease_off + 0.5 * k * d * d) / p.wheel_lever, p))
+        let lag = (p.ease_off + 0.5 * k * d * d) / p.wheel_lever;
+        Some((lag + correction.map_or(0.0, |c| c.lag), p))
     }
 
     fn value(&self, eta: f64) -> f64 {
@@ -292,11 +331,11 @@ impl Column<'_> {
     /// cannot be evaluated.
     fn margin(&self, eta: f64) -> Option<f64> {
         let p = self.point(eta)?.0;
-        if self.fp.pose.is_some() {
-            let m = geometry::mate::mate(self.fp, p.pos, self.target, p.uv)?;
-            return Some(geometry::mate::wheel_margin(self.fp, m.wheel_uv));
-        }
-        let (l, d) = self.fp.wheel.ld(p.uv[0], p.uv[1]);
+        let correction = match self.correction(&p) {
+            Some(c) => Some(c?),
+            None => None,
+        };
+        let (l, d) = wheel_point(self.fp, &p, correction.as_ref());
         Some(self.fp.wheel.bounds.margin(l, d))
     }
 
@@ -392,14 +431,15 @@ fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
             return None;
         }
         let d = target - lerp(&rs.roll, k);
+        let aligned =
+            (lerp(&rs.ease_off, k) + 0.5 * lerp(&rs.k_sep, k) * d * d) / lerp(&rs.lever, k);
         if rs.misaligned() {
-            let gap = lerp(&rs.ease_off, k)
-                + lerp(&rs.offset, k)
-                + lerp(&rs.slope, k) * d
-                + 0.5 * lerp(&rs.k_sep, k) * d * d;
-            return Some(gap / lerp(&rs.lever, k));
+            let c = |m: usize| {
+                (1.0 - w) * rs.correction[i * np + k][m] + w * rs.correction[(i + 1) * np + k][m]
+            };
+            return Some(aligned + correction_at([c(0), c(1), c(2)], d));
         }
-        Some((lerp(&rs.ease_off, k) + 0.5 * lerp(&rs.k_sep, k) * d * d) / lerp(&rs.lever, k))
+        Some(aligned)
     };
     let values: Vec<Option<f64>> = (0..np).map(lag).collect();
     let (k, fk) = values
@@ -418,6 +458,17 @@ fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
         }
         _ => Some(at(k)),
     }
+}
+
+/// The wheel point (L, d) the pinion point `p` touches: its conjugate mate
+/// (same generating parameters), moved by the pose's `correction` if any.
+fn wheel_point(
+    fp: &FlankPair,
+    p: &geometry::flank::FlankPoint,
+    correction: Option<&geometry::mate::PoseCorrection>,
+) -> (f64, f64) {
+    let conjugate = fp.wheel.ld(p.uv[0], p.uv[1]);
+    correction.map_or(conjugate, |c| c.wheel_point(conjugate))
 }
 
 /// Pinion normal lever |(r × n)_z| about the pinion axis, m.
@@ -489,14 +540,7 @@ pub fn pair_slices(
             continue;
         }
         let xi = c.clamp(0.0, 1.0);
-        let col = Column {
-            fp,
-            rs,
-            target,
-            xi,
-            last: Default::default(),
-            trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
-        };
+        let col = Column::new(fp, rs, target, xi);
         // No active node on the column: no contact there either.
         let Some(start) = tabulated_minimum(rs, xi, target) else {
             continue;
@@ -533,13 +577,13 @@ pub fn pair_slices(
             };
             // The wheel point the slice touches and the wheel's lever: the
             // conjugate mate (same generating parameters) for the aligned
-            // pair, the closest point with the pose for a misaligned one.
-            let (wheel_uv, lever_wheel) = match fp.pose {
-                Some(_) => geometry::mate::mate(fp, p.pos, target, p.uv)
-                    .map_or((p.uv, p.wheel_lever), |m| (m.wheel_uv, m.lever)),
-                None => (p.uv, p.wheel_lever),
-            };
-            let (lw, dw) = fp.wheel.ld(wheel_uv[0], wheel_uv[1]);
+            // pair, moved and changed by the pose for a misaligned one.
+            let correction = fp
+                .pose
+                .as_ref()
+                .and_then(|pose| geometry::mate::pose_correction(fp, pose, p.pos, target, p.uv));
+            let lever_wheel = p.wheel_lever + correction.map_or(0.0, |c| c.lever);
+            let (lw, dw) = wheel_point(fp, &p, correction.as_ref());
             let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw);
             let friction_lever = friction_levers(fp, p.pos, p.normal, target);
             Slice {
@@ -711,14 +755,7 @@ mod tests {
                 let target = phi + pair as f64 * tau;
                 for ic in 0..=30 {
                     let xi = ic as f64 / 30.0;
-                    let column = || Column {
-                        fp,
-                        rs: &rs,
-                        target,
-                        xi,
-                        last: Default::default(),
-                        trusted: std::cell::Cell::new((f64::INFINITY, f64::NEG_INFINITY)),
-                    };
+                    let column = || Column::new(fp, &rs, target, xi);
                     let Some(own) = tabulated_minimum(&rs, xi, target) else {
                         continue;
                     };

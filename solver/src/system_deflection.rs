@@ -130,7 +130,8 @@ pub fn deflected_position(
     let (mut d1, mut d2) = (zero, zero);
     let mut te_rigid = f64::NAN;
     for it in 0..settings.max_iterations {
-        // Every iteration on the posed contact path (the exact mate), the
+        // Every iteration on the posed contact path (the aligned model plus
+        // the pose's exact change, geometry::mate::pose_correction), the
         // first with the members where the scene puts them (rigid
         // bearings), so that both TEs come from one contact search.
         let poses = BodyPoses {

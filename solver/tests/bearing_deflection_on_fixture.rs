@@ -7,48 +7,8 @@
 #[path = "support/fixture.rs"]
 mod fixture;
 
-use fixture::Fixture;
-use geometry::pair::PairGeometry;
-use solver::bearings::{Bearing, Support};
-use solver::system_deflection::{
-    deflected_position, DeflectedPosition, DeflectionSettings, Supports,
-};
-
-/// An overhung pinion (bearings 40 and 100 mm behind its mean point) and a
-/// wheel on bearings 20 and 120 mm behind its mean point, all of radial
-/// and axial stiffness `k` (the second bearing of each floating).
-fn supports(g: &PairGeometry, k: f64) -> Supports {
-    let one = |m: usize, near: f64, far: f64| {
-        let frame = &g.frames[m];
-        let s = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
-        Support::new(
-            if m == 0 {
-                "pinion.bearings"
-            } else {
-                "wheel.bearings"
-            },
-            frame.axis(),
-            nalgebra::Vector3::zeros(),
-            &[
-                Bearing {
-                    axial_position_m: s + near,
-                    radial_stiffness_n_per_m: k,
-                    axial_stiffness_n_per_m: k,
-                },
-                Bearing {
-                    axial_position_m: s + far,
-                    radial_stiffness_n_per_m: k,
-                    axial_stiffness_n_per_m: 0.0,
-                },
-            ],
-        )
-        .unwrap()
-    };
-    Supports {
-        pinion: one(0, 0.04, 0.10),
-        wheel: one(1, 0.02, 0.12),
-    }
-}
+use fixture::{supports, Fixture};
+use solver::system_deflection::{deflected_position, DeflectedPosition, DeflectionSettings};
 
 const TORQUE_NM: f64 = 300.0;
 

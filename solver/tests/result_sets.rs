@@ -229,3 +229,50 @@ fn ltca_with_bearings_writes_bearings_csv_and_the_deflected_loads_into_the_set()
         .collect();
     assert!(added[0] > 1.0 && added[1] > added[0], "{added:?}");
 }
+
+#[test]
+fn dynamic_with_bearings_writes_the_compliant_runs_into_the_set() {
+    let tmp = Scratch::new("dynamic_bearings");
+    let meshes = example().join("meshes");
+    let out = tmp.path().join("out");
+    let sc = scene(tmp.path(), |t| {
+        t.replace("multibody = false", "multibody = true")
+            + &bearings_table(1e9)
+            + "\n[multibody]\ntable_step_deg = 1.0\ntable_lag_nodes = 24\nrunup_time_s = 0.01\nrunup_rpm = [0.0, 300.0]\n"
+    });
+    let res = solver::dynamic_stage::run(&sc, &meshes, &out).unwrap();
+    let c = res[0].compliant.as_ref().expect("compliant-bearing runs");
+    let cases: Vec<&str> = c.runs.iter().map(|r| r.case.as_str()).collect();
+    assert_eq!(cases, ["10 rpm", "10 rpm", "run-up"]);
+    // The bearings add TE at 10 rpm, more at the larger torque, and every
+    // bearing carries load.
+    let rigid: Vec<f64> = res[0].quasi_static.iter().map(|q| q.te_mean_urad).collect();
+    let added: Vec<f64> = c.runs[..2]
+        .iter()
+        .zip(&rigid)
+        .map(|(r, t)| r.te_mean_urad - t)
+        .collect();
+    assert!(added[0] > 1.0 && added[1] > added[0], "{added:?}");
+    assert!(c
+        .runs
+        .iter()
+        .all(|r| r.pinion_bearing_force_n.iter().all(|&f| f > 0.0)));
+    let info = formats::result_set::verify_files(&out.join("ltca_fixture/multibody"))
+        .unwrap()
+        .unwrap();
+    for f in [
+        "bearings_quasi_static_300nm.csv",
+        "bearings_runup.csv",
+        "bearings_runup_spectrogram.svg",
+    ] {
+        assert!(
+            info.files.contains_key(&format!("standard_standard/{f}")),
+            "{f}"
+        );
+    }
+    let csv = std::fs::read_to_string(res[0].dir.join("bearings_runup.csv")).unwrap();
+    assert!(csv.starts_with(
+        "time_s,pinion_rotation_deg,pinion_rpm,te_urad,e_um,p_um,g_um,shaft_angle_urad"
+    ));
+    assert_eq!(csv.lines().count(), 2 + c.runs[2].steps);
+}

@@ -19,4 +19,7 @@ pub use reference::{
     reference_stage,
 };
 pub use report::{comparison, comparison_row, differences, figures, published};
-pub use studies::{convergence, line_load, stage_tradeoffs, stress, tradeoff, utca_check};
+pub use studies::{
+    asperity_resolution, convergence, line_load, mesh_stiffness, stage_tradeoffs, stress, tradeoff,
+    utca_check,
+};

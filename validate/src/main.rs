@@ -54,9 +54,10 @@ enum Cmd {
         /// Positions per mesh cycle for the direct search.
         #[arg(long, default_value_t = 12)]
         positions: usize,
-        /// Writes the comparison as JSON to this file.
+        /// Writes the comparison as one result set in this folder
+        /// (`utca_check.json` and its `run.json`).
         #[arg(long)]
-        out_json: Option<PathBuf>,
+        out: Option<PathBuf>,
     },
     /// Reference loaded TCA: fine FE bodies in penalty contact.
     Reference {
@@ -160,31 +161,33 @@ enum Cmd {
     /// Mesh convergence of the reference LTCA: TE at one position and torque
     /// on three mesh levels (standard blanks), observed order, extrapolation.
     Convergence {
-        /// Scene file.
-        scene: PathBuf,
-        #[arg(long, default_value = "meshes")]
-        meshes: PathBuf,
-        #[arg(long, default_value = "out")]
-        out: PathBuf,
-        /// Mesh levels, coarse to fine.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            default_value = "reduced,medium,reference"
-        )]
-        levels: Vec<String>,
+        #[command(flatten)]
+        study: LevelStudyArgs,
         /// Position index in the scene's sweep (its rotation steps).
         #[arg(long, default_value_t = 0)]
         position: usize,
         /// Pinion torques, N·m (default: the scene's loads).
         #[arg(long, value_delimiter = ',')]
         torque_nm: Vec<f64>,
-        #[arg(long, default_value_t = 100.0)]
-        penalty: f64,
-        #[arg(long, default_value_t = 200.0)]
-        penalty_check: f64,
-        #[arg(long, default_value_t = 96)]
-        block: usize,
+    },
+    /// Mesh stiffness at one position: the FE reference (smooth flanks) on
+    /// the scene's mesh levels against our LTCA at the same position and
+    /// torques, k = dF/dδ and F/δ; `<out>/<scene>/mesh_stiffness/summary.json`.
+    MeshStiffness {
+        #[command(flatten)]
+        study: LevelStudyArgs,
+        /// Position index in the scene's sweep (default: the middle of the
+        /// longest run with the fewest tooth pairs in contact).
+        #[arg(long)]
+        position: Option<usize>,
+        /// Memory the two FE factors may take together, GB (default: what
+        /// the system has available); a level estimated above it is skipped.
+        #[arg(long)]
+        memory_gb: Option<f64>,
+        /// The lumped scene whose reduced meshes and roughness grades the
+        /// study relates to.
+        #[arg(long)]
+        lumped_scene: Option<PathBuf>,
     },
     /// Issue 4's line-load check: a Hertzian line load on one pinion tooth,
     /// fine-mesh FE against the reduced model's global FE + Weber–Banaschek.
@@ -211,6 +214,68 @@ enum Cmd {
         #[arg(long, default_value_t = 2)]
         end_columns: usize,
     },
+}
+
+/// What the studies on one position over mesh levels share.
+#[derive(clap::Args)]
+struct LevelStudyArgs {
+    /// Scene file.
+    scene: PathBuf,
+    #[arg(long, default_value = "meshes")]
+    meshes: PathBuf,
+    #[arg(long, default_value = "out")]
+    out: PathBuf,
+    /// Mesh levels, coarse to fine.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "reduced,medium,reference"
+    )]
+    levels: Vec<String>,
+    /// Penalty ε = factor · E / (local face size).
+    #[arg(long, default_value_t = 100.0)]
+    penalty: f64,
+    /// Second penalty factor, whose result is compared.
+    #[arg(long, default_value_t = 200.0)]
+    penalty_check: f64,
+    /// Right-hand sides per forward-solve block.
+    #[arg(long, default_value_t = 96)]
+    block: usize,
+}
+
+impl LevelStudyArgs {
+    /// The scene loaded, the penalty settings and `--block`, checked.
+    fn checked(
+        &self,
+    ) -> anyhow::Result<(
+        geometry::scene::LoadedScene,
+        validate::reference_ltca::ReferenceSettings,
+        usize,
+    )> {
+        Ok((
+            geometry::scene::Scene::load(&self.scene)?,
+            penalty_settings(self.penalty, self.penalty_check, 2.0, 60.0)?,
+            check_block(self.block)?,
+        ))
+    }
+}
+
+/// `--block` within [1, 100000] right-hand sides.
+fn check_block(block: usize) -> anyhow::Result<usize> {
+    if !(1..=100_000).contains(&block) {
+        anyhow::bail!("--block {block}: must lie in [1, 100000] right-hand sides");
+    }
+    Ok(block)
+}
+
+/// `--memory-gb` (positive) in bytes.
+fn memory_bytes(memory_gb: Option<f64>) -> anyhow::Result<Option<usize>> {
+    match memory_gb {
+        Some(gb) if !(gb.is_finite() && gb > 0.0) => {
+            anyhow::bail!("--memory-gb = {gb}: must be a positive number of GB")
+        }
+        gb => Ok(gb.map(|gb| (gb * 1e9) as usize)),
+    }
 }
 
 /// Checks the penalty factors (positive, finite).
@@ -320,7 +385,7 @@ fn main() -> anyhow::Result<()> {
         Cmd::Utca {
             scene,
             positions,
-            out_json,
+            out,
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
             let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
@@ -343,9 +408,9 @@ fn main() -> anyhow::Result<()> {
                 c.fast_ms_per_position,
                 c.direct_ms_per_position
             );
-            if let Some(p) = out_json {
-                formats::output::write_json(&p, &c)?;
-                println!("written {}", p.display());
+            if let Some(dir) = out {
+                validate::utca_check::write_set(&c, &scene, &input.design_path, &dir)?;
+                println!("written {}", dir.join("utca_check.json").display());
             }
         }
         Cmd::Reference {
@@ -367,16 +432,9 @@ fn main() -> anyhow::Result<()> {
             if !["reduced", "medium", "reference"].contains(&level.as_str()) {
                 anyhow::bail!("--level {level}: must be reduced, medium or reference");
             }
-            if !(1..=100_000).contains(&block) {
-                anyhow::bail!("--block {block}: must lie in [1, 100000] right-hand sides");
-            }
+            check_block(block)?;
             let shard = shard.map(|s| parse_shard(&s)).transpose()?;
-            let memory_bytes = match memory_gb {
-                Some(gb) if !(gb.is_finite() && gb > 0.0) => {
-                    anyhow::bail!("--memory-gb = {gb}: must be a positive number of GB")
-                }
-                gb => gb.map(|gb| (gb * 1e9) as usize),
-            };
+            let memory_bytes = memory_bytes(memory_gb)?;
             let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
             let sc = geometry::scene::Scene::load(&scene)?;
             let opt = validate::reference_stage::StageOptions {
@@ -473,18 +531,11 @@ fn main() -> anyhow::Result<()> {
             }
         }
         Cmd::Convergence {
-            scene,
-            meshes,
-            out,
-            levels,
+            study: args,
             position,
             torque_nm,
-            penalty,
-            penalty_check,
-            block,
         } => {
-            let settings = penalty_settings(penalty, penalty_check, 2.0, 60.0)?;
-            let sc = geometry::scene::Scene::load(&scene)?;
+            let (sc, settings, block) = args.checked()?;
             let torques_nm = if torque_nm.is_empty() {
                 sc.scene.pinion_torque_nm.clone()
             } else {
@@ -494,13 +545,13 @@ fn main() -> anyhow::Result<()> {
                 anyhow::bail!("--torque-nm {t}: must be a positive number");
             }
             let study = validate::convergence::Study {
-                levels,
+                levels: args.levels.clone(),
                 position,
                 torques_nm,
                 settings,
                 block,
             };
-            let c = validate::convergence::run(&sc, &meshes, &out, &study)?;
+            let c = validate::convergence::run(&sc, &args.meshes, &args.out, &study)?;
             for (i, t) in c.torques.iter().enumerate() {
                 println!("{} N m:", t.torque_nm);
                 for (l, e) in c.levels.iter().zip(&t.error_to_extrapolation_pct) {
@@ -525,6 +576,53 @@ fn main() -> anyhow::Result<()> {
                     ),
                 }
             }
+        }
+        Cmd::MeshStiffness {
+            study: args,
+            position,
+            memory_gb,
+            lumped_scene,
+        } => {
+            let (sc, settings, block) = args.checked()?;
+            let memory_bytes = memory_bytes(memory_gb)?;
+            let study = validate::mesh_stiffness::StiffnessStudy {
+                levels: args.levels.clone(),
+                position,
+                settings,
+                block,
+                memory_bytes,
+                lumped_scene,
+            };
+            let s = validate::mesh_stiffness::run(&sc, &args.meshes, &args.out, &study)?;
+            println!(
+                "mesh stiffness {}: position {} ({:.2} deg), {}",
+                s.scene, s.position_index, s.pinion_rotation_deg, s.position_choice
+            );
+            for t in &s.torques {
+                println!(
+                    "{} N m (levers {:.2} / {:.2} mm):",
+                    t.torque_nm,
+                    t.levers_m[0] * 1e3,
+                    t.levers_m[1] * 1e3
+                );
+                for m in &t.models {
+                    println!(
+                        "  {:4} {:9} {:2} x {:2}: k = dF/dd {:.4e} N/m, F/d {:.4e} N/m, vs finest FE {}",
+                        m.model,
+                        m.level,
+                        m.elements[0],
+                        m.elements[1],
+                        m.tangent_n_per_m,
+                        m.secant_n_per_m,
+                        m.tangent_vs_finest_fe_pct
+                            .map_or("-".into(), |p| format!("{p:+.2} %"))
+                    );
+                }
+            }
+            for (l, why) in s.fe_levels_skipped.iter().chain(&s.ltca_levels_skipped) {
+                println!("  skipped {l}: {why}");
+            }
+            println!("{:.0} s, peak {:.2} GB", s.wall_s, s.peak_memory_gb);
         }
         Cmd::LineLoad {
             scene,

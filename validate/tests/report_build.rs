@@ -337,3 +337,31 @@ fn readme_without_markers_is_left_alone() {
     );
     assert!(reports.join("results.md").exists());
 }
+
+#[test]
+fn utca_check_is_one_set_listing_its_checksum_and_the_scene_and_design() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../reference");
+    let scene = root.join("scenes/small.toml");
+    let design = root.join("white_paper_20x43.toml");
+    let out = tmp.path().join("utca");
+    validate::utca_check::write_set(&utca(), &scene, &design, &out).unwrap();
+    let info = formats::result_set::verify_files(&out).unwrap().unwrap();
+    assert!(
+        info.files.contains_key("utca_check.json"),
+        "{:?}",
+        info.files
+    );
+    assert!(info.inputs.contains_key("scene") && info.inputs.contains_key("design"));
+    // A result edited after the run is detected.
+    let p = out.join("utca_check.json");
+    let text = std::fs::read_to_string(&p).unwrap();
+    std::fs::write(&p, text.replacen("37.77", "37.78", 1)).unwrap();
+    let err = formats::result_set::verify_files(&out).unwrap_err();
+    assert!(err.to_string().contains("changed since run"), "{err}");
+    // A missing input is named.
+    let err =
+        validate::utca_check::write_set(&utca(), &tmp.path().join("none.toml"), &design, &out)
+            .unwrap_err();
+    assert!(err.to_string().contains("none.toml"), "{err}");
+}

@@ -77,6 +77,10 @@ pub struct MeshReport {
     pub periodic_copy_deviation_m: f64,
     pub time_geometry_s: f64,
     pub time_mesh_s: f64,
+    /// Whether this run reused the mesh (inputs unchanged): the times are
+    /// then those of the run that made it. Not written to the file.
+    #[serde(skip)]
+    pub reused: bool,
     /// Phases: the OCC cut (part of the geometry time); gmsh's 1-D to 3-D
     /// meshing, second order, and straightening + snapping (the mesh time).
     #[serde(default)]

@@ -47,6 +47,20 @@ pub fn tangent_torques(torque_nm: f64) -> [f64; 3] {
     ]
 }
 
+/// The tangent torsional mesh stiffness from the loaded TE at two torques:
+///
+/// ```text
+/// κ = (T₊ − T₋) / (θ(T₊) − θ(T₋))     (N·m/rad: pinion torque per wheel lag)
+/// ```
+///
+/// `torques_nm` = [T₋, T₊], `te_rad` = [θ(T₋), θ(T₊)]. None when θ does not
+/// grow with the torque (or either is not finite).
+pub fn torsional_tangent(torques_nm: [f64; 2], te_rad: [f64; 2]) -> Option<f64> {
+    let dtheta = te_rad[1] - te_rad[0];
+    let kappa = (torques_nm[1] - torques_nm[0]) / dtheta;
+    (dtheta > 0.0 && kappa.is_finite() && kappa > 0.0).then_some(kappa)
+}
+
 /// The mesh over one mesh cycle, one entry per LTCA position.
 #[derive(Debug, Clone, Serialize)]
 pub struct MeshSamples {
@@ -147,14 +161,17 @@ pub fn span_samples(
     let r = levers.map(|l| l / keep.len() as f64);
     s.levers_m = r;
     for p in &keep {
-        let dtheta = p.loads[2].te - p.loads[0].te;
-        if dtheta.is_nan() || dtheta <= 0.0 {
+        let Some(kappa) =
+            torsional_tangent([torques[0], torques[2]], [p.loads[0].te, p.loads[2].te])
+        else {
             return Err(LumpedError::Input(format!(
                 "LTCA position at {} rad: loaded TE does not grow with torque ({} rad from {} to {} N·m)",
-                p.rotation, dtheta, torques[0], torques[2]
+                p.rotation,
+                p.loads[2].te - p.loads[0].te,
+                torques[0],
+                torques[2]
             )));
-        }
-        let kappa = (torques[2] - torques[0]) / dtheta;
+        };
         let k = kappa / (r[0] * r[1]);
         let theta = p.loads[1].te;
         s.time_s.push(p.rotation / pinion_speed_rad_s);

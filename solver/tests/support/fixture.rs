@@ -6,12 +6,15 @@
 #![allow(dead_code)]
 
 use geometry::design::Member;
+use geometry::pair::PairGeometry as Pair;
 use geometry::pair::{FlankPair, PairGeometry};
 use geometry::scene::{LoadedScene, Scene};
 use geometry::utca::{roll_surface, RollSurface};
+use solver::bearings::{Bearing, Support};
 use solver::compliance::PairCompliance;
 use solver::ltca::Sweep;
 use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::system_deflection::Supports;
 use std::path::PathBuf;
 
 pub struct Fixture {
@@ -59,5 +62,41 @@ impl Fixture {
     /// The LTCA over the scene's sweep at `torques`.
     pub fn ltca(&self, torques: &[f64]) -> Vec<solver::ltca::PositionResult> {
         solver::ltca::run(self.fp(), &self.rs, &self.pc, &self.sweep, torques).unwrap()
+    }
+}
+
+/// An overhung pinion (bearings 40 and 100 mm behind its mean point) and a
+/// wheel on bearings 20 and 120 mm behind its mean point, all of radial
+/// and axial stiffness `k` (N/m; the second bearing of each floating).
+pub fn supports(g: &Pair, k: f64) -> Supports {
+    let one = |m: usize, near: f64, far: f64| {
+        let frame = &g.frames[m];
+        let s = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
+        Support::new(
+            if m == 0 {
+                "pinion.bearings"
+            } else {
+                "wheel.bearings"
+            },
+            frame.axis(),
+            nalgebra::Vector3::zeros(),
+            &[
+                Bearing {
+                    axial_position_m: s + near,
+                    radial_stiffness_n_per_m: k,
+                    axial_stiffness_n_per_m: k,
+                },
+                Bearing {
+                    axial_position_m: s + far,
+                    radial_stiffness_n_per_m: k,
+                    axial_stiffness_n_per_m: 0.0,
+                },
+            ],
+        )
+        .unwrap()
+    };
+    Supports {
+        pinion: one(0, 0.04, 0.10),
+        wheel: one(1, 0.02, 0.12),
     }
 }

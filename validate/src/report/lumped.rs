@@ -75,12 +75,15 @@ fn ours(d: &Directions) -> [f64; 7] {
 
 /// The section from the stages' output root `out` (None: no root given),
 /// its charts copied into `reports`: seed 004's runs, then seed 003's
-/// ([`super::lumped_seed003`]), then the white-paper pair's order map
+/// ([`super::lumped_seed003`]), the mesh stiffness of seeds 003 and 004
+/// against the FE reference ([`super::lumped_fe_stiffness`]), then the white-paper pair's order map
 /// ([`super::lumped_order_map`]).
 pub fn section(out: Option<&Path>, reports: &Path) -> LumpedSection {
     let mut sec = seed004_section(out, reports);
     if let Some(out) = out {
         sec.markdown.push_str(&super::lumped_seed003::markdown(out));
+        sec.markdown
+            .push_str(&super::lumped_fe_stiffness::markdown(out));
         let (md, figs) = super::lumped_order_map::subsection(out, reports);
         sec.markdown.push_str(&md);
         sec.figures.extend(figs);

@@ -16,6 +16,7 @@ pub mod html;
 pub mod layout;
 pub mod lightweight_revolution;
 pub mod lumped;
+pub mod lumped_fe_stiffness;
 pub mod lumped_order_map;
 pub mod lumped_seed003;
 pub mod lumped_studies;

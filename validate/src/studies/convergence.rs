@@ -17,8 +17,9 @@ use anyhow::Context;
 use formats::added_files::{add_json, read_added, AddedState, Dependence};
 use formats::result_set::RunLock;
 use geometry::design::Member as Which;
+use geometry::generation::Side;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
-use geometry::scene::{Blank, LoadedScene};
+use geometry::scene::{Blank, LoadedScene, MeshLevel};
 use preprocess::stiffness_stage::sha256_file;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
@@ -45,6 +46,17 @@ pub struct LevelResult {
     pub utca_te_urad: f64,
     /// |TE − TE at the check penalty| / TE per torque, %.
     pub penalty_difference_pct: Vec<f64>,
+    /// TE per torque at the check penalty factor, µrad (empty in results
+    /// cached before it was recorded).
+    #[serde(default)]
+    pub te_check_urad: Vec<f64>,
+    /// Bytes of the pinion's and the wheel's whole Cholesky factor (8 per
+    /// value), and what [`formats::memory_estimate::factor`] expected
+    /// before factoring (0 in results cached before they were recorded).
+    #[serde(default)]
+    pub factor_bytes: [usize; 2],
+    #[serde(default)]
+    pub estimated_factor_bytes: [f64; 2],
     pub factor_s: [f64; 2],
     pub position_s: f64,
     pub input_hash: String,
@@ -148,45 +160,91 @@ pub struct Study {
     pub block: usize,
 }
 
-/// Runs the study (standard blanks).
-pub fn run(
-    scene: &LoadedScene,
-    meshes: &Path,
-    out: &Path,
-    study: &Study,
-) -> anyhow::Result<Convergence> {
-    let Study {
-        levels,
-        position: index,
-        torques_nm,
-        settings,
-        block,
-    } = study.clone();
-    let sc = &scene.scene;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
-    let side = sc.loaded_flank;
-    let fp = g.side(side);
-    let direction = pinion_direction(&g.data, side);
-    let step = sc.rotation.step_deg.to_radians();
-    let phi = fp.roll_range[0] + direction * step * index as f64;
-    let cycles = sc.rotation.mesh_cycles(Blank::Standard);
-    let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
-    // The UTCA TE of the generated flanks at this position (unloaded check).
-    let utca_te_urad =
-        crate::reference_stage::utca_at(scene, fp, phi, step, 1, direction)?.te[0] * 1e6;
-    let dir = out.join(&sc.name).join("reference");
-    let lock = RunLock::shared(&dir, &format!("validate convergence {}", sc.name))?;
-    let mut results = Vec::new();
-    for level in &levels {
-        let elements = match level.as_str() {
-            "reduced" => sc.mesh.reduced_order,
-            "medium" => sc.mesh.medium(),
-            "reference" => sc.mesh.reference,
-            other => anyhow::bail!("--levels: unknown level {other} (reduced, medium, reference)"),
+/// One position of the scene's sweep (standard blanks), as the studies on
+/// one position solve it.
+pub struct StudyPosition {
+    pub g: PairGeometry,
+    pub side: Side,
+    /// Pinion's driving direction (±1).
+    pub direction: f64,
+    /// The sweep's step, rad.
+    pub step: f64,
+    /// Position index in the sweep and its pinion angle, rad.
+    pub index: usize,
+    pub phi: f64,
+    /// Teeth of the pinion and the wheel that the sweep brings into contact.
+    pub teeth: [Vec<usize>; 2],
+    /// The UTCA TE of the generated flanks at this position, µrad.
+    pub utca_te_urad: f64,
+}
+
+impl StudyPosition {
+    /// Position `index` of `scene`'s sweep.
+    pub fn new(scene: &LoadedScene, index: usize) -> anyhow::Result<StudyPosition> {
+        let sc = &scene.scene;
+        let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+        let side = sc.loaded_flank;
+        let fp = g.side(side);
+        let direction = pinion_direction(&g.data, side);
+        let step = sc.rotation.step_deg.to_radians();
+        let phi = fp.roll_range[0] + direction * step * index as f64;
+        let cycles = sc.rotation.mesh_cycles(Blank::Standard);
+        let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
+        let utca_te_urad =
+            crate::reference_stage::utca_at(scene, fp, phi, step, 1, direction)?.te[0] * 1e6;
+        Ok(StudyPosition {
+            g,
+            side,
+            direction,
+            step,
+            index,
+            phi,
+            teeth: [pinion_teeth, wheel_teeth],
+            utca_te_urad,
+        })
+    }
+}
+
+/// How one level's FE reference at a [`StudyPosition`] is solved and kept.
+pub struct LevelSolve<'a> {
+    pub scene: &'a LoadedScene,
+    pub meshes: &'a Path,
+    pub position: &'a StudyPosition,
+    /// Torques, N·m, increasing.
+    pub torques_nm: &'a [f64],
+    pub settings: ReferenceSettings,
+    /// Right-hand sides per solve block.
+    pub block: usize,
+    /// Memory the two factors may take together, bytes (None: what the
+    /// system has available); refused before factoring above it.
+    pub memory_bytes: Option<usize>,
+    /// The study's shared lock on the scene's reference folder, and the
+    /// folder under it that keeps the level results (`<cache>/<level>.json`).
+    pub lock: &'a RunLock,
+    pub cache: &'a str,
+}
+
+impl LevelSolve<'_> {
+    /// The FE reference on `level`'s meshes at the position and torques:
+    /// reused from `<cache>/<level>.json` when its inputs hash and meshes
+    /// match, otherwise solved (after the factor-memory check) and kept.
+    pub fn level_result(&self, level: &str) -> anyhow::Result<LevelResult> {
+        let scene = self.scene;
+        let sc = &scene.scene;
+        let pos = self.position;
+        let g = &pos.g;
+        let Some(lv) = MeshLevel::from_name(level) else {
+            anyhow::bail!("--levels: unknown level {level} (reduced, medium, reference)");
         };
+        let elements = match lv {
+            MeshLevel::Reduced => sc.mesh.reduced_order,
+            MeshLevel::Medium => sc.mesh.medium(),
+            MeshLevel::Reference => sc.mesh.reference,
+        };
+        let scene_meshes = self.meshes.join(&sc.name);
         let msh = |m: Which| {
             let stem = formats::paths::stem_named(m, Blank::Standard, level);
-            formats::paths::msh(&meshes.join(&sc.name), &stem)
+            formats::paths::msh(&scene_meshes, &stem)
         };
         let (pm, wm) = (msh(Which::Pinion), msh(Which::Wheel));
         for p in [&pm, &wm] {
@@ -204,53 +262,80 @@ pub fn run(
             "schema": REFERENCE_SCHEMA,
             "pinion_mesh": mesh_sha256[0],
             "wheel_mesh": mesh_sha256[1],
-            "settings": settings,
-            "phi": phi,
-            "torques_nm": torques_nm,
-            "flank": side.flank_name(Which::Pinion),
+            "settings": self.settings,
+            "phi": pos.phi,
+            "torques_nm": self.torques_nm,
+            "flank": pos.side.flank_name(Which::Pinion),
         });
         let hash = format!("{:x}", Sha256::digest(key.to_string().as_bytes()));
-        let rel = format!("convergence/{level}.json");
-        match read_added(&dir, &rel)? {
+        let dir = self.lock.dir();
+        let rel = format!("{}/{level}.json", self.cache);
+        match read_added(dir, &rel)? {
             AddedState::Current(bytes) => {
                 if let Some(r) = serde_json::from_slice::<LevelResult>(&bytes)
                     .ok()
                     .filter(|r| r.input_hash == hash && r.mesh_sha256 == mesh_sha256)
                 {
                     eprintln!(
-                        "convergence {level}: inputs unchanged, reusing {}",
+                        "{} {level}: inputs unchanged, reusing {}",
+                        self.cache,
                         dir.join(&rel).display()
                     );
-                    results.push(r);
-                    continue;
+                    return Ok(r);
                 }
             }
             AddedState::Missing => {}
             other => eprintln!(
-                "convergence {level}: not reusing {}: {}",
+                "{} {level}: not reusing {}: {}",
+                self.cache,
                 dir.join(&rel).display(),
                 other.why_not().unwrap_or_default()
             ),
         }
+        // The factors held at once, estimated from the meshes' node counts
+        // before any factoring.
+        let dofs = [Which::Pinion, Which::Wheel].map(|m| {
+            let stem = formats::paths::mesh_stem(m, Blank::Standard, lv);
+            formats::stiffness_plan::check_mesh(
+                scene,
+                g,
+                &scene_meshes,
+                &stem,
+                m,
+                Blank::Standard,
+                lv,
+            )
+            .map(|e| 3 * e.body.nodes)
+        });
+        let dofs = [dofs[0].as_ref(), dofs[1].as_ref()].map(|d| d.map_or(0, |&d| d));
+        let estimated_factor_bytes = dofs.map(|d| formats::memory_estimate::factor(d).bytes);
+        formats::memory_estimate::check_fits(
+            &format!("scene {}: the FE reference at level {level}", sc.name),
+            &[("pinion", dofs[0]), ("wheel", dofs[1])],
+            self.memory_bytes
+                .or_else(fem::cholesky::available_memory_bytes),
+        )?;
         eprintln!(
-            "convergence {level}: reading and factoring {} and {}",
+            "{} {level}: reading and factoring {} and {}",
+            self.cache,
             pm.display(),
             wm.display()
         );
-        let mut pinion = Member::load(&pm, &g, Which::Pinion, side, &pinion_teeth, block)?;
-        let mut wheel = Member::load(&wm, &g, Which::Wheel, side, &wheel_teeth, block)?;
+        let [pinion_teeth, wheel_teeth] = &pos.teeth;
+        let mut pinion = Member::load(&pm, g, Which::Pinion, pos.side, pinion_teeth, self.block)?;
+        let mut wheel = Member::load(&wm, g, Which::Wheel, pos.side, wheel_teeth, self.block)?;
         let mut pair = ReferencePair {
             pinion: &mut pinion,
             wheel: &mut wheel,
-            flanks: fp,
-            direction,
-            settings,
+            flanks: g.side(pos.side),
+            direction: pos.direction,
+            settings: self.settings,
         };
         let r = pair
-            .position(phi, &torques_nm)
-            .with_context(|| format!("scene {}: convergence at level {level}", sc.name))?;
+            .position(pos.phi, self.torques_nm)
+            .with_context(|| format!("scene {}: FE reference at level {level}", sc.name))?;
         let res = LevelResult {
-            level: level.clone(),
+            level: level.to_string(),
             profile_elements: elements.profile,
             face_elements: elements.face,
             h: 1.0 / (elements.profile as f64 * elements.face as f64).sqrt(),
@@ -258,26 +343,87 @@ pub fn run(
             constraints: r.constraints,
             te_urad: r.loads.iter().map(|l| l.te * 1e6).collect(),
             unloaded_te_urad: r.unloaded_te * 1e6,
-            utca_te_urad,
+            utca_te_urad: pos.utca_te_urad,
             penalty_difference_pct: r
                 .loads
                 .iter()
                 .map(|l| ((l.te - l.te_check) / l.te).abs() * 100.0)
                 .collect(),
+            te_check_urad: r.loads.iter().map(|l| l.te_check * 1e6).collect(),
+            factor_bytes: [
+                8 * pinion.compliance.factor_nnz[1],
+                8 * wheel.compliance.factor_nnz[1],
+            ],
+            estimated_factor_bytes,
             factor_s: [pinion.compliance.factor_s, wheel.compliance.factor_s],
             position_s: r.cpu_s,
             input_hash: hash,
             mesh_sha256,
         };
         eprintln!(
-            "convergence {level}: TE {:.3?} µrad at {torques_nm:?} N·m, unloaded {:.4} µrad (UTCA {:.4}) ({} + {} dofs, {} constraints, {:.0} s)",
-            res.te_urad, res.unloaded_te_urad, res.utca_te_urad, res.dofs[0], res.dofs[1], res.constraints, res.position_s
+            "{} {level}: TE {:.3?} µrad at {:?} N·m, unloaded {:.4} µrad (UTCA {:.4}) ({} + {} dofs, {} constraints, factors {:.2} + {:.2} GB in {:.0} + {:.0} s, position {:.0} s)",
+            self.cache,
+            res.te_urad,
+            self.torques_nm,
+            res.unloaded_te_urad,
+            res.utca_te_urad,
+            res.dofs[0],
+            res.dofs[1],
+            res.constraints,
+            res.factor_bytes[0] as f64 / 1e9,
+            res.factor_bytes[1] as f64 / 1e9,
+            res.factor_s[0],
+            res.factor_s[1],
+            res.position_s
         );
-        add_json(&lock, &rel, &res, Dependence::Beside)?;
-        results.push(res);
+        add_json(self.lock, &rel, &res, Dependence::Beside)?;
+        Ok(res)
+    }
+}
+
+/// Runs the study (standard blanks).
+pub fn run(
+    scene: &LoadedScene,
+    meshes: &Path,
+    out: &Path,
+    study: &Study,
+) -> anyhow::Result<Convergence> {
+    let Study {
+        levels,
+        position: index,
+        torques_nm,
+        settings,
+        block,
+    } = study.clone();
+    let sc = &scene.scene;
+    let pos = StudyPosition::new(scene, index)?;
+    let dir = out.join(&sc.name).join("reference");
+    let lock = RunLock::shared(&dir, &format!("validate convergence {}", sc.name))?;
+    let solve = LevelSolve {
+        scene,
+        meshes,
+        position: &pos,
+        torques_nm: &torques_nm,
+        settings,
+        block,
+        memory_bytes: None,
+        lock: &lock,
+        cache: "convergence",
+    };
+    let mut results = Vec::new();
+    for level in &levels {
+        results.push(solve.level_result(level)?);
     }
     results.sort_by(|a, b| b.h.total_cmp(&a.h));
-    let reduced = reduced_model_te(scene, meshes, &g, phi, step, direction, &torques_nm)?;
+    let reduced = reduced_model_te(
+        scene,
+        meshes,
+        &pos.g,
+        pos.phi,
+        pos.step,
+        pos.direction,
+        &torques_nm,
+    )?;
     let torques = torques_nm
         .iter()
         .enumerate()
@@ -305,7 +451,7 @@ pub fn run(
         })
         .collect();
     let c = Convergence {
-        pinion_rotation_deg: (step * index as f64).to_degrees(),
+        pinion_rotation_deg: (pos.step * index as f64).to_degrees(),
         levels: results,
         torques,
     };
@@ -393,6 +539,9 @@ mod tests {
             unloaded_te_urad: 0.0,
             utca_te_urad: 0.0,
             penalty_difference_pct: vec![0.0],
+            te_check_urad: vec![1.0],
+            factor_bytes: [0; 2],
+            estimated_factor_bytes: [0.0; 2],
             factor_s: [0.0; 2],
             position_s: 0.0,
             input_hash: String::new(),

@@ -10,9 +10,11 @@
 //!   module per stage, `tradeoff_*`, the shared point type in
 //!   [`tradeoff_stage`], other contact grids' scenes in [`grid_scenes`]).
 
+pub mod asperity_resolution;
 pub mod convergence;
 pub mod grid_scenes;
 pub mod line_load;
+pub mod mesh_stiffness;
 pub mod stage_tradeoffs;
 pub mod stress;
 pub mod tradeoff;

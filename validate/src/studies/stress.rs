@@ -57,7 +57,7 @@ use solver::ltca_stage::{
 };
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{Drive, Model};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::time_step::{discrete_gradient, integrate, Integrator, Scheme, StepControl};
 use solver::SolverError;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -899,9 +899,9 @@ fn free_run(
 /// refused, naming the limit. Torque balance: the wheel's angular impulse
 /// over the run, |Σ h (−ḡ₂) − T₂ t − J₂ Δω₂| / (max(T₂, 1 N·m) t), with
 /// ḡ₂ the scheme's discrete gradient of the element's potential in each
-/// accepted step (the torque the integrator applied; the element's
-/// pointwise torque −∂V/∂q₂ at the step ends, trapezoid-integrated, does
-/// not balance the impulse: see the issue-28 notes).
+/// accepted step ([`discrete_gradient`], the torque the integrator
+/// applied; it is the element's pointwise torque −∂V/∂q₂ at the step's
+/// midpoint to second order in the step).
 fn multibody_load_cells(
     d: &Design,
     fp: &geometry::pair::FlankPair,
@@ -978,19 +978,13 @@ pub fn loaded_run(
     );
     let w2_0 = s.v[1];
     // The scheme's own wheel balance per step: J₂ (v⁺ − v) = −h T₂ − h ḡ₂,
-    // ḡ₂ = (V(q⁺) − V(q₁⁺, q₂)) / (q₂⁺ − q₂) its discrete gradient.
+    // ḡ the scheme's discrete gradient of V between the step's ends.
     let (mut impulse, mut last): (f64, Option<(f64, [f64; 2])>) = (0.0, None);
     let (mut finite, mut te_sum, mut n) = (true, 0.0, 0usize);
     let (end, steps) = integrate(&m, s, &mut integ, t_end, |s| {
         if let Some((t0, q0)) = last {
-            let dq = s.q[1] - q0[1];
-            let g = if dq.abs() > 1e-10 {
-                (m.potential(s.q)? - m.potential([s.q[0], q0[1]])?) / dq
-            } else {
-                m.mesh([0.5 * (s.q[0] + q0[0]), 0.5 * (s.q[1] + q0[1])])?
-                    .0
-                    .grad[1]
-            };
+            let mid = [0.5 * (s.q[0] + q0[0]), 0.5 * (s.q[1] + q0[1])];
+            let g = discrete_gradient(&m, q0, s.q, m.mesh(mid)?.0.grad)?[1];
             impulse -= g * (s.t - t0);
         }
         last = Some((s.t, s.q));

@@ -34,8 +34,6 @@ pub struct UtcaCheck {
     pub min_gap_um: f64,
 }
 
-/// Runs the fast UTCA over the scene's sweep and the direct search at
-/// `positions` equally spaced positions of the first mesh cycle.
 /// Why the UTCA check could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum UtcaCheckError {
@@ -48,6 +46,8 @@ pub enum UtcaCheckError {
     },
 }
 
+/// Runs the fast UTCA over the scene's sweep and the direct search at
+/// `positions` equally spaced positions of the first mesh cycle.
 pub fn check(input: &FlankInput, positions: usize) -> Result<UtcaCheck, UtcaCheckError> {
     let g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
     let pair = &g.data;
@@ -101,4 +101,41 @@ pub fn check(input: &FlankInput, positions: usize) -> Result<UtcaCheck, UtcaChec
         direct_ms_per_position: direct_ms,
         min_gap_um: min_gap * 1e6,
     })
+}
+
+/// Why the cross-check's result set could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum UtcaCheckWriteError {
+    #[error("reading {}: {message}", .path.display())]
+    Input {
+        path: std::path::PathBuf,
+        message: String,
+    },
+    #[error(transparent)]
+    Set(#[from] formats::result_set::ResultSetError),
+}
+
+/// Writes `c` as one result set in `out`: `utca_check.json` and a
+/// `run.json` listing its checksum and the SHA-256 of the scene (or
+/// design) file `source` and of the design's geometry text, so that an
+/// edited result or a changed input is detected like every other stage's.
+pub fn write_set(
+    c: &UtcaCheck,
+    source: &std::path::Path,
+    design: &std::path::Path,
+    out: &std::path::Path,
+) -> Result<formats::result_set::RunInfo, UtcaCheckWriteError> {
+    let read = |path: &std::path::Path| {
+        std::fs::read_to_string(path).map_err(|e| UtcaCheckWriteError::Input {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    };
+    let mut set = formats::result_set::ResultSet::begin(out, &format!("validate utca {}", c.name))?;
+    set.record_input("scene", &formats::manifest::sha256_text(&read(source)?))?;
+    let geometry = geometry::design::geometry_text(&read(design)?);
+    set.record_input("design", &formats::manifest::sha256_text(&geometry))?;
+    formats::output::write_json(&set.path().join("utca_check.json"), c)
+        .map_err(formats::result_set::ResultSetError::from)?;
+    Ok(set.commit()?)
 }

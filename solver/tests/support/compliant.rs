@@ -1,0 +1,96 @@
+//! The compliant-bearing multibody on the example-02 fixture, as its tests
+//! and the bench set it up: a periodic table over one mesh cycle in 1°
+//! steps, its lag shift, and both members on two bearings each (the
+//! supports of `bearing_deflection_on_fixture.rs`: an overhung pinion on
+//! bearings 40 and 100 mm behind its mean point, the wheel on bearings 20
+//! and 120 mm behind its mean point, the second of each floating).
+
+#![allow(dead_code)]
+
+pub use super::fixture::supports;
+use super::fixture::Fixture;
+use geometry::design::Member;
+use geometry::generation::trace_sign;
+use geometry::pair::PairGeometry;
+use geometry::scene::Blank;
+use solver::bearings::Support;
+use solver::compliant_multibody::MemberBody;
+use solver::dynamic_stage::inertia;
+use solver::lag_shift::LagShift;
+use solver::ltca_stage::member_compliance;
+use solver::mesh_table::{MeshTable, TableSpec};
+use solver::system_deflection::Supports;
+
+pub struct Compliant {
+    pub f: Fixture,
+    pub table: MeshTable,
+    pub shift: LagShift,
+    /// Polar moments from the fixture's meshes, kg·m².
+    pub inertia: [f64; 2],
+    pub ratio: f64,
+    pub hand: f64,
+}
+
+impl Compliant {
+    pub fn example_02(lag_nodes: usize, torque_max_nm: f64) -> Compliant {
+        let f = Fixture::example_02();
+        let tau = f.g.data.mesh_cycle();
+        let per = (tau / 1f64.to_radians()).round() as usize;
+        let spec = TableSpec {
+            start: f.sweep.start,
+            direction: f.sweep.direction,
+            step: tau / per as f64,
+            positions: per,
+            periodic: true,
+            slices: f.scene.scene.ltca.slices,
+            lag_nodes,
+            torque_max_nm,
+        };
+        let ratio = f.g.data.members[0].teeth as f64 / f.g.data.members[1].teeth as f64;
+        let table = MeshTable::build(f.fp(), &f.rs, &f.pc, &f.g.frames[0], ratio, spec).unwrap();
+        let shift = LagShift::build(
+            &f.g,
+            f.scene.scene.loaded_flank,
+            &f.scene.scene.utca,
+            &table,
+            &geometry::misalignment::Misalignment::default(),
+        )
+        .unwrap();
+        let mdir = f.dir.join("meshes").join(&f.scene.scene.name);
+        let j = |m: Member, b: Blank| {
+            let (_, plan) = member_compliance(&f.scene, &f.g, &mdir, m, b).unwrap();
+            inertia(&f.scene, &f.g, &mdir, &plan, m).unwrap().0
+        };
+        let inertia = [
+            j(Member::Pinion, f.scene.scene.blanks.pinion[0]),
+            j(Member::Wheel, f.scene.scene.blanks.wheel[0]),
+        ];
+        let hand = trace_sign(f.g.data.members[0].hand);
+        Compliant {
+            f,
+            table,
+            shift,
+            inertia,
+            ratio,
+            hand,
+        }
+    }
+}
+
+/// The members as bodies on `supports` with bearing damping `c` (N·s/m,
+/// radial and axial): steel bodies of plausible size for the white-paper
+/// pair (pinion 1.5 kg, wheel 12 kg, centres at the mean point).
+pub fn bodies(
+    g: &PairGeometry,
+    s: &Supports,
+    c: f64,
+) -> [solver::compliant_multibody::MemberBody; 2] {
+    let body = |m: usize, support: &Support, mass: f64, jt: f64| MemberBody {
+        support: support.clone(),
+        damping: vec![(c, c); support.bearings().len()],
+        mass_kg: mass,
+        centroid_m: g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos(),
+        transverse_inertia_kgm2: jt,
+    };
+    [body(0, &s.pinion, 1.5, 2e-3), body(1, &s.wheel, 12.0, 0.1)]
+}
