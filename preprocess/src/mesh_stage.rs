@@ -195,6 +195,7 @@ pub fn run(
                         r.scene = sc.name.clone();
                         write_json(&report_path, &r)?;
                         record(&stem)?;
+                        r.reused = true;
                         reports.push(r);
                         continue;
                     }
