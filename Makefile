@@ -30,9 +30,11 @@ FINE_STRIDE_LW ?= $(FINE_STRIDE)
 # (measured: 303 s for the four, of it 181 s meshing, 40 s stiffness files,
 # 82 s `solver dynamic`; seed001 element/impact 102/62 s, seed002 57/83 s);
 # a later run reuses the meshes and stiffness files and redoes the dynamic
-# runs (about 1.5 min). Each scene meshes and solves its stiffness files
-# under its own name, so the impact and element scenes of a seed do that
-# twice.
+# runs (about 1.5 min). Each scene has its meshes and stiffness files
+# under its own name; a scene whose mesh or stiffness file has the same
+# inputs as another scene folder's copies that one
+# (preprocess/src/sibling_reuse.rs): the element scene of a seed copies its
+# impact scene's (same inputs hashes).
 # CONTACT_LAWS=0 leaves them out.
 CONTACT_LAWS       ?= 1
 CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_element
@@ -48,10 +50,10 @@ CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_elem
 # for 4 flank grades x 2 loads). The white-paper pair's order map
 # (white_paper_lightweight_lumped.toml, issue 31: the default scene's pair,
 # meshes and stiffness files, 6 speeds x 2 wheels): lumped 7 s warm (LTCA
-# 0.4 s, 12 runs 0.3-0.8 s each); cold it meshes and solves the default
-# scene's pair again under its own name (measured in a make validate on
-# 2 shared cores: about 2 min 45 s more than warm, of it 110 s stiffness
-# files). LUMPED=0 leaves them out.
+# 0.4 s, 12 runs 0.3-0.8 s each); cold it copies the default scene's
+# meshes and stiffness files (same inputs; 4.9 s measured 2026-11-24,
+# where meshing and solving them again took about 2 min 45 s).
+# LUMPED=0 leaves them out.
 LUMPED        ?= 1
 LUMPED_SCENES := seed004_lumped seed003_lumped white_paper_lightweight_lumped
 # The misalignment sensitivity study (issue 32) on $(SCENE): E, P, G, ΔΣ
@@ -77,7 +79,18 @@ SENSITIVITY   ?= 1
 BEARINGS      ?= 1
 BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
 
-.PHONY: setup build test bench preprocess solve validate convergence fe-stiffness stress clean
+# The lightweight wheel over its whole revolution (issues 31 and 32):
+# reference/scenes/white_paper_lightweight_runup.toml meshes and solves
+# every wheel tooth of the lightweight blank (reduced level), runs the
+# multibody run-up of both wheel blanks (0 -> 1100 rpm in 1.1 s, 4.7 wheel
+# revolutions; `runup_orders.json`) and the 8-DOF order map on the solved
+# revolution, then checks the results (the ignored tests of
+# validate/tests/lightweight_revolution_data.rs). The report's subsection
+# "lightweight wheel over its whole revolution" reads them. Costs: see
+# docs/performance.md. Not part of `make validate`.
+LW_SCENE := reference/scenes/white_paper_lightweight_runup.toml
+
+.PHONY: setup build test bench preprocess solve validate convergence fe-stiffness stress lightweight clean
 
 setup:
 	@bash scripts/setup.sh
@@ -222,6 +235,15 @@ stress: build
 	  $(addprefix --grid-scene ,$(GRID_SCENES)) $(addprefix --coast-scene ,$(COAST_SCENES))
 	$(BIN)/validate stage-tradeoffs $(SCENE) --meshes meshes --out $(OUT) \
 	  $(addprefix --grid-scene ,$(GRID_SCENES))
+
+lightweight: build
+	$(BIN)/preprocess flanks $(LW_SCENE) --out $(OUT)/$(notdir $(basename $(LW_SCENE)))/flanks
+	$(BIN)/preprocess mesh $(LW_SCENE) --level reduced --out meshes
+	$(BIN)/preprocess stiffness $(LW_SCENE) --meshes meshes
+	$(BIN)/solver dynamic $(LW_SCENE) --meshes meshes --out $(OUT)
+	$(BIN)/solver lumped $(LW_SCENE) --meshes meshes --out $(OUT)
+	LIGHTWEIGHT_OUT=$(abspath $(OUT)) $(CARGO) test $(RELEASE) -p validate \
+	  --test lightweight_revolution_data -- --ignored
 
 clean:
 	$(CARGO) clean

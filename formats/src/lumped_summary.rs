@@ -231,6 +231,35 @@ pub struct OrderMapSummary {
     /// LTCA wall time, s.
     pub ltca_wall_s: f64,
     pub speeds: Vec<OrderMapSpeed>,
+    /// What drives the runs: "solved revolution" (the LTCA over a whole
+    /// wheel revolution, every wheel tooth in the stiffness file) or "lobe
+    /// fitted to the span" (the lowest hole harmonic fitted to the span
+    /// and extrapolated over the revolution); "" in files from before.
+    #[serde(default)]
+    pub excitation: String,
+    /// With a solved revolution: the lobe fitted to the scene's sweep
+    /// alone (its first `mesh_cycles_lightweight` cycles), as a stiffness
+    /// file of those teeth only would give it, for comparison.
+    #[serde(default)]
+    pub short_span_lobe: Option<LobeFit>,
+    /// With a solved revolution: how far the per-cycle mean k is from
+    /// repeating every z₂/n teeth (max, rms over its mean; `solver::lumped::
+    /// revolution::lobe_repeat_mismatch`).
+    #[serde(default)]
+    pub lobe_repeat_mismatch_of_mean: Option<[f64; 2]>,
+    /// Wheel teeth (fractional) whose loaded flank sits over a web hole's
+    /// centre (`geometry::gear_body::hole_wheel_teeth`); empty for a standard wheel.
+    #[serde(default)]
+    pub hole_wheel_teeth: Vec<f64>,
+}
+
+/// A lobe fit over an LTCA span ([`OrderMapSummary::short_span_lobe`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LobeFit {
+    pub span_mesh_cycles: usize,
+    pub stiffness_lobe: [f64; 3],
+    pub stiffness_lobe_ptp_relative: f64,
+    pub stiffness_lobe_minimum_wheel_tooth: Option<f64>,
 }
 
 /// One row of the order map.

@@ -172,6 +172,37 @@ pub struct RunupSummary {
     pub te_dynamic_minus_static_urad: [f64; 2],
 }
 
+/// `runup_orders.json` of a run-up: the wheel bearing force's order
+/// spectrum over windows of one wheel revolution of pinion angle
+/// (`solver::runup_orders`), every half revolution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunupOrders {
+    pub pinion_blank: Blank,
+    pub wheel_blank: Blank,
+    pub pinion_teeth: usize,
+    pub wheel_teeth: usize,
+    /// Samples per window (one wheel revolution) and the line spacing,
+    /// pinion orders (z₁/z₂).
+    pub samples_per_window: usize,
+    pub order_resolution: f64,
+    pub windows: Vec<RunupOrderWindow>,
+}
+
+/// One window of [`RunupOrders`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunupOrderWindow {
+    /// Pinion revolutions from the run-up's start and time (s) at the
+    /// window's ends.
+    pub pinion_rev: [f64; 2],
+    pub time_s: [f64; 2],
+    /// Mean pinion speed over the window (its rotation over its duration)
+    /// and the speeds at its ends, rpm.
+    pub mean_pinion_rpm: f64,
+    pub pinion_rpm: [f64; 2],
+    /// Resultant wheel bearing-force amplitude (N) at the marked orders.
+    pub marked: Vec<crate::lumped_summary::MarkedOrder>,
+}
+
 /// Summary of one pinion × wheel blank.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DynamicSummary {

@@ -314,6 +314,26 @@ fn arc_about_axis(b: [f64; 3], a: [f64; 3], n: usize) -> Points {
         .collect()
 }
 
+/// Wheel teeth (fractional, in [0, z₂)) whose `side` flank lies at the
+/// angle of a web hole's centre: hole k at 2πk/n in the body frame (as the
+/// mesh stage cuts them, n = [`WHEEL_WEB_HOLES`]), tooth t's flank at
+/// α₀ + 2πt/z₂ with α₀ the angle of tooth 0's flank at the mean cone
+/// distance (the slots are copies of tooth 0's turned by t pitches).
+pub fn hole_wheel_teeth(g: &PairGeometry, side: Side) -> Result<Vec<f64>, GeometryError> {
+    let z = g.data.member(Member::Wheel).teeth as f64;
+    let p = g
+        .flank(Member::Wheel, side)
+        .at(g.data.mean_cone_distance, 0.0)?;
+    let a0 = p.pos[1].atan2(p.pos[0]);
+    let tau = 2.0 * std::f64::consts::PI;
+    Ok((0..WHEEL_WEB_HOLES)
+        .map(|k| {
+            let a = tau * k as f64 / WHEEL_WEB_HOLES as f64;
+            ((a - a0) / tau * z).rem_euclid(z)
+        })
+        .collect())
+}
+
 /// Which flank side bounds the slot between tooth 0 and tooth 1 on each
 /// side: (side of tooth 0 at the larger angle, side of tooth 1 at the smaller).
 pub fn slot_sides(g: &PairGeometry, m: Member) -> Result<(Side, Side), GeometryError> {

@@ -12,4 +12,5 @@ pub mod influence;
 pub mod mesh;
 pub mod mesh_stage;
 pub mod periodic_sectors;
+pub mod sibling_reuse;
 pub mod stiffness_stage;

@@ -181,6 +181,25 @@ pub fn run(
                     reports.push(r);
                     continue;
                 }
+                let same_inputs =
+                    |t: &str| serde_json::from_str::<Inputs>(t).is_ok_and(|i| i == inputs);
+                if let Some(from) = crate::sibling_reuse::mesh(root, &dir, &stem, same_inputs) {
+                    let read = std::fs::read_to_string(&report_path)
+                        .ok()
+                        .and_then(|t| serde_json::from_str::<MeshReport>(&t).ok());
+                    if let Some(mut r) = read {
+                        eprintln!(
+                            "{stem}: same inputs as {}, copied",
+                            paths::msh(&from, &stem).display()
+                        );
+                        r.scene = sc.name.clone();
+                        write_json(&report_path, &r)?;
+                        record(&stem)?;
+                        r.reused = true;
+                        reports.push(r);
+                        continue;
+                    }
+                }
                 let report = mesh_member(&req, &msh).map_err(|e: MeshError| anyhow::anyhow!(e))?;
                 convert_to_vtu(&msh, &vtu)?;
                 write_json(&report_path, &report)?;

@@ -318,18 +318,7 @@ fn run_one(
             Ok(d) => {
                 eprintln!("{stem}: inputs unchanged, reusing {}", path.display());
                 record(dir, level, member, blank, &stem, &hash, &d.solved_teeth)?;
-                return Ok(StiffnessReport {
-                    member: member.name().into(),
-                    blank: blank_name,
-                    level: level.name().into(),
-                    path,
-                    reused: true,
-                    replaced_because: None,
-                    input_hash: hash,
-                    stats: None,
-                    total_s: t0.elapsed().as_secs_f64(),
-                    reciprocity_error: None,
-                });
+                return Ok(reused_report(member, blank_name, level, path, hash, t0));
             }
             Err(StiffnessFileError::Schema { found, .. }) => {
                 replaced_because = Some(format!("schema {found}, current {STIFFNESS_SCHEMA}"))
@@ -344,6 +333,18 @@ fn run_one(
             path.display(),
             replaced_because.as_deref().unwrap_or("")
         );
+    }
+    let mesh_stem = paths::mesh_stem(member, blank, level);
+    let root = dir.parent().unwrap_or(Path::new("."));
+    if let Some(from) = crate::sibling_reuse::stiffness(root, dir, &mesh_stem, &stem, &hash) {
+        if let Ok(d) = stiffness_file::read(&path, Some(&hash)) {
+            eprintln!(
+                "{stem}: same inputs as {}, copied",
+                paths::stiffness_h5(&from, &stem).display()
+            );
+            record(dir, level, member, blank, &stem, &hash, &d.solved_teeth)?;
+            return Ok(reused_report(member, blank_name, level, path, hash, t0));
+        }
     }
     eprintln!("{stem}: reading {}", msh.display());
     let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
@@ -407,6 +408,30 @@ fn run_one(
     };
     write_json(&dir.join(format!("{stem}.stiffness.json")), &report)?;
     Ok(report)
+}
+
+/// The report of a stiffness file used as it is (this folder's, or a
+/// sibling's copied).
+fn reused_report(
+    member: Member,
+    blank: String,
+    level: MeshLevel,
+    path: PathBuf,
+    input_hash: String,
+    t0: std::time::Instant,
+) -> StiffnessReport {
+    StiffnessReport {
+        member: member.name().into(),
+        blank,
+        level: level.name().into(),
+        path,
+        reused: true,
+        replaced_because: None,
+        input_hash,
+        stats: None,
+        total_s: t0.elapsed().as_secs_f64(),
+        reciprocity_error: None,
+    }
 }
 
 /// Lists the stiffness file `stem` (hash `hash`) under its mesh in the

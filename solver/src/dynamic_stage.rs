@@ -46,8 +46,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use formats::summaries::ImpactLawSummary;
 pub use formats::summaries::{DynamicSummary, QuasiStaticSummary, RattleSummary, RunupSummary};
+use formats::summaries::{ImpactLawSummary, RunupOrders};
+use geometry::gear_body::WHEEL_WEB_HOLES;
 
 /// The impact law of the scene's settings in SI ([`ImpactLaw`]), its
 /// friction (None when both coefficients are zero), and its summary: K
@@ -711,6 +712,26 @@ fn run_up(
         z1,
         table.ratio,
         wb,
+    )?;
+    // Order analysis in the pinion's angle domain, one wheel revolution per
+    // window (32 samples per mesh cycle).
+    let teeth = [z1.round() as usize, (z1 / table.ratio).round() as usize];
+    let per_window = 32 * teeth[1];
+    let marks = crate::lumped_order_map::marked_orders(teeth[0], teeth[1], WHEEL_WEB_HOLES);
+    let bearing: Vec<[f64; 3]> = tr.force.iter().map(|f| f.map(|c| -c)).collect();
+    write_json(
+        &odir.join("runup_orders.json"),
+        &RunupOrders {
+            pinion_blank: pb,
+            wheel_blank: wb,
+            pinion_teeth: teeth[0],
+            wheel_teeth: teeth[1],
+            samples_per_window: per_window,
+            order_resolution: table.ratio,
+            windows: crate::runup_orders::windows(
+                &tr.t, &tr.q1, &bearing, teeth, per_window, &marks,
+            ),
+        },
     )?;
     eprintln!(
         "  run-up: {steps} steps ({} rejected), {:.1} µs/step, dynamic - static TE in [{:.2}, {:.2}] µrad",

@@ -39,6 +39,7 @@ pub mod mesh_table;
 pub mod multibody;
 pub mod plan;
 pub mod relative_twist;
+pub mod runup_orders;
 pub mod sensitivity_stage;
 pub mod slices;
 pub mod spectrum;

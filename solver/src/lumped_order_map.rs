@@ -16,16 +16,18 @@ use crate::compliance::PairCompliance;
 use crate::ltca::{geometry, run as run_sweep};
 use crate::ltca_stage::{member_compliance, record_stiffness_inputs, scene_sweep};
 use crate::lumped::from_ltca::{fit_series, mesh_samples, span_samples, tangent_torques};
-use crate::lumped::revolution::Revolution;
+use crate::lumped::revolution::{lobe_repeat_mismatch, Revolution};
 use crate::lumped_stage::{run_blank, slice_friction, Case};
 use crate::spectrum::{plot_order_map, OrderLine};
 use anyhow::Context;
-use formats::lumped_summary::{LumpedSummary, MarkedOrder, OrderMapSpeed, OrderMapSummary};
+use formats::lumped_summary::{
+    LobeFit, LumpedSummary, MarkedOrder, OrderMapSpeed, OrderMapSummary,
+};
 use formats::manifest::Manifest;
 use formats::output::write_json;
 use formats::result_set::ResultSet;
 use geometry::design::Member as Which;
-use geometry::gear_body::WHEEL_WEB_HOLES;
+use geometry::gear_body::{hole_wheel_teeth, WHEEL_WEB_HOLES};
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
 use geometry::scene_lumped::{ImpactModel, LumpedSettings, OrderMapSettings};
@@ -116,27 +118,66 @@ pub fn run(
                 pinion: pin.clone(),
                 wheel: whl,
             };
-            let sweep = scene_sweep(scene, g, wb);
-            let t0 = Instant::now();
-            let res = run_sweep(fp, &rs, &pc, &sweep, &tangent_torques(torque))
-                .with_context(|| format!("scene {}: LTCA for the order map", sc.name))?;
-            let ltca_wall = t0.elapsed().as_secs_f64();
             let lobes = if wb == Blank::Lightweight {
                 WHEEL_WEB_HOLES
             } else {
                 0
             };
+            // Every wheel tooth solved: the LTCA sweeps one whole
+            // revolution and drives the runs itself.
+            let whole = lobes > 0 && solved.len() == z2;
+            let mut sweep = scene_sweep(scene, g, wb);
+            if whole {
+                sweep.positions = sweep
+                    .positions
+                    .max((z2 as f64 * tau / sweep.step).round() as usize + 1);
+            }
+            let t0 = Instant::now();
+            let res = run_sweep(fp, &rs, &pc, &sweep, &tangent_torques(torque))
+                .with_context(|| format!("scene {}: LTCA for the order map", sc.name))?;
+            let ltca_wall = t0.elapsed().as_secs_f64();
             let cycles = sc.rotation.mesh_cycles(wb);
             // The revolution depends on positions in mesh cycles only: any
             // speed serves; the first one's.
             let omega0 = om.pinion_speeds_rpm[0] * std::f64::consts::PI / 30.0;
-            let span = span_samples(&res, torque, omega0, tau, cycles)?;
-            let teeth: Vec<f64> = res[..span.time_s.len()]
-                .iter()
-                .map(loaded_wheel_tooth)
-                .collect();
-            let rev = Revolution::from_span(&span, &teeth, tau, sweep.step, z2, lobes)
-                .with_context(|| format!("scene {}: {wb:?} wheel's revolution", sc.name))?;
+            let fit = |cycles: f64| -> anyhow::Result<Revolution> {
+                let span = span_samples(&res, torque, omega0, tau, cycles)?;
+                let teeth: Vec<f64> = res[..span.time_s.len()]
+                    .iter()
+                    .map(loaded_wheel_tooth)
+                    .collect();
+                let r = if cycles >= z2 as f64 {
+                    Revolution::from_revolution(&span, &teeth, tau, sweep.step, z2, lobes)
+                } else {
+                    Revolution::from_span(&span, &teeth, tau, sweep.step, z2, lobes)
+                };
+                r.with_context(|| format!("scene {}: {wb:?} wheel's revolution", sc.name))
+            };
+            let rev = fit(if whole { z2 as f64 } else { cycles })?;
+            let short_span_lobe = if whole {
+                let r = fit(cycles)?;
+                Some(LobeFit {
+                    span_mesh_cycles: r.span_cycles,
+                    stiffness_lobe: r.stiffness_lobe,
+                    stiffness_lobe_ptp_relative: r.stiffness_lobe_ptp(),
+                    stiffness_lobe_minimum_wheel_tooth: r.stiffness_lobe_minimum_wheel_tooth(),
+                })
+            } else {
+                None
+            };
+            let lobe_repeat = if whole {
+                Some(lobe_repeat_mismatch(
+                    &rev.cycle_mean_stiffness_n_per_m,
+                    lobes,
+                )?)
+            } else {
+                None
+            };
+            let hole_teeth = if lobes > 0 {
+                hole_wheel_teeth(g, side)?
+            } else {
+                Vec::new()
+            };
             let tau_p = fp.pinion.gen.frame.pitch();
             let mut rows = Vec::new();
             let mut speeds = Vec::new();
@@ -276,6 +317,17 @@ pub fn run(
                 revolution_series_residual_of_ptp: residual,
                 ltca_wall_s: ltca_wall,
                 speeds,
+                excitation: if rev.solved.is_some() {
+                    "solved revolution"
+                } else if lobes == 0 {
+                    "mesh cycle repeated (axisymmetric wheel)"
+                } else {
+                    "lobe fitted to the span"
+                }
+                .into(),
+                short_span_lobe,
+                lobe_repeat_mismatch_of_mean: lobe_repeat,
+                hole_wheel_teeth: hole_teeth,
             });
         }
     }

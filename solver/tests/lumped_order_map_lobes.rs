@@ -48,8 +48,13 @@ fn cycle(x: f64) -> [f64; 2] {
 /// loaded wheel tooth going −1 → 3 as for the lightweight wheel's solved
 /// teeth; `lobe` the relative amplitude (0: standard wheel).
 fn span(lobe: f64) -> (MeshSamples, Vec<f64>) {
+    span_over(lobe, SPAN_CYCLES)
+}
+
+/// As [`span`] over `cycles` mesh cycles.
+fn span_over(lobe: f64, cycles: usize) -> (MeshSamples, Vec<f64>) {
     let period = 1.0 / MESH_HZ;
-    let n = SPAN_CYCLES * PER_CYCLE + 1;
+    let n = cycles * PER_CYCLE + 1;
     let mut s = MeshSamples::empty(model().levers_m, period, TORQUE_NM);
     let mut teeth = Vec::new();
     for i in 0..n {
@@ -108,6 +113,32 @@ fn revolution_fit_recovers_a_three_lobe_stiffness_from_five_mesh_cycles() {
     let s = revolution(0.0);
     assert_eq!(s.stiffness_lobe, [0.0; 3]);
     assert!(s.stiffness_lobe_minimum_wheel_tooth().is_none());
+}
+
+#[test]
+fn revolution_over_a_whole_wheel_revolution_takes_the_ltca_samples_and_fits_the_same_lobe() {
+    let (s, teeth) = span_over(LOBE, Z2);
+    let tau = 2.0 * PI / Z1 as f64;
+    let step = tau / PER_CYCLE as f64;
+    let r = Revolution::from_revolution(&s, &teeth, tau, step, Z2, HOLES).unwrap();
+    // The excitation is the samples themselves, one revolution of them.
+    let [k, d] = r.samples();
+    assert_eq!(k.len(), Z2 * PER_CYCLE);
+    assert_eq!(k[..], s.tangent_n_per_m[..Z2 * PER_CYCLE]);
+    assert_eq!(d[..], s.deflection_m[..Z2 * PER_CYCLE]);
+    // The lobe fitted over the revolution is the built one.
+    assert!((0.5 * r.stiffness_lobe_ptp() - LOBE).abs() < 1e-3 * LOBE);
+    let t = r.stiffness_lobe_minimum_wheel_tooth().unwrap();
+    assert!((t - MIN_TOOTH).abs() < 1e-3, "least at {t}");
+    // The per-cycle means repeat every 43/3 teeth (linear interpolation
+    // between teeth: (1/8)(3·2π/43)²·LOBE = 1.2e-3 of the mean at most).
+    let [max, _] =
+        solver::lumped::revolution::lobe_repeat_mismatch(&r.cycle_mean_stiffness_n_per_m, HOLES)
+            .unwrap();
+    assert!(max < 1.2e-3, "repeat mismatch {max}");
+    // A span shorter than a revolution is refused.
+    let (s5, t5) = span(LOBE);
+    assert!(Revolution::from_revolution(&s5, &t5, tau, step, Z2, HOLES).is_err());
 }
 
 /// Wheel bearing-force amplitude (N) at pinion orders `orders` after

@@ -151,14 +151,22 @@ fn absent_summary_is_one_line_without_numbers() {
         .skip(1)
         .filter(|l| !l.trim().is_empty())
         .collect();
-    // Seed 004's line, then seed 003's heading and its line, then the
-    // order map's heading and its line.
-    assert_eq!(body.len(), 5, "{}", s.markdown);
+    // Seed 004's line, seed 003's heading and its line, the FE mesh
+    // stiffness heading, its note and one line per seed study, the order
+    // map's heading and its line, the whole revolution's heading and its line.
+    assert_eq!(body.len(), 11, "{}", s.markdown);
     assert!(body[0].starts_with("No lumped run:"));
     assert!(body[1].starts_with("### Seed 003"));
     assert!(body[2].starts_with("No seed 003 run:"));
-    assert!(body[3].starts_with("### White-paper pair, lightweight wheel"));
-    assert!(body[4].starts_with("No order map:"));
+    assert!(body[3].starts_with("### Mesh stiffness at one position"));
+    assert!(body[5].starts_with("No study of `seed003_fe_stiffness`"));
+    assert!(body[6].starts_with("No study of `seed004_fe_stiffness`"));
+    assert!(body[7].starts_with("### White-paper pair, lightweight wheel"));
+    assert!(body[8].starts_with("No order map:"));
+    assert!(
+        body[9].starts_with("### White-paper pair, lightweight wheel over its whole revolution")
+    );
+    assert!(body[10].starts_with("No whole-revolution order map:"));
     assert!(!s.markdown.contains('|') && !s.markdown.contains("0.00"));
     assert!(s.figures.is_empty());
     let none = section(None, reports.path());

@@ -1,12 +1,14 @@
 //! The report's order-map subsection (issue 31): a present
 //! `order_map.json` gives one row per wheel blank, one per speed and blank
 //! with the amplitudes at the marked orders as the summary holds them, the
-//! order maps copied beside the multibody run-up spectrogram where the
-//! multibody run has one, and a line saying so where it has not.
+//! order maps copied; the whole-revolution subsection follows (one line
+//! when its scene has not run; `report_lightweight_revolution.rs` tests it).
 
-use formats::lumped_summary::{MarkedOrder, OrderMapSpeed, OrderMapSummary};
+use formats::lumped_summary::{LobeFit, MarkedOrder, OrderMapSpeed, OrderMapSummary};
+use formats::summaries::{RunupOrderWindow, RunupOrders};
 use geometry::gear_body::Blank;
-use validate::report::lumped_order_map::{subsection, MULTIBODY_SCENE, ORDER_MAP_SCENE};
+use validate::report::lightweight_revolution::{self, RUNUP_SCENE};
+use validate::report::lumped_order_map::{subsection, ORDER_MAP_SCENE};
 
 fn map(wheel: Blank, lobe_line_n: f64) -> OrderMapSummary {
     OrderMapSummary {
@@ -32,6 +34,14 @@ fn map(wheel: Blank, lobe_line_n: f64) -> OrderMapSummary {
         revolution_harmonics: 623,
         revolution_series_residual_of_ptp: [0.016, 0.007],
         ltca_wall_s: 0.21,
+        excitation: "lobe fitted to the span".into(),
+        short_span_lobe: None,
+        lobe_repeat_mismatch_of_mean: None,
+        hole_wheel_teeth: if wheel == Blank::Lightweight {
+            vec![3.1, 17.43, 31.76]
+        } else {
+            vec![]
+        },
         speeds: vec![OrderMapSpeed {
             pinion_speed_rpm: 3000.0,
             mesh_frequency_hz: 1000.0,
@@ -70,13 +80,6 @@ fn present_order_map_gives_rows_from_the_summary_and_the_maps_beside_the_multibo
     for b in ["standard", "lightweight"] {
         std::fs::write(dir.join(format!("order_map_standard_{b}.svg")), svg).unwrap();
     }
-    let mb = out
-        .path()
-        .join(MULTIBODY_SCENE)
-        .join("multibody")
-        .join("standard_standard");
-    std::fs::create_dir_all(&mb).unwrap();
-    std::fs::write(mb.join("runup_spectrogram.svg"), svg).unwrap();
     let (md, figs) = subsection(out.path(), reports.path());
     assert!(
         md.contains("| Lightweight | 0, 1, 2, 3, 4, 5, 41, 42 | 5 |"),
@@ -97,13 +100,120 @@ fn present_order_map_gives_rows_from_the_summary_and_the_maps_beside_the_multibo
         [
             "lumped_order_map_standard_standard.svg",
             "lumped_order_map_standard_lightweight.svg",
-            "multibody_standard_standard_runup_spectrogram.svg"
         ]
     );
-    assert!(reports
-        .path()
-        .join("multibody_standard_standard_runup_spectrogram.svg")
-        .is_file());
-    // The lightweight wheel has no run-up in the multibody set: said so.
-    assert!(md.contains("no run-up spectrogram for the Standard pinion / Lightweight wheel"));
+    // The whole-revolution scene has not run: said so.
+    assert!(md.contains("No whole-revolution order map"), "{md}");
+}
+
+/// A run-up window at `rpm` with the lobe family's side bands `band` N.
+fn window(rpm: f64, band: f64) -> RunupOrderWindow {
+    let mk = |label: &str, o: f64, f: f64| MarkedOrder {
+        label: label.into(),
+        pinion_order: o,
+        wheel_bearing_force_n: f,
+    };
+    RunupOrderWindow {
+        pinion_rev: [0.0, 2.15],
+        time_s: [0.0, 0.13],
+        mean_pinion_rpm: rpm,
+        pinion_rpm: [rpm - 60.0, rpm + 60.0],
+        marked: vec![
+            mk("20", 20.0, 120.0),
+            mk("3·20/43", 1.395, 1.0),
+            mk("20-1.40", 18.605, band),
+            mk("20+1.40", 21.395, band),
+        ],
+    }
+}
+
+#[test]
+fn whole_revolution_subsection_checks_the_lobe_and_puts_the_runup_windows_beside_the_8dof_runs() {
+    let out = tempfile::tempdir().unwrap();
+    let reports = tempfile::tempdir().unwrap();
+    let scene = out.path().join(RUNUP_SCENE);
+    std::fs::create_dir_all(scene.join("lumped")).unwrap();
+    let mut light = map(Blank::Lightweight, 1.502);
+    light.wheel_solved_teeth = (0..43).collect();
+    light.ltca_span_mesh_cycles = 43;
+    light.excitation = "solved revolution".into();
+    light.stiffness_lobe_ptp_relative = 0.0812;
+    light.stiffness_lobe_minimum_wheel_tooth = Some(3.6);
+    light.short_span_lobe = Some(LobeFit {
+        span_mesh_cycles: 5,
+        stiffness_lobe: [0.0; 3],
+        stiffness_lobe_ptp_relative: 0.1093,
+        stiffness_lobe_minimum_wheel_tooth: Some(2.49),
+    });
+    light.lobe_repeat_mismatch_of_mean = Some([0.0071, 0.0032]);
+    let maps = vec![map(Blank::Standard, 5.3e-6), light];
+    std::fs::write(
+        scene.join("lumped").join("order_map.json"),
+        serde_json::to_string(&maps).unwrap(),
+    )
+    .unwrap();
+    for (pair, band) in [("standard_standard", 0.01), ("standard_lightweight", 2.5)] {
+        let dir = scene.join("multibody").join(pair);
+        std::fs::create_dir_all(&dir).unwrap();
+        let orders = RunupOrders {
+            pinion_blank: Blank::Standard,
+            wheel_blank: Blank::Standard,
+            pinion_teeth: 20,
+            wheel_teeth: 43,
+            samples_per_window: 1376,
+            order_resolution: 20.0 / 43.0,
+            windows: vec![
+                window(2400.0, 9.0),
+                window(2950.0, band),
+                window(3500.0, 9.0),
+            ],
+        };
+        std::fs::write(
+            dir.join("runup_orders.json"),
+            serde_json::to_string(&orders).unwrap(),
+        )
+        .unwrap();
+    }
+    let extrapolated = vec![map(Blank::Lightweight, 1.0)];
+    let (md, _) = lightweight_revolution::subsection(out.path(), reports.path(), &extrapolated);
+    // Lobe rows: the whole revolution, its first 5 cycles, the 8-tooth
+    // scene; least k against the nearest hole (3.1 of each 14.33-tooth lobe).
+    assert!(
+        md.contains("| the whole revolution | 43 | 0.0812 | 3.60 | +0.50 |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| its first mesh cycles only | 5 | 0.1093 | 2.49 | -0.60 |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| the order-map scene's 8-tooth file | 5 | 0.1093 | 2.49 | -0.60 |"),
+        "{md}"
+    );
+    assert!(md.contains("max 0.0071 and rms 0.0032"), "{md}");
+    // The nearest window (2950 rpm) beside the 8-DOF runs at 3000 rpm.
+    assert!(
+        md.contains("| 3000 | Lightweight | multibody run-up, 2950 rpm (2890–3010) | 1.200e2 | — | 1.000e0 | 2.500e0 | 2.500e0 |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| 3000 | Lightweight | 8-DOF, solved revolution |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| 3000 | Lightweight | 8-DOF, lobe fitted to 8 teeth |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("(sum of both): 3000 rpm: 1.0 and 250.0."),
+        "{md}"
+    );
+}
+
+#[test]
+fn hole_distance_wraps_round_the_lobe() {
+    let lobe = 43.0 / 3.0;
+    let d = lightweight_revolution::from_nearest_hole(14.0, &[0.5], lobe).unwrap();
+    assert!((d - (14.0 - 0.5 - lobe)).abs() < 1e-12, "{d}");
+    assert!(lightweight_revolution::from_nearest_hole(1.0, &[], lobe).is_none());
 }

@@ -3,7 +3,7 @@
 //! element quality, and the elements achieved along the refined flanks.
 
 use super::request::{gmsh_err, MeshError, MeshRequest};
-use super::sizing::{runs_along_face, RefinedFace};
+use super::sizing::RefinedFace;
 use geometry::scene::{Blank, FlankElements};
 use gmsh::Session;
 use serde::Serialize;
@@ -180,9 +180,12 @@ pub(super) fn refined_flanks(
     for f in faces {
         let mut prof = Vec::new();
         let mut face = Vec::new();
-        for &(_, c) in &f.curves {
-            let n = elements_on_curve(s, c.abs()).map_err(g)?;
-            if runs_along_face(s, req, c.abs()).map_err(g)? {
+        for (along_face, side) in &f.sides {
+            let mut n = 0;
+            for &c in side {
+                n += elements_on_curve(s, c).map_err(g)?;
+            }
+            if *along_face {
                 face.push(n);
             } else {
                 prof.push(n);

@@ -12,8 +12,13 @@ pub(super) struct RefinedFace {
     pub tooth: usize,
     pub flank: &'static str,
     pub surface: i32,
-    pub curves: Vec<DimTag>,
+    /// The four sides in loop order.
+    pub sides: Vec<Side>,
 }
+
+/// A side of a refined flank: whether it runs along the face width, and
+/// its curves (more than one where the blank's seam splits it).
+pub(super) type Side = (bool, Vec<i32>);
 
 /// The refined flank surfaces and the surfaces along their edges (root
 /// fillets and top lands).
@@ -45,39 +50,142 @@ pub(super) fn structure_refined_flanks(
             continue;
         };
         for &tag in tags {
-            let curves = s
-                .get_boundary(&[(2, tag)], false, false, false)
-                .map_err(g)?;
-            if curves.len() != 4 {
+            let curves = s.get_boundary(&[(2, tag)], false, true, false).map_err(g)?;
+            let Some(sides) = flank_sides(s, req, &curves).map_err(g)? else {
+                eprintln!(
+                    "{} {:?}: tooth {tooth} {name} flank (surface {tag}) has {} boundary curves that do not form four sides; left unstructured",
+                    req.member.name(),
+                    req.blank,
+                    curves.len()
+                );
                 continue;
-            }
-            for &(_, c) in &curves {
-                let c = c.abs();
-                let along_face = runs_along_face(s, req, c).map_err(g)?;
-                if along_face {
+            };
+            for (along_face, side) in &sides {
+                if *along_face {
                     // The root fillet and top land along this flank.
-                    let (up, _) = s.get_adjacencies(1, c).map_err(g)?;
-                    edge_faces.extend(up.into_iter().filter(|&f| f != tag));
+                    for &c in side {
+                        let (up, _) = s.get_adjacencies(1, c).map_err(g)?;
+                        edge_faces.extend(up.into_iter().filter(|&f| f != tag));
+                    }
                 }
-                let n = if along_face {
+                let n = if *along_face {
                     req.level.face
                 } else {
                     req.level.profile
                 };
-                s.mesh_set_transfinite_curve(c, n as i32 + 1, "Progression", 1.0)
+                let lengths = side
+                    .iter()
+                    .map(|&c| curve_chord(s, c))
+                    .collect::<gmsh::Result<Vec<f64>>>()
                     .map_err(g)?;
+                for (&c, k) in side.iter().zip(split_elements(n as usize, &lengths)) {
+                    s.mesh_set_transfinite_curve(c, k as i32 + 1, "Progression", 1.0)
+                        .map_err(g)?;
+                }
             }
-            s.mesh_set_transfinite_surface(tag, "Left", &[])
+            // Corners only where a seam split a side (four curves: gmsh
+            // takes the curves' ends): the point each side shares with the next.
+            let corner_points = if curves.len() == 4 {
+                Vec::new()
+            } else {
+                let ends = |c: i32| -> gmsh::Result<Vec<i32>> {
+                    Ok(s.get_boundary(&[(1, c)], false, false, false)?
+                        .into_iter()
+                        .map(|(_, p)| p.abs())
+                        .collect())
+                };
+                let mut pts = Vec::new();
+                for i in 0..4 {
+                    let a = ends(*sides[i].1.last().unwrap_or(&0)).map_err(g)?;
+                    let b = ends(sides[(i + 1) % 4].1[0]).map_err(g)?;
+                    if let Some(&p) = a.iter().find(|p| b.contains(p)) {
+                        pts.push(p);
+                    }
+                }
+                pts
+            };
+            s.mesh_set_transfinite_surface(tag, "Left", &corner_points)
                 .map_err(g)?;
             faces.push(RefinedFace {
                 tooth,
                 flank: name,
                 surface: tag,
-                curves,
+                sides,
             });
         }
     }
     Ok(Refined { faces, edge_faces })
+}
+
+/// The sides of a flank face from its oriented boundary loop: each curve
+/// runs along the face width when its ends lie further apart in cone
+/// distance than half their distance (a profile curve of a bevel tooth
+/// stays at nearly one cone distance; a face-width curve is mostly along
+/// it, the spiral making it at most 1/cos β longer); consecutive curves of
+/// one kind form a side. None unless that gives four sides, alternating.
+fn flank_sides(
+    s: &Session,
+    req: &MeshRequest,
+    curves: &[DimTag],
+) -> gmsh::Result<Option<Vec<Side>>> {
+    let mut sides: Vec<Side> = Vec::new();
+    for &(_, c) in curves {
+        let c = c.abs();
+        let along = curve_span(s, req, c)? > 0.5 * curve_chord(s, c)?;
+        match sides.last_mut() {
+            Some((kind, list)) if *kind == along => list.push(c),
+            _ => sides.push((along, vec![c])),
+        }
+    }
+    // The loop may start inside a side.
+    if sides.len() > 1 && sides[0].0 == sides[sides.len() - 1].0 {
+        let (_, mut last) = sides.pop().unwrap_or_default();
+        last.extend(sides[0].1.iter().copied());
+        sides[0].1 = last;
+    }
+    let alternating = sides.len() == 4 && (0..4).all(|i| sides[i].0 != sides[(i + 1) % 4].0);
+    Ok(alternating.then_some(sides))
+}
+
+/// `n` elements over curves of chord lengths `lengths` in proportion, at
+/// least one each (largest remainders first), summing to `n` when `n` is at
+/// least the number of curves.
+pub(super) fn split_elements(n: usize, lengths: &[f64]) -> Vec<usize> {
+    let total: f64 = lengths.iter().sum();
+    if lengths.len() <= 1 || total <= 0.0 {
+        return vec![n; lengths.len()];
+    }
+    let exact: Vec<f64> = lengths.iter().map(|l| n as f64 * l / total).collect();
+    let mut k: Vec<usize> = exact.iter().map(|x| (x.floor() as usize).max(1)).collect();
+    let mut order: Vec<usize> = (0..k.len()).collect();
+    order.sort_by(|&a, &b| (exact[b] - exact[b].floor()).total_cmp(&(exact[a] - exact[a].floor())));
+    let mut i = 0;
+    while k.iter().sum::<usize>() < n {
+        k[order[i % order.len()]] += 1;
+        i += 1;
+    }
+    while k.iter().sum::<usize>() > n {
+        let Some(j) = (0..k.len()).filter(|&j| k[j] > 1).max_by_key(|&j| k[j]) else {
+            break;
+        };
+        k[j] -= 1;
+    }
+    k
+}
+
+/// Distance between a curve's two end points, m.
+fn curve_chord(s: &Session, curve: i32) -> gmsh::Result<f64> {
+    let ends = s.get_boundary(&[(1, curve)], false, false, false)?;
+    let mut p = Vec::new();
+    for (_, t) in ends {
+        p.push(s.get_value(0, t.abs(), &[])?);
+    }
+    Ok(if p.len() == 2 {
+        ((p[0][0] - p[1][0]).powi(2) + (p[0][1] - p[1][1]).powi(2) + (p[0][2] - p[1][2]).powi(2))
+            .sqrt()
+    } else {
+        0.0
+    })
 }
 
 /// Sizes away from the refined flanks and the meshing options.
@@ -172,8 +280,23 @@ fn curve_span(s: &Session, req: &MeshRequest, curve: i32) -> gmsh::Result<f64> {
     })
 }
 
-/// Whether a curve of a flank runs along the face width (its ends more than
-/// half the face width apart in cone distance) rather than along the profile.
-pub(super) fn runs_along_face(s: &Session, req: &MeshRequest, curve: i32) -> gmsh::Result<bool> {
-    Ok(curve_span(s, req, curve)? > 0.5 * req.geom.data.face_width)
+#[cfg(test)]
+mod tests {
+    use super::split_elements;
+
+    #[test]
+    fn split_side_elements_sum_to_the_side_and_follow_the_lengths() {
+        // A face-width side of 20 elements split by the seam at 30 %.
+        assert_eq!(split_elements(20, &[3.0, 7.0]), vec![6, 14]);
+        // Unsplit side: all of them.
+        assert_eq!(split_elements(20, &[5.0]), vec![20]);
+        // A sliver still gets one element; the sum stays.
+        let k = split_elements(12, &[0.01, 5.0, 4.99]);
+        assert_eq!(k.iter().sum::<usize>(), 12);
+        assert_eq!(k[0], 1);
+        // Largest remainders first: 10 × (1/3, 1/3, 1/3) = 4, 3, 3 in some order.
+        let mut k = split_elements(10, &[1.0, 1.0, 1.0]);
+        k.sort();
+        assert_eq!(k, vec![3, 3, 4]);
+    }
 }

@@ -72,6 +72,10 @@ pub struct Revolution {
     /// Largest residual of the model above at the LTCA positions over the
     /// samples' peak-to-peak: stiffness, deflection.
     pub max_residual_of_ptp: [f64; 2],
+    /// The revolution's own LTCA samples k (N/m), δ (m) when the span
+    /// covers a whole revolution ([`Revolution::from_revolution`]): they,
+    /// not the lobe model, are the excitation.
+    pub solved: Option<[Vec<f64>; 2]>,
 }
 
 /// Least squares of `y` on the columns `cols`.
@@ -213,6 +217,7 @@ impl Revolution {
                 })
                 .collect(),
             max_residual_of_ptp: [0.0; 2],
+            solved: None,
         };
         let (mut ek, mut ed) = (0.0f64, 0.0f64);
         for i in 0..m {
@@ -221,6 +226,42 @@ impl Revolution {
             ed = ed.max((dv - d[i]).abs());
         }
         r.max_residual_of_ptp = [ek / ptp(k).max(1e-300), ed / ptp(d).max(1e-300)];
+        Ok(r)
+    }
+
+    /// As [`Revolution::from_span`] on a span of at least one wheel
+    /// revolution (z₂ mesh cycles: a stiffness file that holds every wheel
+    /// tooth). The lobe is still fitted over the span, for comparison with
+    /// a shorter span's; the excitation is the first z₂·P LTCA samples
+    /// themselves (k and δ repeat after z₂ mesh cycles: the pinion is
+    /// axisymmetric and the wheel has turned once).
+    pub fn from_revolution(
+        samples: &MeshSamples,
+        wheel_tooth: &[f64],
+        mesh_cycle_rad: f64,
+        step_rad: f64,
+        wheel_teeth: usize,
+        lobes: usize,
+    ) -> Result<Self, LumpedError> {
+        let mut r = Self::from_span(
+            samples,
+            wheel_tooth,
+            mesh_cycle_rad,
+            step_rad,
+            wheel_teeth,
+            lobes,
+        )?;
+        if r.span_cycles < wheel_teeth {
+            return Err(LumpedError::Input(format!(
+                "revolution: the LTCA span holds {} mesh cycles, a wheel revolution {wheel_teeth}",
+                r.span_cycles
+            )));
+        }
+        let n = wheel_teeth * r.per_cycle;
+        r.solved = Some([
+            samples.tangent_n_per_m[..n].to_vec(),
+            samples.deflection_m[..n].to_vec(),
+        ]);
         Ok(r)
     }
 
@@ -258,8 +299,12 @@ impl Revolution {
         Some((psi * self.wheel_teeth as f64 / (2.0 * PI)).rem_euclid(lobe))
     }
 
-    /// The z₂·P samples of one wheel revolution: k (N/m), δ (m).
+    /// The z₂·P samples of one wheel revolution: k (N/m), δ (m): the
+    /// LTCA's own when it covered the revolution, else the lobe model's.
     pub fn samples(&self) -> [Vec<f64>; 2] {
+        if let Some(s) = &self.solved {
+            return s.clone();
+        }
         let n = self.wheel_teeth * self.per_cycle;
         let mut k = Vec::with_capacity(n);
         let mut d = Vec::with_capacity(n);
@@ -300,6 +345,35 @@ impl Revolution {
         };
         Ok([fitted(&k)?, fitted(&d)?])
     }
+}
+
+/// How far a per-tooth sequence (one value per mesh cycle over a whole
+/// revolution, `values[c]` at wheel tooth c) is from repeating `lobes`
+/// times per revolution: with s = z₂/n (not a whole number of teeth for
+/// 43/3), v(c + s) by linear interpolation between its neighbours on the
+/// periodic sequence, the mismatch e_c = v(c + s) − v(c). Returns
+/// (max |e_c|, rms e_c) over the sequence's mean.
+pub fn lobe_repeat_mismatch(values: &[f64], lobes: usize) -> Result<[f64; 2], LumpedError> {
+    let z = values.len();
+    if lobes == 0 || z < 2 * lobes {
+        return Err(LumpedError::Input(format!(
+            "lobe repeat: {z} values for {lobes} lobes"
+        )));
+    }
+    let mean = values.iter().sum::<f64>() / z as f64;
+    let s = z as f64 / lobes as f64;
+    let (mut max, mut sq) = (0.0f64, 0.0);
+    for c in 0..z {
+        let x = c as f64 + s;
+        let i = x.floor();
+        let f = x - i;
+        let i = i as usize;
+        let v = (1.0 - f) * values[i % z] + f * values[(i + 1) % z];
+        let e = v - values[c];
+        max = max.max(e.abs());
+        sq += e * e;
+    }
+    Ok([max / mean, (sq / z as f64).sqrt() / mean])
 }
 
 /// The series of period `period_s` with `harmonics` harmonics from samples
@@ -349,6 +423,25 @@ pub fn direct_series(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lobe_repeat_mismatch_is_small_for_a_three_lobe_sequence_and_large_otherwise() {
+        // 43 teeth, k = 1 + 0.05 cos(3ψ − 0.4): repeats every 43/3 teeth;
+        // linear interpolation between teeth leaves at most
+        // (1/8)(3·2π/43)²·0.05 = 1.2e-3.
+        let three: Vec<f64> = (0..43)
+            .map(|c| 1.0 + 0.05 * (3.0 * 2.0 * PI * c as f64 / 43.0 - 0.4).cos())
+            .collect();
+        let [max, rms] = lobe_repeat_mismatch(&three, 3).unwrap();
+        assert!(max < 1.2e-3 && rms <= max, "{max} {rms}");
+        // One lobe per revolution of the same size does not repeat every
+        // third of it: 2·0.05·sin(π/3) = 0.087 at most.
+        let one: Vec<f64> = (0..43)
+            .map(|c| 1.0 + 0.05 * (2.0 * PI * c as f64 / 43.0).cos())
+            .collect();
+        let [max, _] = lobe_repeat_mismatch(&one, 3).unwrap();
+        assert!((max - 0.0866).abs() < 2e-3, "{max}");
+    }
 
     #[test]
     fn direct_dft_recovers_the_harmonics_of_sampled_cosines() {

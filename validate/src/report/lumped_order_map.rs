@@ -2,10 +2,11 @@
 //! order map" (issue 31): `solver lumped` on
 //! `reference/scenes/white_paper_lightweight_lumped.toml` with
 //! `[lumped.order_map]`, read from `<out>/<scene>/lumped/order_map.json`,
-//! its order maps beside the multibody run-up spectrogram of the default
-//! scene (`<out>/default/multibody/<pinion>_<wheel>/runup_spectrogram.svg`,
-//! for the blank pairs that run up). Every number is formatted from the
-//! summary; an absent summary is one line of text.
+//! its order maps; then the whole-revolution subsection
+//! ([`super::lightweight_revolution`]: the lobe checked against the solved
+//! revolution, the multibody run-up's amplitudes beside the 8-DOF
+//! model's, the run-up spectrograms of both wheel blanks). Every number is
+//! formatted from the summaries; an absent summary is one line of text.
 
 use super::figures::{copied, Figure};
 use formats::lumped_summary::OrderMapSummary;
@@ -14,8 +15,6 @@ use std::path::Path;
 
 /// The scene whose order map the subsection reports.
 pub const ORDER_MAP_SCENE: &str = "white_paper_lightweight_lumped";
-/// The scene whose multibody run-up spectrogram stands beside it.
-pub const MULTIBODY_SCENE: &str = "default";
 
 /// The subsection's markdown and its figures (copied into `reports`).
 pub fn subsection(out: &Path, reports: &Path) -> (String, Vec<Figure>) {
@@ -35,7 +34,7 @@ pub fn subsection(out: &Path, reports: &Path) -> (String, Vec<Figure>) {
                 "No order map: `{}` lists no blank pair.\n",
                 path.display()
             );
-            return (s, vec![]);
+            return with_revolution(s, vec![], out, reports, &[]);
         }
         Err(e) => {
             let _ = writeln!(
@@ -43,7 +42,7 @@ pub fn subsection(out: &Path, reports: &Path) -> (String, Vec<Figure>) {
                 "No order map: `{}` cannot be read ({e}); `solver lumped reference/scenes/{ORDER_MAP_SCENE}.toml` writes it.\n",
                 path.display()
             );
-            return (s, vec![]);
+            return with_revolution(s, vec![], out, reports, &[]);
         }
     };
     let m0 = &maps[0];
@@ -138,36 +137,20 @@ pub fn subsection(out: &Path, reports: &Path) -> (String, Vec<Figure>) {
             &format!("lumped_{stem}.svg"),
         ));
     }
-    let mut multibody = Vec::new();
-    for m in &maps {
-        let pair = format!("{:?}_{:?}", m.pinion_blank, m.wheel_blank).to_lowercase();
-        let from = out
-            .join(MULTIBODY_SCENE)
-            .join("multibody")
-            .join(&pair)
-            .join("runup_spectrogram.svg");
-        match copied(
-            &format!(
-                "Multibody run-up spectrogram of the wheel bearing force, {:?} pinion / {:?} wheel (scene {MULTIBODY_SCENE})",
-                m.pinion_blank, m.wheel_blank
-            ),
-            &from,
-            reports,
-            &format!("multibody_{pair}_runup_spectrogram.svg"),
-        ) {
-            Some(f) => multibody.push(f),
-            None => {
-                let _ = writeln!(
-                    s,
-                    "The multibody run gives no run-up spectrogram for the {:?} pinion / {:?} wheel (`{}` absent: the scene `{MULTIBODY_SCENE}` runs up only the blanks of `runup_wheel_blanks`).\n",
-                    m.pinion_blank,
-                    m.wheel_blank,
-                    from.display()
-                );
-            }
-        }
-    }
-    figs.extend(multibody);
     super::figure_lines(&mut s, &figs, false);
+    with_revolution(s, figs, out, reports, &maps)
+}
+
+/// Appends the whole-revolution subsection to `s` and its figures to `figs`.
+fn with_revolution(
+    mut s: String,
+    mut figs: Vec<Figure>,
+    out: &Path,
+    reports: &Path,
+    maps: &[OrderMapSummary],
+) -> (String, Vec<Figure>) {
+    let (md, more) = super::lightweight_revolution::subsection(out, reports, maps);
+    s.push_str(&md);
+    figs.extend(more);
     (s, figs)
 }

@@ -15,6 +15,7 @@ pub mod differences;
 pub mod figures;
 pub mod html;
 pub mod layout;
+pub mod lightweight_revolution;
 pub mod lumped;
 pub mod lumped_fe_stiffness;
 pub mod lumped_order_map;
