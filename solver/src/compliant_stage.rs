@@ -381,6 +381,15 @@ fn run_up(
         s.table.ratio,
         s.blanks[1],
     )?;
+    // The same order analysis as the rigid run-up's `runup_orders.json`, of
+    // both wheel bearings' force together.
+    crate::dynamic_stage::write_runup_orders(
+        &s.odir.join("bearings_runup_orders.json"),
+        s.blanks,
+        s.g.data.members[0].teeth as f64,
+        s.table.ratio,
+        (&tr.t, &tr.q1, &tr.wheel_force),
+    )?;
     let sum = summary("run-up", torque, &tr, steps, &integ, cpu, csv, None);
     eprintln!(
         "  compliant run-up: {steps} steps ({} rejected), {:.1} µs/step, |E|,|P|,|G| up to {:.2}, {:.2}, {:.2} µm, |ΔΣ| {:.2} µrad",

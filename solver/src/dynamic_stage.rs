@@ -713,25 +713,13 @@ fn run_up(
         table.ratio,
         wb,
     )?;
-    // Order analysis in the pinion's angle domain, one wheel revolution per
-    // window (32 samples per mesh cycle).
-    let teeth = [z1.round() as usize, (z1 / table.ratio).round() as usize];
-    let per_window = 32 * teeth[1];
-    let marks = crate::lumped_order_map::marked_orders(teeth[0], teeth[1], WHEEL_WEB_HOLES);
     let bearing: Vec<[f64; 3]> = tr.force.iter().map(|f| f.map(|c| -c)).collect();
-    write_json(
+    write_runup_orders(
         &odir.join("runup_orders.json"),
-        &RunupOrders {
-            pinion_blank: pb,
-            wheel_blank: wb,
-            pinion_teeth: teeth[0],
-            wheel_teeth: teeth[1],
-            samples_per_window: per_window,
-            order_resolution: table.ratio,
-            windows: crate::runup_orders::windows(
-                &tr.t, &tr.q1, &bearing, teeth, per_window, &marks,
-            ),
-        },
+        [pb, wb],
+        z1,
+        table.ratio,
+        (&tr.t, &tr.q1, &bearing),
     )?;
     eprintln!(
         "  run-up: {steps} steps ({} rejected), {:.1} µs/step, dynamic - static TE in [{:.2}, {:.2}] µrad",
@@ -751,6 +739,38 @@ fn run_up(
         cpu_s_per_step: cpu / steps.max(1) as f64,
         te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
     })
+}
+
+/// `runup_orders.json`-style order analysis of a run-up's wheel bearing
+/// force ([`crate::runup_orders::windows`]) in the pinion's angle domain,
+/// one wheel revolution per window (32 samples per mesh cycle), at the
+/// marked orders of the pair (z₁ = `z1`, ratio z₁/z₂ = `ratio`): `trace`
+/// is (time s, pinion rotation rad, wheel bearing force N, fixed frame).
+pub(crate) fn write_runup_orders(
+    path: &Path,
+    blanks: [Blank; 2],
+    z1: f64,
+    ratio: f64,
+    trace: (&[f64], &[f64], &[[f64; 3]]),
+) -> anyhow::Result<()> {
+    let teeth = [z1.round() as usize, (z1 / ratio).round() as usize];
+    let per_window = 32 * teeth[1];
+    let marks = crate::lumped_order_map::marked_orders(teeth[0], teeth[1], WHEEL_WEB_HOLES);
+    write_json(
+        path,
+        &RunupOrders {
+            pinion_blank: blanks[0],
+            wheel_blank: blanks[1],
+            pinion_teeth: teeth[0],
+            wheel_teeth: teeth[1],
+            samples_per_window: per_window,
+            order_resolution: ratio,
+            windows: crate::runup_orders::windows(
+                trace.0, trace.1, trace.2, teeth, per_window, &marks,
+            ),
+        },
+    )?;
+    Ok(())
 }
 
 /// The run-up's pinion speed ramp, rad/s.

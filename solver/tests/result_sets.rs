@@ -264,12 +264,31 @@ fn dynamic_with_bearings_writes_the_compliant_runs_into_the_set() {
         "bearings_quasi_static_300nm.csv",
         "bearings_runup.csv",
         "bearings_runup_spectrogram.svg",
+        "bearings_runup_orders.json",
     ] {
         assert!(
             info.files.contains_key(&format!("standard_standard/{f}")),
             "{f}"
         );
     }
+    // The compliant run-up's order analysis covers the rigid run-up's
+    // windows (the same imposed pinion speed); the summary records the
+    // bearings and mass properties used.
+    let orders = |f: &str| -> formats::summaries::RunupOrders {
+        serde_json::from_str(&std::fs::read_to_string(res[0].dir.join(f)).unwrap()).unwrap()
+    };
+    let (rigid, compliant) = (
+        orders("runup_orders.json"),
+        orders("bearings_runup_orders.json"),
+    );
+    assert_eq!(rigid.windows.len(), compliant.windows.len());
+    assert_eq!(rigid.samples_per_window, compliant.samples_per_window);
+    let used = c.used.as_ref().expect("bearings and masses used");
+    assert_eq!(
+        (used.pinion_bearings.len(), used.wheel_bearings.len()),
+        (2, 2)
+    );
+    assert_eq!(used.bodies[0].mass_kg, c.masses_kg[0]);
     let csv = std::fs::read_to_string(res[0].dir.join("bearings_runup.csv")).unwrap();
     assert!(csv.starts_with(
         "time_s,pinion_rotation_deg,pinion_rpm,te_urad,e_um,p_um,g_um,shaft_angle_urad"

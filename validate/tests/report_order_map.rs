@@ -173,6 +173,17 @@ fn whole_revolution_subsection_checks_the_lobe_and_puts_the_runup_windows_beside
             serde_json::to_string(&orders).unwrap(),
         )
         .unwrap();
+        // On compliant bearings (the lightweight wheel only): side bands
+        // 2.0 N instead of 2.5 at the window shown.
+        if band > 1.0 {
+            let mut on_bearings = orders.clone();
+            on_bearings.windows[1] = window(2950.0, 2.0);
+            std::fs::write(
+                dir.join("bearings_runup_orders.json"),
+                serde_json::to_string(&on_bearings).unwrap(),
+            )
+            .unwrap();
+        }
     }
     let extrapolated = vec![map(Blank::Lightweight, 1.0)];
     let (md, _) = lightweight_revolution::subsection(out.path(), reports.path(), &extrapolated);
@@ -206,6 +217,20 @@ fn whole_revolution_subsection_checks_the_lobe_and_puts_the_runup_windows_beside
     );
     assert!(
         md.contains("(sum of both): 3000 rpm: 1.0 and 250.0."),
+        "{md}"
+    );
+    // Compliant bearings: their window's row and the ratios to the rigid
+    // run-up's (2.0 / 2.5 = 0.80 at each side band, 1 elsewhere; no 40).
+    assert!(
+        md.contains("| 3000 | Lightweight | multibody run-up, compliant bearings, 2950 rpm (2890–3010) | 1.200e2 | — | 1.000e0 | 2.000e0 | 2.000e0 |"),
+        "{md}"
+    );
+    assert!(
+        !md.contains("| Standard | multibody run-up, compliant"),
+        "{md}"
+    );
+    assert!(
+        md.contains("Lightweight at 3000 rpm: 20 1.00, 40 —, 3·20/43 1.00, 20-1.40 0.80, 20+1.40 0.80, side bands together 0.80"),
         "{md}"
     );
 }

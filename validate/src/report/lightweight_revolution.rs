@@ -55,6 +55,9 @@ fn at(marked: &[formats::lumped_summary::MarkedOrder], label: &str) -> Option<f6
         .map(|m| m.wheel_bearing_force_n)
 }
 
+/// The marked orders of one window.
+type WindowMarks = [formats::lumped_summary::MarkedOrder];
+
 fn cells(marked: &[formats::lumped_summary::MarkedOrder]) -> String {
     SHOWN
         .iter()
@@ -246,19 +249,17 @@ fn comparison(
             .join(" | "),
         "---|".repeat(SHOWN.len())
     );
-    let runups: Vec<Option<RunupOrders>> = maps
+    // Rigid bearings (`runup_orders.json`) and, with the scene's
+    // `[bearings]`, compliant ones (`bearings_runup_orders.json`).
+    let runups: Vec<[Option<RunupOrders>; 2]> = maps
         .iter()
         .map(|m| {
             let pair = format!("{:?}_{:?}", m.pinion_blank, m.wheel_blank).to_lowercase();
-            read(
-                &out.join(RUNUP_SCENE)
-                    .join("multibody")
-                    .join(pair)
-                    .join("runup_orders.json"),
-            )
-            .ok()
+            let dir = out.join(RUNUP_SCENE).join("multibody").join(pair);
+            ["runup_orders.json", "bearings_runup_orders.json"].map(|f| read(&dir.join(f)).ok())
         })
         .collect();
+    let mut compliant = Vec::new();
     let speeds: Vec<f64> = maps
         .first()
         .map(|m| m.speeds.iter().map(|v| v.pinion_speed_rpm).collect())
@@ -295,6 +296,36 @@ fn comparison(
                         row(v)
                     );
                 }
+            }
+            let [ro, co] = ro;
+            if let (Some(rw), Some(cw)) = (
+                ro.as_ref().and_then(|o| nearest_window(o, rpm)),
+                co.as_ref().and_then(|o| nearest_window(o, rpm)),
+            ) {
+                let _ = writeln!(
+                    s,
+                    "| {rpm:.0} | {w} | multibody run-up, compliant bearings, {:.0} rpm ({:.0}–{:.0}) | {} |",
+                    cw.mean_pinion_rpm,
+                    cw.pinion_rpm[0],
+                    cw.pinion_rpm[1],
+                    cells(&cw.marked)
+                );
+                let ratio = |l: &str| Some(at(&cw.marked, l)? / at(&rw.marked, l)?.max(1e-300));
+                let sum = |x: &WindowMarks| {
+                    at(x, "20-1.40").unwrap_or(0.0) + at(x, "20+1.40").unwrap_or(0.0)
+                };
+                compliant.push(format!(
+                    "{w} at {rpm:.0} rpm: {}",
+                    SHOWN
+                        .iter()
+                        .map(|l| ratio(l).map_or(format!("{l} —"), |r| format!("{l} {r:.2}")))
+                        .chain([format!(
+                            "side bands together {:.2}",
+                            sum(&cw.marked) / sum(&rw.marked).max(1e-300)
+                        )])
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
             }
             match ro.as_ref().and_then(|o| nearest_window(o, rpm)) {
                 Some(win) => {
@@ -333,6 +364,13 @@ fn comparison(
             s,
             "Multibody run-up, lightweight over standard wheel, at the hole order 3·20/43 and at the side bands 20 ± 1.40 (sum of both): {}. Where the second is near 1, the side bands do not stand above the windows' floor (the standard wheel's lines there: content not locked to the orders, such as the torsional mode's response while the ramp sweeps towards it).\n",
             bands.join("; ")
+        );
+    }
+    if !compliant.is_empty() {
+        let _ = writeln!(
+            s,
+            "Multibody run-up, compliant over rigid bearings (both wheel bearings' force together against the reaction to the contact force; the bearings of `{RUNUP_SCENE}`'s `[bearings]`), amplitude ratio per marked order: {}.\n",
+            compliant.join("; ")
         );
     }
     let _ = writeln!(
