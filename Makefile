@@ -72,9 +72,9 @@ SENSITIVITY   ?= 1
 # stiffness files made; 2 cores shared with other jobs, 2026-11-24, after
 # the posed contact path): about 66 s (flanks, mesh and stiffness 0.8 s,
 # ltca 47 s, dynamic 18 s, of it 2.7 + 5.2 s the lag shift's contact
-# searches). Cold it meshes and solves the default scene's pair again under
-# its own name, as the order map's scene did (about 2 min 45 s more,
-# measured there). BEARINGS=0
+# searches). Cold it copies the default scene's meshes and stiffness files
+# (same inputs, preprocess/src/sibling_reuse.rs; measured 1.0 s mesh stage +
+# 0.5 s stiffness stage, 2026-11-24), which `solve` has made. BEARINGS=0
 # leaves it out.
 BEARINGS      ?= 1
 BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
@@ -87,7 +87,12 @@ BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
 # revolution, then checks the results (the ignored tests of
 # validate/tests/lightweight_revolution_data.rs). The report's subsection
 # "lightweight wheel over its whole revolution" reads them. Costs: see
-# docs/performance.md. Not part of `make validate`.
+# docs/performance.md. Not part of `make validate`. The scene has the
+# compliant bearings of white_paper_bearings.toml, so `solver dynamic` also
+# runs both wheels' run-ups on them (bearings_runup_orders.json; the cost
+# of those runs was not measured on the whole revolution: the run-up's
+# 110,000 steps at the 54-85 µs per step measured on white_paper_bearings
+# are about 6-10 s per wheel, plus the lag shift over one mesh cycle).
 LW_SCENE := reference/scenes/white_paper_lightweight_runup.toml
 
 .PHONY: setup build test bench preprocess solve validate convergence fe-stiffness stress lightweight clean
