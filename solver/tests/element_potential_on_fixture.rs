@@ -10,27 +10,13 @@
 mod fixture;
 
 use fixture::Fixture;
-use solver::mesh_table::{MeshTable, TableSpec};
+use solver::mesh_table::MeshTable;
 use solver::multibody::{Drive, Model, Ramp};
 use solver::time_step::{discrete_gradient, integrate, Integrator, Scheme, StepControl};
 
 /// The fixture's table over one mesh cycle in 0.5° steps, up to 600 N·m.
 fn table(f: &Fixture) -> MeshTable {
-    let g = &f.g;
-    let tau = g.data.mesh_cycle();
-    let per = (tau / 0.5f64.to_radians()).round() as usize;
-    let spec = TableSpec {
-        start: f.sweep.start,
-        direction: f.sweep.direction,
-        step: tau / per as f64,
-        positions: per,
-        periodic: true,
-        slices: f.scene.scene.ltca.slices,
-        lag_nodes: 48,
-        torque_max_nm: 600.0,
-    };
-    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
-    MeshTable::build(f.fp(), &f.rs, &f.pc, &g.frames[0], ratio, spec).unwrap()
+    f.table(0.5, 48, 600.0)
 }
 
 #[test]

@@ -18,7 +18,7 @@ use solver::compliant_multibody::MemberBody;
 use solver::dynamic_stage::inertia;
 use solver::lag_shift::LagShift;
 use solver::ltca_stage::member_compliance;
-use solver::mesh_table::{MeshTable, TableSpec};
+use solver::mesh_table::MeshTable;
 use solver::system_deflection::Supports;
 
 pub struct Compliant {
@@ -34,20 +34,8 @@ pub struct Compliant {
 impl Compliant {
     pub fn example_02(lag_nodes: usize, torque_max_nm: f64) -> Compliant {
         let f = Fixture::example_02();
-        let tau = f.g.data.mesh_cycle();
-        let per = (tau / 1f64.to_radians()).round() as usize;
-        let spec = TableSpec {
-            start: f.sweep.start,
-            direction: f.sweep.direction,
-            step: tau / per as f64,
-            positions: per,
-            periodic: true,
-            slices: f.scene.scene.ltca.slices,
-            lag_nodes,
-            torque_max_nm,
-        };
-        let ratio = f.g.data.members[0].teeth as f64 / f.g.data.members[1].teeth as f64;
-        let table = MeshTable::build(f.fp(), &f.rs, &f.pc, &f.g.frames[0], ratio, spec).unwrap();
+        let table = f.table(1.0, lag_nodes, torque_max_nm);
+        let ratio = table.ratio;
         let shift = LagShift::build(
             &f.g,
             f.scene.scene.loaded_flank,

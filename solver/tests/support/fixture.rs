@@ -59,6 +59,39 @@ impl Fixture {
         self.g.side(self.scene.scene.loaded_flank)
     }
 
+    /// The contact-element table over one mesh cycle (periodic) in steps
+    /// of about `step_deg`, with `lag_nodes` lags up to `torque_max_nm`.
+    pub fn table(
+        &self,
+        step_deg: f64,
+        lag_nodes: usize,
+        torque_max_nm: f64,
+    ) -> solver::mesh_table::MeshTable {
+        let tau = self.g.data.mesh_cycle();
+        let per = (tau / step_deg.to_radians()).round() as usize;
+        let spec = solver::mesh_table::TableSpec {
+            start: self.sweep.start,
+            direction: self.sweep.direction,
+            step: tau / per as f64,
+            positions: per,
+            periodic: true,
+            slices: self.scene.scene.ltca.slices,
+            lag_nodes,
+            torque_max_nm,
+        };
+        let d = &self.g.data;
+        let ratio = d.members[0].teeth as f64 / d.members[1].teeth as f64;
+        solver::mesh_table::MeshTable::build(
+            self.fp(),
+            &self.rs,
+            &self.pc,
+            &self.g.frames[0],
+            ratio,
+            spec,
+        )
+        .unwrap()
+    }
+
     /// The LTCA over the scene's sweep at `torques`.
     pub fn ltca(&self, torques: &[f64]) -> Vec<solver::ltca::PositionResult> {
         solver::ltca::run(self.fp(), &self.rs, &self.pc, &self.sweep, torques).unwrap()
