@@ -17,18 +17,16 @@
 //! to 1.2e-3 and 3.3e-3; torque balance +3.1e-8 and +1.2e-7, of which the
 //! window ends' speeds account for +8.3e-9 and −1.9e-9.
 
-use geometry::design::Member;
+#[path = "support/fixture.rs"]
+mod example;
+
 use geometry::pair::PairGeometry;
-use geometry::scene::{Blank, ImpactSettings, LoadRun, Scene};
-use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
-use solver::dynamic_stage::{impact_law, inertia};
+use geometry::scene::{ImpactSettings, LoadRun};
+use solver::dynamic_stage::impact_law;
 use solver::load_run::{drive, simulate, time_mean, whole_cycles};
-use solver::ltca_stage::{member_compliance, scene_sweep};
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::Model;
 use solver::time_step::{Integrator, Scheme, StepControl};
-use std::path::Path;
 
 struct Outcome {
     speed_error: f64,
@@ -55,42 +53,21 @@ struct Fixture {
 }
 
 fn fixture(settings: &ImpactSettings) -> Fixture {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/02_ltca_fixture");
-    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
-    let sc = &scene.scene;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let meshes = dir.join("meshes").join(&sc.name);
-    let load = |m: Member| {
-        let (c, plan) = member_compliance(&scene, &g, &meshes, m, Blank::Standard).unwrap();
-        (c, inertia(&scene, &g, &meshes, &plan, m).unwrap().0)
-    };
-    let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
-    let pc = PairCompliance { pinion, wheel };
-    let fp = g.side(sc.loaded_flank);
-    let rs = roll_surface(fp, &sc.utca).unwrap();
-    let tau = g.data.mesh_cycle();
-    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
-    let sweep = scene_sweep(&scene, &g, Blank::Standard);
-    let per = (tau / 0.5f64.to_radians()).round() as usize;
-    let spec = TableSpec {
-        start: sweep.start,
-        direction: sweep.direction,
-        step: tau / per as f64,
-        positions: per,
-        periodic: true,
-        slices: sc.ltca.slices,
-        lag_nodes: 48,
-        torque_max_nm: 600.0,
-    };
-    let element = MeshTable::build(fp, &rs, &pc, &g.frames[0], ratio, spec).unwrap();
+    let f = example::Fixture::example_02();
+    let element = f.table(0.5, 48, 600.0);
+    let (spec, ratio) = (element.spec, element.ratio);
+    let tau = f.g.data.mesh_cycle();
+    let side = f.scene.scene.loaded_flank;
+    let inertia = f.inertia;
+    let (g, rs) = (f.g, f.rs);
+    let fp = g.side(side);
     let (law, friction, _) = impact_law(&g.data, settings);
     let impact =
         solver::impact_table::build(fp, &rs, &g.frames[0], ratio, spec, law, friction).unwrap();
-    let side = sc.loaded_flank;
     Fixture {
         element,
         impact,
-        inertia: [j1, j2],
+        inertia,
         ratio,
         tau,
         g,

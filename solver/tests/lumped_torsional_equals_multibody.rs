@@ -53,21 +53,16 @@
 //! coordinate orders (`element_potential_on_fixture`); generalized-α is
 //! kept here as the cheaper scheme for this comparison.
 
-use geometry::design::Member;
-use geometry::pair::PairGeometry;
-use geometry::scene::{Blank, Scene};
-use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
-use solver::dynamic_stage::inertia;
-use solver::ltca_stage::{member_compliance, scene_sweep};
+#[path = "support/fixture.rs"]
+mod fixture;
+
+use fixture::Fixture;
 use solver::lumped::excitation::{fit_to_tolerance, MeshExcitation, StaticError};
 use solver::lumped::integrate::{integrate as lumped_integrate, Equations, Settings};
 use solver::lumped::model::{Member as LumpedMember, Model as LumpedModel};
-use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{interpolate, Drive, Model, State};
 use solver::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
-use std::path::Path;
 
 const TORQUE_NM: f64 = 300.0;
 const CYCLES: f64 = 6.0;
@@ -75,34 +70,13 @@ const FIT_TOLERANCE: f64 = 0.005;
 
 #[test]
 fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_multibody_run() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/02_ltca_fixture");
-    let scene = Scene::load(&dir.join("scene.toml")).unwrap();
-    let sc = &scene.scene;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let meshes = dir.join("meshes").join(&sc.name);
-    let load = |m: Member| {
-        let (c, plan) = member_compliance(&scene, &g, &meshes, m, Blank::Standard).unwrap();
-        (c, inertia(&scene, &g, &meshes, &plan, m).unwrap().0)
-    };
-    let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
-    let pc = PairCompliance { pinion, wheel };
-    let fp = g.side(sc.loaded_flank);
-    let rs = roll_surface(fp, &sc.utca).unwrap();
+    let f = Fixture::example_02();
+    let g = &f.g;
     let tau = g.data.mesh_cycle();
-    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
-    let sweep = scene_sweep(&scene, &g, Blank::Standard);
     let per = (tau / 0.5f64.to_radians()).round() as usize;
-    let spec = TableSpec {
-        start: sweep.start,
-        direction: sweep.direction,
-        step: tau / per as f64,
-        positions: per,
-        periodic: true,
-        slices: sc.ltca.slices,
-        lag_nodes: 48,
-        torque_max_nm: 600.0,
-    };
-    let table = MeshTable::build(fp, &rs, &pc, &g.frames[0], ratio, spec).unwrap();
+    let table = f.table(0.5, 48, 600.0);
+    let ratio = table.ratio;
+    let [j1, j2] = f.inertia;
     let mut mb = Model {
         table: &table,
         coast: None,
@@ -167,7 +141,7 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
     };
 
     // One start for both: the quasi-static lag at q₁ = 0, moving along it.
-    let d = 0.1 * spec.step;
+    let d = 0.1 * table.spec.step;
     let slope = (mb.static_lag(d).unwrap() - mb.static_lag(-d).unwrap()) / (2.0 * d);
     let s0 = State {
         t: 0.0,

@@ -9,15 +9,11 @@
 
 pub use super::fixture::supports;
 use super::fixture::Fixture;
-use geometry::design::Member;
 use geometry::generation::trace_sign;
 use geometry::pair::PairGeometry;
-use geometry::scene::Blank;
 use solver::bearings::Support;
 use solver::compliant_multibody::MemberBody;
-use solver::dynamic_stage::inertia;
 use solver::lag_shift::LagShift;
-use solver::ltca_stage::member_compliance;
 use solver::mesh_table::MeshTable;
 use solver::system_deflection::Supports;
 
@@ -44,15 +40,7 @@ impl Compliant {
             &geometry::misalignment::Misalignment::default(),
         )
         .unwrap();
-        let mdir = f.dir.join("meshes").join(&f.scene.scene.name);
-        let j = |m: Member, b: Blank| {
-            let (_, plan) = member_compliance(&f.scene, &f.g, &mdir, m, b).unwrap();
-            inertia(&f.scene, &f.g, &mdir, &plan, m).unwrap().0
-        };
-        let inertia = [
-            j(Member::Pinion, f.scene.scene.blanks.pinion[0]),
-            j(Member::Wheel, f.scene.scene.blanks.wheel[0]),
-        ];
+        let inertia = f.inertia;
         let hand = trace_sign(f.g.data.members[0].hand);
         Compliant {
             f,

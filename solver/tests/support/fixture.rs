@@ -27,6 +27,8 @@ pub struct Fixture {
     pub pc: PairCompliance,
     /// The scene's sweep for its first wheel blank.
     pub sweep: Sweep,
+    /// Polar moments of the pinion and the wheel from the meshes, kg·m².
+    pub inertia: [f64; 2],
 }
 
 impl Fixture {
@@ -38,11 +40,16 @@ impl Fixture {
         let rs = roll_surface(g.side(scene.scene.loaded_flank), &scene.scene.utca).unwrap();
         let mdir = dir.join("meshes").join(&scene.scene.name);
         let (pb, wb) = (scene.scene.blanks.pinion[0], scene.scene.blanks.wheel[0]);
-        let c = |m, b| member_compliance(&scene, &g, &mdir, m, b).unwrap().0;
-        let pc = PairCompliance {
-            pinion: c(Member::Pinion, pb),
-            wheel: c(Member::Wheel, wb),
+        // Compliance and polar moment (from the mesh) of a member.
+        let c = |m, b| {
+            let (c, plan) = member_compliance(&scene, &g, &mdir, m, b).unwrap();
+            let j = solver::dynamic_stage::inertia(&scene, &g, &mdir, &plan, m)
+                .unwrap()
+                .0;
+            (c, j)
         };
+        let ((pinion, j1), (wheel, j2)) = (c(Member::Pinion, pb), c(Member::Wheel, wb));
+        let pc = PairCompliance { pinion, wheel };
         let sweep = scene_sweep(&scene, &g, wb);
         Fixture {
             dir,
@@ -51,6 +58,7 @@ impl Fixture {
             rs,
             pc,
             sweep,
+            inertia: [j1, j2],
         }
     }
 
