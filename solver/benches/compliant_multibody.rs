@@ -8,24 +8,23 @@
 //! Target: ≤ 1 ms per step (issue 32; the white paper ~0.4 s per step).
 //! Results in `bench/compliant_multibody.json`.
 
+#[path = "support/default_pair.rs"]
+mod default_pair;
+
+use default_pair::DefaultPair;
 use geometry::generation::trace_sign;
 use geometry::misalignment::Misalignment;
 use geometry::pair::PairGeometry;
-use geometry::scene::{Blank, Scene};
-use geometry::utca::roll_surface;
 use serde_json::json;
 use solver::bearings::{Bearing, Support};
 use solver::compliant_multibody::{
     integrate as c_integrate, CompliantIntegrator, CompliantModel, MemberBody,
 };
-use solver::dynamic_stage::pair_and_inertia;
 use solver::lag_shift::LagShift;
-use solver::ltca_stage::scene_sweep;
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{wheel_driven, Drive, Model, Ramp};
 use solver::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
-use std::path::Path;
 use std::time::Instant;
 
 /// Bearings of 1 GN/m (radial and axial, the second of each floating),
@@ -82,19 +81,13 @@ fn row(
 }
 
 fn main() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
+    let p = DefaultPair::load();
+    let (scene, g, pc, rs, sweep) = (&p.scene, &p.g, &p.pc, &p.rs, &p.sweep);
     let sc = &scene.scene;
     let mb = &sc.multibody;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let dir = root.join("meshes").join(&sc.name);
-    let (pc, [j1, j2]) = pair_and_inertia(&scene, &g, &dir, [Blank::Standard; 2])
-        .expect("meshes/default: run `make preprocess` first");
-    let fp = g.side(sc.loaded_flank);
-    let rs = roll_surface(fp, &sc.utca).unwrap();
-    let tau = g.data.mesh_cycle();
-    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
-    let sweep = scene_sweep(&scene, &g, Blank::Standard);
+    let [j1, j2] = p.inertia;
+    let fp = p.fp();
+    let (tau, ratio) = (p.tau, p.ratio);
     let per = (tau / mb.table_step_deg.to_radians()).round() as usize;
     let spec = TableSpec {
         start: sweep.start,
@@ -107,11 +100,11 @@ fn main() {
         torque_max_nm: 1400.0,
     };
     let t = Instant::now();
-    let table = MeshTable::build(fp, &rs, &pc, &g.frames[0], ratio, spec).unwrap();
+    let table = MeshTable::build(fp, rs, pc, &g.frames[0], ratio, spec).unwrap();
     let table_s = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let shift = LagShift::build(
-        &g,
+        g,
         sc.loaded_flank,
         &sc.utca,
         &table,
@@ -191,7 +184,7 @@ fn main() {
             .1
         });
         rows.push(row(name, "rigid", steps, integ.rejected, us, ptp));
-        let cm = CompliantModel::new(m, &shift, bodies(&g, inertia), hand).unwrap();
+        let cm = CompliantModel::new(m, &shift, bodies(g, inertia), hand).unwrap();
         let s0 = cm.static_state(0.0).unwrap();
         let mut ci = CompliantIntegrator::new(mb.rho_inf, control(max_step));
         let (steps, us, ptp) = timed(|te| {
@@ -204,7 +197,7 @@ fn main() {
         });
         rows.push(row(name, "compliant", steps, ci.rejected, us, ptp));
     }
-    let out = root.join("bench");
+    let out = p.root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
     formats::output::write_json(
         &out.join("compliant_multibody.json"),

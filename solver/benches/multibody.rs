@@ -8,37 +8,31 @@
 //! run: pinion at 300 rpm, the wheel load of 300 N·m at the pinion rising
 //! by STEP over 20 ms, 0.1 s. Results in `bench/multibody.json`.
 
+#[path = "support/default_pair.rs"]
+mod default_pair;
+
+use default_pair::DefaultPair;
 use geometry::pair::PairGeometry;
-use geometry::scene::{Blank, ImpactSettings, LoadRun, Scene};
-use geometry::utca::roll_surface;
+use geometry::scene::{ImpactSettings, LoadRun};
 use serde_json::json;
 use solver::compliance::PairCompliance;
-use solver::dynamic_stage::{impact_law, pair_and_inertia};
+use solver::dynamic_stage::impact_law;
 use solver::load_run;
 use solver::ltca::{mean_ptp, run};
-use solver::ltca_stage::scene_sweep;
 use solver::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::{interpolate, wheel_driven, Drive, Model};
 use solver::time_step::{integrate, Integrator, Scheme, StepControl};
-use std::path::Path;
 use std::time::Instant;
 
 fn main() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let scene = Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
+    let p = DefaultPair::load();
+    let (scene, g, pc, rs, sweep) = (&p.scene, &p.g, &p.pc, &p.rs, &p.sweep);
     let sc = &scene.scene;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
-    let dir = root.join("meshes").join(&sc.name);
-    // Compliance and polar moment (from the body mesh, as `solver dynamic`) per member.
-    let (pc, [j1, j2]) = pair_and_inertia(&scene, &g, &dir, [Blank::Standard; 2])
-        .expect("meshes/default: run `make preprocess` first");
-    let fp = g.side(sc.loaded_flank);
-    let rs = roll_surface(fp, &sc.utca).unwrap();
-    let tau = g.data.mesh_cycle();
-    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
-    let sweep = scene_sweep(&scene, &g, Blank::Standard);
+    let [j1, j2] = p.inertia;
+    let fp = p.fp();
+    let (tau, ratio) = (p.tau, p.ratio);
     let torques = [100.0, 300.0, 700.0];
-    let ltca = run(fp, &rs, &pc, &sweep, &torques).unwrap();
+    let ltca = run(fp, rs, pc, sweep, &torques).unwrap();
     let inertia = [j1, j2];
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
     println!("\nMultibody benchmark (default scene, standard blanks, {cores} cores)\n");
@@ -58,8 +52,8 @@ fn main() {
         let t = Instant::now();
         let table = MeshTable::build(
             fp,
-            &rs,
-            &pc,
+            rs,
+            pc,
             &g.frames[0],
             ratio,
             TableSpec {
@@ -128,8 +122,8 @@ fn main() {
             "te_error_percent_of_ltca_ptp": {"100": errs[0], "300": errs[1], "700": errs[2]}}),
         );
     }
-    let laws = force_laws(fp, &rs, &pc, &g, &sweep, sc, ratio, tau, inertia);
-    let out = root.join("bench");
+    let laws = force_laws(fp, rs, pc, g, sweep, sc, ratio, tau, inertia);
+    let out = p.root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
     formats::output::write_json(
         &out.join("multibody.json"),

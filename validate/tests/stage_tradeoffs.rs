@@ -10,7 +10,7 @@ use geometry::utca::roll_surface;
 use solver::compliance::PairCompliance;
 use solver::ltca_stage::member_compliance;
 use std::path::PathBuf;
-use validate::stress::{loaded_run, probe_table, Cell, Outcome, Study, MB_LOADS_NM};
+use validate::stress::{cell, loaded_run, probe_table, Outcome, Study, MB_LOADS_NM};
 use validate::studies::grid_scenes::{member_fields, GridScene};
 use validate::studies::tradeoff_fields::field_error_pct;
 use validate::studies::tradeoff_stage::TARGET_PCT;
@@ -69,31 +69,6 @@ fn utca_tradeoff_default_is_within_one_percent_and_a_half_degree_step_is_worse_t
     assert!(st.cheapest.is_some());
 }
 
-fn blank_cell(t: f64) -> Cell {
-    Cell {
-        design: "fixture".into(),
-        study: Study::MultibodyLoad,
-        value: t,
-        unit: "N·m".into(),
-        label: String::new(),
-        outcome: Outcome::Converged,
-        iterations: None,
-        active_set_changes: None,
-        steps: None,
-        rejected_steps: None,
-        sim_time_s: None,
-        non_finite: false,
-        torque_balance: None,
-        compressive_only: None,
-        te_monotonic: None,
-        te_mean_urad: None,
-        energy_drift: None,
-        edge_contact: None,
-        deflection_to_thickness: None,
-        cpu_s: 0.0,
-    }
-}
-
 #[test]
 fn multibody_at_0_nm_without_coast_flanks_is_refused_and_loaded_runs_balance_the_wheel_impulse() {
     let (scene, meshes) = fixture();
@@ -117,7 +92,7 @@ fn multibody_at_0_nm_without_coast_flanks_is_refused_and_loaded_runs_balance_the
     let rs = roll_surface(fp, &scene.scene.utca).unwrap();
     let top = MB_LOADS_NM.iter().copied().fold(0.0, f64::max);
     let table = probe_table(&scene, &g, fp, &rs, &pc, top).unwrap();
-    let mut c = blank_cell(0.0);
+    let mut c = cell("fixture", Study::MultibodyLoad, 0.0, "N·m", String::new());
     let e = loaded_run(&mut c, &table, j, g.data.mesh_cycle(), 0.0).expect_err("0 N·m refused");
     let msg = e.to_string();
     assert!(
@@ -129,7 +104,7 @@ fn multibody_at_0_nm_without_coast_flanks_is_refused_and_loaded_runs_balance_the
         Outcome::Refused(_)
     ));
     for t in [300.0, 3000.0] {
-        let mut c = blank_cell(t);
+        let mut c = cell("fixture", Study::MultibodyLoad, t, "N·m", String::new());
         loaded_run(&mut c, &table, j, g.data.mesh_cycle(), t).unwrap();
         let b = c.torque_balance.unwrap();
         println!(

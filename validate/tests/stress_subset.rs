@@ -15,7 +15,7 @@ use solver::compliance::PairCompliance;
 use solver::ltca::{run, Sweep};
 use solver::ltca_stage::{member_compliance, scene_sweep};
 use std::path::{Path, PathBuf};
-use validate::stress::{ltca_record, Cell, Outcome, Study, LOADS_NM, PROBE_NM, SLICES};
+use validate::stress::{cell, ltca_record, Outcome, Study, LOADS_NM, PROBE_NM, SLICES};
 
 const BALANCE: f64 = 1e-9;
 
@@ -41,14 +41,14 @@ fn check(name: &str, scene: &LoadedScene, meshes: &Path) {
     let mut cells = Vec::new();
     let res = run(fp, &rs, &pc, &sweep, &loads).unwrap_or_else(|e| panic!("{name}: {e}"));
     for (i, &t) in loads.iter().enumerate() {
-        let mut c = blank_cell(name, Study::Load, t);
+        let mut c = cell(name, Study::Load, t, "", t.to_string());
         ltca_record(&mut c, &res, i, t);
         cells.push(c);
     }
     for n in slices {
         let res = run(fp, &rs, &pc, &Sweep { slices: n, ..sweep }, &[PROBE_NM])
             .unwrap_or_else(|e| panic!("{name}, {n} slices: {e}"));
-        let mut c = blank_cell(name, Study::Slices, n as f64);
+        let mut c = cell(name, Study::Slices, n as f64, "", (n as f64).to_string());
         ltca_record(&mut c, &res, 0, PROBE_NM);
         cells.push(c);
     }
@@ -67,31 +67,6 @@ fn check(name: &str, scene: &LoadedScene, meshes: &Path) {
     }
     // The heavier load lags more at every position.
     assert!(res.iter().all(|p| p.loads[1].te > p.loads[0].te), "{name}");
-}
-
-fn blank_cell(design: &str, study: Study, value: f64) -> Cell {
-    Cell {
-        design: design.into(),
-        study,
-        value,
-        unit: String::new(),
-        label: value.to_string(),
-        outcome: Outcome::Converged,
-        iterations: None,
-        active_set_changes: None,
-        steps: None,
-        rejected_steps: None,
-        sim_time_s: None,
-        non_finite: false,
-        torque_balance: None,
-        compressive_only: None,
-        te_monotonic: None,
-        te_mean_urad: None,
-        energy_drift: None,
-        edge_contact: None,
-        deflection_to_thickness: None,
-        cpu_s: 0.0,
-    }
 }
 
 #[test]

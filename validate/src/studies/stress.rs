@@ -257,7 +257,8 @@ pub fn classify(e: &SolverError) -> Outcome {
     }
 }
 
-fn cell(design: &str, study: Study, value: f64, unit: &str, label: String) -> Cell {
+/// A converged cell of `design` with nothing measured yet.
+pub fn cell(design: &str, study: Study, value: f64, unit: &str, label: String) -> Cell {
     Cell {
         design: design.to_string(),
         study,
