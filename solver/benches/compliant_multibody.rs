@@ -16,14 +16,14 @@ use geometry::generation::trace_sign;
 use geometry::misalignment::Misalignment;
 use geometry::pair::PairGeometry;
 use serde_json::json;
-use solver::bearings::{Bearing, Support};
-use solver::compliant_multibody::{
+use solver::bearings::support::{Bearing, Support};
+use solver::multibody::compliant::{
     integrate as c_integrate, CompliantIntegrator, CompliantModel, MemberBody,
 };
-use solver::lag_shift::LagShift;
-use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{wheel_driven, Drive, Model, Ramp};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::multibody::lag_shift::LagShift;
+use solver::multibody::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::model::{wheel_driven, Drive, Model, Ramp};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
 use std::time::Instant;
 

@@ -11,9 +11,9 @@ use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, Scene};
 use geometry::utca::roll_surface;
 use serde_json::json;
-use solver::compliance::PairCompliance;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run, Sweep};
-use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::Path;
 use std::time::Instant;
 

@@ -35,7 +35,7 @@ fn main() {
     );
     for k in 0..3 {
         let t = Instant::now();
-        let s = solver::lumped_stage::run(&scene, &dir.join("meshes"), &out).expect("lumped run");
+        let s = solver::stage::lumped::run(&scene, &dir.join("meshes"), &out).expect("lumped run");
         let stage = t.elapsed().as_secs_f64();
         let b = &s[0];
         println!(

@@ -15,13 +15,13 @@ use default_pair::DefaultPair;
 use geometry::pair::PairGeometry;
 use geometry::scene::{ImpactSettings, LoadRun};
 use serde_json::json;
-use solver::compliance::PairCompliance;
-use solver::dynamic_stage::impact_law;
-use solver::load_run;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run};
-use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{interpolate, wheel_driven, Drive, Model};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::multibody::impact_law::from_settings as impact_law;
+use solver::multibody::load_run;
+use solver::multibody::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::model::{interpolate, wheel_driven, Drive, Model};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::time::Instant;
 
 fn main() {
@@ -186,7 +186,7 @@ fn force_laws(
         let table = if name == "element" {
             MeshTable::build(fp, rs, pc, &g.frames[0], ratio, spec)
         } else {
-            solver::impact_table::build(fp, rs, &g.frames[0], ratio, spec, law, friction)
+            solver::multibody::impact_table::build(fp, rs, &g.frames[0], ratio, spec, law, friction)
         }
         .unwrap();
         let build = t.elapsed().as_secs_f64();

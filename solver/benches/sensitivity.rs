@@ -16,7 +16,7 @@ fn main() {
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench_sensitivity");
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
     let t0 = Instant::now();
-    let r = solver::sensitivity_stage::run(&scene, &root.join("meshes"), &out)
+    let r = solver::stage::sensitivity::run(&scene, &root.join("meshes"), &out)
         .expect("meshes/default: run `make preprocess` first");
     let wall = t0.elapsed().as_secs_f64();
     let runs: usize = r.curves.iter().map(|c| c.points.len()).sum();

@@ -1,51 +1,34 @@
 //! Solver: the FE-analytical gear contact element, the quasi-static loaded
-//! tooth contact analysis (LTCA) and multibody time integration.
+//! tooth contact analysis (LTCA), multibody time integration and the
+//! 8-DOF lumped model.
 //!
-//! Data flow: scene → flank pair and surface of roll angles (preprocess) →
-//! [`slices`] (contact geometry per position) → [`compliance`] (stiffness
-//! files interpolated to the slices) + [`weber_banaschek`] (line-contact
-//! approach) → [`contact_problem`] (forces and loaded TE) → [`ltca`] (sweep)
-//! → [`ltca_stage`] (files). [`plan`] lists the tooth pairs that can touch.
-//! Multibody: [`mesh_table`] (the element as a conservative force element
-//! between rigid bodies) → [`multibody`] (equations of motion, time
-//! integration) → [`dynamic_stage`] (10 rpm and run-up files, with
-//! [`spectrum`] for the bearing-force spectrogram). [`bearings`]: a shaft
-//! on compliant bearings (reactions and the member's displacement under a
-//! mesh force), and [`system_deflection`]: the quasi-static LTCA on the
-//! pose the loaded bearings give.
+//! The folders depend one way: [`stage`] → [`multibody`] → [`bearings`] →
+//! [`ltca`] → [`element`]; [`stage`] → [`lumped`] → [`ltca`]; [`signal`]
+//! and [`cpu_clock`] are leaves. Nothing below [`stage`] reads a scene file
+//! or writes a result.
+//!
+//! - [`element`]: the contact element of one position (slices, compliance
+//!   from the stiffness files, Weber–Banaschek, the contact problem, edge
+//!   contact);
+//! - [`ltca`]: the element over a sweep of positions;
+//! - [`bearings`]: compliant supports and the LTCA on the pose they give;
+//! - [`multibody`]: the element tabulated as a force element, the Hertz
+//!   impact law, the equations of motion and their time stepping, on rigid
+//!   or compliant bearings;
+//! - [`lumped`]: the 8-DOF lumped model of seeds 003 and 004 driven by our
+//!   LTCA;
+//! - [`signal`]: spectrogram and run-up order analysis;
+//! - [`stage`]: `solver plan | ltca | dynamic | lumped | sensitivity`, with
+//!   [`stage::context`] loading what every stage shares.
 
-pub mod backlash;
 pub mod bearings;
-pub mod compliance;
-pub mod compliant_multibody;
-pub mod compliant_stage;
-pub mod contact_problem;
 pub mod cpu_clock;
-pub mod dynamic_stage;
-pub mod edge_contact;
-pub mod impact_law;
-pub mod impact_table;
-pub mod interp;
-pub mod lag_shift;
-pub mod load_run;
+pub mod element;
 pub mod ltca;
-pub mod ltca_stage;
 pub mod lumped;
-pub mod lumped_order_map;
-pub mod lumped_plots;
-pub mod lumped_roughness;
-pub mod lumped_stage;
-pub mod mesh_table;
 pub mod multibody;
-pub mod plan;
-pub mod relative_twist;
-pub mod runup_orders;
-pub mod sensitivity_stage;
-pub mod slices;
-pub mod spectrum;
-pub mod system_deflection;
-pub mod time_step;
-pub mod weber_banaschek;
+pub mod signal;
+pub mod stage;
 
 /// Errors of the contact element and the LTCA.
 #[derive(Debug, thiserror::Error)]

@@ -6,12 +6,12 @@
 //! rad, positive = the wheel lags. Geometry and compliance of a position do
 //! not depend on the load, so they are computed once for all torques.
 
-use crate::compliance::PairCompliance;
-use crate::contact_problem::{ContactProblem, ContactSolution};
 use crate::cpu_clock::timed;
-use crate::edge_contact::{position_edge, EdgeHit};
-use crate::slices::{pair_slices, Slice};
-use crate::weber_banaschek::{contact_modulus, half_width, LineContact};
+use crate::element::compliance::PairCompliance;
+use crate::element::contact_problem::{ContactProblem, ContactSolution};
+use crate::element::edge_contact::{position_edge, EdgeHit};
+use crate::element::slices::{pair_slices, Slice};
+use crate::element::weber_banaschek::{contact_modulus, half_width, LineContact};
 use crate::SolverError;
 use geometry::pair::{pairs_in_contact, FlankPair};
 use geometry::utca::RollSurface;

@@ -74,8 +74,8 @@ fn main() -> anyhow::Result<()> {
         Cmd::Plan { scene, out } => {
             let s = geometry::scene::Scene::load(&scene)?;
             let plans = match &out {
-                Some(o) => solver::plan::write_plan_set(&s, o)?,
-                None => solver::plan::plan(&s)?,
+                Some(o) => solver::stage::plan::write_plan_set(&s, o)?,
+                None => solver::stage::plan::plan(&s)?,
             };
             for p in &plans {
                 let (lo, hi) = p.positions.iter().fold((usize::MAX, 0), |(a, b), q| {
@@ -92,7 +92,7 @@ fn main() -> anyhow::Result<()> {
         }
         Cmd::Dynamic { scene, meshes, out } => {
             let s = geometry::scene::Scene::load(&scene)?;
-            let res = solver::dynamic_stage::run(&s, &meshes, &out)?;
+            let res = solver::stage::dynamic::run(&s, &meshes, &out)?;
             for b in &res {
                 for q in &b.quasi_static {
                     println!(
@@ -104,7 +104,7 @@ fn main() -> anyhow::Result<()> {
         }
         Cmd::Lumped { scene, meshes, out } => {
             let s = geometry::scene::Scene::load(&scene)?;
-            for b in solver::lumped_stage::run(&s, &meshes, &out)? {
+            for b in solver::stage::lumped::run(&s, &meshes, &out)? {
                 let a = &b.rms_acceleration_m_s2;
                 println!(
                     "{:?}/{:?}: RMS acceleration m/s² pinion X {:.2} Y {:.2} Z {:.2}, wheel X {:.2} Y {:.2} Z {:.2}, mesh normal {:.2}; impact {:.0} N",
@@ -114,7 +114,7 @@ fn main() -> anyhow::Result<()> {
         }
         Cmd::Sensitivity { scene, meshes, out } => {
             let s = geometry::scene::Scene::load(&scene)?;
-            let r = solver::sensitivity_stage::run(&s, &meshes, &out)?;
+            let r = solver::stage::sensitivity::run(&s, &meshes, &out)?;
             for c in &r.curves {
                 for p in &c.points {
                     let l = &p.loads[p.loads.len() - 1];
@@ -128,7 +128,7 @@ fn main() -> anyhow::Result<()> {
         }
         Cmd::Ltca { scene, meshes, out } => {
             let s = geometry::scene::Scene::load(&scene)?;
-            let res = solver::ltca_stage::run(&s, &meshes, &out)?;
+            let res = solver::stage::ltca::run(&s, &meshes, &out)?;
             for b in &res {
                 println!(
                     "{:?} pinion / {:?} wheel: {} positions -> {}",

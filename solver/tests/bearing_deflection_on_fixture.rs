@@ -1,4 +1,4 @@
-//! Quasi-static LTCA with compliant bearings ([`solver::system_deflection`])
+//! Quasi-static LTCA with compliant bearings ([`solver::bearings::system_deflection`])
 //! on the checked-in example-02 stiffness fixture (no gmsh): stiff bearings
 //! give the rigid-bearing TE, the bearing reactions balance the contact's
 //! wrench and the contact torque is the applied torque, and the TE added by
@@ -8,7 +8,9 @@
 mod fixture;
 
 use fixture::{supports, Fixture};
-use solver::system_deflection::{deflected_position, DeflectedPosition, DeflectionSettings};
+use solver::bearings::system_deflection::{
+    deflected_position, DeflectedPosition, DeflectionSettings,
+};
 
 const TORQUE_NM: f64 = 300.0;
 

@@ -1,8 +1,8 @@
-//! The multibody with compliant bearings ([`solver::compliant_multibody`])
+//! The multibody with compliant bearings ([`solver::multibody::compliant`])
 //! on the checked-in example-02 stiffness fixture (no gmsh): the map of the
 //! members' displacements onto the contact coordinates against finite poses,
 //! the rigid-bearing limit against today's multibody, a slow run against the
-//! quasi-static LTCA on the deflected poses ([`solver::system_deflection`]),
+//! quasi-static LTCA on the deflected poses ([`solver::bearings::system_deflection`]),
 //! and the balance of bearing forces, mesh wrench and inertia every step.
 
 #[path = "support/compliant.rs"]
@@ -13,13 +13,15 @@ mod fixture;
 use compliant::{bodies, supports, Compliant};
 use geometry::misalignment::{BodyPoses, Misalignment, Pose};
 use nalgebra::{Rotation3, Vector3, Vector6};
-use solver::compliant_multibody::{
+use solver::bearings::relative_twist::TwistMap;
+use solver::bearings::system_deflection::{
+    deflected_position, displacement_pose, DeflectionSettings,
+};
+use solver::multibody::compliant::{
     integrate as c_integrate, CState, CompliantIntegrator, CompliantModel,
 };
-use solver::multibody::{wheel_driven, Drive, Model, Ramp};
-use solver::relative_twist::TwistMap;
-use solver::system_deflection::{deflected_position, displacement_pose, DeflectionSettings};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::multibody::model::{wheel_driven, Drive, Model, Ramp};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
 
 const TORQUE_NM: f64 = 300.0;
@@ -56,7 +58,7 @@ fn small_displacements_map_onto_member_turns_and_misalignments_as_finite_poses_c
         let (p, w) = (d1 * eps, d2 * eps);
         let c = map.of_displacements(&p, &w);
         let pose = |d: &Vector6<f64>| {
-            displacement_pose(&solver::bearings::Displacement {
+            displacement_pose(&solver::bearings::support::Displacement {
                 translation: Vector3::new(d[0], d[1], d[2]),
                 rotation: Vector3::new(d[3], d[4], d[5]),
             })
@@ -177,7 +179,7 @@ fn slow_run_on_compliant_bearings_follows_the_quasi_static_ltca_on_the_deflected
     let sup = supports(&c.f.g, k);
     let mut cm = CompliantModel::new(rigid, &c.shift, bodies(&c.f.g, &sup, 5e3), c.hand).unwrap();
     if std::env::var("UNLOADED_SHIFT").is_ok() {
-        cm.bearing_load = solver::compliant_multibody::BearingLoad::UnloadedShift;
+        cm.bearing_load = solver::multibody::compliant::BearingLoad::UnloadedShift;
     }
     let t_end = c.table.span() / (WHEEL_10_RPM / c.ratio);
     let states = run(&cm, t_end, 2e-4);
@@ -216,7 +218,7 @@ fn slow_run_on_compliant_bearings_follows_the_quasi_static_ltca_on_the_deflected
         if std::env::var("DIAGNOSE").is_ok() {
             // The model's TE on the LTCA's converged displacements: the
             // rigid loaded lag + s·m − (r δq₁ − δq₂).
-            let dv = |d: &solver::bearings::Displacement| {
+            let dv = |d: &solver::bearings::support::Displacement| {
                 Vector6::new(
                     d.translation.x,
                     d.translation.y,

@@ -10,10 +10,11 @@ use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
-use solver::edge_contact::{profile_length_per_eta, slice_edges};
+use solver::element::compliance::PairCompliance;
+use solver::element::edge_contact::{profile_length_per_eta, slice_edges};
 use solver::ltca::{geometry as slice_geometry, run, PositionResult};
-use solver::ltca_stage::{first_edge_contact, member_compliance, scene_sweep, Edge};
+use solver::stage::context::{member_compliance, scene_sweep};
+use solver::stage::ltca::{first_edge_contact, Edge};
 use std::path::{Path, PathBuf};
 
 fn fixture() -> PathBuf {

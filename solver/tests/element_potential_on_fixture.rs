@@ -10,9 +10,9 @@
 mod fixture;
 
 use fixture::Fixture;
-use solver::mesh_table::MeshTable;
-use solver::multibody::{Drive, Model, Ramp};
-use solver::time_step::{discrete_gradient, integrate, Integrator, Scheme, StepControl};
+use solver::multibody::mesh_table::MeshTable;
+use solver::multibody::model::{Drive, Model, Ramp};
+use solver::multibody::time_step::{discrete_gradient, integrate, Integrator, Scheme, StepControl};
 
 /// The fixture's table over one mesh cycle in 0.5° steps, up to 600 N·m.
 fn table(f: &Fixture) -> MeshTable {

@@ -66,7 +66,7 @@ fn example_02_ltca_from_the_stiffness_fixture_matches_its_golden_output() {
     let scratch = Scratch(
         Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("example_02_{}", std::process::id())),
     );
-    let res = solver::ltca_stage::run(&scene, &meshes, &scratch.0).unwrap_or_else(|e| {
+    let res = solver::stage::ltca::run(&scene, &meshes, &scratch.0).unwrap_or_else(|e| {
         panic!(
             "{e:#}\n(if the stiffness fixture is stale, run examples/02_ltca_fixture/regenerate.sh)"
         )
@@ -171,7 +171,7 @@ fn example_02_ltca_from_the_stiffness_fixture_matches_its_golden_output() {
 
     golden::check(
         &dir.join("golden.json"),
-        "examples/02_ltca_fixture: solver::ltca_stage::run on examples/02_ltca_fixture/scene.toml from the stiffness fixture in its meshes/ (test solver/tests/example_02_ltca_fixture.rs)",
+        "examples/02_ltca_fixture: solver::stage::ltca::run on examples/02_ltca_fixture/scene.toml from the stiffness fixture in its meshes/ (test solver/tests/example_02_ltca_fixture.rs)",
         &q,
     );
 }

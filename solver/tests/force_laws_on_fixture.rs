@@ -22,11 +22,11 @@ mod example;
 
 use geometry::pair::PairGeometry;
 use geometry::scene::{ImpactSettings, LoadRun};
-use solver::dynamic_stage::impact_law;
-use solver::load_run::{drive, simulate, time_mean, whole_cycles};
-use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::Model;
-use solver::time_step::{Integrator, Scheme, StepControl};
+use solver::multibody::impact_law::from_settings as impact_law;
+use solver::multibody::load_run::{drive, simulate, time_mean, whole_cycles};
+use solver::multibody::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::model::Model;
+use solver::multibody::time_step::{Integrator, Scheme, StepControl};
 
 struct Outcome {
     speed_error: f64,
@@ -49,7 +49,7 @@ struct Fixture {
     rs: geometry::utca::RollSurface,
     side: geometry::generation::Side,
     spec: TableSpec,
-    law: solver::impact_law::ImpactLaw,
+    law: solver::multibody::impact_law::ImpactLaw,
 }
 
 fn fixture(settings: &ImpactSettings) -> Fixture {
@@ -63,7 +63,8 @@ fn fixture(settings: &ImpactSettings) -> Fixture {
     let fp = g.side(side);
     let (law, friction, _) = impact_law(&g.data, settings);
     let impact =
-        solver::impact_table::build(fp, &rs, &g.frames[0], ratio, spec, law, friction).unwrap();
+        solver::multibody::impact_table::build(fp, &rs, &g.frames[0], ratio, spec, law, friction)
+            .unwrap();
     Fixture {
         element,
         impact,
@@ -117,7 +118,7 @@ fn run_both() -> [Outcome; 2] {
         if table.impact.is_none() {
             // 5 % of critical on the mesh mode at the balance under load.
             let loaded = Model {
-                drive: solver::multibody::Drive::Free {
+                drive: solver::multibody::model::Drive::Free {
                     pinion_torque: 300.0,
                     wheel_torque: run.wheel_torque_nm,
                 },
@@ -145,7 +146,7 @@ fn run_both() -> [Outcome; 2] {
                 .map(|(_, v)| (v - kin).abs())
                 .fold(0.0, f64::max);
         let torque = time_mean(&tr.t, &tr.wheel_torque, w.from, w.to);
-        let w2 = |t: f64| solver::multibody::interpolate(&tr.t, &tr.w2, t);
+        let w2 = |t: f64| solver::multibody::model::interpolate(&tr.t, &tr.w2, t);
         Outcome {
             speed_error: (mean - kin) / kin,
             speed_fluctuation: fl / kin,
@@ -198,7 +199,7 @@ fn impact_law_table_keeps_the_energy_without_damping_and_friction() {
         inertia: f.inertia,
         damping: 0.0,
         friction: 0.0,
-        drive: solver::multibody::Drive::Free {
+        drive: solver::multibody::model::Drive::Free {
             pinion_torque: t1,
             wheel_torque: t1 / f.ratio,
         },
@@ -218,7 +219,7 @@ fn impact_law_table_keeps_the_energy_without_damping_and_friction() {
         },
     );
     let (mut worst, mut v_max, mut steps) = (0.0f64, 0.0f64, 0);
-    solver::time_step::integrate(&m, s, &mut integ, 0.01, |st| {
+    solver::multibody::time_step::integrate(&m, s, &mut integ, 0.01, |st| {
         worst = worst.max((m.energy(st)? - e0).abs());
         v_max = v_max.max(m.potential(st.q)?);
         steps += 1;
@@ -261,7 +262,7 @@ fn impact_law_damping_only_takes_energy_out() {
         inertia: f.inertia,
         damping: 0.0,
         friction: 0.0,
-        drive: solver::multibody::Drive::Free {
+        drive: solver::multibody::model::Drive::Free {
             pinion_torque: t1,
             wheel_torque: t1 / f.ratio,
         },
@@ -279,7 +280,7 @@ fn impact_law_damping_only_takes_energy_out() {
         },
     );
     let (mut last, mut rise) = (e0, 0.0f64);
-    let (end, _) = solver::time_step::integrate(&m, s, &mut integ, 0.01, |st| {
+    let (end, _) = solver::multibody::time_step::integrate(&m, s, &mut integ, 0.01, |st| {
         let e = m.energy(st)?;
         rise = rise.max(e - last);
         last = e;
@@ -314,8 +315,8 @@ fn impact_law_table_reproduces_the_law_between_its_nodes() {
         let phi = f.spec.start + f.spec.direction * q1;
         let geo = solver::ltca::geometry(fp, &f.rs, phi, pitch, f.spec.slices);
         for torque in [30.0, 100.0, 300.0, 550.0] {
-            let theta = solver::impact_table::lag_for(&geo, &f.law, torque).unwrap();
-            let direct = solver::impact_table::torque_at(&geo, &f.law, theta);
+            let theta = solver::multibody::impact_table::lag_for(&geo, &f.law, torque).unwrap();
+            let direct = solver::multibody::impact_table::torque_at(&geo, &f.law, theta);
             let table = f.impact.state(q1, f.ratio * q1 - theta).unwrap().grad[0];
             let err = (table / direct - 1.0).abs();
             if err > worst {
@@ -345,7 +346,7 @@ fn impact_law_damping_and_friction_never_feed_power_into_the_mesh() {
         inertia: f.inertia,
         damping: 0.0,
         friction: 0.0,
-        drive: solver::multibody::Drive::Free {
+        drive: solver::multibody::model::Drive::Free {
             pinion_torque: 300.0,
             wheel_torque: 300.0 / f.ratio,
         },

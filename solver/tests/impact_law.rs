@@ -1,10 +1,10 @@
-//! The impact-function contact law (`solver::impact_law`): ADAMS's cubic
+//! The impact-function contact law (`solver::multibody::impact_law`): ADAMS's cubic
 //! STEP at its ends, one impact of two point masses integrated numerically
 //! against the closed forms (undamped Hertz: contact time, peak force;
 //! energy kept with C = 0; restitution from the damping), the friction
 //! coefficient's transitions, and the seeds' Hertz stiffness recomputed.
 
-use solver::impact_law::{
+use solver::multibody::impact_law::{
     effective_modulus, gamma, restitution_estimate, seed_001_stiffness,
     seed_002_back_cone_stiffness, seed_002_stiffness, single_impact, step, step_with_slope,
     Friction, ImpactLaw,

@@ -1,4 +1,4 @@
-//! Seed 004's TE slope as an ease-off variant (`solver::lumped_stage::varied`
+//! Seed 004's TE slope as an ease-off variant (`solver::stage::lumped::varied`
 //! on seed 004's 23/86 design, no meshes needed): m′₂₁ sets the parabolic
 //! motion error A = ½|m′₂₁|(τ/2)² (wheel side, at ±half a mesh cycle
 //! τ = 2π/23), and the unloaded TE of our UTCA grows with the difference
@@ -15,7 +15,7 @@ use geometry::pair::PairGeometry;
 use geometry::scene::Scene;
 use geometry::scene_lumped::DesignVariant;
 use geometry::utca::{roll_surface, sweep};
-use solver::lumped_stage::varied;
+use solver::stage::lumped::varied;
 use std::path::Path;
 
 #[test]

@@ -20,10 +20,10 @@ use geometry::pair::PairGeometry;
 use geometry::scene::Scene;
 use geometry::utca::roll_surface;
 use solver::ltca::{geometry, SliceLoad};
-use solver::ltca_stage::scene_sweep;
 use solver::lumped::friction::per_unit_force;
+use solver::lumped::friction::slice_friction;
 use solver::lumped::model::{direction_cosines, WheelHand};
-use solver::lumped_stage::slice_friction;
+use solver::stage::context::scene_sweep;
 use std::path::Path;
 
 /// (angle with the flank's spiral sign, angle with the hand's), deg.

@@ -27,12 +27,12 @@ use fixture::Fixture;
 
 use solver::ltca::geometry;
 use solver::lumped::excitation::{MeshExcitation, StaticError};
+use solver::lumped::friction::slice_friction;
 use solver::lumped::friction::{per_unit_force, FrictionExcitation};
 use solver::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques};
 use solver::lumped::integrate::Equations;
 use solver::lumped::model::{direction_cosines, mesh_damping_for_ratio, Member, Model, WheelHand};
 use solver::lumped::run::simulate;
-use solver::lumped_stage::slice_friction;
 
 #[test]
 fn lumped_friction_from_the_ltca_is_tangent_dissipative_and_keeps_the_torque_balance() {

@@ -1,5 +1,5 @@
 //! Seed 003's roughness grades as the pair's topography
-//! (`solver::lumped_roughness::roughened`) on seed 003's 16/27 design (no
+//! (`solver::lumped::roughness::roughened`) on seed 003's 16/27 design (no
 //! meshes needed): the grid of 41 profile nodes carries exactly the W–M
 //! terms whose wavelength is at least two node spacings (counted here from
 //! the W–M frequencies λ_c γ⁻ⁿ, γ = 1.5, λ_c = 0.8 mm), Rq of the carried
@@ -12,7 +12,7 @@
 use geometry::pair::PairGeometry;
 use geometry::roughness::WmProfile;
 use geometry::scene::Scene;
-use solver::lumped_roughness::roughened;
+use solver::lumped::roughness::roughened;
 use std::path::Path;
 
 #[test]

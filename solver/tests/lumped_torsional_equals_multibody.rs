@@ -1,6 +1,6 @@
 //! Verification 1 of issue 31, its second half: with the bearings rigid
 //! and no impact, the 8-DOF model's torsional response equals today's
-//! multibody run (`solver::multibody`, the tabulated contact element) fed
+//! multibody run (`solver::multibody::model`, the tabulated contact element) fed
 //! the same mesh stiffness. Example 02's fixture (white-paper pair,
 //! standard blanks), 300 N·m on the pinion, both members free with
 //! balancing torques, turning at the speed where the mesh frequency is
@@ -60,8 +60,8 @@ use fixture::Fixture;
 use solver::lumped::excitation::{fit_to_tolerance, MeshExcitation, StaticError};
 use solver::lumped::integrate::{integrate as lumped_integrate, Equations, Settings};
 use solver::lumped::model::{Member as LumpedMember, Model as LumpedModel};
-use solver::multibody::{interpolate, Drive, Model, State};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::multibody::model::{interpolate, Drive, Model, State};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
 
 const TORQUE_NM: f64 = 300.0;

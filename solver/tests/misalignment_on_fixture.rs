@@ -8,10 +8,10 @@ use geometry::misalignment::{Component, Misalignment};
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::{roll_surface, sweep as utca_sweep};
-use solver::compliance::PairCompliance;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{run, PositionResult};
-use solver::ltca_stage::{member_compliance, scene_sweep};
-use solver::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::mesh_table::{MeshTable, TableSpec};
+use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::{Path, PathBuf};
 
 fn fixture() -> (LoadedScene, PathBuf) {

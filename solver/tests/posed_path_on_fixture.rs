@@ -185,7 +185,8 @@ fn tooth_pairs_outside_the_aligned_roll_range_stay_clear_at_300_nm() {
             let phi = f.sweep.start + f.sweep.direction * f.sweep.step * k as f64;
             let inside = geometry::pair::pairs_in_contact(phi, fp.roll_range, tau);
             for j in [inside[0] - 1, inside[inside.len() - 1] + 1] {
-                let Some(ps) = solver::slices::pair_slices(fp, &rs, phi, tau, j, f.sweep.slices)
+                let Some(ps) =
+                    solver::element::slices::pair_slices(fp, &rs, phi, tau, j, f.sweep.slices)
                 else {
                     continue;
                 };

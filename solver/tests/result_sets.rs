@@ -60,7 +60,7 @@ fn ltca_run_is_one_set_with_run_json_and_summaries_naming_the_final_paths() {
     let tmp = Scratch::new("one_set");
     let sc = scene(tmp.path(), |t| t);
     let out = tmp.path().join("out");
-    let res = solver::ltca_stage::run(&sc, &example().join("meshes"), &out).unwrap();
+    let res = solver::stage::ltca::run(&sc, &example().join("meshes"), &out).unwrap();
     let set = out.join("ltca_fixture/ltca");
     assert_eq!(res[0].dir, set.join("standard_standard"));
     assert!(res[0].dir.join("te.csv").is_file());
@@ -89,7 +89,7 @@ fn ltca_run_failing_on_its_second_blank_leaves_the_previous_set_untouched_and_no
     let tmp = Scratch::new("second_blank");
     let meshes = example().join("meshes");
     let out = tmp.path().join("out");
-    solver::ltca_stage::run(&scene(tmp.path(), |t| t), &meshes, &out).unwrap();
+    solver::stage::ltca::run(&scene(tmp.path(), |t| t), &meshes, &out).unwrap();
     let set = out.join("ltca_fixture/ltca");
     let before = files(&set);
 
@@ -102,7 +102,7 @@ fn ltca_run_failing_on_its_second_blank_leaves_the_previous_set_untouched_and_no
             "pinion = [\"standard\", \"lightweight\"]",
         )
     });
-    let err = solver::ltca_stage::run(&two, &meshes, &out).unwrap_err();
+    let err = solver::stage::ltca::run(&two, &meshes, &out).unwrap_err();
     let msg = format!("{err:#}");
     assert!(msg.contains("lightweight"), "not the second blank: {msg}");
     assert_eq!(files(&set), before, "the previous set changed");
@@ -115,7 +115,7 @@ fn ltca_into_an_output_another_run_is_writing_is_refused_naming_it() {
     let out = tmp.path().join("out");
     let set = out.join("ltca_fixture/ltca");
     let other = ResultSet::begin(&set, "solver ltca other.toml").unwrap();
-    let err = solver::ltca_stage::run(&scene(tmp.path(), |t| t), &example().join("meshes"), &out)
+    let err = solver::stage::ltca::run(&scene(tmp.path(), |t| t), &example().join("meshes"), &out)
         .unwrap_err();
     let msg = format!("{err:#}");
     for part in [
@@ -139,13 +139,13 @@ fn ltca_and_dynamic_into_an_unwritable_output_are_refused_before_work() {
     let sc = scene(tmp.path(), |t| {
         t.replace("multibody = false", "multibody = true")
     });
-    let err = solver::ltca_stage::run(&sc, &meshes, &out).unwrap_err();
+    let err = solver::stage::ltca::run(&sc, &meshes, &out).unwrap_err();
     let msg = format!("{err:#}");
     assert!(
         msg.contains(&out.join("ltca_fixture").display().to_string()),
         "{msg}"
     );
-    let err = solver::dynamic_stage::run(&sc, &meshes, &out).unwrap_err();
+    let err = solver::stage::dynamic::run(&sc, &meshes, &out).unwrap_err();
     let msg = format!("{err:#}");
     assert!(
         msg.contains(&out.join("ltca_fixture").display().to_string()),
@@ -158,7 +158,7 @@ fn plan_is_one_set_listing_its_checksum_and_the_scene_and_design_it_came_from() 
     let tmp = Scratch::new("plan");
     let sc = scene(tmp.path(), |t| t);
     let out = tmp.path().join("plan");
-    let plans = solver::plan::write_plan_set(&sc, &out).unwrap();
+    let plans = solver::stage::plan::write_plan_set(&sc, &out).unwrap();
     assert!(!plans.is_empty());
     let info = formats::result_set::verify_files(&out).unwrap().unwrap();
     assert!(info.files.contains_key("plan.json"), "{:?}", info.files);
@@ -172,7 +172,7 @@ fn plan_is_one_set_listing_its_checksum_and_the_scene_and_design_it_came_from() 
     assert!(err.to_string().contains("changed since run"), "{err}");
     // A run on an edited scene replaces the set and records the new scene.
     let edited = scene(tmp.path(), |t| t + "\n# edited\n");
-    solver::plan::write_plan_set(&edited, &out).unwrap();
+    solver::stage::plan::write_plan_set(&edited, &out).unwrap();
     let again = formats::result_set::verify_files(&out).unwrap().unwrap();
     assert_ne!(again.inputs["scene"], info.inputs["scene"]);
     assert_eq!(again.inputs["design"], info.inputs["design"]);
@@ -200,7 +200,7 @@ fn ltca_with_bearings_writes_bearings_csv_and_the_deflected_loads_into_the_set()
     let out = tmp.path().join("out");
     // Bearings far stiffer than the mesh: the TE is the rigid one.
     let stiff = scene(tmp.path(), |t| t + &bearings_table(1e14));
-    let res = solver::ltca_stage::run(&stiff, &meshes, &out).unwrap();
+    let res = solver::stage::ltca::run(&stiff, &meshes, &out).unwrap();
     let b = res[0].bearings.as_ref().expect("bearings summary");
     assert_eq!(b.len(), 2);
     for l in b {
@@ -221,7 +221,7 @@ fn ltca_with_bearings_writes_bearings_csv_and_the_deflected_loads_into_the_set()
     assert!(info.files.contains_key("standard_standard/bearings.csv"));
     // Soft bearings add TE, more at the larger torque.
     let soft = scene(tmp.path(), |t| t + &bearings_table(3e8));
-    let res = solver::ltca_stage::run(&soft, &meshes, &out).unwrap();
+    let res = solver::stage::ltca::run(&soft, &meshes, &out).unwrap();
     let b = res[0].bearings.as_ref().unwrap();
     let added: Vec<f64> = b
         .iter()
@@ -240,7 +240,7 @@ fn dynamic_with_bearings_writes_the_compliant_runs_into_the_set() {
             + &bearings_table(1e9)
             + "\n[multibody]\ntable_step_deg = 1.0\ntable_lag_nodes = 24\nrunup_time_s = 0.01\nrunup_rpm = [0.0, 300.0]\n"
     });
-    let res = solver::dynamic_stage::run(&sc, &meshes, &out).unwrap();
+    let res = solver::stage::dynamic::run(&sc, &meshes, &out).unwrap();
     let c = res[0].compliant.as_ref().expect("compliant-bearing runs");
     let cases: Vec<&str> = c.runs.iter().map(|r| r.case.as_str()).collect();
     assert_eq!(cases, ["10 rpm", "10 rpm", "run-up"]);

@@ -1,11 +1,11 @@
-//! The run-up's angle-domain order analysis (`solver::runup_orders`) on a
+//! The run-up's angle-domain order analysis (`solver::signal::runup_orders`) on a
 //! synthetic run-up whose orders are known in closed form: a linear speed
 //! ramp q(t) = a t²/2 and a wheel bearing force with a mesh order, its
 //! per-wheel-revolution modulation (the lightweight wheel's hole family and
 //! side bands) and a low order.
 
-use solver::lumped_order_map::marked_orders;
-use solver::runup_orders::{line_amplitude, windows};
+use solver::signal::runup_orders::marked_orders;
+use solver::signal::runup_orders::{line_amplitude, windows};
 use std::f64::consts::PI;
 
 const Z: [usize; 2] = [20, 43];

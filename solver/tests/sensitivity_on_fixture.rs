@@ -38,7 +38,7 @@ fn sensitivity_study_sweeps_each_misalignment_around_the_aligned_ltca() {
         .map(|e| std::fs::read(e.unwrap().path()).unwrap())
         .collect();
     let out = Scratch::new("sensitivity_study");
-    let s = solver::sensitivity_stage::run(&scene, &meshes, out.path()).unwrap();
+    let s = solver::stage::sensitivity::run(&scene, &meshes, out.path()).unwrap();
     let after: Vec<_> = std::fs::read_dir(&fixture)
         .unwrap()
         .map(|e| std::fs::read(e.unwrap().path()).unwrap())
@@ -47,7 +47,7 @@ fn sensitivity_study_sweeps_each_misalignment_around_the_aligned_ltca() {
     let sdir = out.path().join(&scene.scene.name).join("sensitivity");
     for f in ["summary.json", "summary.csv", "run.json"]
         .into_iter()
-        .chain(solver::sensitivity_stage::CHART_FILES.iter().map(|c| c.0))
+        .chain(solver::stage::sensitivity::CHART_FILES.iter().map(|c| c.0))
     {
         assert!(sdir.join(f).is_file(), "{f} missing");
     }
@@ -56,7 +56,7 @@ fn sensitivity_study_sweeps_each_misalignment_around_the_aligned_ltca() {
     assert_eq!(csv.lines().count(), 1 + 4 * 9 * torques);
     // The aligned LTCA of the same scene.
     let ltca_out = Scratch::new("sensitivity_ltca");
-    let ltca = solver::ltca_stage::run(&scene, &meshes, ltca_out.path()).unwrap();
+    let ltca = solver::stage::ltca::run(&scene, &meshes, ltca_out.path()).unwrap();
     assert_eq!(s.curves.len(), 4);
     for (c, curve) in Component::ALL.iter().zip(&s.curves) {
         assert_eq!(curve.component, *c);

@@ -15,12 +15,12 @@ use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, Scene};
 use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
-use solver::dynamic_stage::inertia;
-use solver::ltca_stage::{member_compliance, scene_sweep};
-use solver::mesh_table::{lag_grid, MeshTable, TableSpec};
-use solver::multibody::{interpolate, wheel_driven, Model};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::element::compliance::PairCompliance;
+use solver::multibody::mesh_table::{lag_grid, MeshTable, TableSpec};
+use solver::multibody::model::{interpolate, wheel_driven, Model};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::stage::context::inertia;
+use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::{Path, PathBuf};
 
 fn fixture() -> PathBuf {
@@ -91,7 +91,7 @@ fn pair(lag_nodes: usize, torque_max_nm: f64) -> Pair {
 fn run_10rpm(
     p: &Pair,
     m: &Model,
-    s: solver::multibody::State,
+    s: solver::multibody::model::State,
     tolerance: f64,
 ) -> (Vec<f64>, usize) {
     let mut integ = Integrator::new(
@@ -140,8 +140,8 @@ fn multibody_at_0_and_1e_6_nm_is_refused_and_above_the_holding_torque_follows_th
         let mut last = f64::NEG_INFINITY;
         for torque in [1e-6, 1e-5, 1e-3, 0.1, 1.0] {
             let m = Model {
-                drive: solver::multibody::Drive::WheelSpeed {
-                    speed: solver::multibody::Ramp {
+                drive: solver::multibody::model::Drive::WheelSpeed {
+                    speed: solver::multibody::model::Ramp {
                         from: p.wheel_speed,
                         to: p.wheel_speed,
                         duration: 0.0,
@@ -264,7 +264,7 @@ fn te_tolerance_1e_9_urad_is_refused_at_load_and_the_step_control_does_not_stall
 /// twice the limit and runs ahead across the lag grid far below it.
 #[test]
 fn runup_holding_torque_keeps_the_wheel_on_the_flanks_above_it_and_not_far_below_it() {
-    use solver::multibody::{Drive, Ramp};
+    use solver::multibody::model::{Drive, Ramp};
     let p = pair(96, 600.0);
     let holding = |rpm: f64| {
         let m = Model {

@@ -63,10 +63,10 @@ fn utca_only_scene_meshes_nothing_and_runs_no_loaded_stage() {
     assert!(preprocess::stiffness_stage::run(&scene, &meshes)
         .unwrap()
         .is_empty());
-    assert!(solver::ltca_stage::run(&scene, &meshes, &out)
+    assert!(solver::stage::ltca::run(&scene, &meshes, &out)
         .unwrap()
         .is_empty());
-    assert!(solver::dynamic_stage::run(&scene, &meshes, &out)
+    assert!(solver::stage::dynamic::run(&scene, &meshes, &out)
         .unwrap()
         .is_empty());
     assert!(validate::reference_stage::run(
@@ -149,10 +149,10 @@ fn ltca_false_and_multibody_false_skip_their_stages_with_meshes_present() {
     assert!(preprocess::stiffness_stage::run(&scene, &meshes)
         .unwrap()
         .is_empty());
-    assert!(solver::ltca_stage::run(&scene, &meshes, &out)
+    assert!(solver::stage::ltca::run(&scene, &meshes, &out)
         .unwrap()
         .is_empty());
-    assert!(solver::dynamic_stage::run(&scene, &meshes, &out)
+    assert!(solver::stage::dynamic::run(&scene, &meshes, &out)
         .unwrap()
         .is_empty());
     assert!(!out.exists());

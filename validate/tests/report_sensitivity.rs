@@ -65,7 +65,7 @@ fn sensitivity_section_tabulates_the_summary_and_copies_its_charts() {
     std::fs::create_dir_all(&dir).unwrap();
     let s = summary();
     formats::output::write_json(&dir.join("summary.json"), &s).unwrap();
-    solver::sensitivity_stage::write_charts(&dir, &s).unwrap();
+    solver::stage::sensitivity::write_charts(&dir, &s).unwrap();
     let sec = section(Some(out.path()), Some("synthetic"), reports.path());
     assert!(sec.markdown.starts_with("## Misalignment sensitivity"));
     for c in [

@@ -18,9 +18,9 @@ fn runs_flanks_to_multibody(name: &str) {
     let stiffness = preprocess::stiffness_stage::run(&scene, &root)
         .unwrap_or_else(|e| panic!("{name}, stiffness files: {e:#}"));
     assert_eq!(stiffness.len(), 2, "{name}");
-    let ltca = solver::ltca_stage::run(&scene, &root, &out)
+    let ltca = solver::stage::ltca::run(&scene, &root, &out)
         .unwrap_or_else(|e| panic!("{name}, LTCA: {e:#}"));
-    let dynamic = solver::dynamic_stage::run(&scene, &root, &out)
+    let dynamic = solver::stage::dynamic::run(&scene, &root, &out)
         .unwrap_or_else(|e| panic!("{name}, multibody: {e:#}"));
 
     let d = &scene.pair;

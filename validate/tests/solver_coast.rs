@@ -9,13 +9,13 @@ use geometry::design::Member;
 use geometry::generation::Side;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::utca::{LineGrid, RollSurface};
-use solver::backlash::{conjugate_backlash, Coast};
-use solver::compliance::PairCompliance;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::Sweep;
-use solver::ltca_stage::coast_sweep;
-use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{Drive, Fluctuation, Impacts, Model, State};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::multibody::backlash::{conjugate_backlash, Coast};
+use solver::multibody::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::model::{Drive, Fluctuation, Impacts, Model, State};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::stage::context::coast_sweep;
 use std::sync::OnceLock;
 
 /// Circular backlash at the wheel's mean pitch radius: the normal backlash
@@ -277,7 +277,7 @@ fn damped_rattle_under_a_fluctuating_pinion_speed_stays_bounded() {
         omega: 2.0 * std::f64::consts::PI * 30.0,
     };
     // Damping for 5 % of the mesh mode at 300 N·m.
-    let loaded = solver::multibody::wheel_driven(&f.drive, INERTIA, 10.0, 300.0, 0.05, 0.0)
+    let loaded = solver::multibody::model::wheel_driven(&f.drive, INERTIA, 10.0, 300.0, 0.05, 0.0)
         .unwrap()
         .0
         .damping;

@@ -11,9 +11,9 @@ use geometry::design::Member;
 use geometry::generation::Side;
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::utca::{LineGrid, RollSurface};
-use solver::compliance::PairCompliance;
+use solver::element::compliance::PairCompliance;
+use solver::element::slices::sliding_velocity;
 use solver::ltca::{assemble, geometry, mean_ptp, run, solve, Sweep};
-use solver::slices::sliding_velocity;
 use std::sync::OnceLock;
 
 struct Fixture {
@@ -26,7 +26,7 @@ fn member(
     g: &PairGeometry,
     m: Member,
     refined: Vec<usize>,
-) -> solver::compliance::MemberCompliance {
+) -> solver::element::compliance::MemberCompliance {
     let body = common::mesh(g, m, &refined, &[], "drive");
     common::compliance(g, &body, m, Side::Drive, refined[refined.len() / 2])
 }
@@ -205,7 +205,7 @@ fn relative_curvature_from_the_separation_field_matches_the_flanks_principal_cur
             b.pos[2] - a.pos[2],
         ];
         let p = fp.pinion.eval_uv(s.uv[0], s.uv[1]);
-        let k_geo = solver::slices::geometric_curvature(fp, &p, line);
+        let k_geo = solver::element::slices::geometric_curvature(fp, &p, line);
         let rel = (1.0 / s.rho - k_geo).abs() / k_geo;
         worst = worst.max(rel);
         checked += 1;
@@ -221,9 +221,9 @@ fn relative_curvature_from_the_separation_field_matches_the_flanks_principal_cur
 // ---------------------------------------------------------------------------
 // Multibody: the contact element as the force element between rigid bodies.
 
-use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{interpolate, wheel_driven, Drive, Model, State};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::multibody::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::model::{interpolate, wheel_driven, Drive, Model, State};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 
 const TABLE_SLICES: usize = 20;
 /// Polar moments of inertia of the test bodies, kg·m² (test values; the
@@ -697,7 +697,7 @@ fn wheel_loaded_quasi_static_lag_with_friction_is_the_ltcas() {
             damping: 0.0,
             friction: mu,
             drive: Drive::PinionSpeed {
-                speed: solver::multibody::Ramp {
+                speed: solver::multibody::model::Ramp {
                     from: 1.0,
                     to: 1.0,
                     duration: 0.0,

@@ -7,8 +7,8 @@ use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
-use solver::ltca_stage::member_compliance;
+use solver::element::compliance::PairCompliance;
+use solver::stage::context::member_compliance;
 use std::path::PathBuf;
 use validate::stress::{cell, loaded_run, probe_table, Outcome, Study, MB_LOADS_NM};
 use validate::studies::grid_scenes::{member_fields, GridScene};
@@ -77,10 +77,10 @@ fn multibody_at_0_nm_without_coast_flanks_is_refused_and_loaded_runs_balance_the
     let (pin, pp) = member_compliance(&scene, &g, &dir, Member::Pinion, Blank::Standard).unwrap();
     let (whl, wp) = member_compliance(&scene, &g, &dir, Member::Wheel, Blank::Standard).unwrap();
     let j = [
-        solver::dynamic_stage::inertia(&scene, &g, &dir, &pp, Member::Pinion)
+        solver::stage::context::inertia(&scene, &g, &dir, &pp, Member::Pinion)
             .unwrap()
             .0,
-        solver::dynamic_stage::inertia(&scene, &g, &dir, &wp, Member::Wheel)
+        solver::stage::context::inertia(&scene, &g, &dir, &wp, Member::Wheel)
             .unwrap()
             .0,
     ];
@@ -123,7 +123,7 @@ fn deflection_to_tooth_thickness_is_zero_unloaded_and_grows_5_to_12_fold_from_30
     let pc = gs.compliance().unwrap();
     let fp = gs.g.side(scene.scene.loaded_flank);
     let rs = roll_surface(fp, &scene.scene.utca).unwrap();
-    let sweep = solver::ltca_stage::scene_sweep(&scene, &gs.g, Blank::Standard);
+    let sweep = solver::stage::context::scene_sweep(&scene, &gs.g, Blank::Standard);
     let loads = [0.0, 300.0, 3000.0];
     let res = solver::ltca::run(fp, &rs, &pc, &sweep, &loads).unwrap();
     let r: Vec<f64> = (0..3)

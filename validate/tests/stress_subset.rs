@@ -11,9 +11,9 @@ use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::roll_surface;
-use solver::compliance::PairCompliance;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{run, Sweep};
-use solver::ltca_stage::{member_compliance, scene_sweep};
+use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::{Path, PathBuf};
 use validate::stress::{cell, ltca_record, Outcome, Study, LOADS_NM, PROBE_NM, SLICES};
 

@@ -9,10 +9,10 @@
 use geometry::pair::{FlankPair, PairGeometry};
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::{roll_surface, RollSurface};
-use solver::compliance::PairCompliance;
-use solver::dynamic_stage::pair_and_inertia;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::Sweep;
-use solver::ltca_stage::scene_sweep;
+use solver::stage::context::pair_and_inertia;
+use solver::stage::context::scene_sweep;
 use std::path::{Path, PathBuf};
 
 pub struct DefaultPair {

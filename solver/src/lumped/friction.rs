@@ -6,7 +6,7 @@
 //! neither the friction direction nor the arms r_f. Here both come from
 //! our LTCA's load distribution at the operating torque: at every position
 //! the slices' normal forces Fₛ, their unit sliding directions ûₛ and
-//! friction levers (ℓ₁, ℓ₂)ₛ ([`crate::slices::friction_levers`]; the
+//! friction levers (ℓ₁, ℓ₂)ₛ ([`crate::element::slices::friction_levers`]; the
 //! friction pushes the pinion along −û and the wheel along +û) give the
 //! friction per unit total normal force
 //!
@@ -29,6 +29,7 @@
 //! usual effective roughness of a contact; seed 003 does not say which).
 
 use super::LumpedError;
+use crate::element::slices::friction_direction;
 use serde::Serialize;
 
 /// Seed 003's μ = μ₀ + μ_r R with R = √(Ra_pinion² + Ra_wheel²) in µm.
@@ -170,4 +171,43 @@ pub fn per_unit_force(
         normal: mapped.map(|m| m / len),
         angle_deg: cos.acos().to_degrees(),
     })
+}
+
+/// The friction data of one position: each loaded slice's force, sliding
+/// direction and normal on the pinion axis, the wheel axis and their cross
+/// product, and its friction levers (the loaded slice matched to the
+/// geometry's by tooth pair and (ξ, η), which the LTCA copies from it).
+/// Slices carry tooth 0's point and normal: pair j's are seen at pinion
+/// angle φ + jτ, as the slicing does.
+pub fn slice_friction(
+    fp: &geometry::pair::FlankPair,
+    phi: f64,
+    tau: f64,
+    geo: &[crate::element::slices::Slice],
+    loaded: &[crate::ltca::SliceLoad],
+) -> Vec<SliceFriction> {
+    let (pf, wf) = (&fp.pinion.gen.frame, &fp.wheel.gen.frame);
+    loaded
+        .iter()
+        .filter_map(|l| {
+            let s = geo
+                .iter()
+                .find(|s| s.pair == l.pair && s.xi == l.xi && s.eta == l.eta)?;
+            let target = phi + s.pair as f64 * tau;
+            let a2 = pf.to_member(&wf.axis(), target);
+            let ey = [a2[0], a2[1], a2[2]].map(|c| c / a2.norm());
+            let ex = [0.0, 0.0, 1.0];
+            let ez = [-ey[1], ey[0], 0.0];
+            let zn = ez[0].hypot(ez[1]);
+            let ez = ez.map(|c| c / zn);
+            let on = |v: [f64; 3]| [ex, ey, ez].map(|e| e.iter().zip(v).map(|(a, b)| a * b).sum());
+            let u = friction_direction(fp, s.pos, s.normal, target).unwrap_or([0.0; 3]);
+            Some(SliceFriction {
+                force_n: l.force_n,
+                direction: on(u),
+                normal: on(s.normal),
+                levers_m: s.friction_lever,
+            })
+        })
+        .collect()
 }

@@ -18,6 +18,7 @@ pub mod integrate;
 pub mod model;
 pub mod response;
 pub mod revolution;
+pub mod roughness;
 pub mod run;
 
 /// Errors of the lumped model.

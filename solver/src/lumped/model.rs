@@ -143,6 +143,22 @@ pub(crate) fn positive(what: &str, v: f64, zero_ok: bool) -> Result<(), LumpedEr
 }
 
 impl Model {
+    /// Natural frequencies (Hz) of the linear model at stiffness `k`, the rigid
+    /// rotation left out.
+    pub fn natural_frequencies(&self, k: f64) -> Vec<f64> {
+        let kmat = self.stiffness(k);
+        let m = self.mass_diagonal();
+        let s: Vec<f64> = m.iter().map(|x| 1.0 / x.sqrt()).collect();
+        let a = nalgebra::DMatrix::from_fn(8, 8, |i, j| s[i] * kmat[(i, j)] * s[j]);
+        let mut w: Vec<f64> = nalgebra::SymmetricEigen::new(a)
+            .eigenvalues
+            .iter()
+            .map(|l| l.max(0.0).sqrt() / (2.0 * std::f64::consts::PI))
+            .collect();
+        w.sort_by(f64::total_cmp);
+        w.into_iter().skip(1).collect()
+    }
+
     /// Checks the data: masses, moments, levers > 0; stiffness, damping,
     /// torque ≥ 0; a unit direction.
     pub fn check(&self) -> Result<(), LumpedError> {

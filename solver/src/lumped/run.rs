@@ -75,7 +75,8 @@ pub fn settings(
         atol[8 + i] = rtol * s * w;
     }
     let k_max = exc.stiffness.mean + exc.stiffness.amplitudes().iter().sum::<f64>();
-    let w_max = crate::lumped_stage::natural_frequencies(model, k_max)
+    let w_max = model
+        .natural_frequencies(k_max)
         .last()
         .map_or(0.0, |f| 2.0 * std::f64::consts::PI * f);
     let mut max_step = match exc.impact {

@@ -11,11 +11,11 @@ pub use super::fixture::supports;
 use super::fixture::Fixture;
 use geometry::generation::trace_sign;
 use geometry::pair::PairGeometry;
-use solver::bearings::Support;
-use solver::compliant_multibody::MemberBody;
-use solver::lag_shift::LagShift;
-use solver::mesh_table::MeshTable;
-use solver::system_deflection::Supports;
+use solver::bearings::support::Support;
+use solver::bearings::system_deflection::Supports;
+use solver::multibody::compliant::MemberBody;
+use solver::multibody::lag_shift::LagShift;
+use solver::multibody::mesh_table::MeshTable;
 
 pub struct Compliant {
     pub f: Fixture,
@@ -60,7 +60,7 @@ pub fn bodies(
     g: &PairGeometry,
     s: &Supports,
     c: f64,
-) -> [solver::compliant_multibody::MemberBody; 2] {
+) -> [solver::multibody::compliant::MemberBody; 2] {
     let body = |m: usize, support: &Support, mass: f64, jt: f64| MemberBody {
         support: support.clone(),
         damping: vec![(c, c); support.bearings().len()],

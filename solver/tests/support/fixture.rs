@@ -10,11 +10,11 @@ use geometry::pair::PairGeometry as Pair;
 use geometry::pair::{FlankPair, PairGeometry};
 use geometry::scene::{LoadedScene, Scene};
 use geometry::utca::{roll_surface, RollSurface};
-use solver::bearings::{Bearing, Support};
-use solver::compliance::PairCompliance;
+use solver::bearings::support::{Bearing, Support};
+use solver::bearings::system_deflection::Supports;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::Sweep;
-use solver::ltca_stage::{member_compliance, scene_sweep};
-use solver::system_deflection::Supports;
+use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::PathBuf;
 
 pub struct Fixture {
@@ -43,7 +43,7 @@ impl Fixture {
         // Compliance and polar moment (from the mesh) of a member.
         let c = |m, b| {
             let (c, plan) = member_compliance(&scene, &g, &mdir, m, b).unwrap();
-            let j = solver::dynamic_stage::inertia(&scene, &g, &mdir, &plan, m)
+            let j = solver::stage::context::inertia(&scene, &g, &mdir, &plan, m)
                 .unwrap()
                 .0;
             (c, j)
@@ -74,10 +74,10 @@ impl Fixture {
         step_deg: f64,
         lag_nodes: usize,
         torque_max_nm: f64,
-    ) -> solver::mesh_table::MeshTable {
+    ) -> solver::multibody::mesh_table::MeshTable {
         let tau = self.g.data.mesh_cycle();
         let per = (tau / step_deg.to_radians()).round() as usize;
-        let spec = solver::mesh_table::TableSpec {
+        let spec = solver::multibody::mesh_table::TableSpec {
             start: self.sweep.start,
             direction: self.sweep.direction,
             step: tau / per as f64,
@@ -89,7 +89,7 @@ impl Fixture {
         };
         let d = &self.g.data;
         let ratio = d.members[0].teeth as f64 / d.members[1].teeth as f64;
-        solver::mesh_table::MeshTable::build(
+        solver::multibody::mesh_table::MeshTable::build(
             self.fp(),
             &self.rs,
             &self.pc,

@@ -393,7 +393,7 @@ fn other_note<T>(s: Study<T>) -> Option<Result<T, String>> {
 /// Linear interpolation of (x, y) (x increasing) at `at`; None outside.
 pub fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
     let inside = !x.is_empty() && at >= x[0] && at <= x[x.len() - 1] + 1e-9;
-    inside.then(|| solver::multibody::interpolate(x, y, at))
+    inside.then(|| solver::multibody::model::interpolate(x, y, at))
 }
 
 /// Mean and peak-to-peak of the multibody TE at the positions of the

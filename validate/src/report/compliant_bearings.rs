@@ -50,7 +50,7 @@ fn mean_ptp(v: &[f64]) -> Option<(f64, f64)> {
 /// `y(x)` at `at` by linear interpolation on increasing `x`; None outside.
 fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
     (x.len() >= 2 && at >= x[0] && at <= x[x.len() - 1])
-        .then(|| solver::multibody::interpolate(x, y, at))
+        .then(|| solver::multibody::model::interpolate(x, y, at))
 }
 
 /// The bearing-force columns both CSV files share (`<member>_bearing<k>_f<d>_n`).

@@ -13,7 +13,9 @@
 
 use crate::figures::{copied, Figure};
 use formats::summaries::{DynamicSummary, ImpactLawSummary, LoadRunSummary};
-use solver::impact_law::{seed_001_stiffness, seed_002_back_cone_stiffness, SeedStiffness};
+use solver::multibody::impact_law::{
+    seed_001_stiffness, seed_002_back_cone_stiffness, SeedStiffness,
+};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -482,7 +484,7 @@ fn parameter_table(
 
 /// The Hertz stiffness recomputed from each seed's own inputs (its
 /// materials; for seed 002 also the back-cone radii), see
-/// `solver::impact_law`.
+/// `solver::multibody::impact_law`.
 fn seed_hertz(p: &SeedPublished) -> Vec<(&'static str, SeedStiffness)> {
     match p.id {
         "001" => vec![("the seed's own inputs", seed_001_stiffness())],

@@ -29,7 +29,7 @@ use std::path::Path;
 pub const RUNUP_SCENE: &str = "white_paper_lightweight_runup";
 
 /// The marked orders the comparison shows (labels of
-/// `solver::lumped_order_map::marked_orders` for 20/43 and 3 holes).
+/// `solver::signal::runup_orders::marked_orders` for 20/43 and 3 holes).
 const SHOWN: [&str; 5] = ["20", "40", "3·20/43", "20-1.40", "20+1.40"];
 
 fn read<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, String> {

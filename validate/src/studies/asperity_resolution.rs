@@ -3,7 +3,7 @@
 //! a W–M term of wavelength λₙ = λ_c γ⁻ⁿ is resolved by a grid of spacing s
 //! when λₙ ≥ 2s (two samples per wavelength). For the LTCA, s is the
 //! lumped scene's topography node spacing along the profile
-//! ([`solver::lumped_roughness::roughened`], the same call the lumped runs
+//! ([`solver::lumped::roughness::roughened`], the same call the lumped runs
 //! make); for an FE level, s is the profile length over the level's
 //! elements along the profile. The FE meshes carry no roughness at all
 //! (their flanks are the smooth generated ones): their count is only what a
@@ -88,7 +88,7 @@ pub fn resolution(
         ("medium", m.medium()),
         ("reference", m.reference),
     ];
-    let length = solver::lumped_roughness::profile_length(smooth)?;
+    let length = solver::lumped::roughness::profile_length(smooth)?;
     let fe: Vec<FeElement> = levels
         .iter()
         .map(|(name, e)| FeElement {
@@ -100,7 +100,7 @@ pub fn resolution(
     let mut grades = Vec::new();
     let mut spacing_mm = 0.0;
     for &ra in &r.ra_um {
-        let (_, s) = solver::lumped_roughness::roughened(
+        let (_, s) = solver::lumped::roughness::roughened(
             &lumped.pair,
             smooth,
             ra,

@@ -475,8 +475,8 @@ fn reduced_model_te(
     let fp = g.side(sc.loaded_flank);
     let rs = geometry::utca::roll_surface(fp, &sc.utca)?;
     let dir = meshes.join(&sc.name);
-    let load = |m| solver::ltca_stage::member_compliance(scene, g, &dir, m, Blank::Standard);
-    let pc = solver::compliance::PairCompliance {
+    let load = |m| solver::stage::context::member_compliance(scene, g, &dir, m, Blank::Standard);
+    let pc = solver::element::compliance::PairCompliance {
         pinion: load(Which::Pinion)?.0,
         wheel: load(Which::Wheel)?.0,
     };

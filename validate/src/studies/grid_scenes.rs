@@ -9,8 +9,8 @@ use formats::stiffness_plan;
 use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
-use solver::compliance::PairCompliance;
-use solver::ltca_stage::member_compliance;
+use solver::element::compliance::PairCompliance;
+use solver::stage::context::member_compliance;
 use std::path::{Path, PathBuf};
 
 /// A scene at another contact grid, loaded.

@@ -22,7 +22,7 @@
 //!
 //! G the stiffness file's global field (total − local) and w_WB the
 //! half-plane approach to the stored depth hⱼ
-//! ([`solver::weber_banaschek::body_approach`]).
+//! ([`solver::element::weber_banaschek::body_approach`]).
 
 use crate::contact_surface::{cross, dot, norm, sub, MasterSurface};
 use fem::{tri6, TetMesh};
@@ -472,7 +472,7 @@ pub fn run(
                 .collect::<anyhow::Result<_>>()?;
             let wb: Vec<f64> = (0..nf)
                 .map(|j| {
-                    solver::weber_banaschek::body_approach(
+                    solver::element::weber_banaschek::body_approach(
                         study.q,
                         b,
                         data.depth_h[idx(j)],

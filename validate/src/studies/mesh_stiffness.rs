@@ -231,31 +231,32 @@ pub fn run(
     let rs = geometry::utca::roll_surface(fp, &sc.utca)?;
     let scene_meshes = meshes.join(&sc.name);
     // Each level's stiffness files, recorded as inputs of the set.
-    let mut compliance = |level: MeshLevel| -> anyhow::Result<solver::compliance::PairCompliance> {
-        let load = |m| {
-            solver::ltca_stage::member_compliance_at(
-                scene,
-                g,
-                &scene_meshes,
-                m,
-                Blank::Standard,
-                pos0.side,
-                level,
-            )
-        };
-        let (pinion, wheel) = (load(Which::Pinion)?, load(Which::Wheel)?);
-        for plan in [&pinion.1, &wheel.1] {
-            for (key, sha) in formats::stiffness_plan::inputs_of(&scene_meshes, plan)? {
-                set.record_input(&key, &sha)?;
+    let mut compliance =
+        |level: MeshLevel| -> anyhow::Result<solver::element::compliance::PairCompliance> {
+            let load = |m| {
+                solver::stage::context::member_compliance_at(
+                    scene,
+                    g,
+                    &scene_meshes,
+                    m,
+                    Blank::Standard,
+                    pos0.side,
+                    level,
+                )
+            };
+            let (pinion, wheel) = (load(Which::Pinion)?, load(Which::Wheel)?);
+            for plan in [&pinion.1, &wheel.1] {
+                for (key, sha) in formats::stiffness_plan::inputs_of(&scene_meshes, plan)? {
+                    set.record_input(&key, &sha)?;
+                }
             }
-        }
-        Ok(solver::compliance::PairCompliance {
-            pinion: pinion.0,
-            wheel: wheel.0,
-        })
-    };
+            Ok(solver::element::compliance::PairCompliance {
+                pinion: pinion.0,
+                wheel: wheel.0,
+            })
+        };
     let reduced = compliance(MeshLevel::Reduced)?;
-    let mut sweep = solver::ltca_stage::scene_sweep(scene, g, Blank::Standard);
+    let mut sweep = solver::stage::context::scene_sweep(scene, g, Blank::Standard);
     sweep.friction = 0.0;
     let cycle = solver::ltca::run(fp, &rs, &reduced, &sweep, &tangent_torques(first_torque))
         .context("LTCA over the mesh cycle")?;

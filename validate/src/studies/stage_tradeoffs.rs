@@ -36,9 +36,9 @@ use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
-use solver::compliance::PairCompliance;
-use solver::dynamic_stage::inertia;
-use solver::ltca_stage::member_compliance;
+use solver::element::compliance::PairCompliance;
+use solver::stage::context::inertia;
+use solver::stage::context::member_compliance;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 

@@ -48,16 +48,15 @@ use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::{roll_surface, RollSurface};
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
-use solver::compliance::PairCompliance;
 use solver::cpu_clock::{thread_cpu_s, timed};
-use solver::dynamic_stage::inertia;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{run as run_sweep, PositionResult, Sweep};
-use solver::ltca_stage::{
-    coast_compliance, coast_sweep, first_edge_contact, member_compliance, scene_sweep,
-};
-use solver::mesh_table::{MeshTable, TableSpec};
-use solver::multibody::{Drive, Model};
-use solver::time_step::{discrete_gradient, integrate, Integrator, Scheme, StepControl};
+use solver::multibody::mesh_table::{MeshTable, TableSpec};
+use solver::multibody::model::{Drive, Model};
+use solver::multibody::time_step::{discrete_gradient, integrate, Integrator, Scheme, StepControl};
+use solver::stage::context::inertia;
+use solver::stage::context::{coast_compliance, coast_sweep, member_compliance, scene_sweep};
+use solver::stage::ltca::first_edge_contact;
 use solver::SolverError;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -952,7 +951,7 @@ pub fn loaded_run(
         damping: 0.0,
         friction: 0.0,
         drive: Drive::PinionSpeed {
-            speed: solver::multibody::Ramp {
+            speed: solver::multibody::model::Ramp {
                 from: w1,
                 to: w1,
                 duration: 0.0,

@@ -21,9 +21,9 @@ use geometry::pair::{pinion_direction, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
 use serde::{Deserialize, Serialize};
-use solver::compliance::PairCompliance;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run as run_sweep, Sweep};
-use solver::ltca_stage::member_compliance;
+use solver::stage::context::member_compliance;
 use std::path::Path;
 use std::time::Instant;
 

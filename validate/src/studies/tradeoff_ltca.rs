@@ -18,7 +18,7 @@ use anyhow::Context;
 use geometry::pair::{pinion_direction, FlankPair, PairGeometry};
 use geometry::scene::LoadedScene;
 use geometry::utca::{roll_surface, RollSurface};
-use solver::compliance::PairCompliance;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run as run_sweep, Sweep};
 use std::path::Path;
 

@@ -21,13 +21,13 @@ use crate::studies::tradeoff_stage::{rel_pct, StageTradeoff, TradeoffPoint};
 use geometry::pair::{FlankPair, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::RollSurface;
-use solver::compliance::PairCompliance;
 use solver::cpu_clock::timed;
+use solver::element::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run as run_sweep, Sweep};
-use solver::ltca_stage::scene_sweep;
-use solver::mesh_table::MeshTable;
-use solver::multibody::{interpolate, wheel_driven, Drive, Model, Ramp, State};
-use solver::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::multibody::mesh_table::MeshTable;
+use solver::multibody::model::{interpolate, wheel_driven, Drive, Model, Ramp, State};
+use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
+use solver::stage::context::scene_sweep;
 use solver::SolverError;
 
 /// Quasi-static maximum steps, s.

@@ -15,7 +15,7 @@ use geometry::pair::{pinion_direction, FlankPair, PairGeometry};
 use geometry::scene::LoadedScene;
 use geometry::utca::{run as utca_run, LineGrid, RollSurface};
 use solver::cpu_clock::timed;
-use solver::multibody::interpolate;
+use solver::multibody::model::interpolate;
 
 /// Direct-search positions over one mesh cycle.
 pub const DIRECT_POSITIONS: usize = 48;

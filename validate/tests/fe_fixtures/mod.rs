@@ -15,7 +15,7 @@ use geometry::teeth::periodic_teeth;
 use preprocess::body_mesh;
 use preprocess::influence::{compute, FlankGrid, GridSize, InfluenceRequest};
 use preprocess::mesh::{mesh_member, MeshRequest};
-use solver::compliance::MemberCompliance;
+use solver::element::compliance::MemberCompliance;
 
 pub const LEVEL: FlankElements = FlankElements {
     profile: 6,

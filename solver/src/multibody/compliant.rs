@@ -1,16 +1,16 @@
 //! Multibody with compliant bearings: each member turns about its own axis
-//! (q₁, q₂ as in [`crate::multibody`]) and moves on its bearings by five
+//! (q₁, q₂ as in [`crate::multibody::model`]) and moves on its bearings by five
 //! small coordinates dₖ (translations along e₁, e₂, a and tilts about e₁,
-//! e₂ of [`crate::bearings::Support::basis`], about its pitch apex), 12
+//! e₂ of [`crate::bearings::support::Support::basis`], about its pitch apex), 12
 //! coordinates x = (q₁, q₂, d₁, d₂) in all.
 //!
 //! The contact sees the members' displacements through the constant map
-//! of [`crate::relative_twist`]: the contact coordinates
+//! of [`crate::bearings::relative_twist`]: the contact coordinates
 //!
 //!   c = L x = (q₁ + δq₁, q₂ + δq₂, E, P, G, ΔΣ),  (δq₁, δq₂, m) = J d,
 //!
-//! and the element is the rigid-bearing table ([`crate::mesh_table`]) read
-//! at the equivalent lag ([`crate::lag_shift`]): with s(q₁) = ∂θ₀/∂m the
+//! and the element is the rigid-bearing table ([`crate::multibody::mesh_table`]) read
+//! at the equivalent lag ([`crate::multibody::lag_shift`]): with s(q₁) = ∂θ₀/∂m the
 //! unloaded TE's shift per misalignment, the pair at misalignment m and
 //! lag θ is the aligned pair at θ − s(q₁)·m, i.e. at wheel rotation
 //! q₂' = q₂ + s(q₁)·m. With g = ∇V₀ and H its Hessian at (q₁, q₂'), the
@@ -42,13 +42,13 @@
 //! damping (Qₖᵀ K Qₖ), f_ext the drive's torques on (q₁, q₂). Gyroscopic
 //! coupling of the spin with the tilts is not modelled. The shaft TE is
 //! r q₁ − q₂: the rotations of the shafts, as the LTCA on a displaced pose
-//! ([`crate::system_deflection`]) reports it.
+//! ([`crate::bearings::system_deflection`]) reports it.
 
-use crate::bearings::Support;
-use crate::lag_shift::LagShift;
-use crate::multibody::Model;
-use crate::relative_twist::TwistMap;
-use crate::time_step::{lag_resolution_at, StepControl};
+use crate::bearings::relative_twist::TwistMap;
+use crate::bearings::support::Support;
+use crate::multibody::lag_shift::LagShift;
+use crate::multibody::model::Model;
+use crate::multibody::time_step::{lag_resolution_at, StepControl};
 use crate::SolverError;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3, Vector6};
 
@@ -101,7 +101,7 @@ pub enum BearingLoad {
     /// normal force of the first contact point along its line of action.
     UnloadedShift,
     /// F_m from the LTCA's wrench on the wheel at the equivalent lag
-    /// ([`crate::mesh_table::MeshTable::wrench`]): F_c = T⁻ᵀ W (T the twist
+    /// ([`crate::multibody::mesh_table::MeshTable::wrench`]): F_c = T⁻ᵀ W (T the twist
     /// map), the load shared among the slices and tooth pairs as loaded.
     LoadedWrench,
 }
@@ -308,7 +308,7 @@ impl<'a> CompliantModel<'a> {
             }
         }
         // Mesh damping on the equivalent lag's rate.
-        let (step, _) = crate::multibody::smoothstep(ms.u / table.du());
+        let (step, _) = crate::multibody::model::smoothstep(ms.u / table.du());
         let cm = self.rigid.damping * step;
         let ell = Vector6::new(r, -1.0, -s[0], -s[1], -s[2], -s[3]);
         let rate = ell.dot(&cd);
@@ -342,10 +342,12 @@ impl<'a> CompliantModel<'a> {
         let mb = &self.members[k];
         let d = self.displacement(x, k);
         let dv = self.displacement(v, k);
-        let el = mb.support.reactions(&crate::bearings::Displacement {
-            translation: Vector3::new(d[0], d[1], d[2]),
-            rotation: Vector3::new(d[3], d[4], d[5]),
-        });
+        let el = mb
+            .support
+            .reactions(&crate::bearings::support::Displacement {
+                translation: Vector3::new(d[0], d[1], d[2]),
+                rotation: Vector3::new(d[3], d[4], d[5]),
+            });
         let dm = mb.support.damping_reactions(&dv, &mb.damping);
         el.iter().zip(&dm).map(|(a, b)| a + b).collect()
     }
@@ -500,7 +502,7 @@ pub fn alpha_step(
 }
 
 /// Integrator of the compliant model: generalized-α with the step control
-/// of [`crate::time_step`] (the local error on the shaft lag r q₁ − q₂).
+/// of [`crate::multibody::time_step`] (the local error on the shaft lag r q₁ − q₂).
 #[derive(Debug, Clone, Copy)]
 pub struct CompliantIntegrator {
     pub rho_inf: f64,

@@ -11,11 +11,11 @@
 //!   f / f_mesh, with the integer mesh orders marked.
 //!
 //! Time axes are in mesh cycles t·f_mesh; long records are drawn as min/max
-//! envelopes ([`crate::load_run::envelope`]) so the peaks survive.
+//! envelopes ([`crate::multibody::load_run::envelope`]) so the peaks survive.
 
-use crate::load_run::envelope;
 use crate::lumped::integrate::History;
 use crate::lumped::response::Response;
+use crate::multibody::load_run::envelope;
 use charts::{te_curve, PlotError, Series};
 use std::path::Path;
 

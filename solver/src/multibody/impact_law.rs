@@ -14,6 +14,9 @@
 //! mm-based units; [`ImpactLaw::from_mm_units`] converts them
 //! (K_SI = K_mm · 1000^e, C_SI = 1000 C_mm, d_SI = d_mm / 1000).
 
+use formats::summaries::ImpactLawSummary;
+use geometry::scene::ImpactSettings;
+
 /// ADAMS's cubic STEP(x, x₀, h₀, x₁, h₁): h₀ for x ≤ x₀, h₁ for x ≥ x₁,
 /// between them h₀ + (h₁ − h₀) Δ² (3 − 2Δ) with Δ = (x − x₀)/(x₁ − x₀).
 /// Value and first derivative are continuous (C¹); the derivative is zero
@@ -330,4 +333,50 @@ pub fn seed_002_back_cone_stiffness() -> SeedStiffness {
     let r1 = 20.25 / 13.671f64.to_radians().cos();
     let r2 = 83.25 / 76.329f64.to_radians().cos();
     SeedStiffness::new([r1, r2], 2.07e5, 0.285, 6.65e7)
+}
+
+/// The impact law of the scene's settings in SI ([`ImpactLaw`]), its
+/// friction (None when both coefficients are zero), and its summary: K
+/// from the scene, or the Hertz point-contact K = 4/3 √R E* with R from
+/// the outer pitch radii R_e sin δ and E* from both members' materials,
+/// as the seeds compute it.
+pub fn from_settings(
+    pair: &geometry::design::PairData,
+    s: &ImpactSettings,
+) -> (ImpactLaw, Option<Friction>, ImpactLawSummary) {
+    let radii =
+        [0, 1].map(|i| pair.outer_cone_distance() * pair.members[i].pitch_angle.sin() * 1e3);
+    let [p, w] = &pair.members;
+    let modulus = effective_modulus(
+        p.youngs_modulus * 1e-6,
+        p.poisson_ratio,
+        w.youngs_modulus * 1e-6,
+        w.poisson_ratio,
+    );
+    let hertz = hertz_point_stiffness(effective_radius(radii[0], radii[1]), modulus);
+    let (k, source) = match s.stiffness_n_per_mm_e {
+        Some(k) => (k, "scene"),
+        None => (hertz, "hertz"),
+    };
+    let law = ImpactLaw::from_mm_units(k, s.exponent, s.damping_n_s_per_mm, s.penetration_depth_mm);
+    let friction = (s.static_friction > 0.0 || s.dynamic_friction > 0.0).then_some(Friction {
+        static_coefficient: s.static_friction,
+        dynamic_coefficient: s.dynamic_friction,
+        stiction_speed: s.stiction_speed_mm_s * 1e-3,
+        transition_speed: s.friction_transition_speed_mm_s * 1e-3,
+    });
+    let summary = ImpactLawSummary {
+        stiffness_n_per_mm_e: k,
+        stiffness_source: source.into(),
+        hertz_stiffness_n_per_mm_1_5: hertz,
+        hertz_radii_mm: radii,
+        exponent: s.exponent,
+        damping_n_s_per_mm: s.damping_n_s_per_mm,
+        penetration_depth_mm: s.penetration_depth_mm,
+        static_friction: s.static_friction,
+        dynamic_friction: s.dynamic_friction,
+        stiction_speed_mm_s: s.stiction_speed_mm_s,
+        friction_transition_speed_mm_s: s.friction_transition_speed_mm_s,
+    };
+    (law, friction, summary)
 }

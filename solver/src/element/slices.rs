@@ -16,7 +16,7 @@
 //! at the pair's closest point (the UTCA minimum), ξ_c = ξ* + kΔ, so that
 //! with vanishing load the element reproduces the UTCA exactly.
 
-use crate::weber_banaschek::LineContact;
+use crate::element::weber_banaschek::LineContact;
 use geometry::flank::Flank;
 use geometry::pair::FlankPair;
 use geometry::utca::{correction_at, LineSearch, RollSurface};

@@ -9,8 +9,8 @@
 //! TE, and the cost per step.
 
 use crate::ltca::mean_ptp;
-use crate::multibody::{Drive, Model, Ramp, State};
-use crate::time_step::{integrate, Integrator, Scheme, StepControl};
+use crate::multibody::model::{Drive, Model, Ramp, State};
+use crate::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::output::write_atomic;
@@ -87,14 +87,14 @@ pub struct Window {
 /// cycles τ of pinion rotation (its ends interpolated in time from the
 /// pinion rotation).
 pub fn whole_cycles(tr: &LoadTrace, from: f64, tau: f64) -> Option<Window> {
-    let q_at = |t: f64| crate::multibody::interpolate(&tr.t, &tr.q1, t);
+    let q_at = |t: f64| crate::multibody::model::interpolate(&tr.t, &tr.q1, t);
     let q0 = q_at(from);
     let q_end = *tr.q1.last()?;
     let cycles = ((q_end - q0) / tau).floor();
     if cycles < 1.0 {
         return None;
     }
-    let to = crate::multibody::interpolate(&tr.q1, &tr.t, q0 + cycles * tau);
+    let to = crate::multibody::model::interpolate(&tr.q1, &tr.t, q0 + cycles * tau);
     Some(Window {
         from,
         to,
@@ -105,7 +105,7 @@ pub fn whole_cycles(tr: &LoadTrace, from: f64, tau: f64) -> Option<Window> {
 /// Time mean of y over [a, b] (trapezoids on the samples, the ends
 /// interpolated).
 pub fn time_mean(t: &[f64], y: &[f64], a: f64, b: f64) -> f64 {
-    let at = |x: f64| crate::multibody::interpolate(t, y, x);
+    let at = |x: f64| crate::multibody::model::interpolate(t, y, x);
     let mut pts: Vec<(f64, f64)> = vec![(a, at(a))];
     pts.extend(
         t.iter()

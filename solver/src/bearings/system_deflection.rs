@@ -1,5 +1,5 @@
 //! Quasi-static loaded TCA with compliant bearings at one position: the
-//! mesh force moves both members on their bearings ([`crate::bearings`]),
+//! mesh force moves both members on their bearings ([`crate::bearings::support`]),
 //! the moved members change the pair's relative pose (a load-dependent
 //! misalignment, [`geometry::misalignment`]), and the contact is solved
 //! again on that pose until the members' displacements settle.
@@ -21,8 +21,8 @@
 //! frictionless (friction forces would add μ of the normal load to the
 //! wrench, and are left to the caller's friction-free check).
 
-use crate::bearings::{Bearing, BearingError, Displacement, Support};
-use crate::compliance::PairCompliance;
+use crate::bearings::support::{Bearing, BearingError, Displacement, Support};
+use crate::element::compliance::PairCompliance;
 use crate::ltca::{assemble, geometry, mean_ptp, solve, Sweep};
 use crate::SolverError;
 use formats::summaries::BearingLoadSummary;

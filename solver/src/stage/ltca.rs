@@ -7,19 +7,21 @@
 //! ([`formats::result_set`]): into a staging sibling, put in place whole
 //! with its `run.json` once every blank has run; a run that fails leaves
 //! the previous set as it was.
+use crate::stage::context::coast_compliance;
+use crate::stage::context::coast_sweep;
+use crate::stage::context::member_compliance;
+use crate::stage::context::record_stiffness_inputs;
+use crate::stage::context::scene_sweep;
 
-use crate::compliance::{MemberCompliance, PairCompliance};
+use crate::element::compliance::PairCompliance;
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
 use anyhow::Context;
 use formats::columns::{te_at_urad, PINION_ROTATION_DEG, UTCA_TE_URAD};
 use formats::output::{write_atomic, write_json};
-use formats::paths::MeshLevel;
 use formats::result_set::ResultSet;
 use formats::stiffness_file;
-use formats::stiffness_plan::{self, StiffnessPlan};
 use geometry::design::Member;
-use geometry::generation::Side;
-use geometry::pair::{pinion_direction, PairGeometry};
+use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
 use std::fmt::Write as _;
@@ -27,148 +29,6 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use formats::summaries::{BlankSummary, CoastSummary, Edge, EdgeContact, LoadSummary};
-
-/// The coast side's sweep over the pinion angles of the loaded side's
-/// `sweep`, backwards (in the coast side's driving direction).
-pub fn coast_sweep(sweep: &Sweep, g: &PairGeometry, loaded: Side) -> Sweep {
-    Sweep {
-        start: sweep.start + sweep.direction * sweep.step * (sweep.positions - 1) as f64,
-        direction: pinion_direction(&g.data, loaded.other()),
-        ..*sweep
-    }
-}
-
-/// Reads the member × blank stiffness file that `scene` needs, checking its
-/// hash; also returns its plan (stiffness file and mesh paths).
-pub fn member_compliance(
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    member: Member,
-    blank: Blank,
-) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
-    member_compliance_on(scene, g, dir, member, blank, scene.scene.loaded_flank)
-}
-
-/// A member's compliance for loads on its `side` flank (the coast side's
-/// stiffness file when the scene has coast-side contact).
-pub fn member_compliance_on(
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    member: Member,
-    blank: Blank,
-    side: Side,
-) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
-    member_compliance_at(scene, g, dir, member, blank, side, MeshLevel::Reduced)
-}
-
-/// As [`member_compliance_on`], from the stiffness file that `preprocess
-/// stiffness --level <level>` made from that level's meshes (same contact
-/// grid): the mesh-level studies' LTCA.
-pub fn member_compliance_at(
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    member: Member,
-    blank: Blank,
-    side: Side,
-    level: MeshLevel,
-) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
-    let p = stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
-    let data = stiffness_plan::check(scene, g, dir, &p, member, blank, level).with_context(|| {
-        format!(
-            "scene {}: stiffness file of the {} ({blank:?} blank, {} flank) is missing or stale; run `preprocess stiffness {}{}`",
-            scene.scene.name,
-            member.name(),
-            side.flank_name(member),
-            scene.path.display(),
-            match level {
-                MeshLevel::Reduced => String::new(),
-                l => format!(" --level {}", l.name()),
-            }
-        )
-    })?;
-    Ok((
-        MemberCompliance::new(data, g.data.member(member).material()),
-        p,
-    ))
-}
-
-/// Records in `set` the scene's misalignment (if any) and the files that
-/// the pinion × wheel blanks' stiffness data rest on (design, body meshes,
-/// stiffness files, with their SHA-256 from the manifest), for the loaded
-/// flanks and, with `coast`, the
-/// opposite ones: so that a report can tell sets made from other files
-/// apart ([`formats::result_set::check_same_inputs`]).
-pub fn record_stiffness_inputs(
-    set: &mut ResultSet,
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    [pb, wb]: [Blank; 2],
-    coast: bool,
-) -> anyhow::Result<()> {
-    // The misalignment is an input of the results, not of the stiffness
-    // files (body-fixed): recorded so that sets of other poses tell apart.
-    if let Some(sha) = formats::manifest::misalignment_sha256(&scene.scene.misalignment) {
-        set.record_input("misalignment", &sha)?;
-    }
-    let side = scene.scene.loaded_flank;
-    let sides: &[Side] = if coast {
-        &[side, side.other()]
-    } else {
-        &[side]
-    };
-    for &s in sides {
-        for (m, b) in [(Member::Pinion, pb), (Member::Wheel, wb)] {
-            let p = stiffness_plan::plan(scene, g, dir, m, b, MeshLevel::Reduced, s)?;
-            for (key, sha) in stiffness_plan::inputs_of(dir, &p)? {
-                set.record_input(&key, &sha)?;
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Both members' compliance for loads on the coast (opposite) flanks, the
-/// wheel's teeth numbered as the coast model's (see
-/// `geometry::pair::OppositePlacement`); also their plans.
-pub fn coast_compliance(
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    pb: Blank,
-    wb: Blank,
-) -> anyhow::Result<(PairCompliance, [StiffnessPlan; 2])> {
-    let side = scene.scene.loaded_flank;
-    let (pin, pin_plan) = member_compliance_on(scene, g, dir, Member::Pinion, pb, side.other())?;
-    let (whl, whl_plan) = member_compliance_on(scene, g, dir, Member::Wheel, wb, side.other())?;
-    let shift = g.opposite_placement(side).wheel_tooth_shift;
-    Ok((
-        PairCompliance {
-            pinion: pin,
-            wheel: whl.with_tooth_shift(shift),
-        },
-        [pin_plan, whl_plan],
-    ))
-}
-
-/// The scene's sweep for a wheel blank: from the entry of tooth 0, the
-/// blank's mesh cycles at the scene's step.
-pub fn scene_sweep(scene: &LoadedScene, g: &PairGeometry, wheel: Blank) -> Sweep {
-    let sc = &scene.scene;
-    let cycles = sc.rotation.mesh_cycles(wheel);
-    let step = sc.rotation.step_deg.to_radians();
-    Sweep {
-        start: g.side(sc.loaded_flank).roll_range[0],
-        step,
-        direction: pinion_direction(&g.data, sc.loaded_flank),
-        positions: (cycles * g.data.mesh_cycle() / step).round() as usize + 1,
-        slices: sc.ltca.slices,
-        friction: sc.ltca.friction_coefficient,
-    }
-}
 
 /// Runs the LTCA of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<BlankSummary>> {
@@ -191,7 +51,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let supports = sc
         .bearings
         .as_ref()
-        .map(|b| crate::system_deflection::supports_of(b, &g))
+        .map(|b| crate::bearings::system_deflection::supports_of(b, &g))
         .transpose()
         .with_context(|| format!("scene {}: [bearings]", sc.name))?;
     g.misalign(&sc.misalignment);
@@ -313,18 +173,18 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
 }
 
 /// The scene's loads with the members on their compliant bearings
-/// ([`crate::system_deflection`]; frictionless), `bearings.csv` written
+/// ([`crate::bearings::system_deflection`]; frictionless), `bearings.csv` written
 /// into `odir`.
 fn bearing_loads(
     scene: &LoadedScene,
     g: &PairGeometry,
     pc: &PairCompliance,
-    supports: &crate::system_deflection::Supports,
+    supports: &crate::bearings::system_deflection::Supports,
     bs: &geometry::scene_bearings::BearingSettings,
     sweep: &Sweep,
     odir: &Path,
 ) -> anyhow::Result<Vec<formats::summaries::BearingLoadSummary>> {
-    use crate::system_deflection::{
+    use crate::bearings::system_deflection::{
         bearing_csv, bearing_summaries, bearing_sweep, DeflectionSettings,
     };
     let sc = &scene.scene;

@@ -25,10 +25,10 @@
 //! the unloaded TE has kinks where the contact passes from one tooth pair to
 //! the next, and T₁ is smooth across them only at fixed θ.
 
-use crate::compliance::PairCompliance;
-use crate::contact_problem::ContactProblem;
-use crate::impact_law::{Friction, ImpactLaw};
+use crate::element::compliance::PairCompliance;
+use crate::element::contact_problem::ContactProblem;
 use crate::ltca::{assemble, geometry, Assembled, Geometry};
+use crate::multibody::impact_law::{Friction, ImpactLaw};
 use crate::SolverError;
 use geometry::generation::MemberFrame;
 use geometry::pair::FlankPair;
@@ -77,16 +77,16 @@ pub struct MeshTable {
     /// layout ([`slice_wrench`]).
     pub wrench: Vec<[f64; 6]>,
     /// Friction moments per unit friction coefficient (Φ₁, Φ₂) = (Σ F ℓ₁,
-    /// Σ F ℓ₂), N·m (see [`crate::slices::friction_levers`]), same layout.
+    /// Σ F ℓ₂), N·m (see [`crate::element::slices::friction_levers`]), same layout.
     pub friction: Vec<[f64; 2]>,
     /// Geometry + assembly + lag-controlled solves, s per position (one core).
     pub cpu_s_per_position: f64,
     /// The impact law's own fields when the table holds that law instead of
-    /// the element ([`crate::impact_table`]); None for the element.
+    /// the element ([`crate::multibody::impact_table`]); None for the element.
     pub impact: Option<ImpactFields>,
 }
 
-/// Fields of an impact-law table ([`crate::impact_table`]), same layout as
+/// Fields of an impact-law table ([`crate::multibody::impact_table`]), same layout as
 /// the torque.
 #[derive(Debug, Clone)]
 pub struct ImpactFields {
@@ -322,7 +322,7 @@ fn gauss4() -> [(f64, f64); 4] {
 pub fn slice_wrench(
     frame: &MemberFrame,
     pose: Option<&geometry::misalignment::Pose>,
-    sl: &crate::slices::Slice,
+    sl: &crate::element::slices::Slice,
     turn: f64,
     f: f64,
 ) -> [f64; 6] {

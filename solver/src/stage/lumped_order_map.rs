@@ -11,14 +11,17 @@
 //! ([`geometry::gear_body::WHEEL_WEB_HOLES`]); the standard wheel is
 //! axisymmetric (n = 0). The marked orders are the same for both, so the
 //! standard wheel's amplitudes at the lobe orders show what it has there.
+use crate::signal::runup_orders::amplitude_at;
+use crate::signal::runup_orders::marked_orders;
 
-use crate::compliance::PairCompliance;
+use crate::element::compliance::PairCompliance;
 use crate::ltca::{geometry, run as run_sweep};
-use crate::ltca_stage::{member_compliance, record_stiffness_inputs, scene_sweep};
+use crate::lumped::friction::slice_friction;
 use crate::lumped::from_ltca::{fit_series, mesh_samples, span_samples, tangent_torques};
 use crate::lumped::revolution::{lobe_repeat_mismatch, Revolution};
-use crate::lumped_stage::{run_blank, slice_friction, Case};
-use crate::spectrum::{plot_order_map, OrderLine};
+use crate::signal::spectrum::{plot_order_map, OrderLine};
+use crate::stage::context::{member_compliance, record_stiffness_inputs, scene_sweep};
+use crate::stage::lumped_run::{run_blank, Case};
 use anyhow::Context;
 use formats::lumped_summary::{
     LobeFit, LumpedSummary, MarkedOrder, OrderMapSpeed, OrderMapSummary,
@@ -34,30 +37,6 @@ use geometry::scene_lumped::{ImpactModel, LumpedSettings, OrderMapSettings};
 use geometry::utca::roll_surface;
 use std::path::Path;
 use std::time::Instant;
-
-/// The marked pinion orders: (label, order) for z₁, 2z₁, the lobe family
-/// o = n z₁/z₂ and 2o, and z₁ ± o, 2z₁ ± o.
-pub fn marked_orders(z1: usize, z2: usize, holes: usize) -> Vec<(String, f64)> {
-    let (z, o) = (z1 as f64, holes as f64 * z1 as f64 / z2 as f64);
-    vec![
-        (format!("{holes}·{z1}/{z2}"), o),
-        (format!("2·{holes}·{z1}/{z2}"), 2.0 * o),
-        (format!("{z1}-{o:.2}"), z - o),
-        (format!("{z1}"), z),
-        (format!("{z1}+{o:.2}"), z + o),
-        (format!("{}-{o:.2}", 2 * z1), 2.0 * z - o),
-        (format!("{}", 2 * z1), 2.0 * z),
-        (format!("{}+{o:.2}", 2 * z1), 2.0 * z + o),
-    ]
-}
-
-/// Amplitude of `spectrum` (pinion order, amplitude) at the line nearest `order`.
-pub fn amplitude_at(spectrum: &[(f64, f64)], order: f64) -> f64 {
-    spectrum
-        .iter()
-        .min_by(|a, b| (a.0 - order).abs().total_cmp(&(b.0 - order).abs()))
-        .map_or(0.0, |l| l.1)
-}
 
 /// Force-weighted wheel tooth of the loaded pairs (pinion tooth j meshes
 /// wheel tooth −j) at the operating torque.

@@ -1,9 +1,9 @@
-//! Time stepping of the multibody model ([`crate::multibody::Model`]): the
+//! Time stepping of the multibody model ([`crate::multibody::model::Model`]): the
 //! two implicit one-step schemes (generalized-α; the energy-conserving
 //! midpoint rule with a discrete gradient), both solved by Newton with the
 //! contact element's tangent, and the step control around them.
 
-use crate::multibody::{Contact, Model, State};
+use crate::multibody::model::{Contact, Model, State};
 use crate::SolverError;
 
 /// Integrates from `s` to `t_end`, calling `record` with the start and after

@@ -1,5 +1,5 @@
-//! The impact law ([`crate::impact_law`]) as the multibody's force element,
-//! tabulated like the FE-analytical element ([`crate::mesh_table`]) so that
+//! The impact law ([`crate::multibody::impact_law`]) as the multibody's force element,
+//! tabulated like the FE-analytical element ([`crate::multibody::mesh_table`]) so that
 //! both laws see the same geometry and run through the same machinery.
 //!
 //! Geometry: at each table position the slices of every tooth pair in the
@@ -18,7 +18,7 @@
 //!   potential V, gradient and Hessian follow from it exactly as for the
 //!   element);
 //! - the contact force on the wheel Σⱼ K δⱼ^e nₖ* (output), the friction
-//!   moments per unit μ, Φ = Σⱼ K δⱼ^e ℓₖ* (see [`crate::slices::friction_levers`]);
+//!   moments per unit μ, Φ = Σⱼ K δⱼ^e ℓₖ* (see [`crate::element::slices::friction_levers`]);
 //! - the damping levers with wⱼ = STEP(δⱼ, 0, 0, d, 1): the damping
 //!   C wⱼ δ̇ⱼ acts on the rigid bodies' normal approach speed at the deepest
 //!   point, δ̇ⱼ = λ₁ q̇₁ − λ₂ q̇₂ = λ₂ θ̇ + (λ₁ − r λ₂) q̇₁ (the second term,
@@ -40,9 +40,11 @@
 //! force-weighted mean slip speed of the pairs, not per pair (per-pair
 //! values would need the pairs tabulated separately).
 
-use crate::impact_law::{Friction, ImpactLaw};
 use crate::ltca::{geometry, Geometry};
-use crate::mesh_table::{check_spec, columns_and_lags, Column, ImpactFields, MeshTable, TableSpec};
+use crate::multibody::impact_law::{Friction, ImpactLaw};
+use crate::multibody::mesh_table::{
+    check_spec, columns_and_lags, Column, ImpactFields, MeshTable, TableSpec,
+};
 use crate::SolverError;
 use geometry::generation::MemberFrame;
 use geometry::pair::FlankPair;
@@ -193,7 +195,7 @@ pub fn build(
                     for (fi, ni) in f.iter_mut().zip(n.iter()) {
                         *fi += p.force * ni;
                     }
-                    let wk = crate::mesh_table::slice_wrench(
+                    let wk = crate::multibody::mesh_table::slice_wrench(
                         frame,
                         fp.pose.as_ref(),
                         s,

@@ -13,12 +13,12 @@
 //! on the pinion's flank (its η) or on the wheel's (the mate's η).
 //!
 //! A slice whose contact point lies on the profile's end is the end of the
-//! contact line, cut there by the active region (see [`crate::slices`]):
+//! contact line, cut there by the active region (see [`crate::element::slices`]):
 //! loaded, its patch reaches that edge by its whole half-width. That is
 //! edge contact as much as a patch growing past the edge from inside: the
 //! loaded contact line is truncated by the flank's boundary.
 
-use crate::slices::Slice;
+use crate::element::slices::Slice;
 use formats::summaries::Edge;
 use geometry::flank::Flank;
 use geometry::pair::FlankPair;

@@ -1,5 +1,5 @@
 //! `solver dynamic` with the scene's `[bearings]`: the multibody runs again
-//! with the members on compliant bearings ([`crate::compliant_multibody`]):
+//! with the members on compliant bearings ([`crate::multibody::compliant`]):
 //! the 10 rpm run at every scene torque and, where the rigid run-up runs,
 //! the run-up with the spectrogram of the wheel's bearing force. Files, in
 //! the blank pair's folder beside the rigid runs':
@@ -11,16 +11,16 @@
 //!   linear shift leaves out;
 //! - `bearings_runup_spectrogram.svg`: the wheel bearings' total force |F|.
 
-use crate::bearings::Support;
-use crate::compliant_multibody::{
+use crate::bearings::support::Support;
+use crate::bearings::system_deflection::supports_of;
+use crate::ltca::mean_ptp;
+use crate::multibody::compliant::{
     integrate, CState, CompliantIntegrator, CompliantModel, MemberBody,
 };
-use crate::lag_shift::LagShift;
-use crate::ltca::mean_ptp;
-use crate::mesh_table::MeshTable;
-use crate::multibody::{interpolate, wheel_driven, Model};
-use crate::system_deflection::supports_of;
-use crate::time_step::StepControl;
+use crate::multibody::lag_shift::LagShift;
+use crate::multibody::mesh_table::MeshTable;
+use crate::multibody::model::{interpolate, wheel_driven, Model};
+use crate::multibody::time_step::StepControl;
 use anyhow::Context;
 use formats::summaries::{CompliantBodiesUsed, CompliantRunSummary, CompliantSummary};
 use geometry::generation::trace_sign;
@@ -351,7 +351,7 @@ fn run_up(
         inertia: s.inertia,
         damping: 0.0,
         friction: 0.0,
-        drive: crate::dynamic_stage::runup_drive(mb, s.table.ratio),
+        drive: crate::stage::runup::runup_drive(mb, s.table.ratio),
     };
     let rs0 = m.static_state(0.0)?;
     m.damping = m.damping_for_ratio(mb.damping_ratio, &rs0)?;
@@ -369,7 +369,7 @@ fn run_up(
         .iter()
         .map(|f| f.iter().map(|c| c * c).sum::<f64>().sqrt())
         .collect();
-    crate::dynamic_stage::runup_spectrogram(
+    crate::stage::runup::runup_spectrogram(
         &s.odir.join("bearings_runup_spectrogram.svg"),
         &format!(
             "Wheel bearings' force |F|, compliant bearings, run-up at {torque} N·m ({:?}/{:?})",
@@ -383,7 +383,7 @@ fn run_up(
     )?;
     // The same order analysis as the rigid run-up's `runup_orders.json`, of
     // both wheel bearings' force together.
-    crate::dynamic_stage::write_runup_orders(
+    crate::stage::runup::write_runup_orders(
         &s.odir.join("bearings_runup_orders.json"),
         s.blanks,
         s.g.data.members[0].teeth as f64,

@@ -4,12 +4,12 @@
 //! A stiffness file holds G[s][o][a][b], the normal approach at grid point b
 //! of tooth (solved[s] + o) under a unit normal load at grid point a of tooth
 //! solved[s]. For slices k, l with interpolation weights W_k, W_l on the grid
-//! (bicubic in the flank parameters, see [`crate::interp`]) the member's part
+//! (bicubic in the flank parameters, see [`crate::element::interp`]) the member's part
 //! is C(k, l) = W_kᵀ G[s(k)][o(k, l)] W_l: smooth in the loaded and in the
 //! responding point. Pinion tooth j meshes with wheel tooth −j, so the pinion
 //! offset is j_l − j_k and the wheel offset j_k − j_l.
 
-use crate::interp::{grid_weights, Weights};
+use crate::element::interp::{grid_weights, Weights};
 use crate::SolverError;
 use formats::stiffness_file::StiffnessData;
 use geometry::Material;
@@ -151,7 +151,7 @@ impl MemberCompliance {
 
     /// Reference depth h at the point with weights `w` on solved tooth `s`, m.
     pub fn depth(&self, s: usize, w: &Weights) -> f64 {
-        crate::interp::apply(w, &self.depth[s * self.np..(s + 1) * self.np])
+        crate::element::interp::apply(w, &self.depth[s * self.np..(s + 1) * self.np])
     }
 
     /// The np × np block of solved tooth `s` responding at offset `o` (None beyond the stored teeth).

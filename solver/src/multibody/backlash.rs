@@ -25,7 +25,7 @@
 //! over the drive table's range mirrored, q₁ᶜ = a − q₁ (see
 //! [`Coast::mirrored_start`]).
 
-use crate::mesh_table::{MeshState, MeshTable};
+use crate::multibody::mesh_table::{MeshState, MeshTable};
 use crate::SolverError;
 use geometry::pair::{FlankPair, OppositePlacement};
 

@@ -10,12 +10,12 @@
 //! ±hᵢ take the exact contact search of the misaligned pose (the aligned
 //! pair's θ₀(0) is the table's own, from the surface of roll angles).
 //!
-//! The equivalent-lag element ([`crate::compliant_multibody`]) reads the
+//! The equivalent-lag element ([`crate::multibody::compliant`]) reads the
 //! table at the lag θ − s(q₁)·m: the deflection θ − θ₀ − s·m of the
 //! misaligned pair equals the aligned pair's at that lag.
 
 use crate::ltca::geometry;
-use crate::mesh_table::MeshTable;
+use crate::multibody::mesh_table::MeshTable;
 use crate::SolverError;
 use geometry::generation::Side;
 use geometry::misalignment::{Component, Misalignment};
@@ -155,7 +155,7 @@ impl LagShift {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh_table::TableSpec;
+    use crate::multibody::mesh_table::TableSpec;
 
     /// A table of `nodes` nodes in steps of `step` with unloaded TE `te0(k)`.
     fn table(periodic: bool, step: f64, te0: Vec<f64>) -> MeshTable {

@@ -13,7 +13,7 @@
 //! drop slices with negative force, add slices with negative gap, until
 //! neither is left.
 
-use crate::weber_banaschek::LineContact;
+use crate::element::weber_banaschek::LineContact;
 use crate::SolverError;
 use nalgebra::{DMatrix, DVector};
 

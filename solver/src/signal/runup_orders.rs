@@ -19,7 +19,7 @@
 //! changes the speed and the amplitudes, which leaks a little into the
 //! neighbouring lines.
 
-use crate::spectrum::resample;
+use crate::signal::spectrum::resample;
 use formats::lumped_summary::MarkedOrder;
 use formats::summaries::RunupOrderWindow;
 use std::f64::consts::PI;
@@ -102,4 +102,28 @@ pub fn windows(
         start += half.max(1);
     }
     out
+}
+
+/// The marked pinion orders: (label, order) for z₁, 2z₁, the lobe family
+/// o = n z₁/z₂ and 2o, and z₁ ± o, 2z₁ ± o.
+pub fn marked_orders(z1: usize, z2: usize, holes: usize) -> Vec<(String, f64)> {
+    let (z, o) = (z1 as f64, holes as f64 * z1 as f64 / z2 as f64);
+    vec![
+        (format!("{holes}·{z1}/{z2}"), o),
+        (format!("2·{holes}·{z1}/{z2}"), 2.0 * o),
+        (format!("{z1}-{o:.2}"), z - o),
+        (format!("{z1}"), z),
+        (format!("{z1}+{o:.2}"), z + o),
+        (format!("{}-{o:.2}", 2 * z1), 2.0 * z - o),
+        (format!("{}", 2 * z1), 2.0 * z),
+        (format!("{}+{o:.2}", 2 * z1), 2.0 * z + o),
+    ]
+}
+
+/// Amplitude of `spectrum` (pinion order, amplitude) at the line nearest `order`.
+pub fn amplitude_at(spectrum: &[(f64, f64)], order: f64) -> f64 {
+    spectrum
+        .iter()
+        .min_by(|a, b| (a.0 - order).abs().total_cmp(&(b.0 - order).abs()))
+        .map_or(0.0, |l| l.1)
 }

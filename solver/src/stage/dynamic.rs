@@ -15,86 +15,37 @@
 //!
 //! Bearings are rigid: the bearing force of each member is the reaction to
 //! the contact force (the wheel's is reported; the pinion's is its negative).
+use crate::stage::context::inertia;
+use crate::stage::runup::runup_drive;
+use crate::stage::runup::runup_spectrogram;
+use crate::stage::runup::write_runup_orders;
 
-use crate::backlash::Coast;
-use crate::compliance::PairCompliance;
-use crate::impact_law::{
-    effective_modulus, effective_radius, hertz_point_stiffness, Friction, ImpactLaw,
-};
+use crate::element::compliance::PairCompliance;
 use crate::ltca::mean_ptp;
-use crate::ltca_stage::{
-    coast_compliance, member_compliance, record_stiffness_inputs, scene_sweep,
-};
-use crate::mesh_table::{MeshTable, TableSpec};
-use crate::multibody::{
+use crate::multibody::backlash::Coast;
+use crate::multibody::mesh_table::{MeshTable, TableSpec};
+use crate::multibody::model::{
     interpolate, wheel_driven, Drive, Fluctuation, Impacts, Model, Ramp, State,
 };
-use crate::spectrum::{plot, resample, stft, OrderLine};
-use crate::time_step::{integrate, Integrator, Scheme, StepControl};
+use crate::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
+use crate::stage::context::{
+    coast_compliance, member_compliance, record_stiffness_inputs, scene_sweep,
+};
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::columns::{PINION_ROTATION_DEG, PINION_RPM, TE_URAD, TIME_S};
 use formats::manifest::Manifest;
 use formats::output::{write_atomic, write_json};
 use formats::result_set::ResultSet;
-use formats::stiffness_plan::StiffnessPlan;
 use geometry::design::Member;
 use geometry::pair::{pinion_direction, PairGeometry};
-use geometry::scene::{Blank, ForceLaw, ImpactSettings, LoadedScene};
+use geometry::scene::{Blank, ForceLaw, LoadedScene};
 use geometry::utca::roll_surface;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
 pub use formats::summaries::{DynamicSummary, QuasiStaticSummary, RattleSummary, RunupSummary};
-use formats::summaries::{ImpactLawSummary, RunupOrders};
-use geometry::gear_body::WHEEL_WEB_HOLES;
-
-/// The impact law of the scene's settings in SI ([`ImpactLaw`]), its
-/// friction (None when both coefficients are zero), and its summary: K
-/// from the scene, or the Hertz point-contact K = 4/3 √R E* with R from
-/// the outer pitch radii R_e sin δ and E* from both members' materials,
-/// as the seeds compute it.
-pub fn impact_law(
-    pair: &geometry::design::PairData,
-    s: &ImpactSettings,
-) -> (ImpactLaw, Option<Friction>, ImpactLawSummary) {
-    let radii =
-        [0, 1].map(|i| pair.outer_cone_distance() * pair.members[i].pitch_angle.sin() * 1e3);
-    let [p, w] = &pair.members;
-    let modulus = effective_modulus(
-        p.youngs_modulus * 1e-6,
-        p.poisson_ratio,
-        w.youngs_modulus * 1e-6,
-        w.poisson_ratio,
-    );
-    let hertz = hertz_point_stiffness(effective_radius(radii[0], radii[1]), modulus);
-    let (k, source) = match s.stiffness_n_per_mm_e {
-        Some(k) => (k, "scene"),
-        None => (hertz, "hertz"),
-    };
-    let law = ImpactLaw::from_mm_units(k, s.exponent, s.damping_n_s_per_mm, s.penetration_depth_mm);
-    let friction = (s.static_friction > 0.0 || s.dynamic_friction > 0.0).then_some(Friction {
-        static_coefficient: s.static_friction,
-        dynamic_coefficient: s.dynamic_friction,
-        stiction_speed: s.stiction_speed_mm_s * 1e-3,
-        transition_speed: s.friction_transition_speed_mm_s * 1e-3,
-    });
-    let summary = ImpactLawSummary {
-        stiffness_n_per_mm_e: k,
-        stiffness_source: source.into(),
-        hertz_stiffness_n_per_mm_1_5: hertz,
-        hertz_radii_mm: radii,
-        exponent: s.exponent,
-        damping_n_s_per_mm: s.damping_n_s_per_mm,
-        penetration_depth_mm: s.penetration_depth_mm,
-        static_friction: s.static_friction,
-        dynamic_friction: s.dynamic_friction,
-        stiction_speed_mm_s: s.stiction_speed_mm_s,
-        friction_transition_speed_mm_s: s.friction_transition_speed_mm_s,
-    };
-    (law, friction, summary)
-}
 
 struct Trace {
     t: Vec<f64>,
@@ -171,56 +122,6 @@ fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
     out
 }
 
-/// Polar moment of a member: the scene's value, or ∫ρr² dV over the mesh
-/// that `plan`'s stiffness file is computed on (the mesh stage's value in the
-/// folder's manifest).
-pub fn inertia(
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    plan: &StiffnessPlan,
-    member: Member,
-) -> anyhow::Result<(f64, &'static str)> {
-    let mb = &scene.scene.multibody;
-    let given = match member {
-        Member::Pinion => mb.pinion_inertia_kgm2,
-        Member::Wheel => mb.wheel_inertia_kgm2,
-    };
-    if let Some(j) = given {
-        return Ok((j, "scene"));
-    }
-    let manifest = Manifest::read(dir)?;
-    let body = manifest.mesh(dir, &plan.mesh_stem)?.body;
-    let density = g.data.member(member).density;
-    if body.density_kg_m3 != density {
-        anyhow::bail!(
-            "{}: the {} mesh's polar moment is for density {} kg/m³, the design says {density} kg/m³; run `preprocess mesh`",
-            formats::paths::manifest(dir).display(),
-            plan.mesh_stem,
-            body.density_kg_m3
-        );
-    }
-    Ok((body.polar_moment_kgm2, "mesh"))
-}
-
-/// Both members' compliance and polar moments (scene or mesh) for the
-/// blanks `[pinion, wheel]` from the mesh folder `dir` (benches and tests
-/// that set up one pair by hand).
-pub fn pair_and_inertia(
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    blanks: [Blank; 2],
-) -> anyhow::Result<(PairCompliance, [f64; 2])> {
-    let load = |m: Member, b: Blank| -> anyhow::Result<_> {
-        let (c, plan) = member_compliance(scene, g, dir, m, b)?;
-        Ok((c, inertia(scene, g, dir, &plan, m)?.0))
-    };
-    let (pinion, j1) = load(Member::Pinion, blanks[0])?;
-    let (wheel, j2) = load(Member::Wheel, blanks[1])?;
-    Ok((PairCompliance { pinion, wheel }, [j1, j2]))
-}
-
 /// Runs the multibody analyses of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<DynamicSummary>> {
     if !scene.scene.analyses.multibody {
@@ -254,7 +155,9 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
     let impact = match mb.force_law {
         ForceLaw::Element => None,
-        ForceLaw::Impact => Some(impact_law(&g.data, &mb.impact)),
+        ForceLaw::Impact => Some(crate::multibody::impact_law::from_settings(
+            &g.data, &mb.impact,
+        )),
     };
     let mut all = Vec::new();
     for &pb in &sc.blanks.pinion {
@@ -317,9 +220,15 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             };
             let table = match &impact {
                 None => MeshTable::build(fp, &rs, &pc, &g.frames[0], ratio, spec),
-                Some((law, friction, _)) => {
-                    crate::impact_table::build(fp, &rs, &g.frames[0], ratio, spec, *law, *friction)
-                }
+                Some((law, friction, _)) => crate::multibody::impact_table::build(
+                    fp,
+                    &rs,
+                    &g.frames[0],
+                    ratio,
+                    spec,
+                    *law,
+                    *friction,
+                ),
             }
             .with_context(|| format!("scene {}: contact-element table, {wb:?} wheel", sc.name))?;
             let coast = match &coast_rs {
@@ -444,7 +353,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
             };
             let load_run = match &mb.load_run {
                 Some(run) => {
-                    let drive = crate::load_run::drive(run);
+                    let drive = crate::multibody::load_run::drive(run);
                     let mut m = Model {
                         table: &table,
                         coast: coast.as_ref(),
@@ -478,7 +387,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                         run.wheel_torque_rise_s,
                         run.time_s
                     );
-                    Some(crate::load_run::run(
+                    Some(crate::multibody::load_run::run(
                         &m,
                         s0,
                         run,
@@ -547,8 +456,8 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
                         let b = manifest.mesh(&dir, stem)?.body;
                         Ok(b.volume_m3 * b.density_kg_m3)
                     };
-                    Some(crate::compliant_stage::run(
-                        &crate::compliant_stage::Setup {
+                    Some(crate::stage::compliant::run(
+                        &crate::stage::compliant::Setup {
                             scene,
                             g: &g,
                             table: &table,
@@ -739,98 +648,6 @@ fn run_up(
         cpu_s_per_step: cpu / steps.max(1) as f64,
         te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
     })
-}
-
-/// `runup_orders.json`-style order analysis of a run-up's wheel bearing
-/// force ([`crate::runup_orders::windows`]) in the pinion's angle domain,
-/// one wheel revolution per window (32 samples per mesh cycle), at the
-/// marked orders of the pair (z₁ = `z1`, ratio z₁/z₂ = `ratio`): `trace`
-/// is (time s, pinion rotation rad, wheel bearing force N, fixed frame).
-pub(crate) fn write_runup_orders(
-    path: &Path,
-    blanks: [Blank; 2],
-    z1: f64,
-    ratio: f64,
-    trace: (&[f64], &[f64], &[[f64; 3]]),
-) -> anyhow::Result<()> {
-    let teeth = [z1.round() as usize, (z1 / ratio).round() as usize];
-    let per_window = 32 * teeth[1];
-    let marks = crate::lumped_order_map::marked_orders(teeth[0], teeth[1], WHEEL_WEB_HOLES);
-    write_json(
-        path,
-        &RunupOrders {
-            pinion_blank: blanks[0],
-            wheel_blank: blanks[1],
-            pinion_teeth: teeth[0],
-            wheel_teeth: teeth[1],
-            samples_per_window: per_window,
-            order_resolution: ratio,
-            windows: crate::runup_orders::windows(
-                trace.0, trace.1, trace.2, teeth, per_window, &marks,
-            ),
-        },
-    )?;
-    Ok(())
-}
-
-/// The run-up's pinion speed ramp, rad/s.
-pub(crate) fn runup_ramp(mb: &geometry::scene::MultibodySettings) -> Ramp {
-    let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;
-    Ramp {
-        from: w(mb.runup_rpm[0]),
-        to: w(mb.runup_rpm[1]),
-        duration: mb.runup_time_s,
-    }
-}
-
-/// The run-up's drive: the pinion on [`runup_ramp`], the wheel resisting
-/// the run-up torque (at the pinion) through the ratio `ratio`.
-pub(crate) fn runup_drive(mb: &geometry::scene::MultibodySettings, ratio: f64) -> Drive {
-    Drive::PinionSpeed {
-        speed: runup_ramp(mb),
-        wheel_torque: mb.runup_pinion_torque_nm / ratio,
-    }
-}
-
-/// The run-up's spectrogram of a force magnitude `series` (times, |F|)
-/// over the pinion speed, with the tooth orders (and, with the lightweight
-/// wheel, its 3-hole side bands) marked.
-pub(crate) fn runup_spectrogram(
-    path: &Path,
-    title: &str,
-    series: (&[f64], &[f64]),
-    mb: &geometry::scene::MultibodySettings,
-    z1: f64,
-    ratio: f64,
-    wb: Blank,
-) -> anyhow::Result<()> {
-    let ramp = runup_ramp(mb);
-    let dt = mb.runup_max_step_s.max(mb.runup_time_s / 2e5);
-    let y = resample(series.0, series.1, dt);
-    let window = ((mb.runup_time_s / 8.0) / dt).round().max(16.0) as usize;
-    let fmax = 3.2 * z1 * ramp.to / (2.0 * std::f64::consts::PI);
-    let freq: Vec<f64> = (0..200).map(|k| fmax * k as f64 / 199.0).collect();
-    let spec = stft(&y, dt, window.min(y.len()), (window / 8).max(1), &freq);
-    let hz = |t: f64| ramp.at(t)[1] / (2.0 * std::f64::consts::PI);
-    let mut orders: Vec<OrderLine> = (1..=3)
-        .map(|k| OrderLine {
-            order: z1 * k as f64,
-            label: format!("{}", z1 * k as f64),
-        })
-        .collect();
-    if wb == Blank::Lightweight {
-        let o = 3.0 * ratio;
-        orders.push(OrderLine {
-            order: z1 + o,
-            label: format!("{z1}+{o:.2}"),
-        });
-        orders.push(OrderLine {
-            order: z1 - o,
-            label: format!("{z1}-{o:.2}"),
-        });
-    }
-    plot(path, title, &spec, &hz, &orders)?;
-    Ok(())
 }
 
 /// The rattle run: the pinion at a fluctuating speed, the wheel free under

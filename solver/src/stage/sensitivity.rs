@@ -11,9 +11,9 @@
 //! ([`formats::sensitivity_summary`]), `summary.csv` (one row per
 //! misalignment × value × torque) and the charts of [`CHART_FILES`].
 
-use crate::compliance::PairCompliance;
+use crate::element::compliance::PairCompliance;
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult};
-use crate::ltca_stage::{member_compliance, record_stiffness_inputs, scene_sweep};
+use crate::stage::context::{member_compliance, record_stiffness_inputs, scene_sweep};
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::output::{write_atomic, write_json};

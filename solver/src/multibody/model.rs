@@ -1,13 +1,13 @@
 //! Multibody time integration: pinion and wheel as rigid bodies on revolute
 //! joints (rigid bearings), coupled by the tabulated contact element
-//! ([`crate::mesh_table`]) with viscous mesh damping, driven as in the white
+//! ([`crate::multibody::mesh_table`]) with viscous mesh damping, driven as in the white
 //! paper (an imposed speed on one member, a torque on the other) or by a
 //! fluctuating pinion speed against a free wheel (rattle). With coast-side
 //! contact the element holds both flank pairs across the backlash
-//! ([`crate::backlash`]): V below is then the sum of both sides' potentials,
+//! ([`crate::multibody::backlash`]): V below is then the sum of both sides' potentials,
 //! and the damping acts while either pair is in contact.
 //!
-//! Equations of motion in q = (q₁, q₂) (see [`crate::mesh_table`]):
+//! Equations of motion in q = (q₁, q₂) (see [`crate::multibody::mesh_table`]):
 //!
 //!   J₁ q̈₁ = T₁ − ∂V/∂q₁ − c s(u) θ̇ r − μ σ(q̇₁) Φ₁
 //!   J₂ q̈₂ = −T₂ − ∂V/∂q₂ + c s(u) θ̇ + μ σ(q̇₁) Φ₂,     θ = r q₁ − q₂,
@@ -21,10 +21,10 @@
 //! - the energy-conserving midpoint rule with the coordinate-wise discrete
 //!   gradient of V (Itoh & Abe 1988), averaged over both coordinate orders
 //!   so that it is the midpoint gradient to second order
-//!   ([`crate::time_step::discrete_gradient`]): without damping, kinetic
+//!   ([`crate::multibody::time_step::discrete_gradient`]): without damping, kinetic
 //!   energy + V − work of the torques is constant to the Newton tolerance.
 //!
-//! With an impact-law table ([`crate::impact_table`]) V is that law's
+//! With an impact-law table ([`crate::multibody::impact_table`]) V is that law's
 //! stiffness term on the same grid; its damping and speed-dependent friction
 //! replace c s(u) θ̇ and μ σ(q̇₁) Φ ([`Model::contact`]).
 //!
@@ -32,8 +32,8 @@
 //! Taylor predictor estimates the local error; steps above the tolerance
 //! are retried with a smaller step, and the step never exceeds the maximum.
 
-use crate::backlash::Coast;
-use crate::mesh_table::{MeshState, MeshTable};
+use crate::multibody::backlash::Coast;
+use crate::multibody::mesh_table::{MeshState, MeshTable};
 use crate::SolverError;
 
 /// A speed ramp: linear from `from` to `to` (rad/s) over `duration` (s), then constant.
@@ -105,7 +105,7 @@ pub enum Drive {
     },
     /// The pinion follows a speed ramp; the wheel's resisting torque rises
     /// from 0 to `wheel_torque` over `rise_s` by ADAMS's cubic STEP,
-    /// STEP(t, 0, 0, rise_s, T) ([`crate::impact_law::step`]; constant for
+    /// STEP(t, 0, 0, rise_s, T) ([`crate::multibody::impact_law::step`]; constant for
     /// rise_s = 0): the drives of seeds 001 and 002.
     PinionSpeedLoadStep {
         speed: Ramp,
@@ -123,7 +123,7 @@ impl Drive {
     /// STEP(t, 0, 0, rise, T): T for rise ≤ 0.
     fn load_step(torque: f64, rise: f64, t: f64) -> f64 {
         if rise > 0.0 {
-            crate::impact_law::step(t, 0.0, 0.0, rise, torque)
+            crate::multibody::impact_law::step(t, 0.0, 0.0, rise, torque)
         } else {
             torque
         }
@@ -373,14 +373,14 @@ impl Model<'_> {
         })
     }
 
-    /// The impact law's damping and friction ([`crate::impact_table`]),
+    /// The impact law's damping and friction ([`crate::multibody::impact_table`]),
     /// added to the generalized forces `q_c` with their tangents: damping
     /// −C (A₁ θ̇ + E₁ q̇₁) on q₁ and +C (A₂ θ̇ + E₂ q̇₁) on q₂ (the normal
     /// approach speed at each pair's deepest point), the law's zero clamp on the mesh
     /// total (where the damping would pull the pinion, the mesh force is
     /// zero: forces and tangents vanish); friction −μ_e Φ₁ on q₁, +μ_e Φ₂
     /// on q₂ with μ_e = sgn(q̇₁) μ(ḡ |q̇₁|) (ḡ the mean slip speed per unit
-    /// pinion speed, [`crate::impact_law::Friction`]), acting on the
+    /// pinion speed, [`crate::multibody::impact_law::Friction`]), acting on the
     /// elastic normal force.
     fn impact_forces(
         &self,

@@ -16,7 +16,7 @@
 //!   t = P a₁ + E h ŷ − G a₂,
 //!
 //! with d the pinion's drive direction (±1, the table's
-//! [`crate::mesh_table::TableSpec::direction`]: the pinion turns by d q₁
+//! [`crate::multibody::mesh_table::TableSpec::direction`]: the pinion turns by d q₁
 //! about a₁ and the wheel by −d q₂ about a₂, which the relative pose sees as
 //! the pinion turning by d q₂ about a₂), h the tooth-trace sign of the
 //! pinion's hand, and (E, P, G, ΔΣ) in m and rad with the signs of
@@ -80,7 +80,7 @@ impl TwistMap {
 
     /// The 6 × 10 matrix of the contact coordinates per the members'
     /// coordinates in their bearings' bases (`pinion`, `wheel`: 6 × 5, the
-    /// columns [u; θ] of [`crate::bearings::Support::basis`]).
+    /// columns [u; θ] of [`crate::bearings::support::Support::basis`]).
     pub fn matrix(
         &self,
         pinion: &SMatrix<f64, 6, 5>,

@@ -1,0 +1,9 @@
+//! Compliant supports: [`support`] (a member's shaft on compliant bearings:
+//! reactions and displacement under a mesh force), [`relative_twist`] (the
+//! two members' displacements as the contact sees them: extra rotation and
+//! E, P, G, ΔΣ) and [`system_deflection`] (the quasi-static LTCA on the pose
+//! the loaded bearings give).
+
+pub mod relative_twist;
+pub mod support;
+pub mod system_deflection;
