@@ -174,7 +174,7 @@ pub struct RunupSummary {
 
 /// `runup_orders.json` of a run-up: the wheel bearing force's order
 /// spectrum over windows of one wheel revolution of pinion angle
-/// (`solver::runup_orders`), every half revolution.
+/// (`solver::signal::runup_orders`), every half revolution.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunupOrders {
     pub pinion_blank: Blank,

@@ -44,7 +44,7 @@
 //! [`TopographyDesign`] (µm, normalised flank coordinates), the grid the
 //! design file's `[ease_off.topography]` takes and the ease-off adds to the
 //! pinion flank (bicubic between nodes). The lumped model's scenes generate
-//! it (`[lumped.roughness]`, `solver::lumped_roughness`, which measures the
+//! it (`[lumped.roughness]`, `solver::lumped::roughness`, which measures the
 //! flank's profile length); a grid of at most 200 nodes over a ~10 mm
 //! profile carries only wavelengths above ~0.1 mm, i.e. waviness, not the
 //! 2.5 µm – 0.8 mm roughness band.

@@ -1,6 +1,6 @@
 //! The scene's optional `[bearings]` table: each member's shaft on
 //! compliant bearings, for the LTCA with bearing deflection
-//! (`solver::system_deflection`). Positions are along the member's axis from
+//! (`solver::bearings::system_deflection`). Positions are along the member's axis from
 //! its pitch apex, positive toward (and beyond) the teeth.
 //!
 //! ```toml
