@@ -5,15 +5,15 @@
 //! pinion's tip: 0.07 mm of Hertz half-width past it at 100 N·m, 0.29 mm at
 //! 300 N·m), and the detection's threshold against a hand-computed profile
 //! distance.
+use solver::stage::context::LoadedPair;
 
-use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::roll_surface;
 use solver::element::compliance::PairCompliance;
 use solver::element::edge_contact::{profile_length_per_eta, slice_edges};
 use solver::ltca::{geometry as slice_geometry, run, PositionResult};
-use solver::stage::context::{member_compliance, scene_sweep};
+use solver::stage::context::scene_sweep;
 use solver::stage::ltca::{first_edge_contact, Edge};
 use std::path::{Path, PathBuf};
 
@@ -32,15 +32,9 @@ fn setup() -> Setup {
     let scene = Scene::load(&dir.join("scene.toml")).unwrap();
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
     let meshes = dir.join("meshes").join(&scene.scene.name);
-    let m = |m| {
-        member_compliance(&scene, &g, &meshes, m, Blank::Standard)
-            .unwrap()
-            .0
-    };
-    let pc = PairCompliance {
-        pinion: m(Member::Pinion),
-        wheel: m(Member::Wheel),
-    };
+    let pc = LoadedPair::load(&scene, &g, &meshes, [Blank::Standard; 2])
+        .unwrap()
+        .pc;
     Setup { scene, g, pc }
 }
 

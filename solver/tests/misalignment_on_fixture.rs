@@ -2,8 +2,8 @@
 //! checked-in example-02 stiffness fixture (no gmsh): a zero misalignment
 //! gives today's TE, and a misaligned pair's element reproduces its UTCA at
 //! vanishing load, with the same (body-fixed) stiffness files.
+use solver::stage::context::LoadedPair;
 
-use geometry::design::Member;
 use geometry::misalignment::{Component, Misalignment};
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
@@ -11,7 +11,7 @@ use geometry::utca::{roll_surface, sweep as utca_sweep};
 use solver::element::compliance::PairCompliance;
 use solver::ltca::{run, PositionResult};
 use solver::multibody::mesh_table::{MeshTable, TableSpec};
-use solver::stage::context::{member_compliance, scene_sweep};
+use solver::stage::context::scene_sweep;
 use std::path::{Path, PathBuf};
 
 fn fixture() -> (LoadedScene, PathBuf) {
@@ -22,15 +22,9 @@ fn fixture() -> (LoadedScene, PathBuf) {
 }
 
 fn compliance(scene: &LoadedScene, g: &PairGeometry, meshes: &Path) -> PairCompliance {
-    let c = |m: Member| {
-        member_compliance(scene, g, meshes, m, Blank::Standard)
-            .unwrap()
-            .0
-    };
-    PairCompliance {
-        pinion: c(Member::Pinion),
-        wheel: c(Member::Wheel),
-    }
+    LoadedPair::load(scene, g, meshes, [Blank::Standard; 2])
+        .unwrap()
+        .pc
 }
 
 /// The fixture's LTCA sweep with the pair placed by `m` (None: as built).

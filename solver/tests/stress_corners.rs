@@ -10,17 +10,15 @@
 //!   stalls on rounding noise);
 //! - the run-up below the torque that holds the wheel on the flanks
 //!   (refused without coast flanks, naming the limit).
+use solver::stage::context::LoadedPair;
 
-use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, Scene};
 use geometry::utca::roll_surface;
-use solver::element::compliance::PairCompliance;
 use solver::multibody::mesh_table::{lag_grid, MeshTable, TableSpec};
 use solver::multibody::model::{interpolate, wheel_driven, Model};
 use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
-use solver::stage::context::inertia;
-use solver::stage::context::{member_compliance, scene_sweep};
+use solver::stage::context::scene_sweep;
 use std::path::{Path, PathBuf};
 
 fn fixture() -> PathBuf {
@@ -44,12 +42,9 @@ fn pair(lag_nodes: usize, torque_max_nm: f64) -> Pair {
     let sc = &scene.scene;
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
     let meshes = dir.join("meshes").join(&sc.name);
-    let load = |m: Member| {
-        let (c, plan) = member_compliance(&scene, &g, &meshes, m, Blank::Standard).unwrap();
-        (c, inertia(&scene, &g, &meshes, &plan, m).unwrap().0)
-    };
-    let ((pinion, j1), (wheel, j2)) = (load(Member::Pinion), load(Member::Wheel));
-    let pc = PairCompliance { pinion, wheel };
+    let pair = LoadedPair::load(&scene, &g, &meshes, [Blank::Standard; 2]).unwrap();
+    let [(j1, _), (j2, _)] = pair.inertia(&scene, &g, &meshes).unwrap();
+    let pc = pair.pc;
     let fp = g.side(sc.loaded_flank);
     let rs = roll_surface(fp, &sc.utca).unwrap();
     let tau = g.data.mesh_cycle();

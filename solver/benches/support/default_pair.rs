@@ -11,8 +11,7 @@ use geometry::scene::{Blank, LoadedScene, Scene};
 use geometry::utca::{roll_surface, RollSurface};
 use solver::element::compliance::PairCompliance;
 use solver::ltca::Sweep;
-use solver::stage::context::pair_and_inertia;
-use solver::stage::context::scene_sweep;
+use solver::stage::context::LoadedPair;
 use std::path::{Path, PathBuf};
 
 pub struct DefaultPair {
@@ -37,10 +36,12 @@ impl DefaultPair {
             Scene::load(&root.join("reference/scenes/default.toml")).expect("default scene");
         let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
         let dir = root.join("meshes").join(&scene.scene.name);
-        let (pc, inertia) = pair_and_inertia(&scene, &g, &dir, [Blank::Standard; 2])
+        let pair = LoadedPair::load(&scene, &g, &dir, [Blank::Standard; 2])
             .expect("meshes/default: run `make preprocess` first");
+        let [(j1, _), (j2, _)] = pair.inertia(&scene, &g, &dir).expect("polar moments");
         let rs = roll_surface(g.side(scene.scene.loaded_flank), &scene.scene.utca).unwrap();
-        let sweep = scene_sweep(&scene, &g, Blank::Standard);
+        let LoadedPair { pc, sweep, .. } = pair;
+        let inertia = [j1, j2];
         let tau = g.data.mesh_cycle();
         let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
         DefaultPair {

@@ -1,8 +1,12 @@
-//! What every stage of a scene loads before it solves: the scene's sweep,
-//! each member's stiffness file (checked against the mesh folder's
-//! manifest) as its compliance, the polar moments, and the inputs a
-//! result set records. Tests, benches and validate's studies build a
-//! loaded pair through these too.
+//! What every stage of a scene loads before it solves. A [`StageContext`]
+//! is the scene with its pair geometry (placed with the scene's
+//! misalignment) and its mesh folder; a [`LoadedPair`] is one pinion ×
+//! wheel blank loaded from it: both members' stiffness files (checked
+//! against the mesh folder's manifest) as the pair compliance, their plans
+//! and the scene's sweep for the wheel blank. Tests, benches and validate's
+//! studies build a loaded pair through these too; the free functions below
+//! are the pieces, for the studies that vary one of them (another mesh
+//! level, the coast flanks, a misaligned pose).
 
 use crate::element::compliance::{MemberCompliance, PairCompliance};
 use crate::ltca::Sweep;
@@ -13,9 +17,184 @@ use formats::result_set::ResultSet;
 use formats::stiffness_plan::{self, StiffnessPlan};
 use geometry::design::Member;
 use geometry::generation::Side;
-use geometry::pair::{pinion_direction, PairGeometry};
+use geometry::pair::{pinion_direction, FlankPair, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
-use std::path::Path;
+use geometry::utca::{roll_surface, RollSurface};
+use std::path::{Path, PathBuf};
+
+/// A scene ready for a stage: the scene, its pair geometry placed with the
+/// scene's misalignment, and the scene's folder of meshes and stiffness
+/// files (`<meshes>/<scene name>`).
+pub struct StageContext<'s> {
+    pub scene: &'s LoadedScene,
+    pub g: PairGeometry,
+    pub dir: PathBuf,
+}
+
+impl<'s> StageContext<'s> {
+    /// Builds the pair geometry of `scene` and places it with the scene's
+    /// misalignment.
+    pub fn new(scene: &'s LoadedScene, meshes: &Path) -> anyhow::Result<Self> {
+        let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+        Ok(Self::with_geometry(scene, g, meshes))
+    }
+
+    /// The pair as designed, without the scene's misalignment: the lumped
+    /// model's stages, whose LTCA drives the 8-DOF model of the aligned
+    /// pair.
+    pub fn aligned(scene: &'s LoadedScene, meshes: &Path) -> anyhow::Result<Self> {
+        Ok(Self {
+            scene,
+            g: PairGeometry::build(&scene.pair, Some(&scene.design_path))?,
+            dir: meshes.join(&scene.scene.name),
+        })
+    }
+
+    /// As [`StageContext::new`] from an aligned geometry `g` that the
+    /// caller has built (and checked what needs the aligned pair).
+    pub fn with_geometry(scene: &'s LoadedScene, mut g: PairGeometry, meshes: &Path) -> Self {
+        g.misalign(&scene.scene.misalignment);
+        Self {
+            scene,
+            g,
+            dir: meshes.join(&scene.scene.name),
+        }
+    }
+
+    /// The loaded flank side.
+    pub fn side(&self) -> Side {
+        self.scene.scene.loaded_flank
+    }
+
+    /// The loaded flank pair.
+    pub fn fp(&self) -> &FlankPair {
+        self.g.side(self.side())
+    }
+
+    /// The surface of roll angles (unloaded TCA) of the `side` flanks.
+    pub fn roll_surface(&self, side: Side) -> anyhow::Result<RollSurface> {
+        Ok(roll_surface(self.g.side(side), &self.scene.scene.utca)?)
+    }
+
+    /// Every pinion × wheel blank of the scene, pinion blanks outside.
+    pub fn blank_pairs(&self) -> Vec<[Blank; 2]> {
+        let b = &self.scene.scene.blanks;
+        b.pinion
+            .iter()
+            .flat_map(|&p| b.wheel.iter().map(move |&w| [p, w]))
+            .collect()
+    }
+
+    /// The pinion × wheel blank `blanks`, loaded.
+    pub fn pair(&self, blanks: [Blank; 2]) -> anyhow::Result<LoadedPair> {
+        LoadedPair::load(self.scene, &self.g, &self.dir, blanks)
+    }
+
+    /// Calls `f` on every pinion × wheel blank of the scene in turn, each
+    /// pinion blank's stiffness file read once.
+    pub fn for_each_pair(
+        &self,
+        mut f: impl FnMut(LoadedPair) -> anyhow::Result<()>,
+    ) -> anyhow::Result<()> {
+        let (scene, g, dir) = (self.scene, &self.g, self.dir.as_path());
+        for &pb in &scene.scene.blanks.pinion {
+            let (pin, pin_plan) = member_compliance(scene, g, dir, Member::Pinion, pb)?;
+            for &wb in &scene.scene.blanks.wheel {
+                let (whl, whl_plan) = member_compliance(scene, g, dir, Member::Wheel, wb)?;
+                f(LoadedPair {
+                    blanks: [pb, wb],
+                    pc: PairCompliance {
+                        pinion: pin.clone(),
+                        wheel: whl,
+                    },
+                    plans: [pin_plan.clone(), whl_plan],
+                    sweep: scene_sweep(scene, g, wb),
+                })?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Records in `set` the inputs of the pair `blanks` (see
+    /// [`record_stiffness_inputs`]).
+    pub fn record_inputs(
+        &self,
+        set: &mut ResultSet,
+        blanks: [Blank; 2],
+        coast: bool,
+    ) -> anyhow::Result<()> {
+        record_stiffness_inputs(set, self.scene, &self.g, &self.dir, blanks, coast)
+    }
+
+    /// Both members' polar moments of `pair` (see [`inertia`]).
+    pub fn inertia(&self, pair: &LoadedPair) -> anyhow::Result<[(f64, &'static str); 2]> {
+        pair.inertia(self.scene, &self.g, &self.dir)
+    }
+}
+
+/// One pinion × wheel blank of a scene, loaded: the pair compliance from
+/// both members' stiffness files, their plans (stiffness file and mesh
+/// paths), and the scene's sweep for the wheel blank.
+#[derive(Clone)]
+pub struct LoadedPair {
+    /// `[pinion, wheel]` blanks.
+    pub blanks: [Blank; 2],
+    pub pc: PairCompliance,
+    /// `[pinion, wheel]` stiffness plans.
+    pub plans: [StiffnessPlan; 2],
+    pub sweep: Sweep,
+}
+
+impl LoadedPair {
+    /// Reads both members' stiffness files for `blanks` from `dir` (hashes
+    /// checked) and sets up the scene's sweep.
+    pub fn load(
+        scene: &LoadedScene,
+        g: &PairGeometry,
+        dir: &Path,
+        blanks: [Blank; 2],
+    ) -> anyhow::Result<Self> {
+        let (pinion, pin_plan) = member_compliance(scene, g, dir, Member::Pinion, blanks[0])?;
+        let (wheel, whl_plan) = member_compliance(scene, g, dir, Member::Wheel, blanks[1])?;
+        Ok(Self {
+            blanks,
+            pc: PairCompliance { pinion, wheel },
+            plans: [pin_plan, whl_plan],
+            sweep: scene_sweep(scene, g, blanks[1]),
+        })
+    }
+
+    /// Both members' polar moments and where each comes from ([`inertia`]).
+    pub fn inertia(
+        &self,
+        scene: &LoadedScene,
+        g: &PairGeometry,
+        dir: &Path,
+    ) -> anyhow::Result<[(f64, &'static str); 2]> {
+        Ok([
+            inertia(scene, g, dir, &self.plans[0], Member::Pinion)?,
+            inertia(scene, g, dir, &self.plans[1], Member::Wheel)?,
+        ])
+    }
+
+    /// The pair's folder name, `<pinion>_<wheel>` in lower case.
+    pub fn name(&self) -> String {
+        let [pb, wb] = self.blanks;
+        format!("{pb:?}_{wb:?}").to_lowercase()
+    }
+}
+
+/// Whether the scene's `[analyses] <key>` switch runs its stage; when it
+/// does not, says so on stderr (`what`: what is skipped).
+pub fn analysis_enabled(scene: &LoadedScene, on: bool, key: &str, what: &str) -> bool {
+    if !on {
+        eprintln!(
+            "scene {}: `[analyses] {key} = false`, {what}; skipped",
+            scene.scene.name
+        );
+    }
+    on
+}
 
 /// The coast side's sweep over the pinion angles of the loaded side's
 /// `sweep`, backwards (in the coast side's driving direction).
@@ -189,22 +368,4 @@ pub fn inertia(
         );
     }
     Ok((body.polar_moment_kgm2, "mesh"))
-}
-
-/// Both members' compliance and polar moments (scene or mesh) for the
-/// blanks `[pinion, wheel]` from the mesh folder `dir` (benches and tests
-/// that set up one pair by hand).
-pub fn pair_and_inertia(
-    scene: &LoadedScene,
-    g: &PairGeometry,
-    dir: &Path,
-    blanks: [Blank; 2],
-) -> anyhow::Result<(PairCompliance, [f64; 2])> {
-    let load = |m: Member, b: Blank| -> anyhow::Result<_> {
-        let (c, plan) = member_compliance(scene, g, dir, m, b)?;
-        Ok((c, inertia(scene, g, dir, &plan, m)?.0))
-    };
-    let (pinion, j1) = load(Member::Pinion, blanks[0])?;
-    let (wheel, j2) = load(Member::Wheel, blanks[1])?;
-    Ok((PairCompliance { pinion, wheel }, [j1, j2]))
 }

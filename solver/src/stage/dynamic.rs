@@ -15,12 +15,14 @@
 //!
 //! Bearings are rigid: the bearing force of each member is the reaction to
 //! the contact force (the wheel's is reported; the pinion's is its negative).
-use crate::stage::context::inertia;
+use crate::multibody::impact_law::{Friction, ImpactLaw};
+use crate::stage::context::{analysis_enabled, LoadedPair, StageContext};
 use crate::stage::runup::runup_drive;
 use crate::stage::runup::runup_spectrogram;
 use crate::stage::runup::write_runup_orders;
+use formats::summaries::ImpactLawSummary;
+use geometry::utca::RollSurface;
 
-use crate::element::compliance::PairCompliance;
 use crate::ltca::mean_ptp;
 use crate::multibody::backlash::Coast;
 use crate::multibody::mesh_table::{MeshTable, TableSpec};
@@ -28,19 +30,15 @@ use crate::multibody::model::{
     interpolate, wheel_driven, Drive, Fluctuation, Impacts, Model, Ramp, State,
 };
 use crate::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
-use crate::stage::context::{
-    coast_compliance, member_compliance, record_stiffness_inputs, scene_sweep,
-};
+use crate::stage::context::coast_compliance;
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::columns::{PINION_ROTATION_DEG, PINION_RPM, TE_URAD, TIME_S};
 use formats::manifest::Manifest;
 use formats::output::{write_atomic, write_json};
 use formats::result_set::ResultSet;
-use geometry::design::Member;
-use geometry::pair::{pinion_direction, PairGeometry};
+use geometry::pair::pinion_direction;
 use geometry::scene::{Blank, ForceLaw, LoadedScene};
-use geometry::utca::roll_surface;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
@@ -124,11 +122,12 @@ fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
 
 /// Runs the multibody analyses of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<DynamicSummary>> {
-    if !scene.scene.analyses.multibody {
-        eprintln!(
-            "scene {}: `[analyses] multibody = false`, no multibody runs; skipped",
-            scene.scene.name
-        );
+    if !analysis_enabled(
+        scene,
+        scene.scene.analyses.multibody,
+        "multibody",
+        "no multibody runs",
+    ) {
         return Ok(Vec::new());
     }
     let sc = &scene.scene;
@@ -139,378 +138,452 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &out.join(&sc.name).join("multibody"),
         &format!("solver dynamic {}", scene.path.display()),
     )?;
-    let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
-    g.misalign(&sc.misalignment);
-    let side = sc.loaded_flank;
-    let fp = g.side(side);
-    let rs = roll_surface(fp, &sc.utca)?;
-    let coast_side = side.other();
+    let ctx = StageContext::new(scene, meshes)?;
+    let side = ctx.side();
+    let rs = ctx.roll_surface(side)?;
     let coast_rs = if mb.coast_contact {
-        Some(roll_surface(g.side(coast_side), &sc.utca)?)
+        Some(ctx.roll_surface(side.other())?)
     } else {
         None
     };
-    let dir = meshes.join(&sc.name);
-    let tau = g.data.mesh_cycle();
-    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
     let impact = match mb.force_law {
         ForceLaw::Element => None,
         ForceLaw::Impact => Some(crate::multibody::impact_law::from_settings(
-            &g.data, &mb.impact,
+            &ctx.g.data,
+            &mb.impact,
         )),
     };
     let mut all = Vec::new();
-    for &pb in &sc.blanks.pinion {
-        let (pin, pin_plan) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
-        let (j1, src1) = inertia(scene, &g, &dir, &pin_plan, Member::Pinion)?;
-        for &wb in &sc.blanks.wheel {
-            let (whl, whl_plan) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
-            record_stiffness_inputs(&mut set, scene, &g, &dir, [pb, wb], coast_rs.is_some())?;
-            let (j2, src2) = inertia(scene, &g, &dir, &whl_plan, Member::Wheel)?;
-            let pc = PairCompliance {
-                pinion: pin.clone(),
-                wheel: whl,
-            };
-            let sweep = scene_sweep(scene, &g, wb);
-            let runs_up = mb.runup_wheel_blanks.contains(&wb);
-            // Standard blanks repeat every mesh cycle; with a lightweight
-            // member the table spans the whole rotation the runs need.
-            let periodic = wb == Blank::Standard && pb == Blank::Standard;
-            let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
-            // The 10 rpm runs go one sweep step past the sweep's end.
-            let mut cycles = sc.rotation.mesh_cycles(wb);
-            if runs_up {
-                cycles = cycles.max(mb.runup_rotation() / tau);
-            }
-            if coast_rs.is_some() && mb.rattle_time_s > 0.0 {
-                cycles = cycles.max(mb.rattle_rotation() / tau);
-            }
-            let range = cycles * tau + 3.0 * sweep.step;
-            let step = tau / per_cycle as f64;
-            let positions = if periodic {
-                per_cycle
-            } else {
-                (range / step).ceil() as usize + 3
-            };
-            if let Some(run) = &mb.load_run {
-                cycles = cycles.max(run.rotation() / tau);
-            }
-            let torque_max = sc
-                .pinion_torque_nm
-                .iter()
-                .copied()
-                .chain(runs_up.then_some(mb.runup_pinion_torque_nm))
-                .chain(mb.load_run.as_ref().map(|r| r.wheel_torque_nm * ratio))
-                .fold(0.0, f64::max)
-                * mb.table_torque_factor;
-            let t0 = Instant::now();
-            eprintln!(
-                "multibody {pb:?}/{wb:?}: contact-element table {positions} positions x {} lags",
-                mb.table_lag_nodes
-            );
-            let spec = TableSpec {
-                start: sweep.start,
-                direction: sweep.direction,
-                step,
-                positions,
-                periodic,
-                slices: sc.ltca.slices,
-                lag_nodes: mb.table_lag_nodes,
-                torque_max_nm: torque_max.max(1.0),
-            };
-            let table = match &impact {
-                None => MeshTable::build(fp, &rs, &pc, &g.frames[0], ratio, spec),
-                Some((law, friction, _)) => crate::multibody::impact_table::build(
-                    fp,
-                    &rs,
-                    &g.frames[0],
-                    ratio,
-                    spec,
-                    *law,
-                    *friction,
-                ),
-            }
-            .with_context(|| format!("scene {}: contact-element table, {wb:?} wheel", sc.name))?;
-            let coast = match &coast_rs {
-                Some(crs) => {
-                    let cfp = g.side(coast_side);
-                    let cpc = coast_compliance(scene, &g, &dir, pb, wb)?.0;
-                    eprintln!("multibody {pb:?}/{wb:?}: coast-flank table");
-                    let ctable = MeshTable::build(
-                        cfp,
-                        crs,
-                        &cpc,
-                        &g.frames[0],
-                        ratio,
-                        TableSpec {
-                            start: if periodic {
-                                cfp.roll_range[0]
-                            } else {
-                                Coast::mirrored_start(&table)
-                            },
-                            direction: pinion_direction(&g.data, coast_side),
-                            ..table.spec
-                        },
-                    )
-                    .with_context(|| {
-                        format!("scene {}: coast-flank table, {wb:?} wheel", sc.name)
-                    })?;
-                    Some(Coast::place(fp, &table, cfp, ctable)?)
-                }
-                None => None,
-            };
-            let table_s = t0.elapsed().as_secs_f64();
-            let name = format!("{pb:?}_{wb:?}").to_lowercase();
-            // Written into the staging directory; the summary names the
-            // final path.
-            let odir = set.path().join(&name);
-            std::fs::create_dir_all(&odir)?;
-            let inertia = [j1, j2];
-            let control = |max_step: f64| StepControl {
-                max_step,
-                min_step: max_step * 1e-6,
-                tolerance: mb.te_tolerance_urad * 1e-6,
-            };
-            let scheme = Scheme::GeneralizedAlpha {
-                rho_inf: mb.rho_inf,
-            };
-            // Quasi-static runs.
-            let wheel_speed = mb.quasi_static_wheel_rpm * std::f64::consts::PI / 30.0;
-            let sweep_range = sweep.step * (sweep.positions - 1) as f64;
-            let mut qs = Vec::new();
-            let mut damping = 0.0;
-            let mut qs_series = Vec::new();
-            for &torque in &sc.pinion_torque_nm {
-                let (m, s0) = wheel_driven(
-                    &table,
-                    inertia,
-                    wheel_speed,
-                    torque,
-                    mb.damping_ratio,
-                    sc.ltca.friction_coefficient,
-                )?;
-                let m = Model {
-                    coast: coast.as_ref(),
-                    // The impact law brings its own damping and friction.
-                    damping: if impact.is_some() { 0.0 } else { m.damping },
-                    friction: if impact.is_some() { 0.0 } else { m.friction },
-                    ..m
-                };
-                damping = m.damping;
-                let mut integ = Integrator::new(scheme, control(mb.quasi_static_max_step_s));
-                let t = Instant::now();
-                // Slightly beyond the sweep so that its last position is inside.
-                let t_end = (sweep_range + 2.0 * sweep.step) / (wheel_speed / ratio);
-                let (tr, steps) = record(&m, s0, &mut integ, t_end)
-                    .with_context(|| format!("scene {}: 10 rpm run at {torque} N·m", sc.name))?;
-                let cpu = t.elapsed().as_secs_f64();
-                let sampled: Vec<f64> = (0..sweep.positions)
-                    .map(|k| interpolate(&tr.q1, &tr.te, sweep.step * k as f64))
-                    .collect();
-                let (mean, ptp) = mean_ptp(&sampled);
-                write_atomic(
-                    &odir.join(format!("quasi_static_{torque}nm.csv")),
-                    trace_csv(&tr, None).as_bytes(),
-                )?;
-                qs_series.push(Series {
-                    name: format!("{torque} N·m"),
-                    x: (0..sweep.positions)
-                        .map(|k| (sweep.step * k as f64).to_degrees())
-                        .collect(),
-                    y: sampled.iter().map(|v| v * 1e6).collect(),
-                    dashed: false,
-                });
-                eprintln!(
-                    "  10 rpm {torque:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {steps} steps, {:.1} µs/step",
-                    mean * 1e6,
-                    ptp * 1e6,
-                    cpu / steps.max(1) as f64 * 1e6
-                );
-                qs.push(QuasiStaticSummary {
-                    torque_nm: torque,
-                    te_mean_urad: mean * 1e6,
-                    te_ptp_urad: ptp * 1e6,
-                    steps,
-                    rejected_steps: integ.rejected,
-                    cpu_s: cpu,
-                    cpu_s_per_step: cpu / steps.max(1) as f64,
-                });
-            }
-            te_curve(
-                &odir.join("quasi_static_te.svg"),
-                &format!(
-                    "Multibody {} rpm wheel, {pb:?} pinion / {wb:?} wheel",
-                    mb.quasi_static_wheel_rpm
-                ),
-                "pinion rotation (deg)",
-                "transmission error (µrad)",
-                &qs_series,
-            )?;
-            let element_friction = if impact.is_some() {
-                0.0
-            } else {
-                sc.ltca.friction_coefficient
-            };
-            let load_run = match &mb.load_run {
-                Some(run) => {
-                    let drive = crate::multibody::load_run::drive(run);
-                    let mut m = Model {
-                        table: &table,
-                        coast: coast.as_ref(),
-                        inertia,
-                        damping: 0.0,
-                        friction: element_friction,
-                        drive,
-                    };
-                    let s0 = m.static_state(0.0)?;
-                    if impact.is_none() {
-                        // The element's mesh damping at the full load's balance.
-                        let loaded = Model {
-                            drive: Drive::PinionSpeed {
-                                speed: Ramp {
-                                    from: 0.0,
-                                    to: 0.0,
-                                    duration: 0.0,
-                                },
-                                wheel_torque: run.wheel_torque_nm,
-                            },
-                            ..m
-                        };
-                        let s = loaded.static_state(0.0)?;
-                        m.damping = loaded.damping_for_ratio(mb.damping_ratio, &s)?;
-                    }
-                    eprintln!(
-                        "  load run: pinion {} rpm (ramp {} s), wheel {} N·m (rise {} s), {} s",
-                        run.pinion_rpm,
-                        run.pinion_ramp_s,
-                        run.wheel_torque_nm,
-                        run.wheel_torque_rise_s,
-                        run.time_s
-                    );
-                    Some(crate::multibody::load_run::run(
-                        &m,
-                        s0,
-                        run,
-                        &g.data,
-                        scheme,
-                        control(run.max_step_s),
-                        &odir,
-                        &format!("{} ({:?} law)", sc.name, mb.force_law).to_lowercase(),
-                    )?)
-                }
-                None => None,
-            };
-            let runup = if runs_up {
-                Some(run_up(
-                    &table,
-                    inertia,
-                    mb,
-                    &odir,
-                    scheme,
-                    &control,
-                    pb,
-                    wb,
-                    g.data.members[0].teeth as f64,
-                    element_friction,
-                    impact.is_some(),
-                    coast.as_ref(),
-                )?)
-            } else {
-                None
-            };
-            let free_play = match &coast {
-                Some(c) => {
-                    let fp: Vec<f64> = (0..table.spec.positions)
-                        .map(|k| c.free_play(&table, table.spec.step * k as f64))
-                        .collect::<Result<_, _>>()?;
-                    let lo = fp.iter().copied().fold(f64::INFINITY, f64::min);
-                    let hi = fp.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                    eprintln!(
-                        "  backlash {:.2} µrad at the wheel, free play {:.2}..{:.2} µrad",
-                        c.backlash * 1e6,
-                        lo * 1e6,
-                        hi * 1e6
-                    );
-                    Some([lo * 1e6, hi * 1e6])
-                }
-                None => None,
-            };
-            let rattle = match &coast {
-                Some(c) if mb.rattle_time_s > 0.0 => Some(rattle(
-                    &table,
-                    c,
-                    inertia,
-                    damping,
-                    mb,
-                    &odir,
-                    scheme,
-                    &control,
-                    sc.ltca.friction_coefficient,
-                )?),
-                _ => None,
-            };
-            let compliant = match (&sc.bearings, &impact) {
-                (Some(_), None) => {
-                    let manifest = Manifest::read(&dir)?;
-                    let mass = |stem: &str| -> anyhow::Result<f64> {
-                        let b = manifest.mesh(&dir, stem)?.body;
-                        Ok(b.volume_m3 * b.density_kg_m3)
-                    };
-                    Some(crate::stage::compliant::run(
-                        &crate::stage::compliant::Setup {
-                            scene,
-                            g: &g,
-                            table: &table,
-                            inertia,
-                            mesh_mass_kg: [mass(&pin_plan.mesh_stem)?, mass(&whl_plan.mesh_stem)?],
-                            blanks: [pb, wb],
-                            odir: &odir,
-                            control: &control,
-                            runs_up,
-                        },
-                    )?)
-                }
-                (Some(_), Some(_)) => {
-                    eprintln!(
-                        "  [bearings] with the impact law: no compliant-bearing runs (they take the element's table)"
-                    );
-                    None
-                }
-                _ => None,
-            };
-            let summary = DynamicSummary {
-                compliant,
-                backlash_urad: coast.as_ref().map(|c| c.backlash * 1e6),
-                free_play_urad: free_play,
-                rattle,
-                friction_coefficient: sc.ltca.friction_coefficient,
-                pinion_blank: pb,
-                wheel_blank: wb,
-                inertia_kgm2: inertia,
-                inertia_source: if src1 == src2 {
-                    src1.into()
-                } else {
-                    format!("pinion {src1}, wheel {src2}")
-                },
-                damping_nm_s_per_rad: damping,
-                table_positions: positions,
-                table_lag_nodes: mb.table_lag_nodes,
-                table_build_s: table_s,
-                table_cpu_s_per_position: table.cpu_s_per_position,
-                quasi_static: qs,
-                runup,
-                force_law: format!("{:?}", mb.force_law).to_lowercase(),
-                impact_law: impact.as_ref().map(|i| i.2.clone()),
-                load_run,
-                dir: set.dir().join(&name),
-            };
-            write_json(&odir.join("summary.json"), &summary)?;
-            all.push(summary);
-        }
-    }
+    ctx.for_each_pair(|pair| {
+        ctx.record_inputs(&mut set, pair.blanks, coast_rs.is_some())?;
+        let summary = blank_pair(&ctx, &pair, &rs, coast_rs.as_ref(), impact.as_ref(), &set)?;
+        all.push(summary);
+        Ok(())
+    })?;
     write_json(&set.path().join("summary.json"), &all)?;
     set.commit()?;
     Ok(all)
+}
+
+/// The impact law, its friction and its summary
+/// ([`crate::multibody::impact_law::from_settings`]).
+type Impact = (ImpactLaw, Option<Friction>, ImpactLawSummary);
+
+/// The force elements of one pinion × wheel blank: the loaded flanks'
+/// table (the contact element's, or the impact law's) and, with coast
+/// contact, the coast flanks' placed across the backlash.
+struct Tables {
+    table: MeshTable,
+    coast: Option<Coast>,
+    /// Whether the scene runs up this wheel blank.
+    runs_up: bool,
+    /// Wall time of building both tables, s.
+    build_s: f64,
+}
+
+/// Builds the tables of `pair` over the rotation its runs need, up to the
+/// largest torque they apply.
+fn tables(
+    ctx: &StageContext,
+    pair: &LoadedPair,
+    rs: &RollSurface,
+    coast_rs: Option<&RollSurface>,
+    impact: Option<&Impact>,
+) -> anyhow::Result<Tables> {
+    let (scene, g) = (ctx.scene, &ctx.g);
+    let (sc, mb) = (&scene.scene, &scene.scene.multibody);
+    let ([pb, wb], pc, sweep) = (pair.blanks, &pair.pc, &pair.sweep);
+    let (fp, coast_side) = (ctx.fp(), ctx.side().other());
+    let tau = g.data.mesh_cycle();
+    let ratio = g.data.members[0].teeth as f64 / g.data.members[1].teeth as f64;
+    let runs_up = mb.runup_wheel_blanks.contains(&wb);
+    // Standard blanks repeat every mesh cycle; with a lightweight
+    // member the table spans the whole rotation the runs need.
+    let periodic = wb == Blank::Standard && pb == Blank::Standard;
+    let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
+    // The 10 rpm runs go one sweep step past the sweep's end.
+    let mut cycles = sc.rotation.mesh_cycles(wb);
+    if runs_up {
+        cycles = cycles.max(mb.runup_rotation() / tau);
+    }
+    if coast_rs.is_some() && mb.rattle_time_s > 0.0 {
+        cycles = cycles.max(mb.rattle_rotation() / tau);
+    }
+    let range = cycles * tau + 3.0 * sweep.step;
+    let step = tau / per_cycle as f64;
+    let positions = if periodic {
+        per_cycle
+    } else {
+        (range / step).ceil() as usize + 3
+    };
+    let torque_max = sc
+        .pinion_torque_nm
+        .iter()
+        .copied()
+        .chain(runs_up.then_some(mb.runup_pinion_torque_nm))
+        .chain(mb.load_run.as_ref().map(|r| r.wheel_torque_nm * ratio))
+        .fold(0.0, f64::max)
+        * mb.table_torque_factor;
+    let t0 = Instant::now();
+    eprintln!(
+        "multibody {pb:?}/{wb:?}: contact-element table {positions} positions x {} lags",
+        mb.table_lag_nodes
+    );
+    let spec = TableSpec {
+        start: sweep.start,
+        direction: sweep.direction,
+        step,
+        positions,
+        periodic,
+        slices: sc.ltca.slices,
+        lag_nodes: mb.table_lag_nodes,
+        torque_max_nm: torque_max.max(1.0),
+    };
+    let table = match impact {
+        None => MeshTable::build(fp, rs, pc, &g.frames[0], ratio, spec),
+        Some((law, friction, _)) => crate::multibody::impact_table::build(
+            fp,
+            rs,
+            &g.frames[0],
+            ratio,
+            spec,
+            *law,
+            *friction,
+        ),
+    }
+    .with_context(|| format!("scene {}: contact-element table, {wb:?} wheel", sc.name))?;
+    let coast = match coast_rs {
+        Some(crs) => {
+            let cfp = g.side(coast_side);
+            let cpc = coast_compliance(scene, g, &ctx.dir, pb, wb)?.0;
+            eprintln!("multibody {pb:?}/{wb:?}: coast-flank table");
+            let ctable = MeshTable::build(
+                cfp,
+                crs,
+                &cpc,
+                &g.frames[0],
+                ratio,
+                TableSpec {
+                    start: if periodic {
+                        cfp.roll_range[0]
+                    } else {
+                        Coast::mirrored_start(&table)
+                    },
+                    direction: pinion_direction(&g.data, coast_side),
+                    ..table.spec
+                },
+            )
+            .with_context(|| format!("scene {}: coast-flank table, {wb:?} wheel", sc.name))?;
+            Some(Coast::place(fp, &table, cfp, ctable)?)
+        }
+        None => None,
+    };
+    Ok(Tables {
+        table,
+        coast,
+        runs_up,
+        build_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// The 10 rpm (quasi-static) runs of `pair` at the scene's torques: their
+/// summaries, files and chart in `odir`, and the mesh damping they ran
+/// with.
+#[allow(clippy::too_many_arguments)]
+fn quasi_static(
+    sc: &geometry::scene::Scene,
+    pair: &LoadedPair,
+    t: &Tables,
+    inertia: [f64; 2],
+    impact: bool,
+    scheme: Scheme,
+    control: &dyn Fn(f64) -> StepControl,
+    odir: &Path,
+) -> anyhow::Result<(Vec<QuasiStaticSummary>, f64)> {
+    let mb = &sc.multibody;
+    let ([pb, wb], sweep) = (pair.blanks, &pair.sweep);
+    let (table, coast) = (&t.table, &t.coast);
+    let ratio = table.ratio;
+    // Quasi-static runs.
+    let wheel_speed = mb.quasi_static_wheel_rpm * std::f64::consts::PI / 30.0;
+    let sweep_range = sweep.step * (sweep.positions - 1) as f64;
+    let mut qs = Vec::new();
+    let mut damping = 0.0;
+    let mut qs_series = Vec::new();
+    for &torque in &sc.pinion_torque_nm {
+        let (m, s0) = wheel_driven(
+            &table,
+            inertia,
+            wheel_speed,
+            torque,
+            mb.damping_ratio,
+            sc.ltca.friction_coefficient,
+        )?;
+        let m = Model {
+            coast: coast.as_ref(),
+            // The impact law brings its own damping and friction.
+            damping: if impact { 0.0 } else { m.damping },
+            friction: if impact { 0.0 } else { m.friction },
+            ..m
+        };
+        damping = m.damping;
+        let mut integ = Integrator::new(scheme, control(mb.quasi_static_max_step_s));
+        let t = Instant::now();
+        // Slightly beyond the sweep so that its last position is inside.
+        let t_end = (sweep_range + 2.0 * sweep.step) / (wheel_speed / ratio);
+        let (tr, steps) = record(&m, s0, &mut integ, t_end)
+            .with_context(|| format!("scene {}: 10 rpm run at {torque} N·m", sc.name))?;
+        let cpu = t.elapsed().as_secs_f64();
+        let sampled: Vec<f64> = (0..sweep.positions)
+            .map(|k| interpolate(&tr.q1, &tr.te, sweep.step * k as f64))
+            .collect();
+        let (mean, ptp) = mean_ptp(&sampled);
+        write_atomic(
+            &odir.join(format!("quasi_static_{torque}nm.csv")),
+            trace_csv(&tr, None).as_bytes(),
+        )?;
+        qs_series.push(Series {
+            name: format!("{torque} N·m"),
+            x: (0..sweep.positions)
+                .map(|k| (sweep.step * k as f64).to_degrees())
+                .collect(),
+            y: sampled.iter().map(|v| v * 1e6).collect(),
+            dashed: false,
+        });
+        eprintln!(
+            "  10 rpm {torque:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {steps} steps, {:.1} µs/step",
+            mean * 1e6,
+            ptp * 1e6,
+            cpu / steps.max(1) as f64 * 1e6
+        );
+        qs.push(QuasiStaticSummary {
+            torque_nm: torque,
+            te_mean_urad: mean * 1e6,
+            te_ptp_urad: ptp * 1e6,
+            steps,
+            rejected_steps: integ.rejected,
+            cpu_s: cpu,
+            cpu_s_per_step: cpu / steps.max(1) as f64,
+        });
+    }
+    te_curve(
+        &odir.join("quasi_static_te.svg"),
+        &format!(
+            "Multibody {} rpm wheel, {pb:?} pinion / {wb:?} wheel",
+            mb.quasi_static_wheel_rpm
+        ),
+        "pinion rotation (deg)",
+        "transmission error (µrad)",
+        &qs_series,
+    )?;
+    Ok((qs, damping))
+}
+
+/// Everything `solver dynamic` runs on one pinion × wheel blank, its files
+/// written into `set`'s staging folder.
+fn blank_pair(
+    ctx: &StageContext,
+    pair: &LoadedPair,
+    rs: &RollSurface,
+    coast_rs: Option<&RollSurface>,
+    impact: Option<&Impact>,
+    set: &ResultSet,
+) -> anyhow::Result<DynamicSummary> {
+    let (scene, g, dir) = (ctx.scene, &ctx.g, ctx.dir.as_path());
+    let (sc, mb) = (&scene.scene, &scene.scene.multibody);
+    let [pb, wb] = pair.blanks;
+    let [(j1, src1), (j2, src2)] = ctx.inertia(pair)?;
+    let inertia = [j1, j2];
+    let tables = tables(ctx, pair, rs, coast_rs, impact)?;
+    let (table, coast, runs_up) = (&tables.table, &tables.coast, tables.runs_up);
+    let positions = table.spec.positions;
+    let name = pair.name();
+    // Written into the staging directory; the summary names the
+    // final path.
+    let odir = set.path().join(&name);
+    std::fs::create_dir_all(&odir)?;
+    let control = |max_step: f64| StepControl {
+        max_step,
+        min_step: max_step * 1e-6,
+        tolerance: mb.te_tolerance_urad * 1e-6,
+    };
+    let scheme = Scheme::GeneralizedAlpha {
+        rho_inf: mb.rho_inf,
+    };
+    let (qs, damping) = quasi_static(
+        sc,
+        pair,
+        &tables,
+        inertia,
+        impact.is_some(),
+        scheme,
+        &control,
+        &odir,
+    )?;
+    let element_friction = if impact.is_some() {
+        0.0
+    } else {
+        sc.ltca.friction_coefficient
+    };
+    let load_run = match &mb.load_run {
+        Some(run) => {
+            let drive = crate::multibody::load_run::drive(run);
+            let mut m = Model {
+                table,
+                coast: coast.as_ref(),
+                inertia,
+                damping: 0.0,
+                friction: element_friction,
+                drive,
+            };
+            let s0 = m.static_state(0.0)?;
+            if impact.is_none() {
+                // The element's mesh damping at the full load's balance.
+                let loaded = Model {
+                    drive: Drive::PinionSpeed {
+                        speed: Ramp {
+                            from: 0.0,
+                            to: 0.0,
+                            duration: 0.0,
+                        },
+                        wheel_torque: run.wheel_torque_nm,
+                    },
+                    ..m
+                };
+                let s = loaded.static_state(0.0)?;
+                m.damping = loaded.damping_for_ratio(mb.damping_ratio, &s)?;
+            }
+            eprintln!(
+                "  load run: pinion {} rpm (ramp {} s), wheel {} N·m (rise {} s), {} s",
+                run.pinion_rpm,
+                run.pinion_ramp_s,
+                run.wheel_torque_nm,
+                run.wheel_torque_rise_s,
+                run.time_s
+            );
+            Some(crate::multibody::load_run::run(
+                &m,
+                s0,
+                run,
+                &g.data,
+                scheme,
+                control(run.max_step_s),
+                &odir,
+                &format!("{} ({:?} law)", sc.name, mb.force_law).to_lowercase(),
+            )?)
+        }
+        None => None,
+    };
+    let runup = if runs_up {
+        Some(run_up(
+            table,
+            inertia,
+            mb,
+            &odir,
+            scheme,
+            &control,
+            pb,
+            wb,
+            g.data.members[0].teeth as f64,
+            element_friction,
+            impact.is_some(),
+            coast.as_ref(),
+        )?)
+    } else {
+        None
+    };
+    let free_play = match &coast {
+        Some(c) => {
+            let fp: Vec<f64> = (0..table.spec.positions)
+                .map(|k| c.free_play(table, table.spec.step * k as f64))
+                .collect::<Result<_, _>>()?;
+            let lo = fp.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = fp.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            eprintln!(
+                "  backlash {:.2} µrad at the wheel, free play {:.2}..{:.2} µrad",
+                c.backlash * 1e6,
+                lo * 1e6,
+                hi * 1e6
+            );
+            Some([lo * 1e6, hi * 1e6])
+        }
+        None => None,
+    };
+    let rattle = match &coast {
+        Some(c) if mb.rattle_time_s > 0.0 => Some(rattle(
+            table,
+            c,
+            inertia,
+            damping,
+            mb,
+            &odir,
+            scheme,
+            &control,
+            sc.ltca.friction_coefficient,
+        )?),
+        _ => None,
+    };
+    let compliant = match (&sc.bearings, impact) {
+        (Some(_), None) => {
+            let manifest = Manifest::read(dir)?;
+            let mass = |stem: &str| -> anyhow::Result<f64> {
+                let b = manifest.mesh(dir, stem)?.body;
+                Ok(b.volume_m3 * b.density_kg_m3)
+            };
+            Some(crate::stage::compliant::run(
+                &crate::stage::compliant::Setup {
+                    scene,
+                    g: &g,
+                    table,
+                    inertia,
+                    mesh_mass_kg: [
+                        mass(&pair.plans[0].mesh_stem)?,
+                        mass(&pair.plans[1].mesh_stem)?,
+                    ],
+                    blanks: [pb, wb],
+                    odir: &odir,
+                    control: &control,
+                    runs_up,
+                },
+            )?)
+        }
+        (Some(_), Some(_)) => {
+            eprintln!(
+                "  [bearings] with the impact law: no compliant-bearing runs (they take the element's table)"
+            );
+            None
+        }
+        _ => None,
+    };
+    let summary = DynamicSummary {
+        compliant,
+        backlash_urad: coast.as_ref().map(|c| c.backlash * 1e6),
+        free_play_urad: free_play,
+        rattle,
+        friction_coefficient: sc.ltca.friction_coefficient,
+        pinion_blank: pb,
+        wheel_blank: wb,
+        inertia_kgm2: inertia,
+        inertia_source: if src1 == src2 {
+            src1.into()
+        } else {
+            format!("pinion {src1}, wheel {src2}")
+        },
+        damping_nm_s_per_rad: damping,
+        table_positions: positions,
+        table_lag_nodes: mb.table_lag_nodes,
+        table_build_s: tables.build_s,
+        table_cpu_s_per_position: table.cpu_s_per_position,
+        quasi_static: qs,
+        runup,
+        force_law: format!("{:?}", mb.force_law).to_lowercase(),
+        impact_law: impact.as_ref().map(|i| i.2.clone()),
+        load_run,
+        dir: set.dir().join(&name),
+    };
+    write_json(&odir.join("summary.json"), &summary)?;
+    write_json(&odir.join("summary.json"), &summary)?;
+    Ok(summary)
 }
 
 #[allow(clippy::too_many_arguments)]

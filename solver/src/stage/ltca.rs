@@ -7,11 +7,11 @@
 //! ([`formats::result_set`]): into a staging sibling, put in place whole
 //! with its `run.json` once every blank has run; a run that fails leaves
 //! the previous set as it was.
+use crate::bearings::system_deflection::Supports;
 use crate::stage::context::coast_compliance;
 use crate::stage::context::coast_sweep;
-use crate::stage::context::member_compliance;
-use crate::stage::context::record_stiffness_inputs;
-use crate::stage::context::scene_sweep;
+use crate::stage::context::{analysis_enabled, LoadedPair, StageContext};
+use geometry::utca::RollSurface;
 
 use crate::element::compliance::PairCompliance;
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
@@ -20,10 +20,8 @@ use formats::columns::{te_at_urad, PINION_ROTATION_DEG, UTCA_TE_URAD};
 use formats::output::{write_atomic, write_json};
 use formats::result_set::ResultSet;
 use formats::stiffness_file;
-use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
-use geometry::utca::roll_surface;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
@@ -32,11 +30,7 @@ pub use formats::summaries::{BlankSummary, CoastSummary, Edge, EdgeContact, Load
 
 /// Runs the LTCA of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<BlankSummary>> {
-    if !scene.scene.analyses.ltca {
-        eprintln!(
-            "scene {}: `[analyses] ltca = false`, no loaded TCA; skipped",
-            scene.scene.name
-        );
+    if !analysis_enabled(scene, scene.scene.analyses.ltca, "ltca", "no loaded TCA") {
         return Ok(Vec::new());
     }
     let sc = &scene.scene;
@@ -46,7 +40,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &out.join(&sc.name).join("ltca"),
         &format!("solver ltca {}", scene.path.display()),
     )?;
-    let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     // The bearings are checked before any work.
     let supports = sc
         .bearings
@@ -54,122 +48,143 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         .map(|b| crate::bearings::system_deflection::supports_of(b, &g))
         .transpose()
         .with_context(|| format!("scene {}: [bearings]", sc.name))?;
-    g.misalign(&sc.misalignment);
-    let side = sc.loaded_flank;
-    let fp = g.side(side);
-    let rs = roll_surface(fp, &sc.utca)?;
-    let dir = meshes.join(&sc.name);
+    let ctx = StageContext::with_geometry(scene, g, meshes);
+    let side = ctx.side();
+    let rs = ctx.roll_surface(side)?;
     let coast_rs = if sc.multibody.coast_contact {
-        Some(roll_surface(g.side(side.other()), &sc.utca)?)
+        Some(ctx.roll_surface(side.other())?)
     } else {
         None
     };
     let mut out_all = Vec::new();
-    for &pb in &sc.blanks.pinion {
-        let (pin, pin_path) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
-        for &wb in &sc.blanks.wheel {
-            let t0 = Instant::now();
-            let (whl, whl_path) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
-            record_stiffness_inputs(&mut set, scene, &g, &dir, [pb, wb], coast_rs.is_some())?;
-            let pc = PairCompliance {
-                pinion: pin.clone(),
-                wheel: whl,
-            };
-            let sweep = scene_sweep(scene, &g, wb);
-            eprintln!(
-                "ltca {pb:?}/{wb:?}: {} positions x {} torques, {} slices per pair",
-                sweep.positions,
-                sc.pinion_torque_nm.len(),
-                sweep.slices
-            );
-            let res = run_sweep(fp, &rs, &pc, &sweep, &sc.pinion_torque_nm)
-                .with_context(|| format!("scene {}: LTCA, {wb:?} wheel blank", sc.name))?;
-            let name = format!("{pb:?}_{wb:?}").to_lowercase();
-            // Written into the staging directory; the summaries name the
-            // final paths.
-            let odir = set.path().join(&name);
-            let final_dir = set.dir().join(&name);
-            std::fs::create_dir_all(&odir)?;
-            write_outputs(&odir, &res, &sc.pinion_torque_nm)?;
-            let (um, up) = mean_ptp(&res.iter().map(|p| p.utca_te).collect::<Vec<_>>());
-            let bearings = match (&supports, &sc.bearings) {
-                (Some(sup), Some(bs)) => Some(
-                    bearing_loads(scene, &g, &pc, sup, bs, &sweep, &odir).with_context(|| {
-                        format!(
-                            "scene {}: LTCA with bearing deflection, {wb:?} wheel blank",
-                            sc.name
-                        )
-                    })?,
-                ),
-                _ => None,
-            };
-            let coast = match &coast_rs {
-                Some(crs) => Some(
-                    coast_loads(
-                        scene,
-                        &g,
-                        &dir,
-                        crs,
-                        pb,
-                        wb,
-                        &sweep,
-                        [&odir.join("coast"), &final_dir.join("coast")],
-                    )
-                    .with_context(|| {
-                        format!("scene {}: coast-side LTCA, {wb:?} wheel blank", sc.name)
-                    })?,
-                ),
-                None => None,
-            };
-            let summary = BlankSummary {
-                pinion_blank: pb,
-                wheel_blank: wb,
-                positions: res.len(),
-                step_deg: sc.rotation.step_deg,
-                mesh_cycles: sc.rotation.mesh_cycles(wb),
-                slices_per_pair: sweep.slices,
-                friction_coefficient: sweep.friction,
-                utca_te_mean_urad: um * 1e6,
-                utca_te_ptp_urad: up * 1e6,
-                stiffness_files: vec![pin_path.path.clone(), whl_path.path],
-                wall_s: t0.elapsed().as_secs_f64(),
-                loads: load_summaries(&res, &sc.pinion_torque_nm),
-                dir: final_dir,
-                coast,
-                bearings,
-            };
-            write_json(&odir.join("summary.json"), &summary)?;
-            warn_edge_contact(&sc.name, &format!("{pb:?}/{wb:?} blanks"), &summary.loads);
-            if let Some(c) = &summary.coast {
-                warn_edge_contact(
-                    &sc.name,
-                    &format!("{pb:?}/{wb:?} blanks, coast flanks"),
-                    &c.loads,
-                );
-            }
-            for l in &summary.loads {
-                eprintln!(
-                    "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {:.2} ms/position",
-                    l.torque_nm,
-                    l.te_mean_urad,
-                    l.te_ptp_urad,
-                    l.cpu_s_per_position * 1e3
-                );
-            }
-            if let Some(c) = &summary.coast {
-                for l in &c.loads {
-                    eprintln!(
-                        "  {:6.1} N·m on the coast flanks: TE mean {:8.2} µrad, ptp {:7.2} µrad",
-                        l.torque_nm, l.te_mean_urad, l.te_ptp_urad
-                    );
-                }
-            }
-            out_all.push(summary);
-        }
-    }
+    ctx.for_each_pair(|pair| {
+        ctx.record_inputs(&mut set, pair.blanks, coast_rs.is_some())?;
+        let t0 = Instant::now();
+        let summary = blank_pair(
+            &ctx,
+            &pair,
+            &rs,
+            coast_rs.as_ref(),
+            supports.as_ref(),
+            &set,
+            t0,
+        )?;
+        print_summary(&sc.name, &summary);
+        out_all.push(summary);
+        Ok(())
+    })?;
     write_json(&set.path().join("summary.json"), &out_all)?;
     set.commit()?;
     Ok(out_all)
+}
+
+/// The LTCA of one pinion × wheel blank, its files written into `set`'s
+/// staging folder; `t0` is when its work began.
+fn blank_pair(
+    ctx: &StageContext,
+    pair: &LoadedPair,
+    rs: &RollSurface,
+    coast_rs: Option<&RollSurface>,
+    supports: Option<&Supports>,
+    set: &ResultSet,
+    t0: Instant,
+) -> anyhow::Result<BlankSummary> {
+    let (scene, g, dir) = (ctx.scene, &ctx.g, ctx.dir.as_path());
+    let sc = &scene.scene;
+    let ([pb, wb], pc, sweep) = (pair.blanks, &pair.pc, pair.sweep);
+    eprintln!(
+        "ltca {pb:?}/{wb:?}: {} positions x {} torques, {} slices per pair",
+        sweep.positions,
+        sc.pinion_torque_nm.len(),
+        sweep.slices
+    );
+    let res = run_sweep(ctx.fp(), rs, pc, &sweep, &sc.pinion_torque_nm)
+        .with_context(|| format!("scene {}: LTCA, {wb:?} wheel blank", sc.name))?;
+    let name = pair.name();
+    // Written into the staging directory; the summaries name the
+    // final paths.
+    let odir = set.path().join(&name);
+    let final_dir = set.dir().join(&name);
+    std::fs::create_dir_all(&odir)?;
+    write_outputs(&odir, &res, &sc.pinion_torque_nm)?;
+    let (um, up) = mean_ptp(&res.iter().map(|p| p.utca_te).collect::<Vec<_>>());
+    let bearings = match (supports, &sc.bearings) {
+        (Some(sup), Some(bs)) => Some(
+            bearing_loads(scene, g, pc, sup, bs, &sweep, &odir).with_context(|| {
+                format!(
+                    "scene {}: LTCA with bearing deflection, {wb:?} wheel blank",
+                    sc.name
+                )
+            })?,
+        ),
+        _ => None,
+    };
+    let coast = match coast_rs {
+        Some(crs) => Some(
+            coast_loads(
+                scene,
+                g,
+                dir,
+                crs,
+                pb,
+                wb,
+                &sweep,
+                [&odir.join("coast"), &final_dir.join("coast")],
+            )
+            .with_context(|| format!("scene {}: coast-side LTCA, {wb:?} wheel blank", sc.name))?,
+        ),
+        None => None,
+    };
+    let summary = BlankSummary {
+        pinion_blank: pb,
+        wheel_blank: wb,
+        positions: res.len(),
+        step_deg: sc.rotation.step_deg,
+        mesh_cycles: sc.rotation.mesh_cycles(wb),
+        slices_per_pair: sweep.slices,
+        friction_coefficient: sweep.friction,
+        utca_te_mean_urad: um * 1e6,
+        utca_te_ptp_urad: up * 1e6,
+        stiffness_files: pair.plans.iter().map(|p| p.path.clone()).collect(),
+        wall_s: t0.elapsed().as_secs_f64(),
+        loads: load_summaries(&res, &sc.pinion_torque_nm),
+        dir: final_dir,
+        coast,
+        bearings,
+    };
+    write_json(&odir.join("summary.json"), &summary)?;
+    Ok(summary)
+}
+
+/// The edge-contact warnings and the per-torque lines of one blank pair's
+/// summary, on stderr.
+fn print_summary(scene: &str, summary: &BlankSummary) {
+    let (pb, wb) = (summary.pinion_blank, summary.wheel_blank);
+    warn_edge_contact(scene, &format!("{pb:?}/{wb:?} blanks"), &summary.loads);
+    if let Some(c) = &summary.coast {
+        warn_edge_contact(
+            scene,
+            &format!("{pb:?}/{wb:?} blanks, coast flanks"),
+            &c.loads,
+        );
+    }
+    for l in &summary.loads {
+        eprintln!(
+            "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {:.2} ms/position",
+            l.torque_nm,
+            l.te_mean_urad,
+            l.te_ptp_urad,
+            l.cpu_s_per_position * 1e3
+        );
+    }
+    if let Some(c) = &summary.coast {
+        for l in &c.loads {
+            eprintln!(
+                "  {:6.1} N·m on the coast flanks: TE mean {:8.2} µrad, ptp {:7.2} µrad",
+                l.torque_nm, l.te_mean_urad, l.te_ptp_urad
+            );
+        }
+    }
 }
 
 /// The scene's loads with the members on their compliant bearings

@@ -6,19 +6,17 @@
 //! of [`crate::stage::lumped_plots`], written as one result set.
 use crate::lumped::friction::slice_friction;
 
-use crate::element::compliance::PairCompliance;
 use crate::ltca::{geometry, run as run_sweep};
 use crate::lumped::from_ltca::{fit_series, mesh_samples, tangent_torques};
 use crate::lumped::impact::engagement;
 use crate::lumped::roughness::roughened;
-use crate::stage::context::{member_compliance, record_stiffness_inputs, scene_sweep};
+use crate::stage::context::{scene_sweep, StageContext};
 use crate::stage::lumped_run::{run_blank, Case};
 use anyhow::Context;
 use formats::lumped_summary::{DesignVariantSummary, LumpedSummary};
 use formats::manifest::Manifest;
 use formats::output::write_json;
 use formats::result_set::ResultSet;
-use geometry::design::Member as Which;
 use geometry::design::PairData;
 use geometry::pair::PairGeometry;
 use geometry::scene::LoadedScene;
@@ -118,152 +116,146 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &out.join(&sc.name).join("lumped"),
         &format!("solver lumped {}", scene.path.display()),
     )?;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let ctx = StageContext::aligned(scene, meshes)?;
+    let (g, dir) = (&ctx.g, ctx.dir.as_path());
     let side = sc.loaded_flank;
-    let dir = meshes.join(&sc.name);
-    let manifest = Manifest::read(&dir)?;
+    let manifest = Manifest::read(dir)?;
     let torques = torques(ls);
     let variants = flank_variants(ls);
     if let Some(om) = &ls.order_map {
-        let all =
-            crate::stage::lumped_order_map::run(scene, ls, om, &g, &dir, &manifest, &mut set)?;
+        let all = crate::stage::lumped_order_map::run(&ctx, ls, om, &manifest, &mut set)?;
         write_json(&set.path().join("summary.json"), &all)?;
         set.commit()?;
         return Ok(all);
     }
     let omega = ls.pinion_speed_rpm * std::f64::consts::PI / 30.0;
     let mut all = Vec::new();
-    for &pb in &sc.blanks.pinion {
-        let (pin, pin_plan) = member_compliance(scene, &g, &dir, Which::Pinion, pb)?;
-        for &wb in &sc.blanks.wheel {
-            let (whl, whl_plan) = member_compliance(scene, &g, &dir, Which::Wheel, wb)?;
-            record_stiffness_inputs(&mut set, scene, &g, &dir, [pb, wb], false)?;
-            let body = |stem: &str| -> anyhow::Result<_> { Ok(manifest.mesh(&dir, stem)?.body) };
-            let bodies = [body(&pin_plan.mesh_stem)?, body(&whl_plan.mesh_stem)?];
-            let pc = PairCompliance {
-                pinion: pin.clone(),
-                wheel: whl,
-            };
-            for flanks in &variants {
-                let other_pair;
-                let (gr, mut rough, design) = match flanks {
-                    Flanks::Rough(ra) => {
-                        let Some(r) = ls.roughness.as_ref() else {
-                            anyhow::bail!(
-                                "scene {}: a roughness grade without [lumped.roughness]",
-                                sc.name
-                            );
-                        };
-                        let (p, summary) = roughened(
-                            &scene.pair,
-                            g.side(side),
-                            *ra,
-                            r.seed,
-                            [r.profile_nodes, r.face_nodes],
-                            sc.mesh.reduced_order.profile as usize,
-                        )?;
-                        other_pair = PairGeometry::build(&p, Some(&scene.design_path))
-                            .with_context(|| {
-                                format!("scene {}: the pair with Ra {ra} µm", sc.name)
-                            })?;
-                        (&other_pair, Some(summary), None)
-                    }
-                    Flanks::Variant(v) => {
-                        let (p, summary) = varied(&scene.pair, v);
-                        other_pair = PairGeometry::build(&p, Some(&scene.design_path))
-                            .with_context(|| {
-                                format!("scene {}: design variant {}", sc.name, v.name)
-                            })?;
-                        (&other_pair, None, Some(summary))
-                    }
-                    Flanks::Design => (&g, None, None),
-                };
-                let fp = gr.side(side);
-                let rs = roll_surface(fp, &sc.utca)?;
-                let sweep = scene_sweep(scene, gr, wb);
-                for &torque in &torques {
-                    let res = run_sweep(fp, &rs, &pc, &sweep, &tangent_torques(torque))
-                        .with_context(|| format!("scene {}: LTCA for the lumped model", sc.name))?;
-                    let samples = mesh_samples(&res, torque, omega, gr.data.mesh_cycle())?;
-                    let [kf, ef, df] = fit_series(&samples, ls.fourier_tolerance_of_ptp)?;
-                    let tau = fp.pinion.gen.frame.pitch();
-                    let geo = |k: usize| {
-                        let phi = sweep.start + sweep.direction * res[k].rotation;
-                        (phi, geometry(fp, &rs, phi, tau, sweep.slices))
+    ctx.for_each_pair(|pair| {
+        let [pb, wb] = pair.blanks;
+        ctx.record_inputs(&mut set, pair.blanks, false)?;
+        let body = |stem: &str| -> anyhow::Result<_> { Ok(manifest.mesh(&ctx.dir, stem)?.body) };
+        let bodies = [body(&pair.plans[0].mesh_stem)?, body(&pair.plans[1].mesh_stem)?];
+        let pc = pair.pc;
+        for flanks in &variants {
+            let other_pair;
+            let (gr, mut rough, design) = match flanks {
+                Flanks::Rough(ra) => {
+                    let Some(r) = ls.roughness.as_ref() else {
+                        anyhow::bail!(
+                            "scene {}: a roughness grade without [lumped.roughness]",
+                            sc.name
+                        );
                     };
-                    let lag = |k: usize, pair: i32| {
-                        geo(k)
-                            .1
-                            .slices
-                            .iter()
-                            .filter(|s| s.pair == pair)
-                            .map(|s| s.lag)
-                            .reduce(f64::min)
-                    };
-                    let eng = engagement(&res, &samples, omega, lag);
-                    if let Some(r) = rough.as_mut() {
-                        let (fb, f) = res
-                            .iter()
-                            .flat_map(|p| p.loads[1].slices.iter())
-                            .fold((0.0, 0.0), |(fb, f), s| {
-                                (fb + s.force_n * s.half_width_m, f + s.force_n)
-                            });
-                        r.hertz_half_width_m = if f > 0.0 { fb / f } else { 0.0 };
-                    }
-                    let slice_friction = (0..samples.time_s.len())
-                        .map(|k| {
-                            let (phi, gk) = geo(k);
-                            slice_friction(fp, phi, tau, &gk.slices, &res[k].loads[1].slices)
-                        })
-                        .collect::<Vec<_>>();
-                    // The first torque on the design's own flanks is the
-                    // scene's base run: no suffix.
-                    let variant = if torque == torques[0] && matches!(flanks, Flanks::Design) {
-                        String::new()
-                    } else {
-                        format!("t{torque}_{}", flanks.label())
-                    };
-                    let mut name = format!("{pb:?}_{wb:?}").to_lowercase();
-                    if !variant.is_empty() {
-                        name = format!("{name}_{variant}");
-                    }
-                    let odir = set.path().join(&name);
-                    std::fs::create_dir_all(&odir)?;
-                    let case = Case {
-                        ls,
-                        torque,
-                        blanks: [pb, wb],
-                        side,
-                        g: gr,
-                        bodies,
-                        samples: &samples,
-                        fits: [&kf, &ef, &df],
-                        eng,
-                        slice_friction,
-                        roughness: rough.clone(),
-                        design: design.clone(),
-                        contact_ratio: loaded_contact_ratio(&res, samples.time_s.len()),
-                        variant,
-                        max_order: MAX_ORDER,
-                    };
-                    let (summary, _) = run_blank(&case, &odir)?;
-                    eprintln!(
-                        "lumped {pb:?}/{wb:?} {}: k mean {:.4e} N/m ({} harmonics), μ {:.3}, RMS along the normal {:.2} m/s², pinion velocity RMS {:.3} mm/s, {} steps, {:.2} s",
-                        summary.variant,
-                        summary.mesh_stiffness_n_per_m.mean,
-                        summary.mesh_stiffness_n_per_m.harmonics.len(),
-                        summary.friction_coefficient,
-                        summary.rms_acceleration_m_s2.mesh_normal,
-                        1e3 * summary.member_velocity_rms_m_s[0],
-                        summary.steps[0],
-                        summary.integration_wall_s
-                    );
-                    write_json(&odir.join("summary.json"), &summary)?;
-                    all.push(summary);
+                    let (p, summary) = roughened(
+                        &scene.pair,
+                        g.side(side),
+                        *ra,
+                        r.seed,
+                        [r.profile_nodes, r.face_nodes],
+                        sc.mesh.reduced_order.profile as usize,
+                    )?;
+                    other_pair = PairGeometry::build(&p, Some(&scene.design_path))
+                        .with_context(|| {
+                            format!("scene {}: the pair with Ra {ra} µm", sc.name)
+                        })?;
+                    (&other_pair, Some(summary), None)
                 }
+                Flanks::Variant(v) => {
+                    let (p, summary) = varied(&scene.pair, v);
+                    other_pair = PairGeometry::build(&p, Some(&scene.design_path))
+                        .with_context(|| {
+                            format!("scene {}: design variant {}", sc.name, v.name)
+                        })?;
+                    (&other_pair, None, Some(summary))
+                }
+                Flanks::Design => (g, None, None),
+            };
+            let fp = gr.side(side);
+            let rs = roll_surface(fp, &sc.utca)?;
+            let sweep = scene_sweep(scene, gr, wb);
+            for &torque in &torques {
+                let res = run_sweep(fp, &rs, &pc, &sweep, &tangent_torques(torque))
+                    .with_context(|| format!("scene {}: LTCA for the lumped model", sc.name))?;
+                let samples = mesh_samples(&res, torque, omega, gr.data.mesh_cycle())?;
+                let [kf, ef, df] = fit_series(&samples, ls.fourier_tolerance_of_ptp)?;
+                let tau = fp.pinion.gen.frame.pitch();
+                let geo = |k: usize| {
+                    let phi = sweep.start + sweep.direction * res[k].rotation;
+                    (phi, geometry(fp, &rs, phi, tau, sweep.slices))
+                };
+                let lag = |k: usize, pair: i32| {
+                    geo(k)
+                        .1
+                        .slices
+                        .iter()
+                        .filter(|s| s.pair == pair)
+                        .map(|s| s.lag)
+                        .reduce(f64::min)
+                };
+                let eng = engagement(&res, &samples, omega, lag);
+                if let Some(r) = rough.as_mut() {
+                    let (fb, f) = res
+                        .iter()
+                        .flat_map(|p| p.loads[1].slices.iter())
+                        .fold((0.0, 0.0), |(fb, f), s| {
+                            (fb + s.force_n * s.half_width_m, f + s.force_n)
+                        });
+                    r.hertz_half_width_m = if f > 0.0 { fb / f } else { 0.0 };
+                }
+                let slice_friction = (0..samples.time_s.len())
+                    .map(|k| {
+                        let (phi, gk) = geo(k);
+                        slice_friction(fp, phi, tau, &gk.slices, &res[k].loads[1].slices)
+                    })
+                    .collect::<Vec<_>>();
+                // The first torque on the design's own flanks is the
+                // scene's base run: no suffix.
+                let variant = if torque == torques[0] && matches!(flanks, Flanks::Design) {
+                    String::new()
+                } else {
+                    format!("t{torque}_{}", flanks.label())
+                };
+                let mut name = format!("{pb:?}_{wb:?}").to_lowercase();
+                if !variant.is_empty() {
+                    name = format!("{name}_{variant}");
+                }
+                let odir = set.path().join(&name);
+                std::fs::create_dir_all(&odir)?;
+                let case = Case {
+                    ls,
+                    torque,
+                    blanks: [pb, wb],
+                    side,
+                    g: gr,
+                    bodies,
+                    samples: &samples,
+                    fits: [&kf, &ef, &df],
+                    eng,
+                    slice_friction,
+                    roughness: rough.clone(),
+                    design: design.clone(),
+                    contact_ratio: loaded_contact_ratio(&res, samples.time_s.len()),
+                    variant,
+                    max_order: MAX_ORDER,
+                };
+                let (summary, _) = run_blank(&case, &odir)?;
+                eprintln!(
+                    "lumped {pb:?}/{wb:?} {}: k mean {:.4e} N/m ({} harmonics), μ {:.3}, RMS along the normal {:.2} m/s², pinion velocity RMS {:.3} mm/s, {} steps, {:.2} s",
+                    summary.variant,
+                    summary.mesh_stiffness_n_per_m.mean,
+                    summary.mesh_stiffness_n_per_m.harmonics.len(),
+                    summary.friction_coefficient,
+                    summary.rms_acceleration_m_s2.mesh_normal,
+                    1e3 * summary.member_velocity_rms_m_s[0],
+                    summary.steps[0],
+                    summary.integration_wall_s
+                );
+                write_json(&odir.join("summary.json"), &summary)?;
+                all.push(summary);
             }
         }
-    }
+        Ok(())
+    })?;
     write_json(&set.path().join("summary.json"), &all)?;
     set.commit()?;
     Ok(all)

@@ -11,9 +11,8 @@
 //! ([`formats::sensitivity_summary`]), `summary.csv` (one row per
 //! misalignment × value × torque) and the charts of [`CHART_FILES`].
 
-use crate::element::compliance::PairCompliance;
 use crate::ltca::{mean_ptp, run as run_sweep, PositionResult};
-use crate::stage::context::{member_compliance, record_stiffness_inputs, scene_sweep};
+use crate::stage::context::{record_stiffness_inputs, LoadedPair};
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::output::{write_atomic, write_json};
@@ -21,7 +20,6 @@ use formats::result_set::ResultSet;
 use formats::sensitivity_summary::{
     SensitivityCurve, SensitivityLoad, SensitivityPoint, SensitivitySummary,
 };
-use geometry::design::Member;
 use geometry::misalignment::Component;
 use geometry::pair::{FlankPair, PairGeometry};
 use geometry::scene::LoadedScene;
@@ -101,15 +99,16 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Sen
     )?;
     let mut g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dir = meshes.join(&sc.name);
-    let (pb, wb) = (sc.blanks.pinion[0], sc.blanks.wheel[0]);
-    let (pin, pin_plan) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
-    let (whl, whl_plan) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
-    record_stiffness_inputs(&mut set, scene, &g, &dir, [pb, wb], false)?;
-    let pc = PairCompliance {
-        pinion: pin,
-        wheel: whl,
-    };
-    let sweep = scene_sweep(scene, &g, wb);
+    // The first pinion × wheel blank, loaded from the aligned geometry
+    // (each point of the study places the pair itself).
+    let pair = LoadedPair::load(scene, &g, &dir, [sc.blanks.pinion[0], sc.blanks.wheel[0]])?;
+    record_stiffness_inputs(&mut set, scene, &g, &dir, pair.blanks, false)?;
+    let LoadedPair {
+        blanks: [pb, wb],
+        pc,
+        plans: [pin_plan, whl_plan],
+        sweep,
+    } = pair;
     let torques = &sc.pinion_torque_nm;
     let mut curves = Vec::new();
     for c in Component::ALL {

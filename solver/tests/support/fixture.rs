@@ -5,7 +5,6 @@
 
 #![allow(dead_code)]
 
-use geometry::design::Member;
 use geometry::pair::PairGeometry as Pair;
 use geometry::pair::{FlankPair, PairGeometry};
 use geometry::scene::{LoadedScene, Scene};
@@ -14,7 +13,7 @@ use solver::bearings::support::{Bearing, Support};
 use solver::bearings::system_deflection::Supports;
 use solver::element::compliance::PairCompliance;
 use solver::ltca::Sweep;
-use solver::stage::context::{member_compliance, scene_sweep};
+use solver::stage::context::LoadedPair;
 use std::path::PathBuf;
 
 pub struct Fixture {
@@ -39,18 +38,11 @@ impl Fixture {
         let g = PairGeometry::build(&scene.pair, Some(&scene.design_path)).unwrap();
         let rs = roll_surface(g.side(scene.scene.loaded_flank), &scene.scene.utca).unwrap();
         let mdir = dir.join("meshes").join(&scene.scene.name);
-        let (pb, wb) = (scene.scene.blanks.pinion[0], scene.scene.blanks.wheel[0]);
-        // Compliance and polar moment (from the mesh) of a member.
-        let c = |m, b| {
-            let (c, plan) = member_compliance(&scene, &g, &mdir, m, b).unwrap();
-            let j = solver::stage::context::inertia(&scene, &g, &mdir, &plan, m)
-                .unwrap()
-                .0;
-            (c, j)
-        };
-        let ((pinion, j1), (wheel, j2)) = (c(Member::Pinion, pb), c(Member::Wheel, wb));
-        let pc = PairCompliance { pinion, wheel };
-        let sweep = scene_sweep(&scene, &g, wb);
+        let blanks = [scene.scene.blanks.pinion[0], scene.scene.blanks.wheel[0]];
+        let pair = LoadedPair::load(&scene, &g, &mdir, blanks).unwrap();
+        // Polar moments from the meshes.
+        let [(j1, _), (j2, _)] = pair.inertia(&scene, &g, &mdir).unwrap();
+        let LoadedPair { pc, sweep, .. } = pair;
         Fixture {
             dir,
             scene,

@@ -475,11 +475,7 @@ fn reduced_model_te(
     let fp = g.side(sc.loaded_flank);
     let rs = geometry::utca::roll_surface(fp, &sc.utca)?;
     let dir = meshes.join(&sc.name);
-    let load = |m| solver::stage::context::member_compliance(scene, g, &dir, m, Blank::Standard);
-    let pc = solver::element::compliance::PairCompliance {
-        pinion: load(Which::Pinion)?.0,
-        wheel: load(Which::Wheel)?.0,
-    };
+    let pc = solver::stage::context::LoadedPair::load(scene, g, &dir, [Blank::Standard; 2])?.pc;
     let sweep = solver::ltca::Sweep {
         start: phi,
         step,

@@ -1,6 +1,7 @@
 //! Scenes of one design at other contact grids (`reference/scenes/grids/`,
 //! the example-02 fixture): where their stiffness files are, and the
 //! standard blanks' compliance and fields from them.
+use solver::stage::context::LoadedPair;
 
 use anyhow::Context;
 use formats::paths::MeshLevel;
@@ -10,7 +11,6 @@ use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene, Scene};
 use solver::element::compliance::PairCompliance;
-use solver::stage::context::member_compliance;
 use std::path::{Path, PathBuf};
 
 /// A scene at another contact grid, loaded.
@@ -60,11 +60,7 @@ impl GridScene {
 
     /// The standard blanks' compliance on the loaded flank.
     pub fn compliance(&self) -> anyhow::Result<PairCompliance> {
-        let c = |m| member_compliance(&self.scene, &self.g, &self.dir, m, Blank::Standard);
-        Ok(PairCompliance {
-            pinion: c(Member::Pinion)?.0,
-            wheel: c(Member::Wheel)?.0,
-        })
+        Ok(LoadedPair::load(&self.scene, &self.g, &self.dir, [Blank::Standard; 2])?.pc)
     }
 }
 

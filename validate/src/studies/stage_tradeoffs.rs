@@ -21,6 +21,7 @@
 //! [`tradeoff_ltca`]: crate::studies::tradeoff_ltca
 //! [`tradeoff_multibody`]: crate::studies::tradeoff_multibody
 //! [`tradeoff_reference`]: crate::studies::tradeoff_reference
+use solver::stage::context::LoadedPair;
 
 use crate::studies::grid_scenes::GridScene;
 use crate::studies::tradeoff_stage::StageTradeoff;
@@ -30,15 +31,12 @@ use crate::studies::{
 use anyhow::Context;
 use formats::output::write_json;
 use formats::result_set::ResultSet;
-use geometry::design::Member;
 use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
 use solver::element::compliance::PairCompliance;
-use solver::stage::context::inertia;
-use solver::stage::context::member_compliance;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -115,17 +113,9 @@ pub fn run(
     let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let dir = meshes.join(&sc.name);
     let pair = (|| -> anyhow::Result<(PairCompliance, [f64; 2])> {
-        let (pin, pp) = member_compliance(scene, &g, &dir, Member::Pinion, Blank::Standard)?;
-        let (whl, wp) = member_compliance(scene, &g, &dir, Member::Wheel, Blank::Standard)?;
-        let j1 = inertia(scene, &g, &dir, &pp, Member::Pinion)?.0;
-        let j2 = inertia(scene, &g, &dir, &wp, Member::Wheel)?.0;
-        Ok((
-            PairCompliance {
-                pinion: pin,
-                wheel: whl,
-            },
-            [j1, j2],
-        ))
+        let pair = LoadedPair::load(scene, &g, &dir, [Blank::Standard; 2])?;
+        let [(j1, _), (j2, _)] = pair.inertia(scene, &g, &dir)?;
+        Ok((pair.pc, [j1, j2]))
     })();
     match pair {
         Err(e) => {

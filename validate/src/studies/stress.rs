@@ -35,6 +35,7 @@
 //! every position, the energy drift of the undamped runs and the CPU time.
 //! Written as one result set to `<out>/<scene>/stress/` (`summary.json`,
 //! [`StressSummary`], and `outcomes.svg`).
+use solver::stage::context::LoadedPair;
 
 use crate::studies::grid_scenes::GridScene;
 use anyhow::Context;
@@ -54,8 +55,7 @@ use solver::ltca::{run as run_sweep, PositionResult, Sweep};
 use solver::multibody::mesh_table::{MeshTable, TableSpec};
 use solver::multibody::model::{Drive, Model};
 use solver::multibody::time_step::{discrete_gradient, integrate, Integrator, Scheme, StepControl};
-use solver::stage::context::inertia;
-use solver::stage::context::{coast_compliance, coast_sweep, member_compliance, scene_sweep};
+use solver::stage::context::{coast_compliance, coast_sweep, scene_sweep};
 use solver::stage::ltca::first_edge_contact;
 use solver::SolverError;
 use std::path::{Path, PathBuf};
@@ -344,18 +344,10 @@ impl Design {
         &self.scene.scene.name
     }
     fn pair(&self) -> anyhow::Result<(PairCompliance, [f64; 2])> {
-        let s = &self.scene;
-        let (pin, pp) = member_compliance(s, &self.g, &self.dir, Member::Pinion, Blank::Standard)?;
-        let (whl, wp) = member_compliance(s, &self.g, &self.dir, Member::Wheel, Blank::Standard)?;
-        let j1 = inertia(s, &self.g, &self.dir, &pp, Member::Pinion)?.0;
-        let j2 = inertia(s, &self.g, &self.dir, &wp, Member::Wheel)?.0;
-        Ok((
-            PairCompliance {
-                pinion: pin,
-                wheel: whl,
-            },
-            [j1, j2],
-        ))
+        let (s, g, dir) = (&self.scene, &self.g, &self.dir);
+        let pair = LoadedPair::load(s, g, dir, [Blank::Standard; 2])?;
+        let [(j1, _), (j2, _)] = pair.inertia(s, g, dir)?;
+        Ok((pair.pc, [j1, j2]))
     }
 }
 

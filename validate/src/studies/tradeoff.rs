@@ -10,20 +10,18 @@
 //!
 //! The other discretization, the stiffness grid density, needs stiffness
 //! files at other grids and is not varied here.
+use solver::stage::context::LoadedPair;
 
 use crate::reference_stage::BlankSummary as Reference;
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::added_files::{add_file, add_json, Dependence};
 use formats::result_set::RunLock;
-use geometry::design::Member;
 use geometry::pair::{pinion_direction, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
 use serde::{Deserialize, Serialize};
-use solver::element::compliance::PairCompliance;
 use solver::ltca::{mean_ptp, run as run_sweep, Sweep};
-use solver::stage::context::member_compliance;
 use std::path::Path;
 use std::time::Instant;
 
@@ -100,12 +98,7 @@ pub fn run(
         let (Some(pb), Some(wb)) = (blank_of(&r.pinion_blank), blank_of(&r.wheel_blank)) else {
             continue;
         };
-        let (pin, _) = member_compliance(scene, &g, &dir, Member::Pinion, pb)?;
-        let (whl, _) = member_compliance(scene, &g, &dir, Member::Wheel, wb)?;
-        let pc = PairCompliance {
-            pinion: pin,
-            wheel: whl,
-        };
+        let pc = LoadedPair::load(scene, &g, &dir, [pb, wb])?.pc;
         let torques: Vec<f64> = r.loads.iter().map(|l| l.torque_nm).collect();
         for &n in slices {
             let sweep = Sweep {
