@@ -24,9 +24,9 @@ use geometry::scene::{Blank, Scene};
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
-use validate::body_compliance::{clamped, BodyCompliance};
-use validate::path_compliance::PathCompliance;
-use validate::reference_ltca::{Member, ReferencePair, ReferenceSettings};
+use validate::reference::body_compliance::{clamped, BodyCompliance};
+use validate::reference::path_compliance::PathCompliance;
+use validate::reference::reference_ltca::{Member, ReferencePair, ReferenceSettings};
 
 /// Flank nodes loaded per solve comparison.
 const NODES: usize = 96;

@@ -249,7 +249,7 @@ impl LevelStudyArgs {
         &self,
     ) -> anyhow::Result<(
         geometry::scene::LoadedScene,
-        validate::reference_ltca::ReferenceSettings,
+        validate::reference::reference_ltca::ReferenceSettings,
         usize,
     )> {
         Ok((
@@ -284,7 +284,7 @@ fn penalty_settings(
     penalty_check: f64,
     start_band_um: f64,
     search_gap_um: f64,
-) -> anyhow::Result<validate::reference_ltca::ReferenceSettings> {
+) -> anyhow::Result<validate::reference::reference_ltca::ReferenceSettings> {
     for (field, v) in [
         ("--penalty", penalty),
         ("--penalty-check", penalty_check),
@@ -295,7 +295,7 @@ fn penalty_settings(
             anyhow::bail!("{field} {v}: must be a positive number");
         }
     }
-    Ok(validate::reference_ltca::ReferenceSettings {
+    Ok(validate::reference::reference_ltca::ReferenceSettings {
         penalty_factor: penalty,
         penalty_factor_check: penalty_check,
         start_band_m: start_band_um * 1e-6,
@@ -328,19 +328,20 @@ fn main() -> anyhow::Result<()> {
                     o.join(name).join("multibody"),
                 ];
                 sets.extend(
-                    validate::reference_stage::LEVELS_FINEST_FIRST
+                    validate::reference::reference_stage::LEVELS_FINEST_FIRST
                         .iter()
-                        .map(|l| validate::reference_stage::reference_dir(o, name, l)),
+                        .map(|l| validate::reference::reference_stage::reference_dir(o, name, l)),
                 );
                 formats::result_set::check_same_inputs(
                     &sets.iter().map(|p| p.as_path()).collect::<Vec<_>>(),
                 )?;
             }
-            let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
-            let published = validate::published::te_ptp_1nm(&input.pair.published)?;
+            let c = validate::studies::utca_check::check(&input, positions)
+                .context("UTCA cross-check")?;
+            let published = validate::report::published::te_ptp_1nm(&input.pair.published)?;
             let sc = geometry::scene::Scene::load(&scene).ok();
             let loaded = match (out.as_ref(), sc.as_ref()) {
-                (Some(o), Some(sc)) => validate::comparison::compare(
+                (Some(o), Some(sc)) => validate::report::comparison::compare(
                     o,
                     &sc.scene.name,
                     &input.pair.published,
@@ -348,7 +349,7 @@ fn main() -> anyhow::Result<()> {
                 )?,
                 _ => None,
             };
-            let mut figures = validate::figures::report_figures(
+            let mut figures = validate::report::figures::report_figures(
                 out.as_deref(),
                 sc.as_ref().map(|s| &s.scene),
                 &flanks,
@@ -388,7 +389,8 @@ fn main() -> anyhow::Result<()> {
             out,
         } => {
             let input = preprocess::flank_stage::load_input(&scene)?;
-            let c = validate::utca_check::check(&input, positions).context("UTCA cross-check")?;
+            let c = validate::studies::utca_check::check(&input, positions)
+                .context("UTCA cross-check")?;
             println!("pinion rotation, deg | fast TE, urad | direct TE, urad | difference, urad");
             for r in &c.rows {
                 println!(
@@ -409,7 +411,7 @@ fn main() -> anyhow::Result<()> {
                 c.direct_ms_per_position
             );
             if let Some(dir) = out {
-                validate::utca_check::write_set(&c, &scene, &input.design_path, &dir)?;
+                validate::studies::utca_check::write_set(&c, &scene, &input.design_path, &dir)?;
                 println!("written {}", dir.join("utca_check.json").display());
             }
         }
@@ -437,7 +439,7 @@ fn main() -> anyhow::Result<()> {
             let memory_bytes = memory_bytes(memory_gb)?;
             let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
             let sc = geometry::scene::Scene::load(&scene)?;
-            let opt = validate::reference_stage::StageOptions {
+            let opt = validate::reference::reference_stage::StageOptions {
                 level,
                 settings,
                 stride,
@@ -447,7 +449,7 @@ fn main() -> anyhow::Result<()> {
                 shard,
                 memory_bytes,
             };
-            validate::reference_stage::run(&sc, &meshes, &out, &opt)?;
+            validate::reference::reference_stage::run(&sc, &meshes, &out, &opt)?;
         }
         Cmd::Stress {
             scene,
@@ -457,7 +459,7 @@ fn main() -> anyhow::Result<()> {
             coast_scene,
         } => {
             let sc = geometry::scene::Scene::load(&scene)?;
-            let s = validate::stress::run(&sc, &meshes, &out, &grid_scene, &coast_scene)?;
+            let s = validate::studies::stress::run(&sc, &meshes, &out, &grid_scene, &coast_scene)?;
             let n = |k: usize| s.cells.iter().filter(|c| c.outcome.class() == k).count();
             println!(
                 "stress {}: {} cells, {} converged, {} refused, {} failed, {} skipped, {:.0} s",
@@ -492,7 +494,7 @@ fn main() -> anyhow::Result<()> {
             grid_scene,
         } => {
             let sc = geometry::scene::Scene::load(&scene)?;
-            let s = validate::stage_tradeoffs::run(&sc, &meshes, &out, &grid_scene)?;
+            let s = validate::studies::stage_tradeoffs::run(&sc, &meshes, &out, &grid_scene)?;
             for st in &s.stages {
                 println!(
                     "{:24} {} points, {} not run: {}",
@@ -517,7 +519,7 @@ fn main() -> anyhow::Result<()> {
                 anyhow::bail!("--slices {n}: must lie in [4, 400] (as ltca.slices)");
             }
             let sc = geometry::scene::Scene::load(&scene)?;
-            let pts = validate::tradeoff::run(&sc, &meshes, &out, &slices)?;
+            let pts = validate::studies::tradeoff::run(&sc, &meshes, &out, &slices)?;
             for p in &pts {
                 println!(
                     "{:11} {:3} slices {:5} N m: mean {:+.3} %, ptp {:+.2} %, {:.2} ms/position",
@@ -544,14 +546,14 @@ fn main() -> anyhow::Result<()> {
             if let Some(t) = torques_nm.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
                 anyhow::bail!("--torque-nm {t}: must be a positive number");
             }
-            let study = validate::convergence::Study {
+            let study = validate::studies::convergence::Study {
                 levels: args.levels.clone(),
                 position,
                 torques_nm,
                 settings,
                 block,
             };
-            let c = validate::convergence::run(&sc, &args.meshes, &args.out, &study)?;
+            let c = validate::studies::convergence::run(&sc, &args.meshes, &args.out, &study)?;
             for (i, t) in c.torques.iter().enumerate() {
                 println!("{} N m:", t.torque_nm);
                 for (l, e) in c.levels.iter().zip(&t.error_to_extrapolation_pct) {
@@ -585,7 +587,7 @@ fn main() -> anyhow::Result<()> {
         } => {
             let (sc, settings, block) = args.checked()?;
             let memory_bytes = memory_bytes(memory_gb)?;
-            let study = validate::mesh_stiffness::StiffnessStudy {
+            let study = validate::studies::mesh_stiffness::StiffnessStudy {
                 levels: args.levels.clone(),
                 position,
                 settings,
@@ -593,7 +595,7 @@ fn main() -> anyhow::Result<()> {
                 memory_bytes,
                 lumped_scene,
             };
-            let s = validate::mesh_stiffness::run(&sc, &args.meshes, &args.out, &study)?;
+            let s = validate::studies::mesh_stiffness::run(&sc, &args.meshes, &args.out, &study)?;
             println!(
                 "mesh stiffness {}: position {} ({:.2} deg), {}",
                 s.scene, s.position_index, s.pinion_rotation_deg, s.position_choice
@@ -643,14 +645,14 @@ fn main() -> anyhow::Result<()> {
                 );
             }
             let sc = geometry::scene::Scene::load(&scene)?;
-            let study = validate::line_load::LineLoadStudy {
+            let study = validate::studies::line_load::LineLoadStudy {
                 levels,
                 half_widths: half_width_mm.iter().map(|b| b * 1e-3).collect(),
                 q: line_load_n_per_mm * 1e3,
                 row,
                 end_columns,
             };
-            let r = validate::line_load::run(&sc, &meshes, &out, &study)?;
+            let r = validate::studies::line_load::run(&sc, &meshes, &out, &study)?;
             for l in &r.levels {
                 for c in &l.cases {
                     println!(

@@ -69,7 +69,7 @@ fn utca_only_scene_meshes_nothing_and_runs_no_loaded_stage() {
     assert!(solver::stage::dynamic::run(&scene, &meshes, &out)
         .unwrap()
         .is_empty());
-    assert!(validate::reference_stage::run(
+    assert!(validate::reference::reference_stage::run(
         &scene,
         &meshes,
         &out,
@@ -77,9 +77,11 @@ fn utca_only_scene_meshes_nothing_and_runs_no_loaded_stage() {
     )
     .unwrap()
     .is_empty());
-    assert!(validate::tradeoff::run(&scene, &meshes, &out, &[4])
-        .unwrap()
-        .is_empty());
+    assert!(
+        validate::studies::tradeoff::run(&scene, &meshes, &out, &[4])
+            .unwrap()
+            .is_empty()
+    );
     assert!(files(tmp.path()).iter().all(|f| f.ends_with("scene.toml")));
     // The flank stage runs.
     let input = preprocess::flank_stage::load_input(&tmp.path().join("scene.toml")).unwrap();

@@ -17,8 +17,8 @@ use geometry::scene::Scene;
 use golden::Quantity;
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;
-use validate::reference_ltca::ReferenceSettings;
-use validate::reference_stage::{run, StageOptions};
+use validate::reference::reference_ltca::ReferenceSettings;
+use validate::reference::reference_stage::{run, StageOptions};
 
 const REL: f64 = 1e-9;
 
@@ -125,7 +125,7 @@ fn example_03_reference_position_matches_its_golden_output() {
 
     golden::check(
         &dir.join("golden.json"),
-        "examples/03_reference_position: preprocess::mesh_stage::run (reduced level) then validate::reference_stage::run at the first position of examples/03_reference_position/scene.toml (test validate/tests/example_03_reference_position.rs)",
+        "examples/03_reference_position: preprocess::mesh_stage::run (reduced level) then validate::reference::reference_stage::run at the first position of examples/03_reference_position/scene.toml (test validate/tests/example_03_reference_position.rs)",
         &q,
     );
 }

@@ -29,8 +29,8 @@ mod shared_meshes;
 
 use geometry::scene::Scene;
 use solver::lumped::from_ltca::tangent_torques;
-use validate::mesh_stiffness::{run, StiffnessStudy};
-use validate::reference_ltca::ReferenceSettings;
+use validate::reference::reference_ltca::ReferenceSettings;
+use validate::studies::mesh_stiffness::{run, StiffnessStudy};
 
 const TOLERANCE_PCT: f64 = 5.0;
 
@@ -85,7 +85,7 @@ fn fe_tangent_mesh_stiffness_matches_the_ltca_on_the_same_coarse_meshes() {
     assert_eq!(s.torques.len(), scene.scene.pinion_torque_nm.len());
 
     // The FE level result the study cached, read back as written.
-    let cached: validate::convergence::LevelResult = serde_json::from_str(
+    let cached: validate::studies::convergence::LevelResult = serde_json::from_str(
         &std::fs::read_to_string(
             out.join(&scene.scene.name)
                 .join("reference/mesh_stiffness/reduced.json"),

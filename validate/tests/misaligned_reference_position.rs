@@ -21,8 +21,8 @@ use geometry::utca::roll_surface;
 use solver::element::compliance::PairCompliance;
 use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::Path;
-use validate::reference_ltca::ReferenceSettings;
-use validate::reference_stage::{run, StageOptions};
+use validate::reference::reference_ltca::ReferenceSettings;
+use validate::reference::reference_stage::{run, StageOptions};
 
 const MISALIGNMENT: Misalignment = Misalignment {
     offset_mm: 0.0,

@@ -14,7 +14,11 @@ fn pattern_vtu_reads_back_in_meshio() {
     ];
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("pattern.vtu");
-    std::fs::write(&path, validate::reference_stage::pattern_vtu(&pts)).unwrap();
+    std::fs::write(
+        &path,
+        validate::reference::reference_stage::pattern_vtu(&pts),
+    )
+    .unwrap();
     let python = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../.venv/bin/python");
     let script = "import sys, meshio\n\
 m = meshio.read(sys.argv[1])\n\

@@ -4,10 +4,10 @@
 use fem::path_solve::{combine, gram, PathVec};
 use fem::structured::{faces_where, mapped_block, Block};
 use fem::{assemble, Dofs, Material};
-use validate::body_compliance::{clamped, BodyCompliance};
-use validate::contact_pairs::{two_pass, ContactBody, PenaltySettings};
-use validate::path_compliance::PathCompliance;
-use validate::penalty::{carried_load, condensed_matrix, solve, Compliance, Constraint};
+use validate::reference::body_compliance::{clamped, BodyCompliance};
+use validate::reference::contact_pairs::{two_pass, ContactBody, PenaltySettings};
+use validate::reference::path_compliance::PathCompliance;
+use validate::reference::penalty::{carried_load, condensed_matrix, solve, Compliance, Constraint};
 
 const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
@@ -445,12 +445,12 @@ fn hertz_line_contact_cylinder_on_block() {
     // Contact pressure on the block's surface, recovered from all the
     // contact forces on its nodes (both passes).
     let inward: std::collections::HashMap<usize, [f64; 3]> =
-        validate::contact_surface::nodal_normals(&bb.nodes, &bb.faces)
+        validate::reference::contact_surface::nodal_normals(&bb.nodes, &bb.faces)
             .into_iter()
             .map(|(i, n)| (i, n.map(|c| -c)))
             .collect();
-    let fb = validate::penalty::nodal_normal_forces(&cs, &s.force, 1, &inward);
-    let p = validate::contact_surface::smoothed_pressure(&bb.nodes, &bb.faces, &fb);
+    let fb = validate::reference::penalty::nodal_normal_forces(&cs, &s.force, 1, &inward);
+    let p = validate::reference::contact_surface::smoothed_pressure(&bb.nodes, &bb.faces, &fb);
     let p_max = p.values().cloned().fold(0.0, f64::max);
     // Approaches: displacement of the surface centre relative to depth h.
     let disp = |comp: &BodyCompliance, body: usize, node: usize| -> [f64; 3] {

@@ -7,8 +7,8 @@ use geometry::scene::Scene;
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;
 use std::path::Path;
-use validate::reference_ltca::PositionResult;
-use validate::reference_stage::{reference_dir, run, CacheComparison, StageOptions};
+use validate::reference::reference_ltca::PositionResult;
+use validate::reference::reference_stage::{reference_dir, run, CacheComparison, StageOptions};
 #[path = "support/reference_options.rs"]
 mod reference_options;
 

@@ -6,10 +6,10 @@
 //! markers (a README without them is left alone).
 
 use std::path::Path;
-use validate::comparison::{Comparison, Row};
-use validate::figures::{Figure, ReportFigures};
+use validate::report::comparison::{Comparison, Row};
+use validate::report::figures::{Figure, ReportFigures};
 use validate::report::{results, Published};
-use validate::utca_check::{Row as UtcaRow, UtcaCheck};
+use validate::studies::utca_check::{Row as UtcaRow, UtcaCheck};
 
 fn utca() -> UtcaCheck {
     UtcaCheck {
@@ -136,7 +136,7 @@ fn figures(flanks: &Path, reports: &Path) -> ReportFigures {
     for f in ["te.svg", "contact_path.svg", "ease_off.svg"] {
         std::fs::write(flanks.join(f), svg(f)).unwrap();
     }
-    let mut figs = validate::figures::report_figures(None, None, flanks, reports);
+    let mut figs = validate::report::figures::report_figures(None, None, flanks, reports);
     assert_eq!(figs.unloaded.len(), 3, "the flank stage's plots are copied");
     assert!(reports.join("unloaded_te.svg").exists());
     figs.loaded_te = vec![
@@ -293,7 +293,7 @@ fn without_published_value_or_loaded_comparison() {
     let tmp = tempfile::tempdir().unwrap();
     let (flanks, reports) = (tmp.path().join("flanks"), tmp.path().join("reports"));
     std::fs::create_dir_all(&flanks).unwrap();
-    let figs = validate::figures::report_figures(None, None, &flanks, &reports);
+    let figs = validate::report::figures::report_figures(None, None, &flanks, &reports);
     assert!(figs.all().next().is_none(), "no plots, no figures");
     let readme = tmp.path().join("README.md");
     let text = format!("# Toolkit\n\n{}\nkept\n{}\n", results::BEGIN, results::END);
@@ -321,7 +321,7 @@ fn readme_without_markers_is_left_alone() {
     let tmp = tempfile::tempdir().unwrap();
     let (flanks, reports) = (tmp.path().join("flanks"), tmp.path().join("reports"));
     std::fs::create_dir_all(&flanks).unwrap();
-    let figs = validate::figures::report_figures(None, None, &flanks, &reports);
+    let figs = validate::report::figures::report_figures(None, None, &flanks, &reports);
     let cmp = Comparison {
         rows: vec![row("standard", 300.0, 359.26, 361.30)],
         markdown: COMPARISON_MD.into(),
@@ -345,7 +345,7 @@ fn utca_check_is_one_set_listing_its_checksum_and_the_scene_and_design() {
     let scene = root.join("scenes/small.toml");
     let design = root.join("white_paper_20x43.toml");
     let out = tmp.path().join("utca");
-    validate::utca_check::write_set(&utca(), &scene, &design, &out).unwrap();
+    validate::studies::utca_check::write_set(&utca(), &scene, &design, &out).unwrap();
     let info = formats::result_set::verify_files(&out).unwrap().unwrap();
     assert!(
         info.files.contains_key("utca_check.json"),
@@ -360,8 +360,12 @@ fn utca_check_is_one_set_listing_its_checksum_and_the_scene_and_design() {
     let err = formats::result_set::verify_files(&out).unwrap_err();
     assert!(err.to_string().contains("changed since run"), "{err}");
     // A missing input is named.
-    let err =
-        validate::utca_check::write_set(&utca(), &tmp.path().join("none.toml"), &design, &out)
-            .unwrap_err();
+    let err = validate::studies::utca_check::write_set(
+        &utca(),
+        &tmp.path().join("none.toml"),
+        &design,
+        &out,
+    )
+    .unwrap_err();
     assert!(err.to_string().contains("none.toml"), "{err}");
 }

@@ -217,7 +217,7 @@ fn the_section_and_its_charts_go_into_the_report_figures() {
     let tmp = tempfile::tempdir().unwrap();
     let (out, reports) = (tmp.path().join("out"), tmp.path().join("reports"));
     seed_002(&out);
-    let mut figs = validate::figures::ReportFigures {
+    let mut figs = validate::report::figures::ReportFigures {
         contact_laws: Some(build(&out, None, &reports).unwrap()),
         ..Default::default()
     };

@@ -5,10 +5,10 @@
 //! against the FE with the ratio computed, and an absent summary in one
 //! line.
 
-use validate::mesh_stiffness::{
+use validate::report::lumped_fe_stiffness::{markdown, SCENES};
+use validate::studies::mesh_stiffness::{
     FeLevelCost, MeshStiffnessSummary, ModelStiffness, TorqueStiffness, SUMMARY_FILE,
 };
-use validate::report::lumped_fe_stiffness::{markdown, SCENES};
 
 fn model(m: &str, level: &str, k: f64, vs: f64) -> ModelStiffness {
     ModelStiffness {

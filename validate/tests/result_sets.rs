@@ -1,5 +1,5 @@
 //! `validate reference` writes its results as one set and keeps its
-//! position cache shared (see `validate::reference_stage`): the cases that
+//! position cache shared (see `validate::reference::reference_stage`): the cases that
 //! end before any mesh is read, so no meshes are made (milliseconds). The
 //! cache across shards, a full run and `--compare-cache` is tried by
 //! `reference_sweep.rs`.
@@ -7,8 +7,8 @@
 use formats::result_set::{lock_path, Holder, ResultSet, RunLock};
 use geometry::scene::{LoadedScene, Scene};
 use std::path::{Path, PathBuf};
-use validate::reference_stage::StageOptions;
-use validate::reference_stage::{reference_dir, run};
+use validate::reference::reference_stage::StageOptions;
+use validate::reference::reference_stage::{reference_dir, run};
 #[path = "support/reference_options.rs"]
 mod reference_options;
 

@@ -69,12 +69,12 @@ fn runs_flanks_to_multibody(name: &str) {
     // stages wrote reads back equal (a renamed or dropped field fails here).
     let stage = out.join(&scene.scene.name);
     let read_ltca: Vec<formats::summaries::BlankSummary> =
-        validate::comparison::read(&stage.join("ltca/summary.json"))
+        validate::report::comparison::read(&stage.join("ltca/summary.json"))
             .unwrap()
             .expect("ltca/summary.json written");
     assert_eq!(read_ltca, ltca, "{name}: ltca/summary.json");
     let read_dynamic: Vec<formats::summaries::DynamicSummary> =
-        validate::comparison::read(&stage.join("multibody/summary.json"))
+        validate::report::comparison::read(&stage.join("multibody/summary.json"))
             .unwrap()
             .expect("multibody/summary.json written");
     assert_eq!(read_dynamic, dynamic, "{name}: multibody/summary.json");

@@ -10,8 +10,8 @@ use geometry::utca::roll_surface;
 use solver::element::compliance::PairCompliance;
 use solver::stage::context::member_compliance;
 use std::path::PathBuf;
-use validate::stress::{cell, loaded_run, probe_table, Outcome, Study, MB_LOADS_NM};
 use validate::studies::grid_scenes::{member_fields, GridScene};
+use validate::studies::stress::{cell, loaded_run, probe_table, Outcome, Study, MB_LOADS_NM};
 use validate::studies::tradeoff_fields::field_error_pct;
 use validate::studies::tradeoff_stage::TARGET_PCT;
 use validate::studies::tradeoff_utca;
@@ -100,7 +100,7 @@ fn multibody_at_0_nm_without_coast_flanks_is_refused_and_loaded_runs_balance_the
         "{msg}"
     );
     assert!(matches!(
-        validate::stress::classify(&e),
+        validate::studies::stress::classify(&e),
         Outcome::Refused(_)
     ));
     for t in [300.0, 3000.0] {
@@ -127,7 +127,7 @@ fn deflection_to_tooth_thickness_is_zero_unloaded_and_grows_5_to_12_fold_from_30
     let loads = [0.0, 300.0, 3000.0];
     let res = solver::ltca::run(fp, &rs, &pc, &sweep, &loads).unwrap();
     let r: Vec<f64> = (0..3)
-        .map(|i| validate::stress::deflection_to_thickness(&res, i, &gs.g.data))
+        .map(|i| validate::studies::stress::deflection_to_thickness(&res, i, &gs.g.data))
         .collect();
     println!("deflection / tooth thickness: {r:?}");
     assert!(r[0].abs() < 1e-9, "{r:?}");
@@ -135,7 +135,7 @@ fn deflection_to_tooth_thickness_is_zero_unloaded_and_grows_5_to_12_fold_from_30
     let growth = r[2] / r[1];
     assert!((5.0..12.0).contains(&growth), "{r:?}");
     assert!(
-        r[2] < validate::stress::DEFLECTION_LIMIT,
+        r[2] < validate::studies::stress::DEFLECTION_LIMIT,
         "3000 N·m on the white-paper pair: {r:?}"
     );
 }

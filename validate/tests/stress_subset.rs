@@ -15,7 +15,7 @@ use solver::element::compliance::PairCompliance;
 use solver::ltca::{run, Sweep};
 use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::{Path, PathBuf};
-use validate::stress::{cell, ltca_record, Outcome, Study, LOADS_NM, PROBE_NM, SLICES};
+use validate::studies::stress::{cell, ltca_record, Outcome, Study, LOADS_NM, PROBE_NM, SLICES};
 
 const BALANCE: f64 = 1e-9;
 

@@ -4,12 +4,12 @@
 //! blocks when a contact first needs that node, and the responses are kept
 //! at every node of a fixed "universe".
 //!
-//! The reference sweeps use [`crate::path_compliance`] (pruned forward
+//! The reference sweeps use [`crate::reference::path_compliance`] (pruned forward
 //! solves, the same C at about a hundredth of the cost); this
 //! straightforward form stays as the independent check it is compared with
 //! (`validate/tests/penalty_contact.rs`, `make bench`).
 
-use crate::penalty::{Compliance, ContactError};
+use crate::reference::penalty::{Compliance, ContactError};
 use fem::{ClampedBody, Dofs, Factor, Factorization, Material, TetMesh};
 use std::collections::HashMap;
 

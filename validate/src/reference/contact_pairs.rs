@@ -14,8 +14,8 @@
 //! penetration, while it stiffens the penalty of a loaded face by about 17%,
 //! which changes the TE by a fraction of the penalty check's difference.
 
-use crate::contact_surface::{lumped_areas, MasterSurface};
-use crate::penalty::{Constraint, Term};
+use crate::reference::contact_surface::{lumped_areas, MasterSurface};
+use crate::reference::penalty::{Constraint, Term};
 use fem::tri6;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -160,7 +160,7 @@ pub const MINIMUM_POINT_AREA: f64 = 1.0 / 6.0;
 struct FacePoint {
     st: [f64; 2],
     x: V3,
-    p: crate::contact_surface::Projection,
+    p: crate::reference::contact_surface::Projection,
     /// Closing angle g / (−ρ) (rigid coordinate at which the point touches).
     closing: f64,
     rigid: f64,
@@ -218,7 +218,7 @@ pub fn face_minima(
         .filter_map(|f| {
             let xs = f.map(|i| s.nodes[i]);
             let at = |st| face_point(s, m, master, &xs, st, set.reach);
-            let node_best = crate::contact_surface::TRI6_NODES
+            let node_best = crate::reference::contact_surface::TRI6_NODES
                 .iter()
                 .filter_map(|&st| at(st))
                 .map(|q| (q.closing, q.p.gap))

@@ -10,10 +10,10 @@
 //! constraints is W_cd = Σ_b y_cbᵀ y_db ([`fem::path_solve::gram`]). The
 //! displacements under a set of constraint forces λ are the backward solve
 //! of z = Σ_c λ_c y_c, evaluated on the paths of the nodes asked for only.
-//! This is the same C = K⁻¹ as [`crate::body_compliance`]'s full solves,
+//! This is the same C = K⁻¹ as [`crate::reference::body_compliance`]'s full solves,
 //! without their backward half or responses kept over every flank node.
 
-use crate::penalty::{ContactError, Term};
+use crate::reference::penalty::{ContactError, Term};
 use fem::path_solve::{combine, PathFactor, PathVec};
 use fem::{ClampedBody, Dofs, Factorization, Material, TetMesh};
 use std::collections::{HashMap, HashSet};
@@ -96,7 +96,8 @@ impl PathCompliance {
     /// Computes the vectors of the listed nodes that are missing, in blocks
     /// of nodes that are neighbours in the elimination tree.
     pub fn ensure(&mut self, nodes: &[usize]) -> Result<(), ContactError> {
-        let mut todo = crate::body_compliance::missing(nodes, |n| self.y.contains_key(&n));
+        let mut todo =
+            crate::reference::body_compliance::missing(nodes, |n| self.y.contains_key(&n));
         if todo.is_empty() {
             return Ok(());
         }

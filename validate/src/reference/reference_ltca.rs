@@ -1,8 +1,8 @@
 //! The reference loaded TCA: both gear bodies as full elastic FE bodies
 //! (their own tet10 meshes with blanks), in contact through two-pass
 //! node-to-surface penalty constraints on the meshes' own quadratic flank
-//! faces ([`crate::contact_pairs`]), condensed exactly onto the contact
-//! nodes ([`crate::penalty`]).
+//! faces ([`crate::reference::contact_pairs`]), condensed exactly onto the contact
+//! nodes ([`crate::reference::penalty`]).
 //!
 //! At each pinion angle φ₁ the pinion is placed at φ₁ and the wheel at its
 //! conjugate angle (zero lag). The wheel's bore is clamped; the pinion's
@@ -14,11 +14,13 @@
 //! Nothing here uses the reduced model: no surface of roll angles, no
 //! slices, no influence grid, no Weber–Banaschek term.
 
-use crate::body_compliance::clamped;
-use crate::contact_pairs::{rot, two_pass, ContactBody, PenaltySettings};
-use crate::contact_surface::{nodal_normals, orient_outward, smoothed_pressure};
-use crate::path_compliance::PathCompliance;
-use crate::penalty::{carried_load, nodal_normal_forces, solve, Constraint, ContactError};
+use crate::reference::body_compliance::clamped;
+use crate::reference::contact_pairs::{rot, two_pass, ContactBody, PenaltySettings};
+use crate::reference::contact_surface::{nodal_normals, orient_outward, smoothed_pressure};
+use crate::reference::path_compliance::PathCompliance;
+use crate::reference::penalty::{
+    carried_load, nodal_normal_forces, solve, Constraint, ContactError,
+};
 use fem::path_solve::{combine, gram, PathVec};
 use geometry::generation::{rot_z, MemberFrame};
 use geometry::misalignment::Pose;
@@ -348,7 +350,7 @@ impl ReferencePair<'_> {
                     .collect();
                 add.sort_unstable();
                 add.dedup();
-                let on = |sol: &crate::penalty::Solution| -> Vec<usize> {
+                let on = |sol: &crate::reference::penalty::Solution| -> Vec<usize> {
                     (0..ws.idx.len())
                         .filter(|&i| sol.active[i])
                         .map(|i| ws.idx[i])

@@ -3,7 +3,7 @@
 //! blank's files into a new result set.
 
 use super::reference_summary::{LoadSummary, UnloadedCheck};
-use crate::reference_ltca::{Member, PositionResult};
+use crate::reference::reference_ltca::{Member, PositionResult};
 use anyhow::Context;
 use formats::columns;
 use formats::output::write_atomic;
@@ -18,7 +18,7 @@ pub(crate) fn unloaded_check(res: &[PositionResult], utca: &[f64]) -> UnloadedCh
     let (rm, rp) = mean_ptp(&r);
     let (um, up) = mean_ptp(&u);
     UnloadedCheck {
-        torque_nm: crate::reference_ltca::UNLOADED_TORQUE_NM,
+        torque_nm: crate::reference::reference_ltca::UNLOADED_TORQUE_NM,
         max_abs_difference_urad: d.iter().map(|x| x.abs()).fold(0.0, f64::max),
         mean_difference_urad: d.iter().sum::<f64>() / d.len().max(1) as f64,
         utca_te_mean_urad: um,

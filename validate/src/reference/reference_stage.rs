@@ -28,7 +28,7 @@ use super::reference_outputs::{
     copy_files, load_summaries, report_factor, unloaded_check, write_te_csv,
 };
 pub use super::reference_summary::{BlankSummary, CacheComparison, LoadSummary, UnloadedCheck};
-use crate::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
+use crate::reference::reference_ltca::{Member, PositionResult, ReferencePair, ReferenceSettings};
 use anyhow::Context;
 use formats::added_files::{add_json, Dependence};
 use formats::columns;

@@ -2,7 +2,7 @@
 //! `compare_cache.json`): one type each, written by the stage and read by
 //! the report.
 
-use crate::reference_ltca::PositionResult;
+use crate::reference::reference_ltca::PositionResult;
 use serde::{Deserialize, Serialize};
 
 /// The largest differences between positions solved now and their cached

@@ -37,7 +37,7 @@ struct PubCpuTable {
     nlfea_ltca: Vec<PubCpu>,
 }
 
-pub use crate::comparison_row::Row;
+pub use crate::report::comparison_row::Row;
 
 /// The comparison: rows and the markdown section.
 #[derive(Debug, Clone, Serialize)]
@@ -55,7 +55,7 @@ pub enum ComparisonError {
     #[error("{}: {message}; run the stage that writes it again", .path.display())]
     Unreadable { path: PathBuf, message: String },
     #[error(transparent)]
-    Published(#[from] crate::published::PublishedError),
+    Published(#[from] crate::report::published::PublishedError),
     #[error(transparent)]
     Mixed(#[from] formats::result_set::ResultSetError),
 }
@@ -126,9 +126,9 @@ pub fn compare(
         out.join(scene).join("multibody"),
     ];
     sets.extend(
-        crate::reference_stage::LEVELS_FINEST_FIRST
+        crate::reference::reference_stage::LEVELS_FINEST_FIRST
             .iter()
-            .map(|l| crate::reference_stage::reference_dir(out, scene, l)),
+            .map(|l| crate::reference::reference_stage::reference_dir(out, scene, l)),
     );
     for d in &sets {
         formats::result_set::verify_files(d)?;
@@ -140,30 +140,32 @@ pub fn compare(
     };
     // Every blank combination's own summary (runs of different scenes or
     // strides may have written them), per mesh level.
-    let summaries =
-        |level: &str| -> Result<Vec<crate::reference_stage::BlankSummary>, ComparisonError> {
-            let mut v = Vec::new();
-            if let Ok(d) =
-                std::fs::read_dir(crate::reference_stage::reference_dir(out, scene, level))
-            {
-                // One folder per blank pair (the studies' JSON files sit beside them).
-                let mut dirs: Vec<PathBuf> = d
-                    .filter_map(|e| e.ok())
-                    .map(|e| e.path())
-                    .filter(|p| p.is_dir())
-                    .collect();
-                dirs.sort();
-                for p in dirs {
-                    v.extend(read(&p.join("summary.json"))?);
-                }
+    let summaries = |level: &str| -> Result<
+        Vec<crate::reference::reference_stage::BlankSummary>,
+        ComparisonError,
+    > {
+        let mut v = Vec::new();
+        if let Ok(d) = std::fs::read_dir(crate::reference::reference_stage::reference_dir(
+            out, scene, level,
+        )) {
+            // One folder per blank pair (the studies' JSON files sit beside them).
+            let mut dirs: Vec<PathBuf> = d
+                .filter_map(|e| e.ok())
+                .map(|e| e.path())
+                .filter(|p| p.is_dir())
+                .collect();
+            dirs.sort();
+            for p in dirs {
+                v.extend(read(&p.join("summary.json"))?);
             }
-            Ok(v)
-        };
+        }
+        Ok(v)
+    };
     // The finest level of each blank combination judges the reduced model;
     // the reduced level's, when finer ones exist, is the second column.
     let reduced_level = summaries("reduced")?;
-    let mut rf: Vec<crate::reference_stage::BlankSummary> = Vec::new();
-    for level in crate::reference_stage::LEVELS_FINEST_FIRST {
+    let mut rf: Vec<crate::reference::reference_stage::BlankSummary> = Vec::new();
+    for level in crate::reference::reference_stage::LEVELS_FINEST_FIRST {
         for r in summaries(level)? {
             if !rf
                 .iter()
@@ -181,12 +183,12 @@ pub fn compare(
     let pub_te: Option<PubTables> = published
         .loaded_te
         .as_deref()
-        .map(crate::published::read_toml)
+        .map(crate::report::published::read_toml)
         .transpose()?;
     let pub_cpu: Option<PubCpuTable> = published
         .cpu
         .as_deref()
-        .map(crate::published::read_toml)
+        .map(crate::report::published::read_toml)
         .transpose()?;
     let mut rows = Vec::new();
     for r in &rf {
@@ -236,7 +238,8 @@ pub fn compare(
                 multibody_at(
                     out,
                     scene,
-                    &crate::reference_stage::reference_dir(out, scene, "reduced").join(&blank),
+                    &crate::reference::reference_stage::reference_dir(out, scene, "reduced")
+                        .join(&blank),
                     &blank,
                     l.torque_nm,
                 )
@@ -293,12 +296,13 @@ pub fn compare(
             ref_dir.join(rel).display()
         )
     };
-    let conv = read_study::<crate::convergence::Convergence>(&ref_dir, "convergence.json")?;
+    let conv =
+        read_study::<crate::studies::convergence::Convergence>(&ref_dir, "convergence.json")?;
     let conv_current = match &conv {
         Study::Current(c) if c.stale_levels(&meshes.join(scene)).is_empty() => Some(c),
         _ => None,
     };
-    let line_load = other_note(read_study::<crate::line_load::LineLoad>(
+    let line_load = other_note(read_study::<crate::studies::line_load::LineLoad>(
         &ref_dir,
         "line_load.json",
     )?);
@@ -307,10 +311,16 @@ pub fn compare(
         .and_then(|l| l.as_ref().ok())
         .filter(|l| l.current(&meshes.join(scene)));
     let mut markdown = markdown(&rows, &rf, conv_current);
-    crate::differences::breakdown(&mut markdown, &rows, &rf, conv_current, line_load_current);
+    crate::report::differences::breakdown(
+        &mut markdown,
+        &rows,
+        &rf,
+        conv_current,
+        line_load_current,
+    );
     for r in &rf {
         let blank = format!("{}_{}", r.pinion_blank, r.wheel_blank);
-        if let Some(line) = crate::differences::pattern_peak(out, scene, &blank) {
+        if let Some(line) = crate::report::differences::pattern_peak(out, scene, &blank) {
             let _ = writeln!(markdown, "{line}\n");
         }
     }
@@ -366,7 +376,7 @@ pub fn compare(
             );
         }
     }
-    match read_study::<Vec<crate::tradeoff::Point>>(&ref_dir, "tradeoff.json")? {
+    match read_study::<Vec<crate::studies::tradeoff::Point>>(&ref_dir, "tradeoff.json")? {
         Study::Missing => {}
         Study::Current(t) => tradeoff_markdown(&mut markdown, &t),
         Study::NotShown(why) => {
@@ -399,14 +409,14 @@ pub fn interpolate(x: &[f64], y: &[f64], at: f64) -> Option<f64> {
 /// Mean and peak-to-peak of the multibody TE at the positions of the
 /// finest reference of `blank`.
 fn multibody_at_reference(out: &Path, scene: &str, blank: &str, t: f64) -> Option<(f64, f64)> {
-    let dir = crate::reference_stage::finest_reference(out, scene, blank)?;
+    let dir = crate::reference::reference_stage::finest_reference(out, scene, blank)?;
     multibody_at(out, scene, &dir, blank, t)
 }
 
 /// Mean and peak-to-peak of the multibody TE at the positions of the
 /// reference results in `dir`.
 fn multibody_at(out: &Path, scene: &str, dir: &Path, blank: &str, t: f64) -> Option<(f64, f64)> {
-    use crate::figures::{column, read_csv};
+    use crate::report::figures::{column, read_csv};
     let mb = read_csv(
         &out.join(scene)
             .join("multibody")
@@ -429,8 +439,8 @@ fn opt(v: Option<f64>, digits: usize) -> String {
 
 fn markdown(
     rows: &[Row],
-    rf: &[crate::reference_stage::BlankSummary],
-    conv: Option<&crate::convergence::Convergence>,
+    rf: &[crate::reference::reference_stage::BlankSummary],
+    conv: Option<&crate::studies::convergence::Convergence>,
 ) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -539,7 +549,7 @@ fn markdown(
     s
 }
 
-fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
+fn convergence_markdown(s: &mut String, c: &crate::studies::convergence::Convergence) {
     let _ = writeln!(s, "\n## Mesh convergence of the reference\n");
     let _ = writeln!(
         s,
@@ -568,7 +578,7 @@ fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
     let _ = writeln!(
         s,
         "\nPer torque: TE on each level and its difference to the Richardson extrapolation TE∞ (observed order p; no extrapolation where the levels do not converge monotonically or p < {:.1}, i.e. not yet in the asymptotic range); the penalty check of the finest level; the reduced model's quasi-static LTCA at the same position against TE∞ and against the finest level. The sweeps of the comparison above use the reduced level's meshes, so its column is the reference's own discretization error there.\n",
-        crate::convergence::MIN_ORDER
+        crate::studies::convergence::MIN_ORDER
     );
     let names: Vec<&str> = c.levels.iter().map(|l| l.level.as_str()).collect();
     let _ = writeln!(
@@ -608,7 +618,7 @@ fn convergence_markdown(s: &mut String, c: &crate::convergence::Convergence) {
     }
 }
 
-fn tradeoff_markdown(s: &mut String, pts: &[crate::tradeoff::Point]) {
+fn tradeoff_markdown(s: &mut String, pts: &[crate::studies::tradeoff::Point]) {
     let _ = writeln!(
         s,
         "\n## Reduced model: run time against error (slices per tooth pair)\n"

@@ -11,7 +11,7 @@
 //! where the seed prints it. The load-run charts next to the summaries are
 //! copied into the report directory.
 
-use crate::figures::{copied, Figure};
+use crate::report::figures::{copied, Figure};
 use formats::summaries::{DynamicSummary, ImpactLawSummary, LoadRunSummary};
 use solver::multibody::impact_law::{
     seed_001_stiffness, seed_002_back_cone_stiffness, SeedStiffness,

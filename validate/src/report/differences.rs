@@ -12,10 +12,10 @@ use std::path::Path;
 /// than the reduced level).
 pub fn breakdown(
     s: &mut String,
-    rows: &[crate::comparison_row::Row],
-    rf: &[crate::reference_stage::BlankSummary],
-    conv: Option<&crate::convergence::Convergence>,
-    line_load: Option<&crate::line_load::LineLoad>,
+    rows: &[crate::report::comparison_row::Row],
+    rf: &[crate::reference::reference_stage::BlankSummary],
+    conv: Option<&crate::studies::convergence::Convergence>,
+    line_load: Option<&crate::studies::line_load::LineLoad>,
 ) {
     if rf.iter().all(|r| r.level == "reduced") {
         return;
@@ -111,8 +111,8 @@ const EDGE_BAND: f64 = 0.03;
 /// peaks on the pinion flank, and whether that is on the flank's edge: one
 /// sentence, None without a pattern file.
 pub fn pattern_peak(out: &Path, scene: &str, blank: &str) -> Option<String> {
-    use crate::figures::{column, read_csv};
-    let dir = crate::reference_stage::finest_reference(out, scene, blank)?;
+    use crate::report::figures::{column, read_csv};
+    let dir = crate::reference::reference_stage::finest_reference(out, scene, blank)?;
     let file = std::fs::read_dir(&dir)
         .ok()?
         .filter_map(|e| e.ok())

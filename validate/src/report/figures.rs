@@ -169,10 +169,13 @@ pub fn column<'a>(csv: &'a Csv, name: &str) -> Option<&'a [f64]> {
 /// the standard wheel first (side by side in the report).
 pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> Vec<Figure> {
     let mut figs = Vec::new();
-    let mut blanks: Vec<String> = crate::reference_stage::LEVELS_FINEST_FIRST
+    let mut blanks: Vec<String> = crate::reference::reference_stage::LEVELS_FINEST_FIRST
         .iter()
         .filter_map(|l| {
-            std::fs::read_dir(crate::reference_stage::reference_dir(out, scene, l)).ok()
+            std::fs::read_dir(crate::reference::reference_stage::reference_dir(
+                out, scene, l,
+            ))
+            .ok()
         })
         .flatten()
         .filter_map(|e| e.ok())
@@ -185,7 +188,7 @@ pub fn te_figures(out: &Path, scene: &str, reports: &Path, torques: &[f64]) -> V
     let references: Vec<(String, Csv)> = blanks
         .into_iter()
         .filter_map(|blank| {
-            let csv = crate::reference_stage::finest_reference(out, scene, &blank)
+            let csv = crate::reference::reference_stage::finest_reference(out, scene, &blank)
                 .and_then(|d| read_csv(&d.join("te.csv")))?;
             Some((blank, csv))
         })
@@ -307,7 +310,7 @@ pub fn pattern_figure(
 ) -> Option<Figure> {
     let reduced = read_csv(&out.join(scene).join("ltca").join(blank).join("slices.csv"))?;
     let reference = read_csv(
-        &crate::reference_stage::finest_reference(out, scene, blank)?
+        &crate::reference::reference_stage::finest_reference(out, scene, blank)?
             .join(format!("pattern_{t}nm.csv")),
     )?;
     let pick = |csv: &Csv, at: Option<f64>| -> Vec<(f64, f64, f64)> {

@@ -1,4 +1,4 @@
-//! The loaded comparison's markdown ([`crate::comparison::Comparison`]),
+//! The loaded comparison's markdown ([`crate::report::comparison::Comparison`]),
 //! sorted by what each part is about, so that the report can open with the
 //! loaded TE and put the details after the unloaded TCA.
 //!

@@ -5,8 +5,10 @@
 //! from the summaries (and, for seed 004's published value, from the named
 //! constant of [`super::lumped`]); an absent summary is one line of text.
 
-use crate::asperity_resolution::Resolution;
-use crate::mesh_stiffness::{MeshStiffnessSummary, ModelStiffness, TorqueStiffness, SUMMARY_FILE};
+use crate::studies::asperity_resolution::Resolution;
+use crate::studies::mesh_stiffness::{
+    MeshStiffnessSummary, ModelStiffness, TorqueStiffness, SUMMARY_FILE,
+};
 use formats::lumped_summary::LumpedSummary;
 use std::fmt::Write as _;
 use std::path::Path;

@@ -27,8 +27,8 @@ pub mod sensitivity;
 pub mod stage_tradeoffs;
 pub mod stress;
 
-use crate::figures::{Figure, ReportFigures};
-use crate::utca_check::UtcaCheck;
+use crate::report::figures::{Figure, ReportFigures};
+use crate::studies::utca_check::UtcaCheck;
 use formats::output::{write_atomic, write_json, WriteError};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -46,7 +46,7 @@ pub struct Summary<'a> {
     pub utca: &'a UtcaCheck,
     /// Per blank and load: TE of the reduced model and the reference, their
     /// differences and run times.
-    pub loaded_te: Option<&'a [crate::comparison::Row]>,
+    pub loaded_te: Option<&'a [crate::report::comparison::Row]>,
     pub published_te_ptp_1nm_urad: Option<&'a Published>,
     pub te_ptp_difference_percent: Option<f64>,
 }
@@ -149,7 +149,7 @@ fn roll_surface_section(s: &mut String, c: &UtcaCheck) {
 pub fn markdown(
     c: &UtcaCheck,
     published: Option<&Published>,
-    loaded: Option<&crate::comparison::Comparison>,
+    loaded: Option<&crate::report::comparison::Comparison>,
     figs: &ReportFigures,
 ) -> String {
     let mut s = String::new();
@@ -233,14 +233,14 @@ pub struct Written {
 
 /// Writes `report.md`, `report.html`, `summary.json` and `results.md` into
 /// `dir` (the figures' SVG files are there already, see
-/// [`crate::figures::report_figures`]), and the results table into the
+/// [`crate::report::figures::report_figures`]), and the results table into the
 /// README at `readme` between its markers (when it has them and there is a
 /// loaded comparison).
 pub fn write(
     dir: &Path,
     c: &UtcaCheck,
     published: Option<&Published>,
-    loaded: Option<&crate::comparison::Comparison>,
+    loaded: Option<&crate::report::comparison::Comparison>,
     figures: &ReportFigures,
     readme: &Path,
 ) -> Result<Written, WriteError> {

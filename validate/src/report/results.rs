@@ -4,7 +4,7 @@
 //! computed at. The same text replaces what stands between the markers
 //! [`BEGIN`] and [`END`] in the README, when the README has both.
 
-use crate::comparison::Row;
+use crate::report::comparison::Row;
 use formats::output::{write_atomic, WriteError};
 use std::fmt::Write as _;
 use std::path::Path;

@@ -4,8 +4,8 @@
 //! a table of the points, the cheapest setting within the target and
 //! whether the default is it; the stages that could not run, with why.
 
-use crate::figures::{copied, Figure};
-use crate::stage_tradeoffs::TradeoffSummary;
+use crate::report::figures::{copied, Figure};
+use crate::studies::stage_tradeoffs::TradeoffSummary;
 use crate::studies::tradeoff_stage::{sig, StageTradeoff};
 use std::fmt::Write as _;
 use std::path::Path;

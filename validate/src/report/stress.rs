@@ -4,8 +4,8 @@
 //! skipped), the worst torque balance and energy drift, non-finite values,
 //! and the torque from which each design's contact reaches an edge.
 
-use crate::figures::{copied, Figure};
-use crate::stress::{Outcome, StressSummary, Study};
+use crate::report::figures::{copied, Figure};
+use crate::studies::stress::{Outcome, StressSummary, Study};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -125,7 +125,7 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
         let Some(r) = c.deflection_to_thickness else {
             continue;
         };
-        if r > crate::stress::DEFLECTION_LIMIT
+        if r > crate::studies::stress::DEFLECTION_LIMIT
             && !implausible
                 .iter()
                 .any(|d| d.starts_with(&format!("{} ", c.design)))
@@ -141,7 +141,7 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
     let _ = writeln!(
         m,
         "| loaded deflection above {:.0} % of the tooth thickness (TE flagged implausible) | {} |",
-        crate::stress::DEFLECTION_LIMIT * 100.0,
+        crate::studies::stress::DEFLECTION_LIMIT * 100.0,
         if implausible.is_empty() {
             "nowhere".to_string()
         } else {
@@ -255,7 +255,7 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stress::{Cell, DesignSummary};
+    use crate::studies::stress::{Cell, DesignSummary};
     use formats::summaries::{Edge, EdgeContact};
 
     fn cell(design: &str, study: Study, label: &str, outcome: Outcome, balance: f64) -> Cell {

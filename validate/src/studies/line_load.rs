@@ -24,7 +24,7 @@
 //! half-plane approach to the stored depth hⱼ
 //! ([`solver::element::weber_banaschek::body_approach`]).
 
-use crate::contact_surface::{cross, dot, norm, sub, MasterSurface};
+use crate::reference::contact_surface::{cross, dot, norm, sub, MasterSurface};
 use fem::{tri6, TetMesh};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;

@@ -30,8 +30,8 @@
 //! as the convergence study's); the summary is the result set
 //! `<out>/<scene>/mesh_stiffness/` (`summary.json`).
 
-use crate::convergence::{richardson, LevelResult, LevelSolve, StudyPosition, MIN_ORDER};
-use crate::reference_ltca::ReferenceSettings;
+use crate::reference::reference_ltca::ReferenceSettings;
+use crate::studies::convergence::{richardson, LevelResult, LevelSolve, StudyPosition, MIN_ORDER};
 use anyhow::Context;
 use formats::memory_estimate::TooLarge;
 use formats::result_set::{ResultSet, RunLock};
@@ -150,7 +150,7 @@ pub struct MeshStiffnessSummary {
     pub lumped_scene: Option<String>,
     pub reduced_meshes_match_lumped: Option<bool>,
     /// Seed 003's roughness against what resolves it.
-    pub roughness: Option<crate::asperity_resolution::Resolution>,
+    pub roughness: Option<crate::studies::asperity_resolution::Resolution>,
     pub penalty_factors: [f64; 2],
     /// Peak resident memory of the study's process, GiB, and its wall time, s.
     pub peak_memory_gb: f64,
@@ -455,7 +455,7 @@ pub fn run(
         Some(p) => {
             let lumped = geometry::scene::Scene::load(p)?;
             let same = same_reduced_meshes(&scene_meshes, &meshes.join(&lumped.scene.name));
-            let res = crate::asperity_resolution::resolution(&lumped, fp, sc)?;
+            let res = crate::studies::asperity_resolution::resolution(&lumped, fp, sc)?;
             (Some(lumped.scene.name.clone()), same, res)
         }
         None => (None, None, None),

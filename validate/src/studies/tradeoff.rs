@@ -12,7 +12,7 @@
 //! files at other grids and is not varied here.
 use solver::stage::context::LoadedPair;
 
-use crate::reference_stage::BlankSummary as Reference;
+use crate::reference::reference_stage::BlankSummary as Reference;
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::added_files::{add_file, add_json, Dependence};

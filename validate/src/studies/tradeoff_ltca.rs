@@ -11,7 +11,7 @@
 //! Cost: thread CPU of the sweep (geometry, assembly, every load's solve),
 //! summed over the positions.
 
-use crate::reference_stage::BlankSummary as Reference;
+use crate::reference::reference_stage::BlankSummary as Reference;
 use crate::studies::grid_scenes::GridScene;
 use crate::studies::tradeoff_stage::{rel_pct, StageTradeoff, TradeoffPoint};
 use anyhow::Context;

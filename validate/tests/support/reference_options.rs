@@ -2,8 +2,8 @@
 //! factor 100, check 200, 2 µm start band, 60 µm search gap; reduced level,
 //! 96 right-hand sides per block), at `stride` and, for shard runs, `shard`.
 
-use validate::reference_ltca::ReferenceSettings;
-use validate::reference_stage::StageOptions;
+use validate::reference::reference_ltca::ReferenceSettings;
+use validate::reference::reference_stage::StageOptions;
 
 pub fn options(stride: usize, shard: Option<(usize, usize)>) -> StageOptions {
     StageOptions {
