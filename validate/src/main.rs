@@ -316,67 +316,22 @@ fn main() -> anyhow::Result<()> {
             meshes,
             readme,
         } => {
-            let input = preprocess::flank_stage::load_input(&scene)?;
-            // The flank stage's set unchanged since written, and made from
-            // the same design as the solver's and the reference's sets.
-            formats::result_set::verify_files(&flanks)?;
-            if let Some(o) = out.as_ref() {
-                let name = &input.name;
-                let mut sets = vec![
-                    flanks.clone(),
-                    o.join(name).join("ltca"),
-                    o.join(name).join("multibody"),
-                ];
-                sets.extend(
-                    validate::reference::reference_stage::LEVELS_FINEST_FIRST
-                        .iter()
-                        .map(|l| validate::reference::reference_stage::reference_dir(o, name, l)),
-                );
-                formats::result_set::check_same_inputs(
-                    &sets.iter().map(|p| p.as_path()).collect::<Vec<_>>(),
-                )?;
-            }
-            let c = validate::studies::utca_check::check(&input, positions)
-                .context("UTCA cross-check")?;
-            let published = validate::report::published::te_ptp_1nm(&input.pair.published)?;
-            let sc = geometry::scene::Scene::load(&scene).ok();
-            let loaded = match (out.as_ref(), sc.as_ref()) {
-                (Some(o), Some(sc)) => validate::report::comparison::compare(
-                    o,
-                    &sc.scene.name,
-                    &input.pair.published,
-                    &meshes,
-                )?,
-                _ => None,
-            };
-            let mut figures = validate::report::figures::report_figures(
-                out.as_deref(),
-                sc.as_ref().map(|s| &s.scene),
-                &flanks,
-                &reports,
-            );
-            if let Some(o) = out.as_deref() {
-                figures.contact_laws = Some(validate::report::contact_laws::build(
-                    o,
-                    scene.parent(),
-                    &reports,
-                )?);
-            }
-            let written = validate::report::write(
-                &reports,
-                &c,
-                published.as_ref(),
-                loaded.as_ref(),
-                &figures,
-                &readme,
-            )?;
+            let made = validate::report::run::run(&validate::report::run::ReportInputs {
+                scene: &scene,
+                flanks: &flanks,
+                reports: &reports,
+                positions,
+                out: out.as_deref(),
+                meshes: &meshes,
+                readme: &readme,
+            })?;
             println!(
                 "report of scene {}: {} loaded TE rows, {} figures; reports in {}{}",
-                c.name,
-                loaded.as_ref().map_or(0, |l| l.rows.len()),
-                figures.all().count(),
+                made.scene,
+                made.loaded_te_rows,
+                made.figures,
                 reports.display(),
-                if written.readme_updated {
+                if made.readme_updated {
                     format!("; results table in {}", readme.display())
                 } else {
                     String::new()

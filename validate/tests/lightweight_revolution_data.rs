@@ -19,7 +19,7 @@
 use formats::lumped_summary::OrderMapSummary;
 use formats::summaries::RunupOrders;
 use std::path::PathBuf;
-use validate::report::lightweight_revolution::RUNUP_SCENE;
+use validate::report::sections::lightweight_revolution::RUNUP_SCENE;
 
 fn out() -> PathBuf {
     std::env::var_os("LIGHTWEIGHT_OUT")

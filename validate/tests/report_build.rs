@@ -7,7 +7,8 @@
 
 use std::path::Path;
 use validate::report::comparison::{Comparison, Row};
-use validate::report::figures::{Figure, ReportFigures};
+use validate::report::figures::Figure;
+use validate::report::gather::ReportFigures;
 use validate::report::{results, Published};
 use validate::studies::utca_check::{Row as UtcaRow, UtcaCheck};
 
@@ -136,7 +137,7 @@ fn figures(flanks: &Path, reports: &Path) -> ReportFigures {
     for f in ["te.svg", "contact_path.svg", "ease_off.svg"] {
         std::fs::write(flanks.join(f), svg(f)).unwrap();
     }
-    let mut figs = validate::report::figures::report_figures(None, None, flanks, reports);
+    let mut figs = validate::report::gather::report_figures(None, None, flanks, reports);
     assert_eq!(figs.unloaded.len(), 3, "the flank stage's plots are copied");
     assert!(reports.join("unloaded_te.svg").exists());
     figs.loaded_te = vec![
@@ -293,7 +294,7 @@ fn without_published_value_or_loaded_comparison() {
     let tmp = tempfile::tempdir().unwrap();
     let (flanks, reports) = (tmp.path().join("flanks"), tmp.path().join("reports"));
     std::fs::create_dir_all(&flanks).unwrap();
-    let figs = validate::report::figures::report_figures(None, None, &flanks, &reports);
+    let figs = validate::report::gather::report_figures(None, None, &flanks, &reports);
     assert!(figs.all().next().is_none(), "no plots, no figures");
     let readme = tmp.path().join("README.md");
     let text = format!("# Toolkit\n\n{}\nkept\n{}\n", results::BEGIN, results::END);
@@ -321,7 +322,7 @@ fn readme_without_markers_is_left_alone() {
     let tmp = tempfile::tempdir().unwrap();
     let (flanks, reports) = (tmp.path().join("flanks"), tmp.path().join("reports"));
     std::fs::create_dir_all(&flanks).unwrap();
-    let figs = validate::report::figures::report_figures(None, None, &flanks, &reports);
+    let figs = validate::report::gather::report_figures(None, None, &flanks, &reports);
     let cmp = Comparison {
         rows: vec![row("standard", 300.0, 359.26, 361.30)],
         markdown: COMPARISON_MD.into(),

@@ -13,8 +13,8 @@ use geometry::gear_body::Blank;
 use geometry::scene_bearings::{BearingMm, BodyMass};
 use std::fmt::Write as _;
 use std::path::Path;
-use validate::report::compliant_bearings::{section, COMPLIANT_SCENE};
 use validate::report::results::Stamp;
+use validate::report::sections::compliant_bearings::{section, COMPLIANT_SCENE};
 
 fn run(case: &str, csv: &str, te_mean: f64, steps: usize) -> CompliantRunSummary {
     CompliantRunSummary {

@@ -5,7 +5,7 @@
 
 use serde_json::{json, Value};
 use std::path::Path;
-use validate::report::contact_laws::{build, ContactLawsError, SEED_002};
+use validate::report::sections::contact_laws::{build, ContactLawsError, SEED_002};
 
 /// A load run whose numbers start at `base` (distinct per run and field).
 fn load_run(base: f64) -> Value {
@@ -217,7 +217,7 @@ fn the_section_and_its_charts_go_into_the_report_figures() {
     let tmp = tempfile::tempdir().unwrap();
     let (out, reports) = (tmp.path().join("out"), tmp.path().join("reports"));
     seed_002(&out);
-    let mut figs = validate::report::figures::ReportFigures {
+    let mut figs = validate::report::gather::ReportFigures {
         contact_laws: Some(build(&out, None, &reports).unwrap()),
         ..Default::default()
     };

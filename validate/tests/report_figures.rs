@@ -37,14 +37,19 @@ fn te_and_pattern_figures_from_stage_outputs() {
         run.join("ltca/standard_standard/slices.csv"),
         "torque_nm,pinion_rotation_deg,pair,xi,eta,force_n,line_load_n_per_mm,pressure_mpa,half_width_mm\n300,0,1,0.45,0.5,10,1,1000,0.1\n100,0,1,0.45,0.5,10,1,700,0.1\n",
     );
-    let te = validate::report::figures::te_figures(&out, "demo", &reports, &[300.0, 500.0]);
+    let te = validate::report::sections::loaded_contact::te_figures(
+        &out,
+        "demo",
+        &reports,
+        &[300.0, 500.0],
+    );
     assert_eq!(te.len(), 1, "one figure: 500 N·m has no data");
     let svg = &te[0].svg;
     assert!(svg.contains("multibody 10 rpm") && svg.contains("reference FE contact"));
     assert!(reports
         .join("te_loaded_standard_standard_300nm.svg")
         .exists());
-    let pat = validate::report::figures::pattern_figure(
+    let pat = validate::report::sections::loaded_contact::pattern_figure(
         &out,
         "demo",
         "standard_standard",
@@ -57,7 +62,7 @@ fn te_and_pattern_figures_from_stage_outputs() {
         "colour scale up to the largest pressure: {}",
         pat.title
     );
-    assert!(validate::report::figures::pattern_figure(
+    assert!(validate::report::sections::loaded_contact::pattern_figure(
         &out,
         "demo",
         "standard_lightweight",

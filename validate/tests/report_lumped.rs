@@ -5,7 +5,7 @@
 
 use formats::lumped_summary::{Directions, ImpactSummary, LumpedSummary, SeriesSummary};
 use geometry::gear_body::Blank;
-use validate::report::lumped::{section, LUMPED_SCENE};
+use validate::report::sections::lumped::{section, LUMPED_SCENE};
 
 fn directions(base: f64) -> Directions {
     Directions {

@@ -5,7 +5,7 @@
 //! against the FE with the ratio computed, and an absent summary in one
 //! line.
 
-use validate::report::lumped_fe_stiffness::{markdown, SCENES};
+use validate::report::sections::lumped_fe_stiffness::{markdown, SCENES};
 use validate::studies::mesh_stiffness::{
     FeLevelCost, MeshStiffnessSummary, ModelStiffness, TorqueStiffness, SUMMARY_FILE,
 };

@@ -9,7 +9,7 @@
 mod lumped_summary;
 
 use lumped_summary::run;
-use validate::report::lumped_seed003::{markdown, SEED003_SCENE};
+use validate::report::sections::lumped_seed003::{markdown, SEED003_SCENE};
 
 #[test]
 fn seed003_part_puts_our_velocities_beside_the_test_rig_and_says_what_the_roughness_is() {

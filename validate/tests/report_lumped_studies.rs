@@ -9,8 +9,8 @@
 mod lumped_summary;
 
 use lumped_summary::{run, variant};
-use validate::report::lumped::{section, LUMPED_SCENE};
-use validate::report::lumped_studies::markdown;
+use validate::report::sections::lumped::{section, LUMPED_SCENE};
+use validate::report::sections::lumped_studies::markdown;
 
 #[test]
 fn te_slope_and_contact_ratio_studies_sit_beside_seed004() {

@@ -7,8 +7,8 @@
 use formats::lumped_summary::{LobeFit, MarkedOrder, OrderMapSpeed, OrderMapSummary};
 use formats::summaries::{RunupOrderWindow, RunupOrders};
 use geometry::gear_body::Blank;
-use validate::report::lightweight_revolution::{self, RUNUP_SCENE};
-use validate::report::lumped_order_map::{subsection, ORDER_MAP_SCENE};
+use validate::report::sections::lightweight_revolution::{self, RUNUP_SCENE};
+use validate::report::sections::lumped_order_map::{subsection, ORDER_MAP_SCENE};
 
 fn map(wheel: Blank, lobe_line_n: f64) -> OrderMapSummary {
     OrderMapSummary {

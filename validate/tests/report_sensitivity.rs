@@ -8,7 +8,7 @@ use formats::sensitivity_summary::{
 };
 use geometry::misalignment::{Component, Misalignment};
 use geometry::scene::Blank;
-use validate::report::sensitivity::section;
+use validate::report::sections::sensitivity::section;
 
 fn summary() -> SensitivitySummary {
     let curves = Component::ALL

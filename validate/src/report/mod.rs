@@ -9,27 +9,21 @@
 
 pub mod comparison;
 pub mod comparison_row;
-pub mod compliant_bearings;
-pub mod contact_laws;
 pub mod differences;
 pub mod figures;
+pub mod gather;
 pub mod html;
 pub mod layout;
-pub mod lightweight_revolution;
-pub mod lumped;
-pub mod lumped_fe_stiffness;
-pub mod lumped_order_map;
-pub mod lumped_seed003;
-pub mod lumped_studies;
 pub mod published;
 pub mod results;
-pub mod sensitivity;
-pub mod stage_tradeoffs;
-pub mod stress;
+pub mod run;
+pub mod sections;
 
-use crate::report::figures::{Figure, ReportFigures};
+use crate::report::figures::{figure_lines, figures_before_table, Figure};
+use crate::report::gather::ReportFigures;
 use crate::studies::utca_check::UtcaCheck;
 use formats::output::{write_atomic, write_json, WriteError};
+use sections::{stage_tradeoffs, stress};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -49,38 +43,6 @@ pub struct Summary<'a> {
     pub loaded_te: Option<&'a [crate::report::comparison::Row]>,
     pub published_te_ptp_1nm_urad: Option<&'a Published>,
     pub te_ptp_difference_percent: Option<f64>,
-}
-
-/// Figure lines `![title](file)` of `figs`: one after the other (side by
-/// side in the HTML) when `side_by_side`, else each a block of its own
-/// (the column's width).
-fn figure_lines(s: &mut String, figs: &[Figure], side_by_side: bool) {
-    for f in figs {
-        // `]` would end the caption early.
-        let _ = writeln!(s, "![{}]({})", f.title.replace(['[', ']'], ""), f.file);
-        if !side_by_side {
-            s.push('\n');
-        }
-    }
-    if side_by_side && !figs.is_empty() {
-        s.push('\n');
-    }
-}
-
-/// `md` with `figs` before its first table (after the text that introduces
-/// them), or at its end when it has no table.
-fn figures_before_table(md: &str, figs: &[Figure]) -> String {
-    let mut figure_md = String::new();
-    figure_lines(&mut figure_md, figs, false);
-    let blocks = layout::blocks(md);
-    let Some(k) = blocks.iter().position(|b| b[0].starts_with('|')) else {
-        return format!("{md}{figure_md}");
-    };
-    format!(
-        "{}{figure_md}{}",
-        layout::join(&blocks[..k]),
-        layout::join(&blocks[k..])
-    )
 }
 
 /// The unloaded TCA: TE, contact ratio, run time, the published value where
@@ -233,7 +195,7 @@ pub struct Written {
 
 /// Writes `report.md`, `report.html`, `summary.json` and `results.md` into
 /// `dir` (the figures' SVG files are there already, see
-/// [`crate::report::figures::report_figures`]), and the results table into the
+/// [`crate::report::gather::report_figures`]), and the results table into the
 /// README at `readme` between its markers (when it has them and there is a
 /// loaded comparison).
 pub fn write(

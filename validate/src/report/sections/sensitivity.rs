@@ -8,7 +8,7 @@
 //! line of text, never a table of zeros. Every number is formatted from the
 //! summary.
 
-use super::figures::{copied, Figure};
+use crate::report::figures::{copied, Figure};
 use formats::sensitivity_summary::{SensitivityCurve, SensitivitySummary};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -82,7 +82,7 @@ pub fn section(out: Option<&Path>, scene: Option<&str>, reports: &Path) -> Sensi
             )
         })
         .collect();
-    super::figure_lines(&mut s, &figures, false);
+    crate::report::figures::figure_lines(&mut s, &figures, false);
     SensitivitySection {
         markdown: s,
         figures,

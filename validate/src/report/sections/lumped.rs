@@ -11,7 +11,7 @@
 //! Every number of ours is formatted from the summary; seed 004's are the
 //! named constants below with their source.
 
-use super::figures::{copied, Figure};
+use crate::report::figures::{copied, Figure};
 use formats::lumped_summary::{Directions, LumpedSummary};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -154,7 +154,7 @@ fn seed004_section(out: Option<&Path>, reports: &Path) -> LumpedSection {
                 &format!("lumped_{blank}_{file}"),
             ));
         }
-        super::figure_lines(&mut s, &figs, false);
+        crate::report::figures::figure_lines(&mut s, &figs, false);
         figures.extend(figs);
     }
     differences_markdown(&mut s, base.first().copied().unwrap_or(&summaries[0]));

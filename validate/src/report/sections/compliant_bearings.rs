@@ -14,8 +14,8 @@
 //! line of text, never a table of zeros. Every number is formatted from the
 //! files.
 
-use super::figures::{column, copied, read_csv, Csv, Figure};
-use super::results::Stamp;
+use crate::report::figures::{column, copied, read_csv, Csv, Figure};
+use crate::report::results::Stamp;
 use formats::summaries::{BlankSummary, CompliantRunSummary, DynamicSummary};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -229,7 +229,7 @@ pub fn section(out: Option<&Path>, reports: &Path, stamp: &Stamp) -> CompliantSe
                 s,
                 "Run-up spectrograms of the wheel bearings' total force, {b}: |F| with rigid bearings (the reaction to the contact force) on the left, with compliant bearings (both wheel bearings' forces together) on the right; the tooth orders 20, 40, 60 marked (and, with the lightweight wheel, 20 ± 3·20/43).\n"
             );
-            super::figure_lines(&mut s, &pair, true);
+            crate::report::figures::figure_lines(&mut s, &pair, true);
             figures.extend(pair);
         }
     }

@@ -19,7 +19,7 @@
 //! Every number is formatted from those files; absent ones are one line
 //! of text.
 
-use super::figures::{copied, Figure};
+use crate::report::figures::{copied, Figure};
 use formats::lumped_summary::{OrderMapSpeed, OrderMapSummary};
 use formats::summaries::{RunupOrderWindow, RunupOrders};
 use std::fmt::Write as _;
@@ -136,7 +136,7 @@ pub fn subsection(
             &format!("runup_scene_{stem}.svg"),
         ));
     }
-    super::figure_lines(&mut s, &figs, false);
+    crate::report::figures::figure_lines(&mut s, &figs, false);
     (s, figs)
 }
 

@@ -8,7 +8,7 @@
 //! model's, the run-up spectrograms of both wheel blanks). Every number is
 //! formatted from the summaries; an absent summary is one line of text.
 
-use super::figures::{copied, Figure};
+use crate::report::figures::{copied, Figure};
 use formats::lumped_summary::OrderMapSummary;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -137,7 +137,7 @@ pub fn subsection(out: &Path, reports: &Path) -> (String, Vec<Figure>) {
             &format!("lumped_{stem}.svg"),
         ));
     }
-    super::figure_lines(&mut s, &figs, false);
+    crate::report::figures::figure_lines(&mut s, &figs, false);
     with_revolution(s, figs, out, reports, &maps)
 }
 

@@ -1,0 +1,16 @@
+//! The report's sections, each formatted from the result files of the
+//! stage or study it reports: the sections after the loaded TE and the
+//! unloaded TCA, in the order the report shows them.
+
+pub mod compliant_bearings;
+pub mod contact_laws;
+pub mod lightweight_revolution;
+pub mod loaded_contact;
+pub mod lumped;
+pub mod lumped_fe_stiffness;
+pub mod lumped_order_map;
+pub mod lumped_seed003;
+pub mod lumped_studies;
+pub mod sensitivity;
+pub mod stage_tradeoffs;
+pub mod stress;
