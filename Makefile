@@ -22,7 +22,7 @@ REF_STRIDE_LW ?= $(REF_STRIDE)
 FINE           ?= 1
 FINE_STRIDE    ?= 1
 FINE_STRIDE_LW ?= $(FINE_STRIDE)
-# The contact laws (issue 30): seeds 001 and 002's load runs with the Hertz
+# The contact laws: seeds 001 and 002's load runs with the Hertz
 # impact law and with the FE-analytical contact element, the four scenes
 # reference/scenes/seed00{1,2}_{impact,element}.toml (flanks, reduced
 # meshes, stiffness files, `solver dynamic`), for the report's "Contact
@@ -48,7 +48,7 @@ CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_elem
 # the TE-slope and contact-ratio studies, which reuse the design's meshes);
 # seed 003 about 30 s (flanks, mesh and stiffness 24 s, lumped 3.5-5.7 s
 # for 4 flank grades x 2 loads). The white-paper pair's order map
-# (white_paper_lightweight_lumped.toml, issue 31: the default scene's pair,
+# (white_paper_lightweight_lumped.toml: the default scene's pair,
 # meshes and stiffness files, 6 speeds x 2 wheels): lumped 7 s warm (LTCA
 # 0.4 s, 12 runs 0.3-0.8 s each); cold it copies the default scene's
 # meshes and stiffness files (same inputs; 4.9 s measured 2026-11-24,
@@ -56,14 +56,14 @@ CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_elem
 # LUMPED=0 leaves them out.
 LUMPED        ?= 1
 LUMPED_SCENES := seed004_lumped seed003_lumped white_paper_lightweight_lumped
-# The misalignment sensitivity study (issue 32) on $(SCENE): E, P, G, ΔΣ
+# The misalignment sensitivity study on $(SCENE): E, P, G, ΔΣ
 # each over the scene's [sensitivity] range (default 9 values, ±0.05 mm,
 # ±0.02°) at the scene's loads, from the stiffness files `solve` made; the
 # report's section "Misalignment sensitivity" reads
 # $(OUT)/<scene>/sensitivity/summary.json. Measured on the default scene
 # (2 cores shared with other jobs): 104 s. SENSITIVITY=0 leaves it out.
 SENSITIVITY   ?= 1
-# The multibody with compliant bearings (issue 32):
+# The multibody with compliant bearings:
 # reference/scenes/white_paper_bearings.toml, the default scene's pair on
 # compliant bearings (flanks, reduced meshes, stiffness files, `solver ltca`
 # with the bearings' deflection, `solver dynamic` with the compliant runs);
@@ -79,7 +79,7 @@ SENSITIVITY   ?= 1
 BEARINGS      ?= 1
 BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
 
-# The lightweight wheel over its whole revolution (issues 31 and 32):
+# The lightweight wheel over its whole revolution:
 # reference/scenes/white_paper_lightweight_runup.toml meshes and solves
 # every wheel tooth of the lightweight blank (reduced level), runs the
 # multibody run-up of both wheel blanks (0 -> 1100 rpm in 1.1 s, 4.7 wheel
@@ -166,14 +166,14 @@ validate: solve
 # Mesh convergence of the reference (three mesh levels at one position and
 # torque; the reference level needs ~10 GB and about half an hour), and the
 # line-load check of the stiffness files' global field + Weber-Banaschek
-# against the fine-mesh FE (issue 4).
+# against the fine-mesh FE.
 convergence: build
 	$(BIN)/preprocess mesh $(SCENE) --level medium --out meshes
 	$(BIN)/preprocess mesh $(SCENE) --level reference --out meshes
 	$(BIN)/validate convergence $(SCENE) --meshes meshes --out $(OUT)
 	$(BIN)/validate line-load $(SCENE) --meshes meshes --out $(OUT)
 
-# Issue 31: the mesh stiffness of seeds 003 and 004 at one position (the
+# The mesh stiffness of seeds 003 and 004 at one position (the
 # middle of the fewest-pairs stretch of the mesh cycle) from the FE
 # reference (both tet10 bodies in penalty contact, smooth flanks) on the
 # reduced (6 x 10), medium and reference (35 x 75) meshes, against our LTCA
@@ -203,7 +203,7 @@ fe-stiffness: build
 	    --memory-gb $(FE_STIFFNESS_MEMORY_GB) --lumped-scene reference/scenes/$$l.toml || exit 1; \
 	done
 
-# Issue 28's stress matrix: the scene's design and the seed pairs
+# The stress matrix: the scene's design and the seed pairs
 # (reference/scenes/seed*_*x*.toml), standard blanks, reduced meshes and
 # stiffness files made where missing or stale and reused otherwise; the
 # white-paper pair also at the contact grids of reference/scenes/grids/

@@ -1,4 +1,4 @@
-//! Property-based test of the stiffness-file reader (issue 29): a real
+//! Property-based test of the stiffness-file reader: a real
 //! stiffness file (the LTCA example's fixture) with bytes flipped, runs of
 //! bytes overwritten or the file truncated is read by
 //! [`formats::stiffness_file::read`] without a panic: it returns an error or

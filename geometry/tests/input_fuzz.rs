@@ -1,4 +1,4 @@
-//! Property-based test of the design and scene files (issue 29): mutated
+//! Property-based test of the design and scene files: mutated
 //! versions of the checked-in files (numbers replaced by any f64 including
 //! NaN, ±inf, huge, negative and zero, or by any integer; lines deleted or
 //! duplicated; random bytes inserted, including bytes that are not UTF-8)

@@ -1,4 +1,4 @@
-//! Input refused before work (issue 29): every design or scene value that
+//! Input refused before work: every design or scene value that
 //! can be checked at load is, and the refusal names the file, the field, the
 //! value and the limit. Every checked-in design and scene still loads.
 

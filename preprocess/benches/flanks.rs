@@ -1,6 +1,6 @@
 //! `make bench`: flank grid generation (points/s) and UTCA time per position
 //! on the white-paper pair, written as JSON (`bench/flanks.json`) and a table.
-//! Target (issue 2): UTCA over 2 mesh cycles at 0.1° in under 100 ms.
+//! Target: UTCA over 2 mesh cycles at 0.1° in under 100 ms.
 
 use geometry::design::Member;
 use geometry::design_file::load_pair;

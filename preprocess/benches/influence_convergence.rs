@@ -2,7 +2,7 @@
 //! fields of the default scene. The stiffness files of every member × blank
 //! on the reduced-order meshes and on the medium meshes (the same contact
 //! grid) are compared on the loaded tooth's diagonal, for the total, local
-//! and global fields (see `preprocess::field_convergence`). Issue 4: the
+//! and global fields (see `preprocess::field_convergence`). The
 //! global field should change by less than 3 % while the total field changes
 //! much more. Meshes and files go to `meshes/default/` and are reused there.
 //! Results in `bench/influence_convergence.json`.

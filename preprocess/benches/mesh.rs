@@ -1,7 +1,7 @@
 //! `make bench` (meshing): time and size of each member × blank mesh of the
 //! default scene at the reduced-order level (add the reference level with
 //! `BENCH_REFERENCE=1`). Results in `bench/mesh.json` and a table.
-//! Targets (issue 3): reduced level ≤ 30 s, reference level ≤ 3 min per member.
+//! Targets: reduced level ≤ 30 s, reference level ≤ 3 min per member.
 
 use geometry::design::Member;
 use geometry::gear_body::BlankDimensions;

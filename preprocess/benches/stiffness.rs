@@ -3,7 +3,7 @@
 //! at the reduced level, the peak memory of the process, and the time of a
 //! second run that reuses the files. Meshes come from `meshes/default/` (made
 //! by `make preprocess`; built here into a temporary directory if missing).
-//! Targets (issue 4): all three members ≤ 10 min with peak memory ≤ 12 GB;
+//! Targets: all three members ≤ 10 min with peak memory ≤ 12 GB;
 //! a second run with nothing changed ≤ 10 s. Results in `bench/stiffness.json`.
 
 use formats::output::peak_memory_gb;
@@ -85,7 +85,7 @@ fn main() {
             "local_s": s.local_s, "total_s": r.total_s, "reciprocity_error": r.reciprocity_error}));
     }
     println!("\nall members {cold:.1} s (target 600 s), peak memory {peak:.2} GB (target 12 GB); second run reusing the files {warm:.2} s (target 10 s)");
-    // Issue 4: a standard blank's tooth k carries tooth 0's compliance within 0.5 %.
+    // A standard blank's tooth k carries tooth 0's compliance within 0.5 %.
     println!("\nstandard blank, reduced level: the loaded tooth's diagonal C(p, p) with the solved tooth and with each other periodic tooth loaded, |C_b - C_a| / C_a; at = [tooth, face, profile] of the largest");
     println!(
         "{:<8} {:>26} {:>14} {:>12} {:>15} {:>15} {:>12} {:>16}",

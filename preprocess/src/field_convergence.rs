@@ -5,7 +5,7 @@
 //!
 //!   r(p) = (C_fine(p, p) − C_coarse(p, p)) / C_fine(p, p).
 //!
-//! Issue 4 asks that the global field change by less than 3 % between the
+//! The global field should change by less than 3 % between the
 //! reduced-order mesh and a mesh twice as fine while the total field changes
 //! much more.
 

@@ -368,7 +368,7 @@ fn local_subtraction_removes_the_load_point_spike() {
 }
 
 /// Two neighbouring teeth of an axisymmetric body carry the same compliance.
-/// Issue 4: on a standard blank tooth k's compliance equals tooth 0's
+/// On a standard blank tooth k's compliance equals tooth 0's
 /// within 0.5 %. Both teeth and their neighbours are periodic sectors (the
 /// same mesh turned by a pitch), so only the far body's mesh differs. Before
 /// the periodic sectors the teeth's own meshes differed and this coarse

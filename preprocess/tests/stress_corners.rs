@@ -1,4 +1,4 @@
-//! Issue 28's stress matrix, flank grid: `utca.flank_grid_face` at 77–80,
+//! The stress matrix, flank grid: `utca.flank_grid_face` at 77–80,
 //! 100, 200, 500 and 1,000 columns failed with "Newton did not converge"
 //! (21–76 worked). Every column count the scene check admits up to 1,000
 //! gives a complete grid of finite points on each of the four flanks of the

@@ -1,11 +1,11 @@
-//! `make bench` (compliant bearings, issue 32): the multibody with compliant
+//! `make bench` (compliant bearings): the multibody with compliant
 //! bearings on the default scene's standard pair (stiffness files from
 //! `make preprocess`): the cost of the unloaded TE's shift per misalignment
 //! (8 misaligned contact searches over the table's positions), and the CPU
 //! time per step of the run-up (pinion 0 → 1000 rpm in 0.15 s at 300 N·m,
 //! steps up to 1e-5 s, the default scene's multibody settings) and of the
 //! 10 rpm run, with the rigid-bearing model on the same table beside them.
-//! Target: ≤ 1 ms per step (issue 32; the white paper ~0.4 s per step).
+//! Target: ≤ 1 ms per step (the white paper ~0.4 s per step).
 //! Results in `bench/compliant_multibody.json`.
 
 #[path = "support/default_pair.rs"]

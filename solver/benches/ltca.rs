@@ -3,7 +3,7 @@
 //! position split into slice geometry, compliance assembly and contact solve,
 //! next to the white paper's 0.6–0.9 s CPU per multibody step (its Table 5);
 //! and run time against error over the slice count (error against 160
-//! slices). Target (issue 5): quasi-static LTCA ≤ 2 ms per position.
+//! slices). Target: quasi-static LTCA ≤ 2 ms per position.
 //! Results in `bench/ltca.json`.
 
 use geometry::design::Member;

@@ -4,7 +4,7 @@
 //! 10 rpm run's TE against the quasi-static LTCA at the same positions, and
 //! the run-up's time per step next to the white paper's ~0.4 s CPU per step
 //! (its Table 6); and the cost per step of the two force laws (the
-//! FE-analytical element and the impact law, issue 30) in the seeds' load
+//! FE-analytical element and the impact law) in the seeds' load
 //! run: pinion at 300 rpm, the wheel load of 300 N·m at the pinion rising
 //! by STEP over 20 ms, 0.1 s. Results in `bench/multibody.json`.
 

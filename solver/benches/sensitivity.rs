@@ -1,7 +1,7 @@
 //! `make bench` (sensitivity): `solver sensitivity` on the default scene
 //! (E, P, G, ΔΣ × the scene's 9 values × its 5 loads over the standard
 //! wheel's sweep) with the stiffness files in `meshes/default/` (made by
-//! `make preprocess`), into a scratch output. Target (issue 32): ≤ 2 min
+//! `make preprocess`), into a scratch output. Target: ≤ 2 min
 //! with the stiffness files cached. Results in `bench/sensitivity.json`.
 
 use geometry::scene::Scene;

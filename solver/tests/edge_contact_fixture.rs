@@ -1,4 +1,4 @@
-//! Edge-contact detection (issue 28) on the example-02 stiffness fixture
+//! Edge-contact detection on the example-02 stiffness fixture
 //! (the white-paper pair, standard blanks, 6 × 10 contact grid; no gmsh):
 //! none at 30 N·m, the pinion's tip named from 100 N·m (at the sweep's
 //! first position the leaving pair's loaded contact line ends at the

@@ -1,4 +1,4 @@
-//! The order-map excitation of the 8-DOF model (issue 31): k(t), δ(t) over
+//! The order-map excitation of the 8-DOF model: k(t), δ(t) over
 //! one wheel revolution derived from a span of a few mesh cycles
 //! ([`solver::lumped::revolution`]), on the white-paper pair's tooth counts
 //! z₁ = 20, z₂ = 43 and the lightweight wheel's 3 web holes.

@@ -1,4 +1,4 @@
-//! Verification 1 of issue 31: with the bearings rigid and no impact, the
+//! The lumped model's first verification: with the bearings rigid and no impact, the
 //! 8-DOF model turning at 10 rpm has the transmission error of the
 //! quasi-static LTCA, within 1 % of its peak-to-peak, at every LTCA
 //! position (example 02's fixture: white-paper pair, standard blanks,

@@ -1,4 +1,4 @@
-//! Verification 1 of issue 31, its second half: with the bearings rigid
+//! The lumped model's first verification, its second half: with the bearings rigid
 //! and no impact, the 8-DOF model's torsional response equals today's
 //! multibody run (`solver::multibody::model`, the tabulated contact element) fed
 //! the same mesh stiffness. Example 02's fixture (white-paper pair,

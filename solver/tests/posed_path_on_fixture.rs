@@ -6,7 +6,7 @@
 //! TE and pressures up to the misalignment's own (first-order) effect.
 //! Before the correction form, the identity pose gave 20 slices where the
 //! aligned path has 33, dropped whole tooth pairs, and moved the largest
-//! pressure at 700 N·m by 5 % (issue 32).
+//! pressure at 700 N·m by 5 %.
 
 #[path = "support/fixture.rs"]
 mod fixture;

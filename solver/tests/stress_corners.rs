@@ -1,4 +1,4 @@
-//! Corners of issue 28's stress matrix that broke or misled the multibody
+//! Corners of the stress matrix that broke or misled the multibody
 //! run, on the checked-in example-02 stiffness fixture (a table of 36
 //! positions builds in a fraction of a second):
 //! - the 10 rpm run at 0 and 1e-6 N·m (mean TE −115 and −579 µrad): the

@@ -12,7 +12,7 @@
 //!    its meshes): factor sizes and times, wall time per position (the first
 //!    pays for a cold window) and where it goes, peak memory.
 //!
-//! Target (issue 27): ≤ 30 s per position amortized over a reference-level
+//! Target: ≤ 30 s per position amortized over a reference-level
 //! sweep, peak ≤ 16 GB; the white paper's reference took 1,020–1,150 s per
 //! step. Results in `bench/reference.json`. Meshes come from `meshes/default/`
 //! (`make preprocess`; `preprocess mesh --level reference` for the fine part).

@@ -123,7 +123,7 @@ enum Cmd {
         #[arg(long, value_delimiter = ',', default_value = "8,12,20,30,45,60")]
         slices: Vec<usize>,
     },
-    /// Issue 28's stress matrix (loads up to edge contact, slices, stiffness
+    /// The stress matrix (loads up to edge contact, slices, stiffness
     /// grids, flanks, multibody step, tolerance and speed) for the scene's
     /// design and the seed pairs beside it, on cached meshes and stiffness
     /// files: `<out>/<scene>/stress/summary.json` and `outcomes.svg`.
@@ -189,7 +189,7 @@ enum Cmd {
         #[arg(long)]
         lumped_scene: Option<PathBuf>,
     },
-    /// Issue 4's line-load check: a Hertzian line load on one pinion tooth,
+    /// The line-load check: a Hertzian line load on one pinion tooth,
     /// fine-mesh FE against the reduced model's global FE + Weber–Banaschek.
     LineLoad {
         /// Scene file.

@@ -1,4 +1,4 @@
-//! Nothing stale, nothing damaged is used (issue 29): on the checked-in
+//! Nothing stale, nothing damaged is used: on the checked-in
 //! stiffness fixture of example 02, a reader refuses a stiffness file whose
 //! bytes changed since the stiffness stage listed it, whose numbers make no
 //! physical sense (a flipped diagonal, a NaN), or whose mesh was made from

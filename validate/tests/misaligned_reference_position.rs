@@ -8,7 +8,7 @@
 //! 38 s with them shared): aligned LTCA 347.38 µrad vs reference 341.23 µrad
 //! (6.15 µrad), misaligned (P = 0.02 mm, ΔΣ = 0.01°) 573.86 vs 567.64 µrad
 //! (6.22 µrad; 574.41, 6.77 µrad before the misaligned path became the
-//! aligned model plus the pose's exact change, issue 32).
+//! aligned model plus the pose's exact change).
 
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;

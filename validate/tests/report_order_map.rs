@@ -1,4 +1,4 @@
-//! The report's order-map subsection (issue 31): a present
+//! The report's order-map subsection: a present
 //! `order_map.json` gives one row per wheel blank, one per speed and blank
 //! with the amplitudes at the marked orders as the summary holds them, the
 //! order maps copied; the whole-revolution subsection follows (one line

@@ -1,4 +1,4 @@
-//! Issue 28's run time against error and the multibody load cells, on the
+//! Run time against error and the multibody load cells, on the
 //! example-02 stiffness fixture (the white-paper pair, 6 × 10, no gmsh)
 //! and the default scene's geometry.
 

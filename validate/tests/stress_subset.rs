@@ -1,4 +1,4 @@
-//! Issue 28's stress matrix, the regression subset run by `make test`: the
+//! The stress matrix, the regression subset run by `make test`: the
 //! load extremes (0 N·m and the matrix's largest listed load, 5,000 N·m)
 //! and the coarsest and finest slices (5 and 160 per pair, at 300 N·m) on
 //! the white-paper pair (the example-02 stiffness fixture, no gmsh) and on

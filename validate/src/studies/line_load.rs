@@ -1,4 +1,4 @@
-//! Issue 4's line-load check of the reduced model's compliance split: a
+//! The line-load check of the reduced model's compliance split: a
 //! Hertzian line load on one pinion tooth, solved on a fine FE mesh, against
 //! the reduced-order prediction global FE + Weber–Banaschek.
 //!
@@ -575,7 +575,7 @@ impl LineLoad {
         );
         let _ = writeln!(
             s,
-            "A Hertzian line load (q = {:.0} N/mm, half-width b) along the {} flank of pinion tooth 0 at profile row {} (η = {:.3}) over the whole face width ({:.1} mm), bore clamped (`validate line-load`). Fine-mesh FE: the normal approach of the line's surface points at the grid columns. Reduced model: the stiffness file's global field (total − local, reduced level) under the column forces q·L plus the Weber–Banaschek approach to the stored depth h. Compared on columns {}..={} (the end columns, where the plane-strain WB term does not hold, left out). Issue 4 asks for 3 %.\n",
+            "A Hertzian line load (q = {:.0} N/mm, half-width b) along the {} flank of pinion tooth 0 at profile row {} (η = {:.3}) over the whole face width ({:.1} mm), bore clamped (`validate line-load`). Fine-mesh FE: the normal approach of the line's surface points at the grid columns. Reduced model: the stiffness file's global field (total − local, reduced level) under the column forces q·L plus the Weber–Banaschek approach to the stored depth h. Compared on columns {}..={} (the end columns, where the plane-strain WB term does not hold, left out). The project's bound is 3 %.\n",
             self.line_load_n_per_m * 1e-3,
             self.flank,
             self.profile_row,

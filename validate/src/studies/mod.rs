@@ -4,7 +4,7 @@
 //! - [`convergence`]: the reference at three mesh levels, Richardson extrapolation;
 //! - [`line_load`]: the stiffness files' global field + Weber–Banaschek
 //!   against fine-mesh FE under a line load;
-//! - [`stress`]: issue 28's stress matrix on cached stiffness files;
+//! - [`stress`]: the stress matrix on cached stiffness files;
 //! - [`tradeoff`]: the reduced model's error to the reference against its run time;
 //! - [`stage_tradeoffs`]: run time against error for every stage (one
 //!   module per stage, `tradeoff_*`, the shared point type in

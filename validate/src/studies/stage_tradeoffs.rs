@@ -1,5 +1,5 @@
 //! `validate stage-tradeoffs <scene>` (run by `make stress`): run time
-//! against error for every stage of the scene's design (issue 28), each
+//! against error for every stage of the scene's design, each
 //! stage's study in its own module:
 //!
 //! - UTCA ([`tradeoff_utca`]): roll-surface samples and rotation step

@@ -1,4 +1,4 @@
-//! `validate stress <scene>`: the stress matrix of issue 28 on cached meshes
+//! `validate stress <scene>`: the stress matrix on cached meshes
 //! and stiffness files. For the scene's design and every seed pair (the
 //! chain scenes `seed<NNN>_<z1>x<z2>.toml` beside the scene), standard
 //! blanks, drive flanks:

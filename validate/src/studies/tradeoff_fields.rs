@@ -1,4 +1,4 @@
-//! Run time against error of the stiffness fields (issue 28): the global
+//! Run time against error of the stiffness fields: the global
 //! influence field each contact grid's stiffness file holds, against the
 //! next finer grid's, and the reduced-order mesh's against the medium
 //! mesh's on the same grid, where its files exist.

@@ -1,4 +1,4 @@
-//! Run time against error of the loaded TCA (issue 28): slices per tooth
+//! Run time against error of the loaded TCA: slices per tooth
 //! pair and the stiffness files' contact grid, against the finest FE
 //! reference computed for the scene: the penalty-contact reference at the
 //! white paper's 35 × 75 elements per flank (`<out>/<scene>/

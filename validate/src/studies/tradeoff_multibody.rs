@@ -1,4 +1,4 @@
-//! Run time against error of the multibody integration (issue 28): the
+//! Run time against error of the multibody integration: the
 //! maximum step and the TE tolerance of the step control, the others at the
 //! scene's values, generalized-α with the scene's ρ∞ and mesh damping
 //! ratio, frictionless, standard blanks, the contact-element table of one

@@ -1,4 +1,4 @@
-//! Run time against error of the FE reference (issue 28), read from the
+//! Run time against error of the FE reference, read from the
 //! mesh-convergence study (`validate convergence`,
 //! `<out>/<scene>/reference/convergence.json`): each mesh level's TE at the
 //! study's position against the Richardson extrapolation.

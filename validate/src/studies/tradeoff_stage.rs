@@ -1,4 +1,4 @@
-//! One stage's run time against error (issue 28): the settings a stage was
+//! One stage's run time against error: the settings a stage was
 //! run at, each with its cost and its error to a converged value, the
 //! setting that reaches [`TARGET_PCT`] at the least cost and whether the
 //! default is it; charted by [`charts::pareto_chart`].

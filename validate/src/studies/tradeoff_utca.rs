@@ -1,4 +1,4 @@
-//! Run time against error of the UTCA (issue 28): the surface of roll
+//! Run time against error of the UTCA: the surface of roll
 //! angles' sampling (face × profile samples) and the rotation step, against
 //! the direct contact search ([`geometry::direct::direct_te`], Newton on
 //! the flanks themselves) at [`DIRECT_POSITIONS`] positions of one mesh

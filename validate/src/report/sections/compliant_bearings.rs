@@ -1,6 +1,6 @@
 //! The report's section "Compliant bearings (multibody)": `solver dynamic`
 //! and `solver ltca` on `reference/scenes/white_paper_bearings.toml` (the
-//! white-paper pair with both members on compliant bearings, issue 32).
+//! white-paper pair with both members on compliant bearings).
 //!
 //! Reads `<out>/white_paper_bearings/{multibody,ltca}/summary.json` and the
 //! runs' CSV files when present: the bearings and mass properties used, TE

@@ -1,4 +1,4 @@
-//! The report's "Contact laws" section (issue 30): the Hertz impact-function
+//! The report's "Contact laws" section: the Hertz impact-function
 //! law (ADAMS `IMPACT`, NX 3D contact) against the FE-analytical contact
 //! element, on the load runs of seeds 001 and 002, beside the values the
 //! seeds publish.

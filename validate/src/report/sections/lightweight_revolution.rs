@@ -1,5 +1,5 @@
 //! The report's subsection "White-paper pair, lightweight wheel over its
-//! whole revolution" (issues 31 and 32), from the scene
+//! whole revolution", from the scene
 //! `reference/scenes/white_paper_lightweight_runup.toml` (every wheel tooth
 //! solved):
 //!

@@ -1,5 +1,5 @@
 //! The lumped section's part on the mesh stiffness against the FE
-//! reference (issue 31): `validate mesh-stiffness` on
+//! reference: `validate mesh-stiffness` on
 //! `reference/scenes/seed00{3,4}_fe_stiffness.toml`, read from
 //! `<out>/<scene>/mesh_stiffness/summary.json`. Every number is formatted
 //! from the summaries (and, for seed 004's published value, from the named

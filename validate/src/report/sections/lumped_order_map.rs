@@ -1,5 +1,5 @@
 //! The report's subsection "White-paper pair, lightweight wheel: bearing-force
-//! order map" (issue 31): `solver lumped` on
+//! order map": `solver lumped` on
 //! `reference/scenes/white_paper_lightweight_lumped.toml` with
 //! `[lumped.order_map]`, read from `<out>/<scene>/lumped/order_map.json`,
 //! its order maps; then the whole-revolution subsection

@@ -1,4 +1,4 @@
-//! The report's "Run time against error" section (issue 28), formatted from
+//! The report's "Run time against error" section, formatted from
 //! `<out>/<scene>/tradeoff/summary.json` ([`TradeoffSummary`]): per stage,
 //! what cost and error measure, the Pareto chart with the default ringed,
 //! a table of the points, the cheapest setting within the target and

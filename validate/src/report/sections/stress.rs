@@ -1,4 +1,4 @@
-//! The report's stress-matrix section (issue 28), formatted from
+//! The report's stress-matrix section, formatted from
 //! `<out>/<scene>/stress/summary.json` ([`StressSummary`]): the outcome
 //! grid, the counts (cells, converged, refused with their reasons, failed,
 //! skipped), the worst torque balance and energy drift, non-finite values,
@@ -65,7 +65,7 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
     let _ = writeln!(m, "## Stress matrix\n");
     let _ = writeln!(
         m,
-        "Issue 28's matrix on cached meshes and stiffness files ({} designs, standard blanks): loads from 0 N·m up to edge contact, slices per pair, stiffness grids, coast flanks, and undamped multibody runs at 300 N·m over one mesh cycle, at most 0.1 s (maximum step, tolerance, pinion speed). {} cells: **{} converged**, {} refused, {} failed, {} skipped (inputs not cached); {:.0} s wall time.\n",
+        "The stress matrix on cached meshes and stiffness files ({} designs, standard blanks): loads from 0 N·m up to edge contact, slices per pair, stiffness grids, coast flanks, and undamped multibody runs at 300 N·m over one mesh cycle, at most 0.1 s (maximum step, tolerance, pinion speed). {} cells: **{} converged**, {} refused, {} failed, {} skipped (inputs not cached); {:.0} s wall time.\n",
         s.designs.len(),
         s.cells.len(),
         count(0),
