@@ -153,6 +153,21 @@ pub fn volume(x: &[[f64; 3]; 10]) -> f64 {
 /// K_ai,bj = Σ_q w_q det J_q [λ g_a,i g_b,j + μ g_a,j g_b,i + μ δ_ij (g_a · g_b)],
 /// with gᵢ the physical shape-function gradients at quadrature point q
 /// (4-point Gauss). Returns `Err(det J)` if det J ≤ 0 at any point.
+///
+/// A rigid translation strains nothing, so it meets no nodal force, and
+/// K is symmetric:
+///
+/// ```
+/// use fem::tet10::{reference_nodes, stiffness};
+/// let (lambda, mu) = (121.15e9, 80.77e9); // steel: E = 210 GPa, ν = 0.3
+/// let k = stiffness(&reference_nodes(), lambda, mu).unwrap();
+/// // u = (1, 0, 0) at every node.
+/// let f: Vec<f64> = (0..30)
+///     .map(|r| (0..10).map(|b| k[r * 30 + 3 * b]).sum::<f64>())
+///     .collect();
+/// assert!(f.iter().all(|x| x.abs() < 1e-6 * mu));
+/// assert!((0..30).all(|i| (0..30).all(|j| (k[i * 30 + j] - k[j * 30 + i]).abs() < 1e-6 * mu)));
+/// ```
 pub fn stiffness(x: &[[f64; 3]; 10], lambda: f64, mu: f64) -> Result<[f64; 900], f64> {
     stiffness_with(x, lambda, mu, &gauss4())
 }

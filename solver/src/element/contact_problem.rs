@@ -18,6 +18,31 @@ use crate::SolverError;
 use nalgebra::{DMatrix, DVector};
 
 /// One position's contact problem (n slices).
+///
+/// Two equal slices touching at the same lag share the torque equally, and
+/// each closes its gap: θ = lag + (C F + U(F)) / λ₂.
+///
+/// ```
+/// use geometry::Material;
+/// use solver::element::contact_problem::ContactProblem;
+/// use solver::element::weber_banaschek::LineContact;
+/// let c = 2e-9; // m/N, no coupling between the slices
+/// let line = LineContact { rho: 0.01, length: 0.004, h: [0.005; 2], bodies: [Material::STEEL; 2] };
+/// let (r1, r2, torque) = (0.04, 0.09, 300.0);
+/// let p = ContactProblem {
+///     compliance: &[c, 0.0, 0.0, c],
+///     lag: &[1e-4, 1e-4],
+///     lever_wheel: &[r2, r2],
+///     lever_pinion: &[r1, r1],
+///     line: &[line, line],
+///     torque,
+/// };
+/// let s = p.solve(None).unwrap();
+/// let f = torque / (2.0 * r1);
+/// assert!(s.force.iter().all(|x| (x / f - 1.0).abs() < 1e-9));
+/// let theta = 1e-4 + (c * f + line.approach(f)) / r2;
+/// assert!((s.theta / theta - 1.0).abs() < 1e-9);
+/// ```
 pub struct ContactProblem<'a> {
     /// Compliance C, row-major n × n, symmetric, m/N.
     pub compliance: &'a [f64],

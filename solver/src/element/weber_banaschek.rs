@@ -37,6 +37,18 @@ pub fn half_width(q: f64, rho: f64, e_star: f64) -> f64 {
 /// with Hertz half-width `b`: the exact half-plane form of the module doc,
 /// with x = h/b, asinh x = ln s and (h√(h² + b²) − h²)/b² = x/s for
 /// s = x + √(1 + x²) (no cancellation for x ≥ 0, → 1/2 for large x).
+///
+/// Deep below a narrow contact (h ≫ b) it is the classical
+/// Weber–Banaschek formula [`body_approach_log`]:
+///
+/// ```
+/// use geometry::Material;
+/// use solver::element::weber_banaschek::{body_approach, body_approach_log};
+/// let (q, b, h) = (500e3, 0.2e-3, 0.2); // 500 N/mm, b = 0.2 mm, h = 200 mm
+/// let exact = body_approach(q, b, h, Material::STEEL);
+/// let classical = body_approach_log(q, b, h, Material::STEEL);
+/// assert!((exact / classical - 1.0).abs() < 1e-6);
+/// ```
 pub fn body_approach(q: f64, b: f64, h: f64, m: Material) -> f64 {
     if q <= 0.0 {
         return 0.0;
