@@ -5,7 +5,8 @@
 
 use serde_json::{json, Value};
 use std::path::Path;
-use validate::report::sections::contact_laws::{build, ContactLawsError, SEED_002};
+use validate::report::published::seed_contact_laws;
+use validate::report::sections::contact_laws::{build, ContactLawsError};
 
 /// A load run whose numbers start at `base` (distinct per run and field).
 fn load_run(base: f64) -> Value {
@@ -117,7 +118,9 @@ fn rows_carry_both_runs_and_the_seeds_published_values() {
     // 5e5), and the element's constant μ.
     assert!(row(md, "| Hertz K = 4/3").ends_with("| 5.0000e5 | printed / recomputed = 133.000 |"));
     assert!(md.contains("| element runs: constant Coulomb μ | 0.05 | |"));
-    assert!(row(md, "| K, N/mm^e").contains(&format!("{:.4e}", SEED_002.stiffness.value)));
+    assert!(
+        row(md, "| K, N/mm^e").contains(&format!("{:.4e}", seed_contact_laws()[1].stiffness.value))
+    );
     assert!(md.contains("133 times the value with the pitch radii"));
     // The chart that is there is copied and linked; the missing ones are
     // left out.

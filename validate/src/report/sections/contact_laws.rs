@@ -7,123 +7,18 @@
 //! `<out>/seed00N_element/multibody/summary.json` (written by
 //! `solver dynamic`); a seed without both is named as absent in one line.
 //! Every number of ours is formatted from those summaries; the seeds'
-//! numbers are the constants of [`SEED_001`] and [`SEED_002`], each with
-//! where the seed prints it. The load-run charts next to the summaries are
+//! numbers are read from `reference/published/seed00{1,2}_contact_law.toml`
+//! ([`seed_contact_laws`]), each with where the seed prints it. The load-run charts next to the summaries are
 //! copied into the report directory.
 
 use crate::report::figures::{copied, Figure};
+use crate::report::published::{seed_contact_laws, Quoted, SeedContactLaw};
 use formats::summaries::{DynamicSummary, ImpactLawSummary, LoadRunSummary};
 use solver::multibody::impact_law::{
     seed_001_stiffness, seed_002_back_cone_stiffness, SeedStiffness,
 };
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-
-/// A value a seed prints, and where (table, figure or section).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Quoted {
-    pub value: f64,
-    pub source: &'static str,
-}
-
-const fn q(value: f64, source: &'static str) -> Option<Quoted> {
-    Some(Quoted { value, source })
-}
-
-/// What a seed publishes about its load run and its impact law; None where
-/// it gives no number.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SeedPublished {
-    /// Seed number as in the scene names (`seed001_impact`).
-    pub id: &'static str,
-    /// Short description: pair, code.
-    pub title: &'static str,
-    /// Mean wheel speed (°/s) and its relative difference to the kinematic
-    /// speed (%, as the seed prints it: unsigned).
-    pub wheel_speed_deg_s: Option<Quoted>,
-    pub wheel_speed_error_percent: Option<Quoted>,
-    /// Mean tangential force (N), the seed's 2T/d (N) and the relative
-    /// difference (%).
-    pub tangential_force_n: Option<Quoted>,
-    pub tangential_force_theory_n: Option<Quoted>,
-    pub tangential_force_error_percent: Option<Quoted>,
-    /// Mean and largest |ω₂ − kinematic|, °/s.
-    pub speed_fluctuation_mean_deg_s: Option<Quoted>,
-    pub speed_fluctuation_max_deg_s: Option<Quoted>,
-    /// Mean and largest |F_t − mean|, N.
-    pub force_fluctuation_mean_n: Option<Quoted>,
-    pub force_fluctuation_max_n: Option<Quoted>,
-    /// What the seed says about the meshing force, when it gives no number.
-    pub mesh_force_statement: Option<&'static str>,
-    /// The impact law's parameters as printed: K, e, C (N·s/mm), d (mm),
-    /// μ static and dynamic.
-    pub stiffness: Quoted,
-    pub exponent: f64,
-    pub damping_n_s_per_mm: f64,
-    pub depth_mm: f64,
-    pub static_friction: f64,
-    pub dynamic_friction: f64,
-    pub parameters_source: &'static str,
-}
-
-/// Seed 001 (`/work/shared/seeds/001_c43e8a84d769cf72.txt`): 9/40 pair,
-/// SolidWorks + ADAMS, 150 rpm, 15,713 N·m on the wheel.
-pub const SEED_001: SeedPublished = SeedPublished {
-    id: "001",
-    title: "9/40 pair, SolidWorks + ADAMS IMPACT",
-    wheel_speed_deg_s: q(200.0, "Section 4, Figure 6: \"about 200 °/s\""),
-    wheel_speed_error_percent: None,
-    tangential_force_n: None,
-    tangential_force_theory_n: None,
-    tangential_force_error_percent: None,
-    speed_fluctuation_mean_deg_s: None,
-    speed_fluctuation_max_deg_s: None,
-    force_fluctuation_mean_n: None,
-    force_fluctuation_max_n: None,
-    mesh_force_statement: Some(
-        "mean \"almost the same\" as the theoretical value, no number (Section 4, Figure 8)",
-    ),
-    stiffness: Quoted {
-        value: 8.433e5,
-        source: "printed in N/mm²",
-    },
-    exponent: 2.2,
-    damping_n_s_per_mm: 100.0,
-    depth_mm: 0.1,
-    static_friction: 0.5,
-    dynamic_friction: 0.3,
-    parameters_source: "Section 3.2",
-};
-
-/// Seed 002 (`/work/shared/seeds/002_c3ebbaa7232b9d9f.txt`): 9/37 pair,
-/// UG NX 3D contact, pinion ramped to 1283.8 rpm in 0.2 s, 1,965 N·m.
-pub const SEED_002: SeedPublished = SeedPublished {
-    id: "002",
-    title: "9/37 pair, UG NX 3D contact",
-    wheel_speed_deg_s: q(1872.69, "Table 2"),
-    wheel_speed_error_percent: q(0.054, "Table 2"),
-    tangential_force_n: q(24799.9, "Table 2"),
-    tangential_force_theory_n: q(23603.5, "Table 2"),
-    tangential_force_error_percent: q(4.82, "Table 2"),
-    speed_fluctuation_mean_deg_s: q(13.5, "Section 4, Figure 7"),
-    speed_fluctuation_max_deg_s: q(86.9, "Section 4, Figure 7"),
-    force_fluctuation_mean_n: q(117.53, "Section 4, Figure 9"),
-    force_fluctuation_max_n: q(1741.3, "Section 4, Figure 9"),
-    mesh_force_statement: None,
-    stiffness: Quoted {
-        value: 6.65e7,
-        source: "after Eq. (9), printed without unit",
-    },
-    exponent: 1.5,
-    damping_n_s_per_mm: 50.0,
-    depth_mm: 0.1,
-    static_friction: 0.08,
-    dynamic_friction: 0.05,
-    parameters_source: "Section 3",
-};
-
-/// The seeds of the section, in order.
-pub const SEEDS: [SeedPublished; 2] = [SEED_001, SEED_002];
 
 /// A summary file of a seed scene that is there but cannot be used.
 #[derive(Debug, thiserror::Error)]
@@ -238,7 +133,7 @@ pub fn read_run(
 pub fn seed_runs(
     out: &Path,
     scenes: Option<&Path>,
-    seed: &SeedPublished,
+    seed: &SeedContactLaw,
 ) -> Result<SeedRuns, ContactLawsError> {
     let (si, se) = (
         format!("seed{}_impact", seed.id),
@@ -287,14 +182,14 @@ fn small_pct(x: f64) -> String {
 }
 
 /// A seed's value as it prints it (its own digits), and where.
-fn quoted(v: Option<Quoted>, unit: &str) -> String {
+fn quoted(v: Option<&Quoted>, unit: &str) -> String {
     v.map_or_else(
         || "not given".to_string(),
         |p| format!("{}{unit} ({})", p.value, p.source),
     )
 }
 
-fn pair(a: Option<Quoted>, b: Option<Quoted>) -> String {
+fn pair(a: Option<&Quoted>, b: Option<&Quoted>) -> String {
     match (a, b) {
         (Some(a), Some(b)) if a.source == b.source => {
             format!("{} / {} ({})", a.value, b.value, a.source)
@@ -305,7 +200,7 @@ fn pair(a: Option<Quoted>, b: Option<Quoted>) -> String {
 }
 
 /// The load-run table of one seed.
-fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &LoadRunSummary) {
+fn load_run_table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRunSummary) {
     let _ = writeln!(
         s,
         "| quantity | impact law | FE-analytical element | seed {} |",
@@ -331,12 +226,12 @@ fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &Loa
             i.wheel_speed_kinematic_deg_s
         ),
         &|l| format!("{:.3}", l.wheel_speed_mean_deg_s),
-        quoted(p.wheel_speed_deg_s, ""),
+        quoted(p.wheel_speed_deg_s.as_ref(), ""),
     );
     row(
         "mean wheel speed against kinematic",
         &|l| pct(l.wheel_speed_error),
-        quoted(p.wheel_speed_error_percent, " %"),
+        quoted(p.wheel_speed_error_percent.as_ref(), " %"),
     );
     row(
         &format!(
@@ -344,7 +239,10 @@ fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &Loa
             i.tangential_force_theory_n
         ),
         &|l| format!("{:.1}", l.tangential_force_mean_n),
-        match (p.tangential_force_n, p.tangential_force_theory_n) {
+        match (
+            p.tangential_force_n.as_ref(),
+            p.tangential_force_theory_n.as_ref(),
+        ) {
             (Some(f), Some(t)) if f.source == t.source => {
                 format!("{} against 2T/d = {} ({})", f.value, t.value, f.source)
             }
@@ -354,7 +252,7 @@ fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &Loa
     row(
         "mean tangential force against 2T/d",
         &|l| pct(l.tangential_force_error),
-        quoted(p.tangential_force_error_percent, " %"),
+        quoted(p.tangential_force_error_percent.as_ref(), " %"),
     );
     row(
         "wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s",
@@ -365,8 +263,8 @@ fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &Loa
             )
         },
         pair(
-            p.speed_fluctuation_mean_deg_s,
-            p.speed_fluctuation_max_deg_s,
+            p.speed_fluctuation_mean_deg_s.as_ref(),
+            p.speed_fluctuation_max_deg_s.as_ref(),
         ),
     );
     row(
@@ -377,7 +275,10 @@ fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &Loa
                 l.tangential_force_fluctuation_mean_n, l.tangential_force_fluctuation_max_n
             )
         },
-        pair(p.force_fluctuation_mean_n, p.force_fluctuation_max_n),
+        pair(
+            p.force_fluctuation_mean_n.as_ref(),
+            p.force_fluctuation_max_n.as_ref(),
+        ),
     );
     row(
         &format!(
@@ -385,7 +286,10 @@ fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &Loa
             i.mesh_force_theory_n
         ),
         &|l| format!("{:.0} / {:.0}", l.mesh_force_mean_n, l.mesh_force_max_n),
-        p.mesh_force_statement.unwrap_or("not given").to_string(),
+        p.mesh_force_statement
+            .as_deref()
+            .unwrap_or("not given")
+            .to_string(),
     );
     row(
         "meshing force mean against theory",
@@ -419,7 +323,7 @@ fn load_run_table(s: &mut String, p: &SeedPublished, i: &LoadRunSummary, e: &Loa
 /// and the Hertz K recomputed from the pair's pitch radii.
 fn parameter_table(
     s: &mut String,
-    p: &SeedPublished,
+    p: &SeedContactLaw,
     law: &ImpactLawSummary,
     element_mu: f64,
     hertz: &[(&str, SeedStiffness)],
@@ -485,8 +389,8 @@ fn parameter_table(
 /// The Hertz stiffness recomputed from each seed's own inputs (its
 /// materials; for seed 002 also the back-cone radii), see
 /// `solver::multibody::impact_law`.
-fn seed_hertz(p: &SeedPublished) -> Vec<(&'static str, SeedStiffness)> {
-    match p.id {
+fn seed_hertz(p: &SeedContactLaw) -> Vec<(&'static str, SeedStiffness)> {
+    match p.id.as_str() {
         "001" => vec![("the seed's own inputs", seed_001_stiffness())],
         "002" => vec![(
             "back-cone (Tredgold) radii r / cos δ",
@@ -499,12 +403,12 @@ fn seed_hertz(p: &SeedPublished) -> Vec<(&'static str, SeedStiffness)> {
 /// What the stiffness findings are, numbers from `law` and `hertz`.
 fn stiffness_finding(
     s: &mut String,
-    p: &SeedPublished,
+    p: &SeedContactLaw,
     law: &ImpactLawSummary,
     hertz: &[(&str, SeedStiffness)],
 ) {
     let pitch = law.hertz_stiffness_n_per_mm_1_5;
-    match (p.id, hertz.first()) {
+    match (p.id.as_str(), hertz.first()) {
         ("001", Some((_, k))) => {
             let _ = writeln!(
                 s,
@@ -534,7 +438,7 @@ fn stiffness_finding(
 }
 
 /// Where the differences come from, for one seed.
-fn differences(s: &mut String, p: &SeedPublished, i: &LawRun, e: &LawRun, mesh: Option<[u32; 2]>) {
+fn differences(s: &mut String, p: &SeedContactLaw, i: &LawRun, e: &LawRun, mesh: Option<[u32; 2]>) {
     let (li, le) = (&i.load_run, &e.load_run);
     let mesh = mesh.map_or("coarse reduced".to_string(), |m| {
         format!("coarse {} × {}", m[0], m[1])
@@ -547,7 +451,7 @@ fn differences(s: &mut String, p: &SeedPublished, i: &LawRun, e: &LawRun, mesh: 
         small_pct(le.wheel_speed_error),
         small_pct(li.tangential_force_error),
         small_pct(le.tangential_force_error),
-        match p.tangential_force_error_percent {
+        match &p.tangential_force_error_percent {
             Some(t) => format!(
                 " The seed's {} % ({}) therefore measures its averaging (window, start-up) or its solver, not the contact law.",
                 t.value, t.source
@@ -578,7 +482,7 @@ fn differences(s: &mut String, p: &SeedPublished, i: &LawRun, e: &LawRun, mesh: 
 
 /// The load-run charts of both runs (impact | element side by side per
 /// chart), copied to `reports` as `contact_laws_<scene>_<chart>.svg`.
-fn seed_figures(p: &SeedPublished, i: &LawRun, e: &LawRun, reports: &Path) -> Vec<Figure> {
+fn seed_figures(p: &SeedContactLaw, i: &LawRun, e: &LawRun, reports: &Path) -> Vec<Figure> {
     let charts = [
         ("load_run_speed.svg", "wheel speed"),
         ("load_run_force.svg", "tangential force"),
@@ -603,7 +507,7 @@ pub fn build(
     scenes: Option<&Path>,
     reports: &Path,
 ) -> Result<ContactLaws, ContactLawsError> {
-    let runs = SEEDS
+    let runs = seed_contact_laws()
         .iter()
         .map(|p| seed_runs(out, scenes, p).map(|r| (p, r)))
         .collect::<Result<Vec<_>, _>>()?;
@@ -611,7 +515,7 @@ pub fn build(
 }
 
 /// The section's markdown from the seeds' runs.
-pub fn section(runs: &[(&SeedPublished, SeedRuns)], reports: &Path) -> ContactLaws {
+pub fn section(runs: &[(&SeedContactLaw, SeedRuns)], reports: &Path) -> ContactLaws {
     let mut s = String::new();
     let mut figures = Vec::new();
     let _ = writeln!(s, "## Contact laws: Hertz impact function against the FE-analytical contact element (seeds 001 and 002)\n");

@@ -8,43 +8,17 @@
 //! into the report directory as `lumped_<pinion>_<wheel>_<chart>.svg`. An
 //! absent summary is one line of text, never a table of zeros.
 //!
-//! Every number of ours is formatted from the summary; seed 004's are the
-//! named constants below with their source.
+//! Every number of ours is formatted from the summary; seed 004's are read
+//! from `reference/published/seed004_lumped.toml` ([`seed004`]).
 
 use crate::report::figures::{copied, Figure};
+use crate::report::published::seed004;
 use formats::lumped_summary::{Directions, LumpedSummary};
 use std::fmt::Write as _;
 use std::path::Path;
 
 /// The scene whose run the section reports.
 pub const LUMPED_SCENE: &str = "seed004_lumped";
-
-/// Where seed 004's Table 3 comes from.
-pub const SEED004_TABLE3_SOURCE: &str = "seed 004 (Dynamic Analysis of Spiral Bevel Gears Based on Meshing Characteristics), Table 3: RMS acceleration, 23/86 pair, 5,900 rpm, 500 N·m";
-
-/// Seed 004's Table 3 per direction: (label, RMS acceleration m/s², share
-/// of the mesh normal's %). Pinion axis X, wheel axis Y, as in our model.
-pub const SEED004_TABLE3: [(&str, f64, f64); 7] = [
-    ("Pinion X (axial)", 63.82, 21.28),
-    ("Pinion Y (bending)", 30.13, 10.05),
-    ("Pinion Z (bending)", 112.02, 37.35),
-    ("Wheel X (bending)", 53.71, 17.91),
-    ("Wheel Y (axial)", 24.97, 8.33),
-    ("Wheel Z (bending)", 90.90, 30.31),
-    ("Mesh normal", 299.89, 100.00),
-];
-
-/// Seed 004's mean mesh stiffness k_m, N/m (its Table 1, "typical value").
-pub const SEED004_MEAN_MESH_STIFFNESS_N_PER_M: f64 = 3.5e8;
-pub const SEED004_MEAN_MESH_STIFFNESS_SOURCE: &str =
-    "seed 004, Table 1 (parameters for excitation calculation, typical value)";
-
-/// Seed 004's meshing-impact force, N (case study text, pulse 0.05 mesh periods).
-pub const SEED004_IMPACT_FORCE_N: f64 = 27_660.0;
-pub const SEED004_IMPACT_FORCE_SOURCE: &str = "seed 004, case study (\"about 27,660 N\")";
-
-/// Seed 004's highest stiffness harmonic ("up to the fifth order").
-pub const SEED004_STIFFNESS_HARMONICS: usize = 5;
 
 /// The charts of one blank pair, in the order shown: (title, file).
 const CHARTS: [(&str, &str); 3] = [
@@ -166,6 +140,10 @@ fn seed004_section(out: Option<&Path>, reports: &Path) -> LumpedSection {
 }
 
 fn pair_markdown(s: &mut String, r: &LumpedSummary) {
+    let seed = seed004();
+    let (seed_impact_n, seed_harmonics) = (seed.impact_force_n, seed.stiffness_harmonics);
+    let (seed_k_source, seed_impact_source) =
+        (&seed.mean_mesh_stiffness_source, &seed.impact_force_source);
     let _ = writeln!(
         s,
         "### {:?} pinion / {:?} wheel: {:.0} rpm, {:.2} N·m on the pinion, mesh frequency {:.1} Hz, {:.0} mesh cycles with the first {:.0} dropped\n",
@@ -185,7 +163,8 @@ fn pair_markdown(s: &mut String, r: &LumpedSummary) {
     let rms = ours(&r.rms_acceleration_m_s2);
     let share = ours(&r.rms_acceleration_share_percent);
     let relative = r.relative_normal_acceleration_rms_m_s2;
-    for (k, (label, pub_rms, pub_share)) in SEED004_TABLE3.iter().enumerate() {
+    for (k, d) in seed004().table3.iter().enumerate() {
+        let (label, pub_rms, pub_share) = (&d.direction, d.rms_acceleration_m_s2, d.share_percent);
         let of_relative = if k < 6 {
             format!("{:.2}", rms[k] / relative * 100.0)
         } else {
@@ -199,7 +178,8 @@ fn pair_markdown(s: &mut String, r: &LumpedSummary) {
     }
     let _ = writeln!(
         s,
-        "\nSource: {SEED004_TABLE3_SOURCE}. Our mesh-normal row is λ̈ = v·q̈ − ë, which holds the static transmission error's own curvature ë(t); the bodies' relative acceleration along the normal without it, v·q̈, is {relative:.2} m/s², and the next column gives the shares over it. Seed 004 does not say which of the two its mesh-normal row is.\n"
+        "\nSource: {}. Our mesh-normal row is λ̈ = v·q̈ − ë, which holds the static transmission error's own curvature ë(t); the bodies' relative acceleration along the normal without it, v·q̈, is {relative:.2} m/s², and the next column gives the shares over it. Seed 004 does not say which of the two its mesh-normal row is.\n",
+        seed004().table3_source,
     );
     let k = &r.mesh_stiffness_n_per_m;
     let static_force = r.pinion_torque_nm / r.levers_m[0];
@@ -207,12 +187,14 @@ fn pair_markdown(s: &mut String, r: &LumpedSummary) {
     let _ = writeln!(s, "|---|---|---|");
     let _ = writeln!(
         s,
-        "| mean mesh stiffness, tangent (N/m) | {:.3e} (secant {:.3e}) | {SEED004_MEAN_MESH_STIFFNESS_N_PER_M:.2e} |",
-        k.mean, r.secant_mesh_stiffness_mean_n_per_m
+        "| mean mesh stiffness, tangent (N/m) | {:.3e} (secant {:.3e}) | {:.2e} |",
+        k.mean,
+        r.secant_mesh_stiffness_mean_n_per_m,
+        seed004().mean_mesh_stiffness_n_per_m
     );
     let _ = writeln!(
         s,
-        "| meshing-impact force (N) | {:.0} ({}) | {SEED004_IMPACT_FORCE_N:.0} |",
+        "| meshing-impact force (N) | {:.0} ({}) | {seed_impact_n:.0} |",
         r.impact_force_n, r.impact.model
     );
     let _ = writeln!(
@@ -222,7 +204,7 @@ fn pair_markdown(s: &mut String, r: &LumpedSummary) {
     );
     let _ = writeln!(
         s,
-        "| stiffness harmonics | {} | up to order {SEED004_STIFFNESS_HARMONICS} |",
+        "| stiffness harmonics | {} | up to order {seed_harmonics} |",
         k.harmonics.len()
     );
     for (name, f) in [
@@ -251,7 +233,7 @@ fn pair_markdown(s: &mut String, r: &LumpedSummary) {
     );
     let _ = writeln!(
         s,
-        "\nSeed 004: k_m from {SEED004_MEAN_MESH_STIFFNESS_SOURCE}; impact force from {SEED004_IMPACT_FORCE_SOURCE}.\n"
+        "\nSeed 004: k_m from {seed_k_source}; impact force from {seed_impact_source}.\n"
     );
 }
 
@@ -270,16 +252,20 @@ fn bearings_text(k: &[[f64; 3]; 2]) -> String {
 }
 
 fn differences_markdown(s: &mut String, r: &LumpedSummary) {
+    let (seed_k, seed_impact_n) = (
+        seed004().mean_mesh_stiffness_n_per_m,
+        seed004().impact_force_n,
+    );
     let static_force = r.pinion_torque_nm / r.levers_m[0];
-    let k_ratio = SEED004_MEAN_MESH_STIFFNESS_N_PER_M / r.mesh_stiffness_n_per_m.mean;
+    let k_ratio = seed_k / r.mesh_stiffness_n_per_m.mean;
     let _ = writeln!(
         s,
         "### Why ours differs from seed 004\n\n\
 - **Meshes.** The scene runs the coarse 6 × 10 flank-element meshes of `reference/scenes/seed004_lumped.toml`; the stiffness, loaded TE and impact velocity come from that reduced model, not a converged one.\n\
 - **Bearings.** Seed 004 publishes no bearing stiffness; the scene assumes {} with {:.0} % damping. The body accelerations depend on that choice: with it the linear model's natural frequencies are {} Hz against the mesh frequency {:.1} Hz.\n\
 - **Our design file.** Seed 004 gives no flank modification; `reference/seed004_23x86.toml` carries an assumed ease-off (profile and lengthwise crowning, a parabolic motion error). The localized contact it gives lowers the tangent stiffness at this load and shapes the loaded TE that drives the model.\n\
-- **Mean stiffness.** Seed 004's {SEED004_MEAN_MESH_STIFFNESS_N_PER_M:.1e} N/m is {k_ratio:.1} times our tangent mean; it is a \"typical value\" from its Table 1, whose other entries (mesh frequency 2π × 1000 rad/s, impact velocity 0.5 m/s) do not match its own case study either.\n\
-- **Impact.** Seed 004's {SEED004_IMPACT_FORCE_N:.0} N is {:.1} times the static mesh force T₁/r₁ = {static_force:.0} N of this load; ours is seed 004's F_s formula with the impact velocity ({:.4} m/s) and entering pair's stiffness of our LTCA, {:.0} N.\n",
+- **Mean stiffness.** Seed 004's {seed_k:.1e} N/m is {k_ratio:.1} times our tangent mean; it is a \"typical value\" from its Table 1, whose other entries (mesh frequency 2π × 1000 rad/s, impact velocity 0.5 m/s) do not match its own case study either.\n\
+- **Impact.** Seed 004's {seed_impact_n:.0} N is {:.1} times the static mesh force T₁/r₁ = {static_force:.0} N of this load; ours is seed 004's F_s formula with the impact velocity ({:.4} m/s) and entering pair's stiffness of our LTCA, {:.0} N.\n",
         bearings_text(&r.bearing_stiffness_n_per_m),
         100.0 * r.bearing_damping_ratio,
         r.natural_frequencies_hz
@@ -288,7 +274,7 @@ fn differences_markdown(s: &mut String, r: &LumpedSummary) {
             .collect::<Vec<_>>()
             .join(", "),
         r.mesh_frequency_hz,
-        SEED004_IMPACT_FORCE_N / static_force,
+        seed_impact_n / static_force,
         r.impact.velocity_m_s,
         r.impact_force_n
     );
@@ -300,9 +286,12 @@ mod tests {
 
     #[test]
     fn seed004_table3_shares_are_its_rms_over_the_mesh_normal() {
-        let normal = SEED004_TABLE3[6].1;
-        for (label, rms, share) in SEED004_TABLE3 {
-            assert!((rms / normal * 100.0 - share).abs() < 0.01, "{label}");
+        let t = &seed004().table3;
+        assert_eq!(t.len(), 7, "six body directions and the mesh normal");
+        let normal = t[6].rms_acceleration_m_s2;
+        for d in t {
+            let share = d.rms_acceleration_m_s2 / normal * 100.0;
+            assert!((share - d.share_percent).abs() < 0.01, "{}", d.direction);
         }
     }
 }

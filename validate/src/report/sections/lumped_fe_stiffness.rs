@@ -180,12 +180,12 @@ fn verdict(s: &mut String, r: &MeshStiffnessSummary, out: &Path, lumped: &str) {
                 .map(|x| x.mesh_stiffness_n_per_m.mean)
         });
     if lumped == "seed004_lumped" {
-        let published = super::lumped::SEED004_MEAN_MESH_STIFFNESS_N_PER_M;
+        let published = crate::report::published::seed004().mean_mesh_stiffness_n_per_m;
         let scale = fe.tangent_n_per_m / red.tangent_n_per_m;
         let _ = writeln!(
             s,
             "\nSeed 004's published mean stiffness {published:.2e} N/m ({}) against ours: the lumped run's tangent mean over the cycle is {}; the FE reference at this position is {:.2e} N/m, {:.1} times smaller than the published value. Our LTCA's cycle mean scaled by the FE/LTCA ratio at this position ({scale:.3}, an estimate: the FE is solved at one position only) is {:.2e} N/m, {:.1} times smaller, and the largest value of the cycle so scaled, {:.2e} N/m, {:.1} times. So the factor between the published value and ours is {} the LTCA's: the FE reference of the same design gives it too. It lies in the inputs: seed 004 publishes no flank modification and calls its value a typical one, while our design file's assumed ease-off (crowning) localizes the contact; this study does not test which stiffness seed 004's own pair had.",
-            super::lumped::SEED004_MEAN_MESH_STIFFNESS_SOURCE,
+            crate::report::published::seed004().mean_mesh_stiffness_source,
             mean.map_or("not available (no lumped summary)".into(), |m| format!("{m:.2e} N/m, {:.1} times smaller than the published value", published / m)),
             fe.tangent_n_per_m,
             published / fe.tangent_n_per_m,

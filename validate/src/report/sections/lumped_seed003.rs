@@ -3,27 +3,17 @@
 //! `reference/scenes/seed003_lumped.toml`, read from
 //! `<out>/seed003_lumped/lumped/summary.json` (one [`LumpedSummary`] per
 //! roughness grade and torque). Every number of ours is formatted from the
-//! summaries; seed 003's are the named constants below with their source.
+//! summaries; seed 003's are read from
+//! `reference/published/seed003_test_rig.toml` ([`seed003`]).
 //! An absent summary is one line of text.
 
+use crate::report::published::seed003;
 use formats::lumped_summary::LumpedSummary;
 use std::fmt::Write as _;
 use std::path::Path;
 
 /// The scene whose runs this part reports.
 pub const SEED003_SCENE: &str = "seed003_lumped";
-
-/// Seed 003's test rig: (loader torque N·m, measured mean vibration
-/// velocity mm/s, seed 003's own simulated value mm/s).
-pub const SEED003_MEASURED: [(f64, f64, f64); 2] = [(77.0, 4.195, 4.06), (105.0, 4.384, 4.116)];
-pub const SEED003_MEASURED_SOURCE: &str = "seed 003 (Time-Varying Meshing Stiffness and Dynamic Parameter Model of Spiral Bevel Gears with Different Surface Roughness), Section 4.3 and Table 4: test rig at 1,200 rpm, mean over 30 s";
-
-/// Seed 003's teeth (pinion, wheel), Table 3: the loader torque is taken
-/// as the wheel's, the pinion's is T₂ z₁/z₂.
-pub const SEED003_TEETH: [f64; 2] = [16.0, 27.0];
-
-/// Seed 003's μ₀ and μ_r (its Eq. (30) and text).
-pub const SEED003_FRICTION: (f64, f64) = (0.6, 0.01);
 
 fn grade(r: &LumpedSummary) -> String {
     r.roughness
@@ -34,7 +24,8 @@ fn grade(r: &LumpedSummary) -> String {
 /// The runs at the loader torque `t2` (matched by the pinion torque T₂z₁/z₂
 /// within 0.01 N·m), in the summaries' order.
 fn at_load(all: &[LumpedSummary], t2: f64) -> Vec<&LumpedSummary> {
-    let t1 = t2 * SEED003_TEETH[0] / SEED003_TEETH[1];
+    let [z1, z2] = seed003().teeth;
+    let t1 = t2 * z1 / z2;
     all.iter()
         .filter(|r| (r.pinion_torque_nm - t1).abs() < 0.01)
         .collect()
@@ -72,10 +63,10 @@ pub fn markdown(out: &Path) -> String {
         r0.mesh_frequency_hz,
         r0.mesh_cycles,
         r0.dropped_mesh_cycles,
-        SEED003_TEETH[0],
-        SEED003_TEETH[1],
-        SEED003_FRICTION.0,
-        SEED003_FRICTION.1,
+        seed003().teeth[0],
+        seed003().teeth[1],
+        seed003().friction_mu0,
+        seed003().friction_mur,
         r0.bearing_stiffness_n_per_m[0][0],
         100.0 * r0.bearing_damping_ratio,
         r0.friction_normal_angle_deg
@@ -87,7 +78,10 @@ pub fn markdown(out: &Path) -> String {
 }
 
 fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
-    let grades: Vec<String> = at_load(all, SEED003_MEASURED[0].0)
+    let rig = seed003();
+    let m = &rig.measured;
+    let measured_source = &rig.measured_source;
+    let grades: Vec<String> = at_load(all, m[0].loader_torque_nm)
         .iter()
         .map(|r| grade(r))
         .collect();
@@ -101,7 +95,12 @@ fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
     }
     let _ = writeln!(s, " measured | seed 003's simulation |");
     let _ = writeln!(s, "|---|---|{}---|---|", "---|".repeat(grades.len()));
-    for (t2, measured, simulated) in SEED003_MEASURED {
+    for row in m {
+        let (t2, measured, simulated) = (
+            row.loader_torque_nm,
+            row.measured_velocity_mm_s,
+            row.simulated_velocity_mm_s,
+        );
         let runs = at_load(all, t2);
         let Some(first) = runs.first() else {
             let _ = writeln!(s, "| {t2:.0} | no run | | |");
@@ -113,12 +112,12 @@ fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
         }
         let _ = writeln!(s, " {measured:.3} | {simulated:.3} |");
     }
-    let ratios: Vec<f64> = SEED003_MEASURED
+    let ratios: Vec<f64> = m
         .iter()
-        .flat_map(|(t2, m, _)| {
-            at_load(all, *t2)
+        .flat_map(|row| {
+            at_load(all, row.loader_torque_nm)
                 .into_iter()
-                .map(move |r| 1e3 * r.member_velocity_rms_m_s[0] / m)
+                .map(move |r| 1e3 * r.member_velocity_rms_m_s[0] / row.measured_velocity_mm_s)
         })
         .collect();
     let (lo, hi) = ratios
@@ -128,11 +127,11 @@ fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
         });
     let _ = writeln!(
         s,
-        "\nSource: {SEED003_MEASURED_SOURCE}. Ours are {:.0}–{:.0} % of the measured values. What the comparison can carry: seed 003's sensor sits on the rig (a vibration sensor at the input coupling; the paper does not give its position, direction or frequency band); the nearest quantity of our model is the pinion's velocity on its bearings, since the model has no housing, shafts, coupling, motor or loader, and its bearings are assumed. The measured signal also holds the shaft orders, the motor and the loader, which the model does not. So the comparison checks the order of magnitude and the rise with load (ours {:+.0} % from 77 to 105 N·m for the smooth flanks, measured {:+.1} %), not a level; it is neither a calibration nor a validation.\n",
+        "\nSource: {measured_source}. Ours are {:.0}–{:.0} % of the measured values. What the comparison can carry: seed 003's sensor sits on the rig (a vibration sensor at the input coupling; the paper does not give its position, direction or frequency band); the nearest quantity of our model is the pinion's velocity on its bearings, since the model has no housing, shafts, coupling, motor or loader, and its bearings are assumed. The measured signal also holds the shaft orders, the motor and the loader, which the model does not. So the comparison checks the order of magnitude and the rise with load (ours {:+.0} % from 77 to 105 N·m for the smooth flanks, measured {:+.1} %), not a level; it is neither a calibration nor a validation.\n",
         100.0 * lo,
         100.0 * hi,
         rise(all),
-        100.0 * (SEED003_MEASURED[1].1 / SEED003_MEASURED[0].1 - 1.0)
+        100.0 * (m[1].measured_velocity_mm_s / m[0].measured_velocity_mm_s - 1.0)
     );
 }
 
@@ -144,7 +143,8 @@ fn rise(all: &[LumpedSummary]) -> f64 {
             .find(|r| r.roughness.is_none())
             .map_or(f64::NAN, |r| r.member_velocity_rms_m_s[0])
     };
-    100.0 * (smooth(SEED003_MEASURED[1].0) / smooth(SEED003_MEASURED[0].0) - 1.0)
+    let m = &seed003().measured;
+    100.0 * (smooth(m[1].loader_torque_nm) / smooth(m[0].loader_torque_nm) - 1.0)
 }
 
 fn stiffness_table(s: &mut String, all: &[LumpedSummary]) {

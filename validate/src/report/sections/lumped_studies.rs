@@ -6,27 +6,9 @@
 //! summaries). Ours are formatted from the summaries; seed 004's are the
 //! named constants below.
 
+use crate::report::published::seed004;
 use formats::lumped_summary::LumpedSummary;
 use std::fmt::Write as _;
-
-/// Seed 004's TE-slope study: (m′₂₁, maximum impact force N).
-pub const SEED004_TE_SLOPE: [(f64, f64); 3] =
-    [(-0.001, 26_356.5), (-0.005, 28_564.4), (-0.010, 30_321.3)];
-/// Its RMS rise along the mesh normal from m′₂₁ = −0.001 to −0.010, %.
-pub const SEED004_TE_SLOPE_RMS_RISE_PERCENT: f64 = 15.0;
-pub const SEED004_TE_SLOPE_SOURCE: &str =
-    "seed 004, \"Effect of Transmission Error\" (impact forces as printed; \"approximately 15%\" RMS rise)";
-
-/// Seed 004's m′₂₁ for the contact-ratio study.
-pub const SEED004_CR_TE_SLOPE: f64 = -0.00001;
-/// Seed 004's Table 4: (contact ratio, mesh stiffness N/m, max impact force N, RMS acceleration m/s²).
-pub const SEED004_TABLE4: [(f64, f64, f64, f64); 3] = [
-    (1.65, 3.3097e8, 5.9773e3, 2418.19),
-    (1.85, 3.7518e8, 5.5151e3, 922.54),
-    (2.25, 4.3281e8, 5.1568e3, 467.38),
-];
-pub const SEED004_TABLE4_SOURCE: &str =
-    "seed 004, Table 4 (influence of design contact ratio), m′₂₁ = −0.00001";
 
 fn slope(r: &LumpedSummary) -> Option<f64> {
     r.design_variant.as_ref().and_then(|d| d.te_slope_m21)
@@ -38,12 +20,14 @@ fn same(a: f64, b: f64) -> bool {
 
 /// Both study tables, or nothing when the summaries hold no variant.
 pub fn markdown(s: &mut String, all: &[LumpedSummary]) {
-    let te: Vec<(&LumpedSummary, f64)> = SEED004_TE_SLOPE
+    let te: Vec<(&LumpedSummary, f64)> = seed004()
+        .te_slope
+        .rows
         .iter()
-        .filter_map(|(m, f)| {
+        .filter_map(|row| {
             all.iter()
-                .find(|r| slope(r).is_some_and(|x| same(x, *m)))
-                .map(|r| (r, *f))
+                .find(|r| slope(r).is_some_and(|x| same(x, row.m21)))
+                .map(|r| (r, row.impact_force_n))
         })
         .collect();
     if !te.is_empty() {
@@ -51,7 +35,7 @@ pub fn markdown(s: &mut String, all: &[LumpedSummary]) {
     }
     let cr: Vec<&LumpedSummary> = all
         .iter()
-        .filter(|r| slope(r).is_some_and(|x| same(x, SEED004_CR_TE_SLOPE)))
+        .filter(|r| slope(r).is_some_and(|x| same(x, seed004().table4.te_slope_m21)))
         .collect();
     if !cr.is_empty() {
         contact_ratio(s, &cr);
@@ -59,6 +43,10 @@ pub fn markdown(s: &mut String, all: &[LumpedSummary]) {
 }
 
 fn te_slope(s: &mut String, rows: &[(&LumpedSummary, f64)]) {
+    let (seed_rise, seed_source) = (
+        seed004().te_slope.rms_rise_percent,
+        &seed004().te_slope.source,
+    );
     let _ = writeln!(
         s,
         "### Seed 004's TE-slope study\n\nEach m′₂₁ sets the design's parabolic motion error A = ½|m′₂₁|(τ/2)² (wheel side, at ±half a mesh cycle τ); crownings as in the design; our LTCA, seed 004's impact method and the 8-DOF run as above.\n"
@@ -92,7 +80,7 @@ fn te_slope(s: &mut String, rows: &[(&LumpedSummary, f64)]) {
         .collect();
     let _ = writeln!(
         s,
-        "\nFrom the first row to the last: our impact force {:+.0} %, seed 004's {:+.1} %; our RMS along the normal {:+.0} % (λ̈) and {:+.0} % (v·q̈), seed 004's about {SEED004_TE_SLOPE_RMS_RISE_PERCENT:+.0} %. The direction agrees; our rise is far steeper, since our impact force is seed 004's F_s with our LTCA's approach velocity, which grows with the TE parabola. Our impact forces are {:.1}–{:.1} % of seed 004's. Source: {SEED004_TE_SLOPE_SOURCE}.\n",
+        "\nFrom the first row to the last: our impact force {:+.0} %, seed 004's {:+.1} %; our RMS along the normal {:+.0} % (λ̈) and {:+.0} % (v·q̈), seed 004's about {seed_rise:+.0} %. The direction agrees; our rise is far steeper, since our impact force is seed 004's F_s with our LTCA's approach velocity, which grows with the TE parabola. Our impact forces are {:.1}–{:.1} % of seed 004's. Source: {seed_source}.\n",
         rise(&|r| r.impact.seed004_force_n),
         100.0 * (rows[rows.len() - 1].1 / rows[0].1 - 1.0),
         rise(&|r| r.rms_acceleration_m_s2.mesh_normal),
@@ -113,7 +101,14 @@ fn contact_ratio(s: &mut String, runs: &[&LumpedSummary]) {
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
     let mut picked = Vec::new();
-    for (cr, k, f, rms) in SEED004_TABLE4 {
+    let table4 = &seed004().table4;
+    for row in &table4.rows {
+        let (cr, k, f, rms) = (
+            row.contact_ratio,
+            row.mesh_stiffness_n_per_m,
+            row.impact_force_n,
+            row.rms_acceleration_m_s2,
+        );
         let Some(r) = runs.iter().min_by(|a, b| {
             (a.loaded_contact_ratio - cr)
                 .abs()
@@ -150,17 +145,22 @@ fn contact_ratio(s: &mut String, runs: &[&LumpedSummary]) {
                 v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             )
         };
-        let (k_lo, k_hi) = ratio(&|r| r.mesh_stiffness_n_per_m.mean, &|i| SEED004_TABLE4[i].1);
-        let (f_lo, f_hi) = ratio(&|r| r.impact.seed004_force_n, &|i| SEED004_TABLE4[i].2);
+        let (k_lo, k_hi) = ratio(&|r| r.mesh_stiffness_n_per_m.mean, &|i| {
+            table4.rows[i].mesh_stiffness_n_per_m
+        });
+        let (f_lo, f_hi) = ratio(&|r| r.impact.seed004_force_n, &|i| {
+            table4.rows[i].impact_force_n
+        });
         let _ = writeln!(
             s,
-            "\nFrom the lowest contact ratio to the highest: our mean k {:+.0} % (seed 004 {:+.0} %), impact force {:+.0} % ({:+.0} %), RMS λ̈ {:+.0} % ({:+.0} %). The directions agree with seed 004's: more pairs in contact, a stiffer mesh, a softer engagement and less vibration. Seed 004's stiffness is {k_lo:.1}–{k_hi:.1} times ours, its impact force {f_lo:.0}–{f_hi:.0} times ours. Source: {SEED004_TABLE4_SOURCE}.\n",
+            "\nFrom the lowest contact ratio to the highest: our mean k {:+.0} % (seed 004 {:+.0} %), impact force {:+.0} % ({:+.0} %), RMS λ̈ {:+.0} % ({:+.0} %). The directions agree with seed 004's: more pairs in contact, a stiffer mesh, a softer engagement and less vibration. Seed 004's stiffness is {k_lo:.1}–{k_hi:.1} times ours, its impact force {f_lo:.0}–{f_hi:.0} times ours. Source: {}.\n",
             pct(lo.mesh_stiffness_n_per_m.mean, hi.mesh_stiffness_n_per_m.mean),
-            pct(SEED004_TABLE4[0].1, SEED004_TABLE4[2].1),
+            pct(table4.rows[0].mesh_stiffness_n_per_m, table4.rows[2].mesh_stiffness_n_per_m),
             pct(lo.impact.seed004_force_n, hi.impact.seed004_force_n),
-            pct(SEED004_TABLE4[0].2, SEED004_TABLE4[2].2),
+            pct(table4.rows[0].impact_force_n, table4.rows[2].impact_force_n),
             pct(lo.rms_acceleration_m_s2.mesh_normal, hi.rms_acceleration_m_s2.mesh_normal),
-            pct(SEED004_TABLE4[0].3, SEED004_TABLE4[2].3),
+            pct(table4.rows[0].rms_acceleration_m_s2, table4.rows[2].rms_acceleration_m_s2),
+            table4.source,
         );
     }
 }
