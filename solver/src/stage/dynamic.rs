@@ -312,7 +312,7 @@ fn quasi_static(
     let mut qs_series = Vec::new();
     for &torque in &sc.pinion_torque_nm {
         let (m, s0) = wheel_driven(
-            &table,
+            table,
             inertia,
             wheel_speed,
             torque,
@@ -533,7 +533,7 @@ fn blank_pair(
             Some(crate::stage::compliant::run(
                 &crate::stage::compliant::Setup {
                     scene,
-                    g: &g,
+                    g,
                     table,
                     inertia,
                     mesh_mass_kg: [

@@ -9,13 +9,15 @@
 //!   (forward solves on the contact nodes' factor paths): a body's
 //!   condensed compliance;
 //! - [`reference_ltca`]: one position, all loads; [`reference_stage`]: the
-//!   `validate reference` sweep with its cache.
+//!   `validate reference` sweep with its cache, [`reference_blank_pair`] one
+//!   blank pair of it.
 
 pub mod body_compliance;
 pub mod contact_pairs;
 pub mod contact_surface;
 pub mod path_compliance;
 pub mod penalty;
+pub mod reference_blank_pair;
 pub mod reference_ltca;
 pub mod reference_outputs;
 pub mod reference_stage;

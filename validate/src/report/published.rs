@@ -259,9 +259,18 @@ mod tests {
             ("wheel_speed_error_percent", &s2.wheel_speed_error_percent),
             ("tangential_force_n", &s2.tangential_force_n),
             ("tangential_force_theory_n", &s2.tangential_force_theory_n),
-            ("tangential_force_error_percent", &s2.tangential_force_error_percent),
-            ("speed_fluctuation_mean_deg_s", &s2.speed_fluctuation_mean_deg_s),
-            ("speed_fluctuation_max_deg_s", &s2.speed_fluctuation_max_deg_s),
+            (
+                "tangential_force_error_percent",
+                &s2.tangential_force_error_percent,
+            ),
+            (
+                "speed_fluctuation_mean_deg_s",
+                &s2.speed_fluctuation_mean_deg_s,
+            ),
+            (
+                "speed_fluctuation_max_deg_s",
+                &s2.speed_fluctuation_max_deg_s,
+            ),
             ("force_fluctuation_mean_n", &s2.force_fluctuation_mean_n),
             ("force_fluctuation_max_n", &s2.force_fluctuation_max_n),
         ] {

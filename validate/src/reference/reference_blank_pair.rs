@@ -1,0 +1,595 @@
+//! One blank pair of `validate reference` ([`super::reference_stage`]): its
+//! meshes checked, its sweep's inputs hashed, its positions from the cache
+//! or solved (the bodies factored at the first position solved), its
+//! files and summary; a cache comparison or a shard writes no result.
+
+use super::reference_outputs::{
+    copy_files, load_summaries, pattern_vtu, report_factor, unloaded_check, write_te_csv,
+};
+use super::reference_stage::{utca_at, StageOptions, COMPARE_TOLERANCE, REFERENCE_SCHEMA};
+use super::reference_summary::{BlankSummary, CacheComparison};
+use crate::reference::reference_ltca::{Member, PositionResult, ReferencePair};
+use anyhow::Context;
+use formats::added_files::{add_json, Dependence};
+use formats::columns;
+use formats::output::{write_atomic, write_json};
+use formats::paths::MeshLevel;
+use formats::result_set::{ResultSet, RunLock};
+use formats::stiffness_plan;
+use geometry::design::Member as Which;
+use geometry::pair::{teeth_in_contact, PairGeometry};
+use geometry::scene::{Blank, LoadedScene};
+use preprocess::stiffness_stage::sha256_file;
+use sha2::{Digest, Sha256};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// What every blank pair of one `validate reference` run shares.
+pub(super) struct Run<'a> {
+    pub(super) scene: &'a LoadedScene,
+    pub(super) opt: &'a StageOptions,
+    /// The pair placed with the scene's misalignment.
+    pub(super) g: PairGeometry,
+    pub(super) side: geometry::generation::Side,
+    /// Pinion's driving direction (±1) and the sweep's step, rad.
+    pub(super) direction: f64,
+    pub(super) step: f64,
+    /// The scene's mesh folder and the results folder of the level.
+    pub(super) dir: std::path::PathBuf,
+    pub(super) ref_dir: std::path::PathBuf,
+    /// The command, for locks and memory messages.
+    pub(super) what: String,
+    /// Pinion teeth in contact over every wheel blank's sweep.
+    pub(super) pinion_teeth: Vec<usize>,
+    /// The lock of a cache comparison or of a shard.
+    pub(super) lock: Option<RunLock>,
+}
+
+/// The two body meshes of a blank pair, checked against the manifest.
+struct PairMeshes {
+    paths: [std::path::PathBuf; 2],
+    sha256: [String; 2],
+    /// Degrees of freedom of each body (0 when the manifest predates them).
+    dofs: [usize; 2],
+}
+
+/// What the sweep over the positions gave.
+struct Swept {
+    res: Vec<PositionResult>,
+    reused: usize,
+    comparison: CacheComparison,
+    /// The wheel body, when a position had to be solved.
+    wheel: Option<Member>,
+    /// The pinion's right-hand sides and solve time before this wheel's.
+    pinion_before: (usize, f64),
+    sweep_s: f64,
+}
+
+impl Run<'_> {
+    fn fp(&self) -> &geometry::pair::FlankPair {
+        self.g.side(self.side)
+    }
+
+    /// The pinion angles of wheel blank `wb`'s sweep at its stride.
+    fn positions(&self, wb: Blank) -> (Vec<f64>, usize) {
+        let opt = self.opt;
+        let stride = match wb {
+            Blank::Lightweight => opt.stride_lightweight.unwrap_or(opt.stride),
+            _ => opt.stride,
+        }
+        .max(1);
+        let cycles = self.scene.scene.rotation.mesh_cycles(wb);
+        let n_pos = (cycles * self.g.data.mesh_cycle() / self.step).round() as usize + 1;
+        let start = self.fp().roll_range[0];
+        let positions = (0..n_pos)
+            .step_by(stride)
+            .map(|i| start + self.direction * self.step * i as f64)
+            .collect();
+        (positions, stride)
+    }
+
+    /// The blank pair's meshes: present, the mesh stage's for the scene's
+    /// current inputs and unchanged since; recorded in `set`.
+    fn meshes(
+        &self,
+        [pb, wb]: [Blank; 2],
+        mut set: Option<&mut ResultSet>,
+    ) -> anyhow::Result<PairMeshes> {
+        let (scene, opt) = (self.scene, self.opt);
+        let sc = &scene.scene;
+        let msh = |m: Which, b: Blank| {
+            formats::paths::msh(&self.dir, &formats::paths::stem_named(m, b, &opt.level))
+        };
+        let paths = [msh(Which::Pinion, pb), msh(Which::Wheel, wb)];
+        for p in &paths {
+            if !p.exists() {
+                anyhow::bail!(
+                    "scene {}: no mesh {}; run `preprocess mesh {} --level {}`",
+                    sc.name,
+                    p.display(),
+                    scene.path.display(),
+                    opt.level
+                );
+            }
+        }
+        let sha256 = [sha256_file(&paths[0])?, sha256_file(&paths[1])?];
+        let level = MeshLevel::FINEST_FIRST
+            .into_iter()
+            .find(|l| l.name() == opt.level)
+            .with_context(|| format!("unknown mesh level {}", opt.level))?;
+        let mut dofs = [0usize; 2];
+        for (k, (m, b)) in [(Which::Pinion, pb), (Which::Wheel, wb)]
+            .into_iter()
+            .enumerate()
+        {
+            let (path, hash) = (&paths[k], &sha256[k]);
+            let stem = formats::paths::mesh_stem(m, b, level);
+            let entry = stiffness_plan::check_mesh(scene, &self.g, &self.dir, &stem, m, b, level)
+                .with_context(|| {
+                    format!(
+                        "scene {}: the {} mesh {} does not serve the scene; run `preprocess mesh {} --level {}`",
+                        sc.name,
+                        m.name(),
+                        path.display(),
+                        scene.path.display(),
+                        opt.level
+                    )
+                })?;
+            if &entry.msh_sha256 != hash {
+                return Err(stiffness_plan::CheckError::MeshChanged {
+                    path: path.to_path_buf(),
+                    found: hash.clone(),
+                    listed: entry.msh_sha256,
+                }
+                .into());
+            }
+            dofs[k] = 3 * entry.body.nodes;
+            if let Some(set) = set.as_deref_mut() {
+                set.record_input("design", &entry.inputs.design_sha256)?;
+                set.record_input(&format!("mesh:{stem}"), hash)?;
+            }
+        }
+        Ok(PairMeshes {
+            paths,
+            sha256,
+            dofs,
+        })
+    }
+
+    /// The key of one position's result (what determines it, not the
+    /// stride), and the hash of the sweep's inputs (the key and the
+    /// positions).
+    fn keys(&self, m: &PairMeshes, positions: &[f64]) -> (String, String) {
+        let sc = &self.scene.scene;
+        let digest =
+            |key: serde_json::Value| format!("{:x}", Sha256::digest(key.to_string().as_bytes()));
+        let mut key = serde_json::json!({
+            "schema": REFERENCE_SCHEMA,
+            "pinion_mesh": m.sha256[0],
+            "wheel_mesh": m.sha256[1],
+            "level": self.opt.level,
+            "settings": self.opt.settings,
+            "torques": sc.pinion_torque_nm,
+            "flank": self.side.flank_name(Which::Pinion),
+        });
+        // Only a misaligned pair adds its pose: the aligned pair's
+        // cached positions keep their keys.
+        if !sc.misalignment.is_zero() {
+            key["misalignment"] = serde_json::json!(sc.misalignment);
+        }
+        let position_key = digest(key);
+        let hash = digest(serde_json::json!({
+            "position_key": position_key,
+            "positions": positions,
+        }));
+        (position_key, hash)
+    }
+
+    /// One blank pair: reused whole when its inputs are unchanged, else its
+    /// positions from the cache or solved, then its files and summary
+    /// (None for a cache comparison or a shard, which write no result).
+    pub(super) fn blank_pair(
+        &self,
+        [pb, wb]: [Blank; 2],
+        pinion: &mut Option<Member>,
+        set: Option<&mut ResultSet>,
+    ) -> anyhow::Result<Option<BlankSummary>> {
+        let (scene, opt) = (self.scene, self.opt);
+        let sc = &scene.scene;
+        let t0 = std::time::Instant::now();
+        let name = format!("{}_{}", blank_name(pb), blank_name(wb));
+        // The previous results and the position cache; this run's
+        // results go to `sdir` in the staging directory (a full run).
+        let odir = self.ref_dir.join(&name);
+        let sdir = set.as_ref().map(|s| s.path().join(&name));
+        let (positions, stride) = self.positions(wb);
+        let meshes = self.meshes([pb, wb], set)?;
+        let (position_key, hash) = self.keys(&meshes, &positions);
+        let summary_path = odir.join("summary.json");
+        let partial = opt.compare_cache || opt.shard.is_some();
+        if let (false, Ok(text)) = (partial, std::fs::read_to_string(&summary_path)) {
+            if let Ok(s) = serde_json::from_str::<BlankSummary>(&text) {
+                if s.input_hash == hash {
+                    eprintln!(
+                        "reference {name}: inputs unchanged, reusing {}",
+                        summary_path.display()
+                    );
+                    if let Some(sdir) = &sdir {
+                        copy_files(&odir, sdir)?;
+                    }
+                    return Ok(Some(s));
+                }
+            }
+        }
+        // The UTCA TE at the same positions, for the unloaded check.
+        let fp = self.fp();
+        let utca = utca_at(
+            scene,
+            fp,
+            fp.roll_range[0],
+            self.step * stride as f64,
+            positions.len(),
+            self.direction,
+        )?;
+        if let Some((a, b)) = utca
+            .pinion_angle
+            .iter()
+            .zip(&positions)
+            .find(|(a, b)| (*a - *b).abs() > 1e-12)
+        {
+            anyhow::bail!(
+                "internal: UTCA position {a} rad differs from reference position {b} rad"
+            );
+        }
+        let cache_dir = odir.join("positions").join(&position_key[..16]);
+        std::fs::create_dir_all(&cache_dir)?;
+        let wheel_teeth =
+            teeth_in_contact(&self.g, self.side, sc.rotation.mesh_cycles(wb), self.step).1;
+        let swept = self.sweep(&name, &positions, &cache_dir, &meshes, pinion, &wheel_teeth)?;
+        if opt.compare_cache {
+            self.report_comparison(&name, &swept.comparison, &odir)?;
+            return Ok(None);
+        }
+        if let Some((k, n)) = opt.shard {
+            eprintln!(
+                "reference {name}: shard {k}/{n} solved; a run without --shard collects every shard's positions from {}",
+                cache_dir.display()
+            );
+            return Ok(None);
+        }
+        let res = &swept.res;
+        let sdir = sdir.expect("a run without --shard or --compare-cache has a result set");
+        std::fs::create_dir_all(&sdir)?;
+        write_te_csv(
+            &sdir.join("te.csv"),
+            res,
+            &utca.te,
+            &fp.pinion,
+            fp.roll_range[0],
+            self.direction,
+        )?;
+        write_pattern(
+            &sdir,
+            res,
+            fp,
+            sc.pinion_torque_nm.last().copied().unwrap_or(0.0),
+        )?;
+        let (dofs, factor_s) = bodies(&cache_dir, pinion.as_ref(), swept.wheel.as_ref())?;
+        let (rhs0, s0) = swept.pinion_before;
+        let (pinion, wheel) = (pinion.as_ref(), swept.wheel.as_ref());
+        let cpu: f64 = res.iter().map(|r| r.cpu_s).sum();
+        let n = res.len().max(1) as f64;
+        let summary = BlankSummary {
+            input_hash: hash,
+            pinion_blank: blank_name(pb),
+            wheel_blank: blank_name(wb),
+            level: opt.level.clone(),
+            penalty_factor: opt.settings.penalty_factor,
+            penalty_factor_check: opt.settings.penalty_factor_check,
+            positions: res.len(),
+            step_deg: sc.rotation.step_deg * stride as f64,
+            mesh_cycles: sc.rotation.mesh_cycles(wb),
+            dofs,
+            factor_s,
+            right_hand_sides: [
+                pinion.map_or(0, |m| m.compliance.solves - rhs0),
+                wheel.map_or(0, |m| m.compliance.solves),
+            ],
+            solve_s: [
+                pinion.map_or(0.0, |m| m.compliance.solve_s - s0),
+                wheel.map_or(0.0, |m| m.compliance.solve_s),
+            ],
+            positions_reused: swept.reused,
+            searched_mean: res.iter().map(|r| r.searched as f64).sum::<f64>() / n,
+            constraints_mean: res.iter().map(|r| r.constraints as f64).sum::<f64>() / n,
+            wall_s: t0.elapsed().as_secs_f64(),
+            sweep_s: swept.sweep_s,
+            total_cpu_s: cpu + factor_s.iter().sum::<f64>(),
+            cpu_s_per_position: cpu / n,
+            loads: load_summaries(res, &sc.pinion_torque_nm),
+            unloaded: unloaded_check(res, &utca.te),
+        };
+        write_json(&sdir.join("summary.json"), &summary)?;
+        print_summary(&summary);
+        Ok(Some(summary))
+    }
+
+    /// Every position of the sweep (this shard's with `--shard`): from the
+    /// cache, or solved (and cached; compared with the cache under
+    /// `--compare-cache`), the bodies loaded and factored at the first
+    /// position solved.
+    fn sweep(
+        &self,
+        name: &str,
+        positions: &[f64],
+        cache_dir: &Path,
+        meshes: &PairMeshes,
+        pinion: &mut Option<Member>,
+        wheel_teeth: &[usize],
+    ) -> anyhow::Result<Swept> {
+        let (opt, sc) = (self.opt, &self.scene.scene);
+        let mut wheel: Option<Member> = None;
+        let mut pinion_before = (0, 0.0);
+        let bar = indicatif::ProgressBar::new(positions.len() as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "reference {msg} [{bar:30}] {pos}/{len} positions, eta {eta}",
+            )?
+            .progress_chars("=> "),
+        );
+        bar.set_message(name.to_string());
+        let t_sweep = std::time::Instant::now();
+        let mut res = Vec::with_capacity(positions.len());
+        let mut reused = 0;
+        let mut comparison = CacheComparison {
+            tolerance: COMPARE_TOLERANCE,
+            ..Default::default()
+        };
+        for (i, &phi) in positions.iter().enumerate() {
+            if opt.shard.is_some_and(|(k, n)| i % n != k) {
+                bar.inc(1);
+                continue;
+            }
+            let cached = cache_dir.join(format!(
+                "phi_{}udeg.json",
+                (phi.to_degrees() * 1e6).round() as i64
+            ));
+            let from_cache = std::fs::read_to_string(&cached)
+                .ok()
+                .and_then(|t| serde_json::from_str::<PositionResult>(&t).ok())
+                .filter(|r| r.loads.len() == sc.pinion_torque_nm.len());
+            if opt.compare_cache && from_cache.is_none() {
+                comparison.positions_without_cache += 1;
+                bar.inc(1);
+                continue;
+            }
+            if let (false, Some(r)) = (opt.compare_cache, &from_cache) {
+                res.push(r.clone());
+                reused += 1;
+                bar.inc(1);
+                continue;
+            }
+            if pinion.is_none() || wheel.is_none() {
+                self.load_bodies(meshes, pinion, &mut wheel, wheel_teeth)?;
+                let pin = pinion.as_ref().expect("pinion factored above");
+                pinion_before = (pin.compliance.solves, pin.compliance.solve_s);
+            }
+            let mut pair = ReferencePair {
+                pinion: pinion.as_mut().expect("pinion factored above"),
+                wheel: wheel.as_mut().expect("wheel factored above"),
+                flanks: self.fp(),
+                direction: self.direction,
+                settings: opt.settings,
+            };
+            let r = pair.position(phi, &sc.pinion_torque_nm).with_context(|| {
+                format!(
+                    "scene {}: reference LTCA {name} at pinion angle {:.3} deg",
+                    sc.name,
+                    phi.to_degrees()
+                )
+            })?;
+            match &from_cache {
+                Some(old) => comparison.add(&r, old),
+                None => write_json(&cached, &r)?,
+            }
+            if bar.is_hidden() {
+                eprintln!(
+                    "reference {name}: position {}/{}: {} of {} constraints solved, {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
+                    i + 1,
+                    positions.len(),
+                    r.constraints,
+                    r.searched,
+                    r.new_columns,
+                    r.loads.last().map_or(0.0, |l| l.te * 1e6),
+                    r.loads.last().map_or(0.0, |l| l.torque_nm),
+                    r.cpu_s
+                );
+            }
+            res.push(r);
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        Ok(Swept {
+            res,
+            reused,
+            comparison,
+            wheel,
+            pinion_before,
+            sweep_s: t_sweep.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Reads and factors the bodies not yet held, after checking that the
+    /// factors this run will hold at once fit the memory (estimated from
+    /// the meshes' node counts; unknown in manifests from before they were
+    /// recorded).
+    fn load_bodies(
+        &self,
+        meshes: &PairMeshes,
+        pinion: &mut Option<Member>,
+        wheel: &mut Option<Member>,
+        wheel_teeth: &[usize],
+    ) -> anyhow::Result<()> {
+        let opt = self.opt;
+        let mut parts = Vec::new();
+        if pinion.is_none() && meshes.dofs[0] > 0 {
+            parts.push(("pinion", meshes.dofs[0]));
+        }
+        if meshes.dofs[1] > 0 {
+            parts.push(("wheel", meshes.dofs[1]));
+        }
+        formats::memory_estimate::check_fits(
+            &self.what,
+            &parts,
+            opt.memory_bytes
+                .or_else(fem::cholesky::available_memory_bytes),
+        )?;
+        let [pm, wm] = &meshes.paths;
+        if pinion.is_none() {
+            eprintln!("reference: reading and factoring {}", pm.display());
+            *pinion = Some(Member::load(
+                pm,
+                &self.g,
+                Which::Pinion,
+                self.side,
+                &self.pinion_teeth,
+                opt.block,
+            )?);
+            report_factor("pinion", pinion.as_ref());
+        }
+        if wheel.is_none() {
+            eprintln!("reference: reading and factoring {}", wm.display());
+            *wheel = Some(Member::load(
+                wm,
+                &self.g,
+                Which::Wheel,
+                self.side,
+                wheel_teeth,
+                opt.block,
+            )?);
+            report_factor("wheel", wheel.as_ref());
+        }
+        Ok(())
+    }
+
+    /// `--compare-cache`: the comparison recorded beside the set it
+    /// checked, and refused beyond [`COMPARE_TOLERANCE`].
+    fn report_comparison(
+        &self,
+        name: &str,
+        comparison: &CacheComparison,
+        odir: &Path,
+    ) -> anyhow::Result<()> {
+        if let Some(lock) = &self.lock {
+            add_json(
+                lock,
+                &format!("{name}/compare_cache.json"),
+                comparison,
+                Dependence::OnSet,
+            )?;
+        }
+        eprintln!(
+            "reference {name}: {} positions solved anew against the cache ({} not cached): largest relative difference {:.2e} (TE {:.2e}, check-penalty TE {:.2e}, max pressure {:.2e}, search margin {:.2e}; torque balance {:.2e}), {} with other constraint counts",
+            comparison.positions_compared,
+            comparison.positions_without_cache,
+            comparison.worst(),
+            comparison.te,
+            comparison.te_check,
+            comparison.max_pressure,
+            comparison.search_margin,
+            comparison.torque_balance_abs,
+            comparison.count_mismatches
+        );
+        if comparison.worst() > COMPARE_TOLERANCE || comparison.count_mismatches > 0 {
+            anyhow::bail!(
+                "reference {name}: positions solved now differ from the cache by {:.2e} (tolerance {COMPARE_TOLERANCE:e}) with {} constraint-count mismatches; see {}",
+                comparison.worst(),
+                comparison.count_mismatches,
+                odir.join("compare_cache.json").display()
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Contact pattern: the envelope of the pressure at the largest torque `t`
+/// over all positions, on the pinion flank's (ξ, η), as
+/// `pattern_<t>nm.csv` and `.vtu` in `sdir`.
+fn write_pattern(
+    sdir: &Path,
+    res: &[PositionResult],
+    fp: &geometry::pair::FlankPair,
+    t: f64,
+) -> anyhow::Result<()> {
+    let mut envelope: std::collections::HashMap<[u64; 3], ([f64; 3], f64)> =
+        std::collections::HashMap::new();
+    for r in res {
+        for &(p, v) in &r.pattern {
+            let e = envelope.entry(p.map(f64::to_bits)).or_insert((p, 0.0));
+            e.1 = e.1.max(v);
+        }
+    }
+    let mut pts: Vec<([f64; 3], f64)> = envelope.into_values().collect();
+    pts.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+    let mut csv = format!(
+        "x_m,y_m,z_m,{},{},{}\n",
+        columns::XI,
+        columns::ETA,
+        columns::PRESSURE_MPA
+    );
+    for (p, v) in &pts {
+        let (l, d) = fp.pinion.gen.frame.axial(p);
+        let (xi, eta) = fp.pinion.bounds.to_unit(l, d);
+        writeln!(csv, "{},{},{},{xi},{eta},{}", p[0], p[1], p[2], v * 1e-6)?;
+    }
+    write_atomic(&sdir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
+    write_atomic(
+        &sdir.join(format!("pattern_{t}nm.vtu")),
+        pattern_vtu(&pts).as_bytes(),
+    )?;
+    Ok(())
+}
+
+/// Sizes and factoring times of this run's bodies, or of the run that
+/// solved the positions (kept beside the position cache).
+fn bodies(
+    cache_dir: &Path,
+    pinion: Option<&Member>,
+    wheel: Option<&Member>,
+) -> anyhow::Result<([usize; 2], [f64; 2])> {
+    let bodies_path = cache_dir.join("bodies.json");
+    Ok(match (pinion, wheel) {
+        (Some(p), Some(w)) => {
+            let b = (
+                [p.compliance.dofs_free, w.compliance.dofs_free],
+                [p.compliance.factor_s, w.compliance.factor_s],
+            );
+            write_json(&bodies_path, &b)?;
+            b
+        }
+        _ => std::fs::read_to_string(&bodies_path)
+            .ok()
+            .and_then(|t| serde_json::from_str(&t).ok())
+            .unwrap_or(([0; 2], [0.0; 2])),
+    })
+}
+
+/// A blank pair's unloaded check and loads, on stderr.
+fn print_summary(summary: &BlankSummary) {
+    let u = &summary.unloaded;
+    eprintln!(
+        "  unloaded ({} N·m): TE mean {:.2} µrad (UTCA {:.2}), ptp {:.2} µrad (UTCA {:.2}), largest difference {:.3} µrad",
+        u.torque_nm, u.reference_te_mean_urad, u.utca_te_mean_urad, u.reference_te_ptp_urad,
+        u.utca_te_ptp_urad, u.max_abs_difference_urad
+    );
+    for l in &summary.loads {
+        eprintln!(
+            "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, penalty check {:.3} %, max pressure {:.0} MPa",
+            l.torque_nm, l.te_mean_urad, l.te_ptp_urad, l.penalty_difference_pct, l.max_pressure_mpa
+        );
+    }
+}
+
+fn blank_name(b: Blank) -> String {
+    b.name().to_string()
+}
