@@ -1,0 +1,298 @@
+//! The options of each `validate` subcommand and their checks (field,
+//! value and limit named before any work).
+
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct ReportArgs {
+    /// Scene or design file.
+    pub scene: PathBuf,
+    /// Output directory of `preprocess flanks` (for the plots).
+    #[arg(long)]
+    pub flanks: PathBuf,
+    /// Report directory.
+    #[arg(long, default_value = "reports")]
+    pub reports: PathBuf,
+    /// Positions per mesh cycle for the direct search.
+    #[arg(long, default_value_t = 12)]
+    pub positions: usize,
+    /// Output root of the solver and `validate reference`: when given, the
+    /// report also compares their loaded TE (Tables 3-5).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Mesh root (for the convergence study's mesh check).
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    /// README whose text between `<!-- results:begin -->` and
+    /// `<!-- results:end -->` is replaced by the results table (left
+    /// alone without both markers).
+    #[arg(long, default_value = "README.md")]
+    pub readme: PathBuf,
+}
+
+#[derive(clap::Args)]
+pub struct UtcaArgs {
+    /// Scene or design file.
+    pub scene: PathBuf,
+    /// Positions per mesh cycle for the direct search.
+    #[arg(long, default_value_t = 12)]
+    pub positions: usize,
+    /// Writes the comparison as one result set in this folder
+    /// (`utca_check.json` and its `run.json`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+#[derive(clap::Args)]
+pub struct ReferenceArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Mesh directory (as written by `preprocess mesh`).
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    /// Output directory.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Mesh level of both bodies: reduced or reference.
+    #[arg(long, default_value = "reduced")]
+    pub level: String,
+    /// Penalty ε = factor · E / (local face size).
+    #[arg(long, default_value_t = 100.0)]
+    pub penalty: f64,
+    /// Second penalty factor, whose TE is compared.
+    #[arg(long, default_value_t = 200.0)]
+    pub penalty_check: f64,
+    /// Constraints within this of the smallest initial gap start in the
+    /// solve, um.
+    #[arg(long, default_value_t = 2.0)]
+    pub start_band_um: f64,
+    /// Constraints are searched up to this initial gap and join the
+    /// solve when they penetrate, um.
+    #[arg(long, default_value_t = 60.0)]
+    pub search_gap_um: f64,
+    /// Solve every n-th position of the scene's sweep.
+    #[arg(long, default_value_t = 1)]
+    pub stride: usize,
+    /// Stride for the lightweight wheel blank (default: --stride).
+    #[arg(long)]
+    pub stride_lightweight: Option<usize>,
+    /// Right-hand sides per forward-solve block.
+    #[arg(long, default_value_t = 96)]
+    pub block: usize,
+    /// Solve every cached position anew and compare it with the cache
+    /// (relative tolerance 1e-6); writes compare_cache.json, exits
+    /// non-zero on a difference.
+    #[arg(long)]
+    pub compare_cache: bool,
+    /// Solve one shard of the sweep, I/N (positions i with i mod N = I),
+    /// into the shared position cache.
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Memory the bodies' factors may use, GB (default: what the system
+    /// has available); the run refuses before factoring when the
+    /// factors estimated from the meshes need more.
+    #[arg(long)]
+    pub memory_gb: Option<f64>,
+}
+
+#[derive(clap::Args)]
+pub struct TradeoffArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Slice counts per tooth pair.
+    #[arg(long, value_delimiter = ',', default_value = "8,12,20,30,45,60")]
+    pub slices: Vec<usize>,
+}
+
+#[derive(clap::Args)]
+pub struct StressArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Scenes of the same designs at other stiffness grids, their
+    /// stiffness files in `meshes/` beside each or in `--meshes`.
+    #[arg(long)]
+    pub grid_scene: Vec<PathBuf>,
+    /// Scenes of the same designs with coast-flank contact, whose
+    /// coast stiffness files serve the coast cells.
+    #[arg(long)]
+    pub coast_scene: Vec<PathBuf>,
+}
+
+#[derive(clap::Args)]
+pub struct StageTradeoffsArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Scenes of the same design at other contact grids (their
+    /// stiffness files in `meshes/` beside each, or in `--meshes`).
+    #[arg(long)]
+    pub grid_scene: Vec<PathBuf>,
+}
+
+#[derive(clap::Args)]
+pub struct ConvergenceArgs {
+    #[command(flatten)]
+    pub study: LevelStudyArgs,
+    /// Position index in the scene's sweep (its rotation steps).
+    #[arg(long, default_value_t = 0)]
+    pub position: usize,
+    /// Pinion torques, N·m (default: the scene's loads).
+    #[arg(long, value_delimiter = ',')]
+    pub torque_nm: Vec<f64>,
+}
+
+#[derive(clap::Args)]
+pub struct MeshStiffnessArgs {
+    #[command(flatten)]
+    pub study: LevelStudyArgs,
+    /// Position index in the scene's sweep (default: the middle of the
+    /// longest run with the fewest tooth pairs in contact).
+    #[arg(long)]
+    pub position: Option<usize>,
+    /// Memory the two FE factors may take together, GB (default: what
+    /// the system has available); a level estimated above it is skipped.
+    #[arg(long)]
+    pub memory_gb: Option<f64>,
+    /// The lumped scene whose reduced meshes and roughness grades the
+    /// study relates to.
+    #[arg(long)]
+    pub lumped_scene: Option<PathBuf>,
+}
+
+#[derive(clap::Args)]
+pub struct LineLoadArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Fine mesh levels.
+    #[arg(long, value_delimiter = ',', default_value = "medium,reference")]
+    pub levels: Vec<String>,
+    /// Hertz half-widths, mm.
+    #[arg(long, value_delimiter = ',', default_value = "0.25,0.5,1.0")]
+    pub half_width_mm: Vec<f64>,
+    /// Line load, N/mm.
+    #[arg(long, default_value_t = 100.0)]
+    pub line_load_n_per_mm: f64,
+    /// Profile row of the contact grid (default: the middle one).
+    #[arg(long)]
+    pub row: Option<usize>,
+    /// Grid columns at the toe and at the heel left out of the statistics.
+    #[arg(long, default_value_t = 2)]
+    pub end_columns: usize,
+}
+
+/// What the studies on one position over mesh levels share.
+#[derive(clap::Args)]
+pub struct LevelStudyArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Mesh levels, coarse to fine.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "reduced,medium,reference"
+    )]
+    pub levels: Vec<String>,
+    /// Penalty ε = factor · E / (local face size).
+    #[arg(long, default_value_t = 100.0)]
+    pub penalty: f64,
+    /// Second penalty factor, whose result is compared.
+    #[arg(long, default_value_t = 200.0)]
+    pub penalty_check: f64,
+    /// Right-hand sides per forward-solve block.
+    #[arg(long, default_value_t = 96)]
+    pub block: usize,
+}
+
+impl LevelStudyArgs {
+    /// The scene loaded, the penalty settings and `--block`, checked.
+    pub fn checked(
+        &self,
+    ) -> anyhow::Result<(
+        geometry::scene::LoadedScene,
+        validate::reference::reference_ltca::ReferenceSettings,
+        usize,
+    )> {
+        Ok((
+            geometry::scene::Scene::load(&self.scene)?,
+            penalty_settings(self.penalty, self.penalty_check, 2.0, 60.0)?,
+            check_block(self.block)?,
+        ))
+    }
+}
+
+/// `--block` within [1, 100000] right-hand sides.
+pub fn check_block(block: usize) -> anyhow::Result<usize> {
+    if !(1..=100_000).contains(&block) {
+        anyhow::bail!("--block {block}: must lie in [1, 100000] right-hand sides");
+    }
+    Ok(block)
+}
+
+/// `--memory-gb` (positive) in bytes.
+pub fn memory_bytes(memory_gb: Option<f64>) -> anyhow::Result<Option<usize>> {
+    match memory_gb {
+        Some(gb) if !(gb.is_finite() && gb > 0.0) => {
+            anyhow::bail!("--memory-gb = {gb}: must be a positive number of GB")
+        }
+        gb => Ok(gb.map(|gb| (gb * 1e9) as usize)),
+    }
+}
+
+/// Checks the penalty factors (positive, finite).
+pub fn penalty_settings(
+    penalty: f64,
+    penalty_check: f64,
+    start_band_um: f64,
+    search_gap_um: f64,
+) -> anyhow::Result<validate::reference::reference_ltca::ReferenceSettings> {
+    for (field, v) in [
+        ("--penalty", penalty),
+        ("--penalty-check", penalty_check),
+        ("--start-band-um", start_band_um),
+        ("--search-gap-um", search_gap_um),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            anyhow::bail!("{field} {v}: must be a positive number");
+        }
+    }
+    Ok(validate::reference::reference_ltca::ReferenceSettings {
+        penalty_factor: penalty,
+        penalty_factor_check: penalty_check,
+        start_band_m: start_band_um * 1e-6,
+        search_gap_m: search_gap_um * 1e-6,
+    })
+}
+
+/// `I/N` with N ≥ 1 and I < N.
+pub fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
+    let bad =
+        || anyhow::anyhow!("--shard {s}: must be I/N with whole numbers N >= 1 and 0 <= I < N");
+    let (i, n) = s.split_once('/').ok_or_else(bad)?;
+    let (i, n): (usize, usize) = (
+        i.trim().parse().map_err(|_| bad())?,
+        n.trim().parse().map_err(|_| bad())?,
+    );
+    if n == 0 || i >= n {
+        return Err(bad());
+    }
+    Ok((i, n))
+}
