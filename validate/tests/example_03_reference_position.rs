@@ -18,7 +18,8 @@ use golden::Quantity;
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;
 use validate::reference::reference_ltca::ReferenceSettings;
-use validate::reference::reference_stage::{run, StageOptions};
+use validate::reference::reference_options::StageOptions;
+use validate::reference::reference_stage::run;
 
 const REL: f64 = 1e-9;
 

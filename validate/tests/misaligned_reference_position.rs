@@ -22,7 +22,8 @@ use solver::element::compliance::PairCompliance;
 use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::Path;
 use validate::reference::reference_ltca::ReferenceSettings;
-use validate::reference::reference_stage::{run, StageOptions};
+use validate::reference::reference_options::StageOptions;
+use validate::reference::reference_stage::run;
 
 const MISALIGNMENT: Misalignment = Misalignment {
     offset_mm: 0.0,

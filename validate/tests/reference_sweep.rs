@@ -8,7 +8,8 @@ use geometry::scene::Scene;
 mod shared_meshes;
 use std::path::Path;
 use validate::reference::reference_ltca::PositionResult;
-use validate::reference::reference_stage::{reference_dir, run, CacheComparison, StageOptions};
+use validate::reference::reference_options::StageOptions;
+use validate::reference::reference_stage::{reference_dir, run, CacheComparison};
 #[path = "support/reference_options.rs"]
 mod reference_options;
 

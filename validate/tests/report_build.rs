@@ -9,7 +9,8 @@ use std::path::Path;
 use validate::report::comparison::{Comparison, Row};
 use validate::report::figures::Figure;
 use validate::report::gather::ReportFigures;
-use validate::report::{results, Published};
+use validate::report::published::Published;
+use validate::report::results;
 use validate::studies::utca_check::{Row as UtcaRow, UtcaCheck};
 
 fn utca() -> UtcaCheck {

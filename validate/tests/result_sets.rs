@@ -7,7 +7,7 @@
 use formats::result_set::{lock_path, Holder, ResultSet, RunLock};
 use geometry::scene::{LoadedScene, Scene};
 use std::path::{Path, PathBuf};
-use validate::reference::reference_stage::StageOptions;
+use validate::reference::reference_options::StageOptions;
 use validate::reference::reference_stage::{reference_dir, run};
 #[path = "support/reference_options.rs"]
 mod reference_options;

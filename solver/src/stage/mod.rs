@@ -18,5 +18,7 @@ pub mod lumped_order_map;
 pub mod lumped_plots;
 pub mod lumped_run;
 pub mod plan;
+pub mod rattle;
 pub mod runup;
 pub mod sensitivity;
+pub mod trace;

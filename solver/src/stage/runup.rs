@@ -3,6 +3,20 @@
 //! ([`crate::stage::compliant`]) multibody stages: the pinion's speed ramp,
 //! the spectrogram of a bearing force over the pinion speed, and the order
 //! analysis in the pinion's angle domain (`runup_orders.json`).
+use crate::multibody::backlash::Coast;
+use crate::multibody::mesh_table::MeshTable;
+use crate::multibody::model::Model;
+use crate::multibody::time_step::Integrator;
+use crate::multibody::time_step::Scheme;
+use crate::multibody::time_step::StepControl;
+use crate::stage::trace::record;
+use crate::stage::trace::trace_csv;
+use anyhow::Context;
+use charts::te_curve;
+use charts::Series;
+use formats::output::write_atomic;
+use formats::summaries::RunupSummary;
+use std::time::Instant;
 
 use crate::multibody::model::{Drive, Ramp};
 use crate::signal::spectrum::{plot, resample, stft, OrderLine};
@@ -102,4 +116,141 @@ pub(crate) fn runup_spectrogram(
     }
     plot(path, title, &spec, &hz, &orders)?;
     Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run_up(
+    table: &MeshTable,
+    inertia: [f64; 2],
+    mb: &geometry::scene::MultibodySettings,
+    odir: &Path,
+    scheme: Scheme,
+    control: &dyn Fn(f64) -> StepControl,
+    pb: Blank,
+    wb: Blank,
+    z1: f64,
+    friction: f64,
+    impact_law: bool,
+    coast: Option<&Coast>,
+) -> anyhow::Result<RunupSummary> {
+    let torque = mb.runup_pinion_torque_nm;
+    let mut m = Model {
+        table,
+        coast,
+        inertia,
+        damping: 0.0,
+        friction,
+        drive: runup_drive(mb, table.ratio),
+    };
+    // Without coast flanks the wheel must stay on the drive flanks up to
+    // the top speed: below the holding torque it runs ahead at the tooth
+    // changes and leaves the mesh, and the run-up's TE means nothing.
+    let holding = m.holding_torque()?;
+    if torque < holding {
+        if coast.is_none() {
+            anyhow::bail!(
+                "multibody.runup_pinion_torque_nm = {torque} N·m is below {holding:.3e} N·m, the torque that holds the wheel (inertia {:.4e} kg·m²) on the drive flanks up to the run-up's {} rpm (the flanks can only push it forward: below this it runs ahead at the tooth changes and, without coast flanks, leaves the mesh); raise the torque, lower multibody.runup_rpm, or set multibody.coast_contact = true to follow the impacts across the backlash",
+                inertia[1],
+                mb.runup_rpm[0].abs().max(mb.runup_rpm[1].abs())
+            );
+        }
+        eprintln!(
+            "  run-up: {torque} N·m is below the holding torque {holding:.3e} N·m at the top speed: the wheel will leave the drive flanks at the tooth changes (coast contact is on: impacts across the backlash)"
+        );
+    }
+    let s0 = m.static_state(0.0)?;
+    if !impact_law {
+        m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;
+    }
+    let mut integ = Integrator::new(scheme, control(mb.runup_max_step_s));
+    let t = Instant::now();
+    eprintln!(
+        "  run-up {}..{} rpm in {} s at {torque} N·m",
+        mb.runup_rpm[0], mb.runup_rpm[1], mb.runup_time_s
+    );
+    let (tr, steps) = record(&m, s0, &mut integ, mb.runup_time_s).context("multibody run-up")?;
+    let cpu = t.elapsed().as_secs_f64();
+    // Quasi-static TE at the same pinion rotations: the static lag that
+    // balances the wheel's load (with friction, the pinion torque that
+    // needs includes the mesh losses).
+    let statics: Vec<f64> = tr
+        .q1
+        .iter()
+        .map(|&q| m.static_lag(q))
+        .collect::<Result<_, _>>()?;
+    write_atomic(
+        &odir.join("runup.csv"),
+        trace_csv(&tr, Some(&statics)).as_bytes(),
+    )?;
+    let diff: Vec<f64> = tr.te.iter().zip(&statics).map(|(a, b)| a - b).collect();
+    let lo = diff.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = diff.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let rpm: Vec<f64> = tr
+        .speed
+        .iter()
+        .map(|v| v * 30.0 / std::f64::consts::PI)
+        .collect();
+    te_curve(
+        &odir.join("runup_te.svg"),
+        &format!(
+            "Run-up at {torque} N·m, {pb:?} pinion / {wb:?} wheel: dynamic and quasi-static TE"
+        ),
+        "pinion speed (rpm)",
+        "transmission error (µrad)",
+        &[
+            Series {
+                name: "dynamic".into(),
+                x: rpm.clone(),
+                y: tr.te.iter().map(|v| v * 1e6).collect(),
+                dashed: false,
+            },
+            Series {
+                name: "quasi-static".into(),
+                x: rpm,
+                y: statics.iter().map(|v| v * 1e6).collect(),
+                dashed: true,
+            },
+        ],
+    )?;
+    // Spectrogram of the wheel bearing force magnitude.
+    let mag: Vec<f64> = tr
+        .force
+        .iter()
+        .map(|f| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt())
+        .collect();
+    runup_spectrogram(
+        &odir.join("runup_spectrogram.svg"),
+        &format!("Wheel bearing force |F|, run-up at {torque} N·m ({pb:?}/{wb:?})"),
+        (&tr.t, &mag),
+        mb,
+        z1,
+        table.ratio,
+        wb,
+    )?;
+    let bearing: Vec<[f64; 3]> = tr.force.iter().map(|f| f.map(|c| -c)).collect();
+    write_runup_orders(
+        &odir.join("runup_orders.json"),
+        [pb, wb],
+        z1,
+        table.ratio,
+        (&tr.t, &tr.q1, &bearing),
+    )?;
+    eprintln!(
+        "  run-up: {steps} steps ({} rejected), {:.1} µs/step, dynamic - static TE in [{:.2}, {:.2}] µrad",
+        integ.rejected,
+        cpu / steps.max(1) as f64 * 1e6,
+        lo * 1e6,
+        hi * 1e6
+    );
+    Ok(RunupSummary {
+        pinion_torque_nm: torque,
+        rpm: mb.runup_rpm,
+        sim_time_s: mb.runup_time_s,
+        max_step_s: mb.runup_max_step_s,
+        steps,
+        rejected_steps: integ.rejected,
+        cpu_s: cpu,
+        cpu_s_per_step: cpu / steps.max(1) as f64,
+        te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
+    })
 }

@@ -100,7 +100,7 @@ pub fn reference(
     let memory_bytes = memory_bytes(memory_gb)?;
     let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
     let sc = geometry::scene::Scene::load(&scene)?;
-    let opt = validate::reference::reference_stage::StageOptions {
+    let opt = validate::reference::reference_options::StageOptions {
         level,
         settings,
         stride,

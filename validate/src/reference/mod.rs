@@ -19,6 +19,7 @@ pub mod path_compliance;
 pub mod penalty;
 pub mod reference_blank_pair;
 pub mod reference_ltca;
+pub mod reference_options;
 pub mod reference_outputs;
 pub mod reference_stage;
 pub mod reference_summary;

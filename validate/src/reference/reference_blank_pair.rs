@@ -3,10 +3,10 @@
 //! or solved (the bodies factored at the first position solved), its
 //! files and summary; a cache comparison or a shard writes no result.
 
+use super::reference_options::{utca_at, StageOptions, COMPARE_TOLERANCE, REFERENCE_SCHEMA};
 use super::reference_outputs::{
     copy_files, load_summaries, pattern_vtu, report_factor, unloaded_check, write_te_csv,
 };
-use super::reference_stage::{utca_at, StageOptions, COMPARE_TOLERANCE, REFERENCE_SCHEMA};
 use super::reference_summary::{BlankSummary, CacheComparison};
 use crate::reference::reference_ltca::{Member, PositionResult, ReferencePair};
 use anyhow::Context;

@@ -25,51 +25,14 @@
 
 pub use super::reference_outputs::pattern_vtu;
 pub use super::reference_summary::{BlankSummary, CacheComparison, LoadSummary, UnloadedCheck};
-use crate::reference::reference_ltca::{Member, ReferenceSettings};
+use crate::reference::reference_ltca::Member;
 use formats::output::write_json;
 use formats::result_set::{ResultSet, RunLock};
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
 use geometry::scene::LoadedScene;
-use serde::Serialize;
 use std::path::Path;
 
-/// Version of the reference computation (constraints, solve, position
-/// results); part of every cache key. A summary of another layout fails to
-/// parse and is rebuilt from the cached positions.
-pub const REFERENCE_SCHEMA: u32 = 6;
-
-/// Options of the stage.
-#[derive(Debug, Clone, Serialize)]
-pub struct StageOptions {
-    /// Mesh level ("reduced" or "reference").
-    pub level: String,
-    pub settings: ReferenceSettings,
-    /// Solve every n-th position of the scene's sweep.
-    pub stride: usize,
-    /// Stride for the lightweight wheel blank (its sweep is 2.5 times
-    /// longer), when given.
-    pub stride_lightweight: Option<usize>,
-    /// Right-hand sides per forward-solve block.
-    pub block: usize,
-    /// Solve every position anew and compare it with its cached result
-    /// (old and new solution paths must agree within
-    /// [`COMPARE_TOLERANCE`]); the cache is left as it is.
-    pub compare_cache: bool,
-    /// Solve only the positions i with i mod N = I (`Some((I, N))`): one
-    /// shard of a sweep split among processes or machines. Shards write
-    /// their positions to the shared cache; a run without a shard then
-    /// finds them all there and writes the result.
-    pub shard: Option<(usize, usize)>,
-    /// Memory this run may use for the bodies' factors, bytes; `None`:
-    /// what the system has available (`MemAvailable`). The factors a run
-    /// would hold at once are estimated from the meshes before any
-    /// factoring and refused above it ([`formats::memory_estimate`]).
-    pub memory_bytes: Option<usize>,
-}
-
-/// Largest relative difference that `--compare-cache` accepts between a
-/// position solved now and its cached result.
-pub const COMPARE_TOLERANCE: f64 = 1e-6;
+use super::reference_options::StageOptions;
 
 /// Where the reference of mesh level `level` writes its results:
 /// `<out>/<scene>/reference/` for the reduced level (the meshes of the
@@ -91,22 +54,6 @@ pub fn finest_reference(out: &Path, scene: &str, blank: &str) -> Option<std::pat
         .iter()
         .map(|l| reference_dir(out, scene, l).join(blank))
         .find(|d| d.join("te.csv").exists())
-}
-
-/// The UTCA of the scene's generated flanks (its own UTCA settings) at `n`
-/// pinion angles from `start` in steps of `step`: the unloaded check's
-/// reference.
-pub fn utca_at(
-    scene: &LoadedScene,
-    fp: &geometry::pair::FlankPair,
-    start: f64,
-    step: f64,
-    n: usize,
-    direction: f64,
-) -> anyhow::Result<geometry::utca::Utca> {
-    let input = preprocess::flank_stage::load_input(&scene.path)?;
-    let rs = geometry::utca::roll_surface(fp, &input.utca)?;
-    Ok(geometry::utca::run(fp, &rs, start, step, n, direction))
 }
 
 /// Runs the reference LTCA of the scene.

@@ -21,19 +21,13 @@ pub mod sections;
 
 use crate::report::figures::{figure_lines, figures_before_table, Figure};
 use crate::report::gather::ReportFigures;
+use crate::report::published::Published;
 use crate::studies::utca_check::UtcaCheck;
 use formats::output::{write_atomic, write_json, WriteError};
 use sections::{stage_tradeoffs, stress};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
-
-/// A published value to compare with, and where it comes from.
-#[derive(Debug, Clone, Serialize)]
-pub struct Published {
-    pub value: f64,
-    pub source: String,
-}
 
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary<'a> {

@@ -1,10 +1,16 @@
 //! Published reference values: the files a design's `[published]` table
 //! names (`reference/published/` for the white-paper pair).
 
-use crate::report::Published;
 use geometry::design::PublishedDesign;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+
+/// A published value to compare with, and where it comes from.
+#[derive(Debug, Clone, Serialize)]
+pub struct Published {
+    pub value: f64,
+    pub source: String,
+}
 
 #[derive(Deserialize)]
 struct TeRow {

@@ -12,7 +12,7 @@
 //! reused only when it is listed there unchanged and its hash matches.
 
 use crate::reference::reference_ltca::{Member, ReferencePair, ReferenceSettings};
-use crate::reference::reference_stage::REFERENCE_SCHEMA;
+use crate::reference::reference_options::REFERENCE_SCHEMA;
 use anyhow::Context;
 use formats::added_files::{add_json, read_added, AddedState, Dependence};
 use formats::result_set::RunLock;
@@ -191,7 +191,7 @@ impl StudyPosition {
         let cycles = sc.rotation.mesh_cycles(Blank::Standard);
         let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
         let utca_te_urad =
-            crate::reference::reference_stage::utca_at(scene, fp, phi, step, 1, direction)?.te[0]
+            crate::reference::reference_options::utca_at(scene, fp, phi, step, 1, direction)?.te[0]
                 * 1e6;
         Ok(StudyPosition {
             g,

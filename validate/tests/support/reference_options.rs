@@ -3,7 +3,7 @@
 //! 96 right-hand sides per block), at `stride` and, for shard runs, `shard`.
 
 use validate::reference::reference_ltca::ReferenceSettings;
-use validate::reference::reference_stage::StageOptions;
+use validate::reference::reference_options::StageOptions;
 
 pub fn options(stride: usize, shard: Option<(usize, usize)>) -> StageOptions {
     StageOptions {
