@@ -76,20 +76,6 @@ impl<'s> StageContext<'s> {
         Ok(roll_surface(self.g.side(side), &self.scene.scene.utca)?)
     }
 
-    /// Every pinion × wheel blank of the scene, pinion blanks outside.
-    pub fn blank_pairs(&self) -> Vec<[Blank; 2]> {
-        let b = &self.scene.scene.blanks;
-        b.pinion
-            .iter()
-            .flat_map(|&p| b.wheel.iter().map(move |&w| [p, w]))
-            .collect()
-    }
-
-    /// The pinion × wheel blank `blanks`, loaded.
-    pub fn pair(&self, blanks: [Blank; 2]) -> anyhow::Result<LoadedPair> {
-        LoadedPair::load(self.scene, &self.g, &self.dir, blanks)
-    }
-
     /// Calls `f` on every pinion × wheel blank of the scene in turn, each
     /// pinion blank's stiffness file read once.
     pub fn for_each_pair(

@@ -6,7 +6,7 @@
 //! summaries). Ours are formatted from the summaries; seed 004's are the
 //! named constants below.
 
-use crate::report::published::seed004;
+use crate::report::published::{seed004, Seed004Table4Row};
 use formats::lumped_summary::LumpedSummary;
 use std::fmt::Write as _;
 
@@ -78,16 +78,82 @@ fn te_slope(s: &mut String, rows: &[(&LumpedSummary, f64)]) {
         .iter()
         .map(|(r, theirs)| 100.0 * r.impact.seed004_force_n / theirs)
         .collect();
+    let ours_force = rise(&|r| r.impact.seed004_force_n);
+    let theirs_force = 100.0 * (rows[rows.len() - 1].1 / rows[0].1 - 1.0);
+    let ours_rms = rise(&|r| r.rms_acceleration_m_s2.mesh_normal);
+    let verdict = direction_clause(&[
+        ("the impact force", ours_force, theirs_force),
+        ("the RMS along the normal (λ̈)", ours_rms, seed_rise),
+    ]);
+    let steep = steepness_clause("impact-force change", ours_force, theirs_force);
     let _ = writeln!(
         s,
-        "\nFrom the first row to the last: our impact force {:+.0} %, seed 004's {:+.1} %; our RMS along the normal {:+.0} % (λ̈) and {:+.0} % (v·q̈), seed 004's about {seed_rise:+.0} %. The direction agrees; our rise is far steeper, since our impact force is seed 004's F_s with our LTCA's approach velocity, which grows with the TE parabola. Our impact forces are {:.1}–{:.1} % of seed 004's. Source: {seed_source}.\n",
-        rise(&|r| r.impact.seed004_force_n),
-        100.0 * (rows[rows.len() - 1].1 / rows[0].1 - 1.0),
-        rise(&|r| r.rms_acceleration_m_s2.mesh_normal),
+        "\nFrom the first row to the last: our impact force {ours_force:+.0} %, seed 004's {theirs_force:+.1} %; our RMS along the normal {ours_rms:+.0} % (λ̈) and {:+.0} % (v·q̈), seed 004's about {seed_rise:+.0} %. {verdict}{steep} Our impact force is seed 004's F_s with our LTCA's approach velocity, which grows with the TE parabola. Our impact forces are {:.1}–{:.1} % of seed 004's. Source: {seed_source}.\n",
         rise(&|r| r.relative_normal_acceleration_rms_m_s2),
         share.iter().copied().fold(f64::INFINITY, f64::min),
         share.iter().copied().fold(f64::NEG_INFINITY, f64::max),
     );
+}
+
+/// Whether the signs of our relative changes (%) match seed 004's, per
+/// quantity `(name, ours, seed 004's)`: one sentence, computed. A change
+/// within ±0.5 % counts as none.
+pub fn direction_clause(q: &[(&str, f64, f64)]) -> String {
+    let sign = |x: f64| {
+        if x.abs() < 0.5 {
+            0
+        } else if x > 0.0 {
+            1
+        } else {
+            -1
+        }
+    };
+    let join = |v: &[&str]| match v {
+        [] => String::new(),
+        [a] => a.to_string(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    };
+    let (same, other): (Vec<&str>, Vec<&str>) = (
+        q.iter()
+            .filter(|(_, a, b)| sign(*a) == sign(*b))
+            .map(|x| x.0)
+            .collect(),
+        q.iter()
+            .filter(|(_, a, b)| sign(*a) != sign(*b))
+            .map(|x| x.0)
+            .collect(),
+    );
+    match (same.is_empty(), other.is_empty()) {
+        (_, true) if !same.is_empty() => {
+            format!("The direction agrees with seed 004's for {}.", join(&same))
+        }
+        (true, false) => format!(
+            "The direction differs from seed 004's for {}.",
+            join(&other)
+        ),
+        (false, false) => format!(
+            "The direction agrees with seed 004's for {} and differs for {}.",
+            join(&same),
+            join(&other)
+        ),
+        _ => String::new(),
+    }
+}
+
+/// How our relative change (%) of `what` compares in size with seed 004's:
+/// empty when the signs differ or either is within ±0.5 %.
+pub fn steepness_clause(what: &str, ours: f64, theirs: f64) -> String {
+    if ours.abs() < 0.5 || theirs.abs() < 0.5 || ours.signum() != theirs.signum() {
+        return String::new();
+    }
+    let r = ours / theirs;
+    if (0.8..=1.25).contains(&r) {
+        format!(" Our {what} is about seed 004's ({r:.2} times).")
+    } else if r > 1.0 {
+        format!(" Our {what} is {r:.1} times seed 004's, steeper.")
+    } else {
+        format!(" Our {what} is {r:.2} times seed 004's, shallower.")
+    }
 }
 
 fn contact_ratio(s: &mut String, runs: &[&LumpedSummary]) {
@@ -130,37 +196,98 @@ fn contact_ratio(s: &mut String, runs: &[&LumpedSummary]) {
             r.rms_acceleration_m_s2.mesh_normal,
             r.relative_normal_acceleration_rms_m_s2
         );
-        picked.push(*r);
+        picked.push((*r, row));
     }
-    if let (Some(lo), Some(hi)) = (picked.first(), picked.last()) {
+    if let (Some(&(lo, row_lo)), Some(&(hi, row_hi))) = (picked.first(), picked.last()) {
         let pct = |a: f64, b: f64| 100.0 * (b / a - 1.0);
-        let ratio = |f: &dyn Fn(&LumpedSummary) -> f64, col: &dyn Fn(usize) -> f64| {
-            let v: Vec<f64> = picked
-                .iter()
-                .enumerate()
-                .map(|(i, r)| col(i) / f(r))
-                .collect();
+        let ratio = |f: &dyn Fn(&LumpedSummary) -> f64, col: &dyn Fn(&Seed004Table4Row) -> f64| {
+            let v: Vec<f64> = picked.iter().map(|(r, row)| col(row) / f(r)).collect();
             (
                 v.iter().copied().fold(f64::INFINITY, f64::min),
                 v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             )
         };
-        let (k_lo, k_hi) = ratio(&|r| r.mesh_stiffness_n_per_m.mean, &|i| {
-            table4.rows[i].mesh_stiffness_n_per_m
+        let (k_lo, k_hi) = ratio(&|r| r.mesh_stiffness_n_per_m.mean, &|row| {
+            row.mesh_stiffness_n_per_m
         });
-        let (f_lo, f_hi) = ratio(&|r| r.impact.seed004_force_n, &|i| {
-            table4.rows[i].impact_force_n
-        });
+        let (f_lo, f_hi) = ratio(&|r| r.impact.seed004_force_n, &|row| row.impact_force_n);
+        let changes = [
+            (
+                "the mean k",
+                pct(
+                    lo.mesh_stiffness_n_per_m.mean,
+                    hi.mesh_stiffness_n_per_m.mean,
+                ),
+                pct(row_lo.mesh_stiffness_n_per_m, row_hi.mesh_stiffness_n_per_m),
+            ),
+            (
+                "the impact force",
+                pct(lo.impact.seed004_force_n, hi.impact.seed004_force_n),
+                pct(row_lo.impact_force_n, row_hi.impact_force_n),
+            ),
+            (
+                "the RMS λ̈",
+                pct(
+                    lo.rms_acceleration_m_s2.mesh_normal,
+                    hi.rms_acceleration_m_s2.mesh_normal,
+                ),
+                pct(row_lo.rms_acceleration_m_s2, row_hi.rms_acceleration_m_s2),
+            ),
+        ];
+        let verdict = direction_clause(&changes);
         let _ = writeln!(
             s,
-            "\nFrom the lowest contact ratio to the highest: our mean k {:+.0} % (seed 004 {:+.0} %), impact force {:+.0} % ({:+.0} %), RMS λ̈ {:+.0} % ({:+.0} %). The directions agree with seed 004's: more pairs in contact, a stiffer mesh, a softer engagement and less vibration. Seed 004's stiffness is {k_lo:.1}–{k_hi:.1} times ours, its impact force {f_lo:.0}–{f_hi:.0} times ours. Source: {}.\n",
-            pct(lo.mesh_stiffness_n_per_m.mean, hi.mesh_stiffness_n_per_m.mean),
-            pct(table4.rows[0].mesh_stiffness_n_per_m, table4.rows[2].mesh_stiffness_n_per_m),
-            pct(lo.impact.seed004_force_n, hi.impact.seed004_force_n),
-            pct(table4.rows[0].impact_force_n, table4.rows[2].impact_force_n),
-            pct(lo.rms_acceleration_m_s2.mesh_normal, hi.rms_acceleration_m_s2.mesh_normal),
-            pct(table4.rows[0].rms_acceleration_m_s2, table4.rows[2].rms_acceleration_m_s2),
+            "\nFrom the lowest contact ratio to the highest: our mean k {:+.0} % (seed 004 {:+.0} %), impact force {:+.0} % ({:+.0} %), RMS λ̈ {:+.0} % ({:+.0} %). {verdict} Seed 004's stiffness is {k_lo:.1}–{k_hi:.1} times ours, its impact force {f_lo:.0}–{f_hi:.0} times ours. Source: {}.\n",
+            changes[0].1,
+            changes[0].2,
+            changes[1].1,
+            changes[1].2,
+            changes[2].1,
+            changes[2].2,
             table4.source,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn changes_of_the_same_sign_agree_in_direction() {
+        let v = direction_clause(&[("k", 13.0, 30.8), ("RMS", -61.0, -80.7)]);
+        assert_eq!(v, "The direction agrees with seed 004's for k and RMS.");
+    }
+
+    #[test]
+    fn changes_of_opposite_sign_differ_in_direction() {
+        let v = direction_clause(&[("k", -3.0, 30.8)]);
+        assert_eq!(v, "The direction differs from seed 004's for k.");
+        let v = direction_clause(&[
+            ("k", 13.0, 30.8),
+            ("force", 4.0, -13.7),
+            ("RMS", 0.2, -80.7),
+        ]);
+        assert_eq!(
+            v,
+            "The direction agrees with seed 004's for k and differs for force and RMS."
+        );
+    }
+
+    #[test]
+    fn steepness_is_said_only_for_changes_of_one_sign() {
+        assert_eq!(
+            steepness_clause("rise", 140.0, 15.0),
+            " Our rise is 9.3 times seed 004's, steeper."
+        );
+        assert_eq!(
+            steepness_clause("rise", 5.0, 15.0),
+            " Our rise is 0.33 times seed 004's, shallower."
+        );
+        assert_eq!(
+            steepness_clause("rise", 14.0, 15.0),
+            " Our rise is about seed 004's (0.93 times)."
+        );
+        assert_eq!(steepness_clause("rise", -14.0, 15.0), "");
     }
 }
