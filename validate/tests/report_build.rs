@@ -53,6 +53,7 @@ fn row(wheel: &str, torque_nm: f64, mean: f64, reference_mean: f64) -> Row {
         multibody_steps: 2213,
         multibody_cpu_s_per_step: 7.34e-5,
         multibody_cpu_s: 0.16,
+        multibody_table_cpu_s: 1.2,
         reference_positions: 73,
         reference_cpu_s_per_position: 6.1,
         reference_cpu_s: 545.0,
@@ -67,6 +68,8 @@ fn row(wheel: &str, torque_nm: f64, mean: f64, reference_mean: f64) -> Row {
         published_nlfea_te_ptp_urad: Some(17.1),
         published_multibody_cpu_s_per_step: Some(0.8),
         published_nlfea_cpu_s_per_step: Some(1100.0),
+        published_multibody_cpu_total_s: Some(240.0),
+        published_nlfea_cpu_total_s: Some(77_760.0),
     }
 }
 
@@ -282,6 +285,9 @@ fn report_from_a_fixture() {
         res.contains("| lightweight | 300 | 1047.35 | 1041.99 | +0.51 |"),
         "{res}"
     );
+    // The reduced model's run time holds the contact-element table it runs
+    // on: 0.16 s run + 1.2 s table.
+    assert!(res.contains("| 1.36 | 545 |"), "{res}");
     assert!(written.readme_updated);
     let new_readme = std::fs::read_to_string(&readme).unwrap();
     assert!(!new_readme.contains("old results"));

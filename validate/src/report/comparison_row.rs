@@ -29,6 +29,9 @@ pub struct Row {
     pub multibody_steps: usize,
     pub multibody_cpu_s_per_step: f64,
     pub multibody_cpu_s: f64,
+    /// CPU of the contact-element table the run integrates on, s: built
+    /// once per blank pair for all its loads (CPU per position × positions).
+    pub multibody_table_cpu_s: f64,
     pub reference_positions: usize,
     pub reference_cpu_s_per_position: f64,
     pub reference_cpu_s: f64,
@@ -47,4 +50,8 @@ pub struct Row {
     pub published_nlfea_te_ptp_urad: Option<f64>,
     pub published_multibody_cpu_s_per_step: Option<f64>,
     pub published_nlfea_cpu_s_per_step: Option<f64>,
+    /// The white paper's total CPU of the multibody run and of the NLFEA
+    /// sweep at this blank and load (Table 5), s.
+    pub published_multibody_cpu_total_s: Option<f64>,
+    pub published_nlfea_cpu_total_s: Option<f64>,
 }
