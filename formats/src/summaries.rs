@@ -357,14 +357,27 @@ pub struct LoadRunSummary {
     /// damping losses).
     pub pinion_mesh_torque_mean_nm: f64,
     pub mesh_efficiency: f64,
-    /// Tangential force at the wheel's outer pitch circle (mesh torque /
-    /// outer pitch radius): mean, 2T/d, relative difference, mean and
-    /// largest |F_t − mean|, N.
+    /// Tangential (circumferential) component of the contact forces on the
+    /// wheel, Σ F λ₂ / ρ₂ at the contact points (N): mean and largest over
+    /// the window, 2T/d with d the outer pitch diameter, the relative
+    /// difference on the base of 2T/d (mean / (2T/d) − 1) and on the base
+    /// of the mean ((mean − 2T/d) / mean, as seed 002's Table 2 states
+    /// it), and the mean and largest |F_t − mean|, N.
     pub tangential_force_mean_n: f64,
+    pub tangential_force_max_n: f64,
     pub tangential_force_theory_n: f64,
     pub tangential_force_error: f64,
+    pub tangential_force_error_of_mean: f64,
     pub tangential_force_fluctuation_mean_n: f64,
     pub tangential_force_fluctuation_max_n: f64,
+    /// Where the contact acts on average: mean wheel mesh torque over the
+    /// mean tangential force, against the outer pitch radius d/2, mm.
+    pub contact_radius_mm: f64,
+    pub outer_pitch_radius_mm: f64,
+    /// The same statistics from the run sampled at the scene's output
+    /// interval (as a simulation that writes only every so many
+    /// milliseconds sees it); None without an output interval.
+    pub sampled: Option<SampledLoadRun>,
     /// Meshing (contact) force magnitude: mean, peak, and the normal force
     /// at the mean point T / (r_m cos α_n cos β_m), N.
     pub mesh_force_mean_n: f64,
@@ -373,6 +386,21 @@ pub struct LoadRunSummary {
     /// TE mean and peak-to-peak over the window, µrad.
     pub te_mean_urad: f64,
     pub te_ptp_urad: f64,
+}
+
+/// A load run's steady-window statistics from samples at a fixed output
+/// interval (linear interpolation between the integrator's steps).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SampledLoadRun {
+    pub interval_s: f64,
+    pub samples: usize,
+    pub wheel_speed_mean_deg_s: f64,
+    pub wheel_speed_fluctuation_mean_deg_s: f64,
+    pub wheel_speed_fluctuation_max_deg_s: f64,
+    pub tangential_force_mean_n: f64,
+    pub tangential_force_max_n: f64,
+    pub tangential_force_fluctuation_mean_n: f64,
+    pub tangential_force_fluctuation_max_n: f64,
 }
 
 /// The rattle run: fluctuating pinion speed, free wheel.

@@ -145,6 +145,13 @@ impl MemberFrame {
     pub fn to_member(&self, x: &Vector3<f64>, phi: f64) -> Vector3<f64> {
         rot_z(-phi) * (self.axes.transpose() * x)
     }
+    /// Distance from the member's axis of the axial-section point (L, d),
+    /// m: ρ = L sin γ + d cos γ (the inverse of [`MemberFrame::axial`] for
+    /// the radial coordinate).
+    pub fn radius_at(&self, l: f64, d: f64) -> f64 {
+        let (s, c) = self.pitch_angle.sin_cos();
+        l * s + d * c
+    }
     /// Axial-section coordinates (L along the pitch generatrix, d above the pitch cone).
     pub fn axial<D: Scalar>(&self, p: &[D; 3]) -> (D, D) {
         let (s, c) = self.pitch_angle.sin_cos();

@@ -61,7 +61,10 @@ impl Default for ImpactSettings {
 /// wheel torque rises from 0 to `wheel_torque_nm` over
 /// `wheel_torque_rise_s` by the cubic STEP (0: at full torque from the
 /// start); `time_s` simulated with steps up to `max_step_s`; the means and
-/// fluctuations are taken from `steady_from_s` on.
+/// fluctuations are taken from `steady_from_s` on. With
+/// `output_interval_s` the statistics are also given from samples at that
+/// interval (a simulation that writes its results only so often sees
+/// those), beside the ones from every step.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct LoadRun {
@@ -72,6 +75,8 @@ pub struct LoadRun {
     pub time_s: f64,
     pub max_step_s: f64,
     pub steady_from_s: f64,
+    #[serde(default)]
+    pub output_interval_s: Option<f64>,
 }
 
 impl LoadRun {
@@ -126,6 +131,20 @@ impl LoadRun {
                     self.time_s
                 ),
             ));
+        }
+        if let Some(dt) = self.output_interval_s {
+            let hi = 0.5 * (self.time_s - self.steady_from_s);
+            if !(dt >= self.max_step_s && dt <= hi) {
+                return Err(invalid(
+                    path,
+                    "multibody.load_run.output_interval_s",
+                    dt,
+                    &format!(
+                        "must lie in [max_step_s = {}, half the steady window = {hi}] s",
+                        self.max_step_s
+                    ),
+                ));
+            }
         }
         let steps = self.time_s / self.max_step_s;
         if steps > crate::scene_checks::MAX_TIME_STEPS {

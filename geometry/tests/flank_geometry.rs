@@ -174,3 +174,23 @@ fn blade_cone_curvatures_are_zero_and_cos_alpha_over_radius() {
     );
     assert!(kmin < 1e-9, "straight blade: {kmin}");
 }
+
+#[test]
+fn radius_from_axial_section_coordinates_is_the_distance_from_the_axis() {
+    let p = common::white_paper();
+    let g = common::geometry(&p);
+    for m in [Member::Pinion, Member::Wheel] {
+        let f = g.flank(m, Side::Drive);
+        for (xi, eta) in [(0.0, 0.0), (0.5, 0.5), (1.0, 1.0), (0.2, 0.9)] {
+            let q = f.at_unit(xi, eta).unwrap();
+            let (l, d) = f.gen.frame.axial(&q.pos);
+            let rho = q.pos[0].hypot(q.pos[1]);
+            let r = f.gen.frame.radius_at(l, d);
+            assert!(
+                (r - rho).abs() < 1e-12,
+                "{} at ({xi}, {eta}): {r} vs {rho}",
+                m.name()
+            );
+        }
+    }
+}

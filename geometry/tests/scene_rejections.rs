@@ -122,6 +122,25 @@ fn load_run_with_its_steady_window_past_its_end_is_rejected() {
 }
 
 #[test]
+fn load_run_output_interval_outside_step_and_window_is_rejected() {
+    let run = "[multibody.load_run]\npinion_rpm = 150.0\npinion_ramp_s = 0.0\nwheel_torque_nm = 100.0\nwheel_torque_rise_s = 0.1\nmax_step_s = 1e-5\ntime_s = 0.4\nsteady_from_s = 0.2\n";
+    let s = scene_with(&format!("{run}output_interval_s = 0.002")).unwrap();
+    assert_eq!(
+        s.scene.multibody.load_run.as_ref().unwrap().output_interval_s,
+        Some(0.002)
+    );
+    for bad in ["1e-6", "0.15"] {
+        let e = scene_with(&format!("{run}output_interval_s = {bad}")).unwrap_err();
+        assert!(
+            e.contains("multibody.load_run.output_interval_s")
+                && e.contains("max_step_s = 0.00001")
+                && e.contains("half the steady window = 0.1"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
 fn seed_scenes_load_with_both_force_laws() {
     for (name, law) in [
         ("seed001_impact", geometry::scene::ForceLaw::Impact),

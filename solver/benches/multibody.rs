@@ -175,6 +175,7 @@ fn force_laws(
         time_s: 0.1,
         max_step_s: 1e-5,
         steady_from_s: 0.05,
+        output_interval_s: None,
     };
     println!(
         "\nForce laws, load run 300 rpm / 300 N·m, 0.1 s\n{:>8} {:>9} {:>8} {:>9} {:>8}",

@@ -8,8 +8,20 @@ use std::path::Path;
 use validate::report::published::seed_contact_laws;
 use validate::report::sections::contact_laws::{build, ContactLawsError};
 
-/// A load run whose numbers start at `base` (distinct per run and field).
-fn load_run(base: f64) -> Value {
+/// A load run whose numbers start at `base` (distinct per run and field),
+/// with statistics sampled every 2 ms when `sample` is set.
+fn load_run(base: f64, sample: bool) -> Value {
+    let sampled = sample.then(|| {
+        json!({
+            "interval_s": 0.002, "samples": 400,
+            "wheel_speed_mean_deg_s": 1873.4,
+            "wheel_speed_fluctuation_mean_deg_s": base + 0.5,
+            "wheel_speed_fluctuation_max_deg_s": base + 0.6,
+            "tangential_force_mean_n": 25001.0 + base, "tangential_force_max_n": 26900.0 + base,
+            "tangential_force_fluctuation_mean_n": base + 90.0,
+            "tangential_force_fluctuation_max_n": base + 1900.0
+        })
+    });
     json!({
         "pinion_rpm": 1283.8333333333333, "pinion_ramp_s": 0.2,
         "wheel_torque_nm": 1964.99, "wheel_torque_rise_s": 0.0, "sim_time_s": 1.0,
@@ -21,10 +33,15 @@ fn load_run(base: f64) -> Value {
         "wheel_speed_fluctuation_max_deg_s": base + 0.22,
         "wheel_mesh_torque_mean_nm": 1964.0, "torque_balance_error": 1e-6,
         "pinion_mesh_torque_mean_nm": 486.0, "mesh_efficiency": 0.9876,
-        "tangential_force_mean_n": 23700.0, "tangential_force_theory_n": 23603.6,
-        "tangential_force_error": 0.0041,
+        "tangential_force_mean_n": 25000.0 + base, "tangential_force_max_n": 27000.0 + base,
+        "tangential_force_theory_n": 23603.6,
+        "tangential_force_error": (25000.0 + base) / 23603.6 - 1.0,
+        "tangential_force_error_of_mean": (25000.0 + base - 23603.6) / (25000.0 + base),
         "tangential_force_fluctuation_mean_n": base + 100.0,
         "tangential_force_fluctuation_max_n": base + 2000.0,
+        "contact_radius_mm": 1964.0 / (25000.0 + base) * 1e3,
+        "outer_pitch_radius_mm": 83.25,
+        "sampled": sampled,
         "mesh_force_mean_n": 35000.0, "mesh_force_max_n": 38000.0,
         "mesh_force_theory_n": 36000.0, "te_mean_urad": 140.0, "te_ptp_urad": 46.0
     })
@@ -48,7 +65,7 @@ fn run(law: &str, scene: &str, base: f64) -> Value {
         "table_positions": 320, "table_lag_nodes": 96, "table_build_s": 0.2,
         "table_cpu_s_per_position": 0.001, "quasi_static": [], "runup": null,
         "backlash_urad": null, "free_play_urad": null, "rattle": null,
-        "force_law": law, "impact_law": impact, "load_run": load_run(base),
+        "force_law": law, "impact_law": impact, "load_run": load_run(base, law == "impact"),
         "dir": format!("somewhere/else/{scene}/multibody/standard_standard")
     }])
 }
@@ -92,24 +109,61 @@ fn rows_carry_both_runs_and_the_seeds_published_values() {
     let cl = build(&out, None, &reports).unwrap();
     let md = &cl.markdown;
     assert!(md.contains("### Seed 002 (9/37 pair, UG NX 3D contact)"));
+    // The seed's fluctuations stand on the rows sampled as it sampled
+    // (2 ms); the element run was not sampled.
     assert_eq!(
-        row(md, "| wheel speed fluctuation"),
-        "| wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s | 10.11 / 10.22 | 30.11 / 30.22 | 13.5 / 86.9 (Section 4, Figure 7) |"
+        row(md, "| wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s, every step"),
+        "| wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s, every step | 10.11 / 10.22 | 30.11 / 30.22 |  |"
     );
     assert_eq!(
-        row(md, "| tangential force fluctuation"),
-        "| tangential force fluctuation \\|F_t − mean\\| mean / max, N | 110.0 / 2010.0 | 130.0 / 2030.0 | 117.53 / 1741.3 (Section 4, Figure 9) |"
+        row(md, "| wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s, samples"),
+        "| wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s, samples every 2 ms (400 samples) | 10.50 / 10.60 | not sampled | 13.5 / 86.9 (Section 3.3, Figure 7) |"
+    );
+    assert_eq!(
+        row(md, "| tangential force fluctuation \\|F_t − mean\\| mean / max, N, samples"),
+        "| tangential force fluctuation \\|F_t − mean\\| mean / max, N, samples every 2 ms (400 samples) | 100.0 / 1910.0 | not sampled | 117.53 / 1741.3 (Section 3.4, Figure 9) |"
     );
     assert_eq!(
         row(md, "| mean wheel speed against kinematic"),
         "| mean wheel speed against kinematic | -0.010 % | -0.010 % | 0.054 % (Table 2) |"
     );
+    // The tangential force from the contact forces, on both bases, beside
+    // the seed's printed difference and the one its two values give.
     assert_eq!(
-        row(md, "| mean tangential force against 2T/d"),
-        "| mean tangential force against 2T/d | +0.410 % | +0.410 % | 4.82 % (Table 2) |"
+        row(md, "| mean tangential force against 2T/d, (mean − 2T/d) / mean"),
+        "| mean tangential force against 2T/d, (mean − 2T/d) / mean | +5.623 % | +5.699 % | 4.82 % (Table 2) |"
     );
-    assert!(row(md, "| mean tangential force, N")
+    assert_eq!(
+        row(md, "| mean tangential force against 2T/d, mean / (2T/d) − 1"),
+        "| mean tangential force against 2T/d, mean / (2T/d) − 1 | +5.958 % | +6.043 % | +5.069 % (from Table 2's two values) |"
+    );
+    assert_eq!(
+        row(md, "| largest tangential force, N"),
+        "| largest tangential force, N | 27010.0 | 27030.0 | 26498.9 (Section 3.4, Figure 8) |"
+    );
+    assert!(row(md, "| where the contact acts").ends_with(
+        "| 78.53 | 78.47 | 79.23 (the load / Table 2's mean; d/2 = 83.25 from its 2T/d) |"
+    ));
+    assert!(row(md, "| mean tangential force (contact forces")
         .ends_with("| 24799.9 against 2T/d = 23603.5 (Table 2) |"));
+    let para = row(md, "- Tangential force:");
+    assert!(
+        para.contains("at 78.53 mm (impact law) and 78.47 mm (element), inside and inside the outer pitch circle"),
+        "{para}"
+    );
+    assert!(
+        para.contains("lies 5.62 % above and 5.70 % above 2T/d"),
+        "{para}"
+    );
+    assert!(
+        para.contains("puts its contact at 79.23 mm on average"),
+        "{para}"
+    );
+    assert!(
+        para.contains("Our element's contact lies 0.77 mm inside the seed's."),
+        "{para}"
+    );
+    assert!(!md.contains("measures its averaging"));
     assert_eq!(
         row(md, "| steps (rejected)"),
         "| steps (rejected) | 1010 (7) | 1030 (7) |  |"

@@ -41,6 +41,10 @@ pub struct Slice {
     /// Wheel normal lever λ₂ (m/rad) and pinion normal lever λ₁ (m).
     pub lever_wheel: f64,
     pub lever_pinion: f64,
+    /// Distance of the contact point from the wheel axis, m: a normal force
+    /// F here has the tangential (circumferential) component F λ₂ / ρ₂ on
+    /// the wheel ([`Slice::wheel_tangential`]).
+    pub wheel_radius: f64,
     /// Pinion tooth-0 position and outward normal, member frame.
     pub pos: [f64; 3],
     pub normal: [f64; 3],
@@ -56,6 +60,19 @@ pub struct Slice {
 }
 
 impl Slice {
+    /// Tangential (circumferential) component on the wheel of a normal
+    /// force `f` (N) at this slice, N: the wheel moment f λ₂ over the
+    /// contact point's distance ρ₂ from the wheel axis,
+    ///
+    /// F_t = f λ₂ / ρ₂,
+    ///
+    /// since the moment about the axis of a force at radius ρ₂ is ρ₂ times
+    /// its circumferential component. Summed over the contact it equals
+    /// 2T₂/d only when every contact point lies on the circle of diameter d.
+    pub fn wheel_tangential(&self, f: f64) -> f64 {
+        f * self.lever_wheel / self.wheel_radius
+    }
+
     /// Weber–Banaschek line contact of this slice with depths `h` (pinion, wheel).
     pub fn line_contact(&self, h: [f64; 2], bodies: [Material; 2]) -> LineContact {
         LineContact {
@@ -585,6 +602,7 @@ pub fn pair_slices(
             let lever_wheel = p.wheel_lever + correction.map_or(0.0, |c| c.lever);
             let (lw, dw) = wheel_point(fp, &p, correction.as_ref());
             let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw);
+            let wheel_radius = fp.wheel.gen.frame.radius_at(lw, dw);
             let friction_lever = friction_levers(fp, p.pos, p.normal, target);
             Slice {
                 pair,
@@ -596,6 +614,7 @@ pub fn pair_slices(
                 lag: c.lag,
                 lever_wheel,
                 lever_pinion: pinion_lever(p.pos, p.normal),
+                wheel_radius,
                 pos: p.pos,
                 normal: p.normal,
                 length,

@@ -176,6 +176,7 @@ pub fn build(
                     force: Vec::with_capacity(lags.len()),
                     wrench: Vec::with_capacity(lags.len()),
                     friction: Vec::with_capacity(lags.len()),
+                    tangential: Vec::with_capacity(lags.len()),
                     cpu: 0.0,
                 },
                 damping: Vec::with_capacity(lags.len()),
@@ -184,7 +185,7 @@ pub fn build(
             for &lag in &lags {
                 let (mut t1, mut f, mut phi_f, mut a) = (0.0, [0.0; 3], [0.0; 2], [0.0; 4]);
                 let mut wr = [0.0; 6];
-                let (mut sum_f, mut sum_fg) = (0.0, 0.0);
+                let (mut sum_f, mut sum_fg, mut ft) = (0.0, 0.0, 0.0);
                 for p in pairs_at(&g, &law, lag) {
                     let s = &g.slices[p.slice];
                     t1 += s.lever_pinion * p.force;
@@ -215,12 +216,14 @@ pub fn build(
                     a[2] += w * s.lever_pinion * eps;
                     a[3] += w * s.lever_wheel * eps;
                     sum_f += p.force;
+                    ft += s.wheel_tangential(p.force);
                     sum_fg += p.force * (s.friction_lever[0] - ratio * s.friction_lever[1]).abs();
                 }
                 c.base.torque.push(t1);
                 c.base.force.push(f);
                 c.base.wrench.push(wr);
                 c.base.friction.push(phi_f);
+                c.base.tangential.push(ft);
                 c.damping.push(a);
                 c.slip.push(if sum_f > 0.0 { sum_fg / sum_f } else { 0.0 });
             }

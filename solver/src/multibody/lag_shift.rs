@@ -178,6 +178,7 @@ mod tests {
             torque: vec![],
             force: vec![],
             wrench: vec![],
+            tangential: vec![],
             friction: vec![],
             cpu_s_per_position: 0.0,
             impact: None,

@@ -4,9 +4,11 @@
 //! `load_run_torque.svg` and `load_run_force.svg` (the seeds' figures of
 //! speeds, wheel torque and meshing force), and summarises the steady window over whole
 //! mesh cycles: mean wheel speed against the kinematic ratio, mean wheel
-//! mesh torque against the load (torque balance), tangential force at the
-//! outer pitch circle against 2T/d, meshing force, fluctuation amplitudes,
-//! TE, and the cost per step.
+//! mesh torque against the load (torque balance), the tangential
+//! component of the contact forces at their contact points against 2T/d
+//! at the outer pitch circle, meshing force, fluctuation amplitudes (from
+//! every step and, where the scene sets an output interval, from samples
+//! at it), TE, and the cost per step.
 
 use crate::ltca::mean_ptp;
 use crate::multibody::model::{Drive, Model, Ramp, State};
@@ -14,14 +16,15 @@ use crate::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::output::write_atomic;
-use formats::summaries::LoadRunSummary;
+use formats::summaries::{LoadRunSummary, SampledLoadRun};
 use geometry::design::PairData;
 use geometry::scene::LoadRun;
 use std::fmt::Write as _;
 use std::path::Path;
 
 /// Samples of a run: time, pinion and wheel speed (rad/s), TE (rad),
-/// wheel mesh torque (N·m, all contact forces), mesh force magnitude (N).
+/// wheel mesh torque (N·m, all contact forces), mesh force magnitude (N),
+/// tangential component of the contact forces on the wheel (N).
 #[derive(Debug, Default, Clone)]
 pub struct LoadTrace {
     pub t: Vec<f64>,
@@ -32,6 +35,7 @@ pub struct LoadTrace {
     pub wheel_torque: Vec<f64>,
     pub pinion_torque: Vec<f64>,
     pub force: Vec<f64>,
+    pub tangential: Vec<f64>,
 }
 
 /// The drive of a load run.
@@ -70,6 +74,7 @@ pub fn simulate(
         tr.pinion_torque.push(-c.force[0]);
         tr.force
             .push((f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt());
+        tr.tangential.push(m.wheel_tangential_force(s.q)?);
         Ok(())
     })?;
     Ok((tr, steps))
@@ -174,6 +179,45 @@ fn fluctuation(t: &[f64], y: &[f64], reference: f64, a: f64, b: f64) -> (f64, f6
     )
 }
 
+/// The steady window's statistics from samples every `dt` seconds (at
+/// t = k dt inside the window, each linearly interpolated between the
+/// integrator's steps): wheel speed against `kinematic` (rad/s), and the
+/// tangential force against its sampled mean.
+pub fn sampled(tr: &LoadTrace, dt: f64, kinematic: f64, w: Window) -> SampledLoadRun {
+    let first = (w.from / dt).ceil() as usize;
+    let times: Vec<f64> = (first..)
+        .map(|k| k as f64 * dt)
+        .take_while(|&t| t <= w.to)
+        .collect();
+    let at = |y: &[f64]| -> Vec<f64> {
+        times
+            .iter()
+            .map(|&t| crate::multibody::model::interpolate(&tr.t, y, t))
+            .collect()
+    };
+    let (w2, ft) = (at(&tr.w2), at(&tr.tangential));
+    let n = times.len().max(1) as f64;
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / n;
+    let spread = |v: &[f64], c: f64| {
+        let d: Vec<f64> = v.iter().map(|x| (x - c).abs()).collect();
+        (mean(&d), d.iter().copied().fold(0.0, f64::max))
+    };
+    let ft_mean = mean(&ft);
+    let (w_fl, w_max) = spread(&w2, kinematic);
+    let (f_fl, f_max) = spread(&ft, ft_mean);
+    SampledLoadRun {
+        interval_s: dt,
+        samples: times.len(),
+        wheel_speed_mean_deg_s: mean(&w2).to_degrees(),
+        wheel_speed_fluctuation_mean_deg_s: w_fl.to_degrees(),
+        wheel_speed_fluctuation_max_deg_s: w_max.to_degrees(),
+        tangential_force_mean_n: ft_mean,
+        tangential_force_max_n: ft.iter().copied().fold(0.0, f64::max),
+        tangential_force_fluctuation_mean_n: f_fl,
+        tangential_force_fluctuation_max_n: f_max,
+    }
+}
+
 /// Runs the load run with model `m` (drive from [`drive`]) and writes its
 /// files into `odir`.
 #[allow(clippy::too_many_arguments)]
@@ -210,9 +254,10 @@ pub fn run(
     let whl = &pair.members[1];
     let r_outer = pair.outer_cone_distance() * whl.pitch_angle.sin();
     let r_mean = pair.mean_cone_distance * whl.pitch_angle.sin();
-    let ft: Vec<f64> = tr.wheel_torque.iter().map(|x| x / r_outer).collect();
-    let ft_mean = torque_mean / r_outer;
-    let (ft_fl_mean, ft_fl_max) = fluctuation(&tr.t, &ft, ft_mean, w.from, w.to);
+    let ft = &tr.tangential;
+    let ft_mean = time_mean(&tr.t, ft, w.from, w.to);
+    let (ft_fl_mean, ft_fl_max) = fluctuation(&tr.t, ft, ft_mean, w.from, w.to);
+    let theory = load / r_outer;
     let in_window = |v: &[f64]| -> Vec<f64> {
         tr.t.iter()
             .zip(v)
@@ -281,17 +326,22 @@ pub fn run(
         "torque (N·m)",
         &[
             series("wheel mesh torque", tr.wheel_torque.clone(), false),
-            series("applied load", applied, true),
+            series("applied load", applied.clone(), true),
         ],
     )?;
     te_curve(
         &odir.join("load_run_force.svg"),
-        &format!("{label}: meshing force and tangential force at the outer pitch circle"),
+        &format!("{label}: meshing force and its tangential component on the wheel"),
         "time (s)",
         "force (N)",
         &[
             series("meshing force", tr.force.clone(), false),
             series("tangential force", ft.clone(), false),
+            series(
+                "2T/d (applied load over the outer pitch radius)",
+                applied.iter().map(|x| x / r_outer).collect(),
+                true,
+            ),
         ],
     )?;
     eprintln!(
@@ -330,14 +380,29 @@ pub fn run(
         pinion_mesh_torque_mean_nm: pinion_mean,
         mesh_efficiency: efficiency,
         tangential_force_mean_n: ft_mean,
-        tangential_force_theory_n: load / r_outer,
+        tangential_force_max_n: in_window(ft).into_iter().fold(0.0, f64::max),
+        tangential_force_theory_n: theory,
         tangential_force_error: if load > 0.0 {
-            ft_mean * r_outer / load - 1.0
+            ft_mean / theory - 1.0
         } else {
             ft_mean
         },
+        tangential_force_error_of_mean: if ft_mean > 0.0 {
+            (ft_mean - theory) / ft_mean
+        } else {
+            0.0
+        },
         tangential_force_fluctuation_mean_n: ft_fl_mean,
         tangential_force_fluctuation_max_n: ft_fl_max,
+        contact_radius_mm: if ft_mean > 0.0 {
+            torque_mean / ft_mean * 1e3
+        } else {
+            0.0
+        },
+        outer_pitch_radius_mm: r_outer * 1e3,
+        sampled: run
+            .output_interval_s
+            .map(|dt| sampled(&tr, dt, kinematic, w)),
         mesh_force_mean_n: force_mean,
         mesh_force_max_n: force_max,
         mesh_force_theory_n: normal_theory,
@@ -379,5 +444,41 @@ mod tests {
         let t = [0.0, 0.1, 0.35, 0.4, 1.0];
         let y: Vec<f64> = t.iter().map(|x| 2.0 + 3.0 * x).collect();
         assert!((time_mean(&t, &y, 0.05, 0.9) - (2.0 + 3.0 * 0.475)).abs() < 1e-12);
+    }
+
+    /// A sine of amplitude A about the kinematic speed: sampled densely the
+    /// mean |deviation| is 2A/π and the largest A; sampled once per period
+    /// (here in phase with its zero) it shows no fluctuation at all, as a
+    /// simulation that writes results only that often would.
+    #[test]
+    fn sampling_a_sine_densely_gives_its_mean_deviation_and_once_per_period_hides_it() {
+        let (kin, amp, period) = (10.0, 0.5, 0.005);
+        let t: Vec<f64> = (0..=100_000).map(|k| k as f64 * 1e-5).collect();
+        let w2: Vec<f64> = t
+            .iter()
+            .map(|x| kin + amp * (2.0 * std::f64::consts::PI * x / period).sin())
+            .collect();
+        let tr = LoadTrace {
+            tangential: w2.iter().map(|x| 1000.0 * x).collect(),
+            w2,
+            t,
+            ..LoadTrace::default()
+        };
+        let w = Window {
+            from: 0.2,
+            to: 1.0,
+            cycles: 160,
+        };
+        let dense = sampled(&tr, 1.25e-4, kin, w);
+        assert_eq!(dense.samples, 6401);
+        let mean_dev = dense.wheel_speed_fluctuation_mean_deg_s.to_radians();
+        // 40 samples a period: (1/20) cot(π/40) A = 0.6353 A against 2A/π.
+        assert!((mean_dev - 2.0 * amp / std::f64::consts::PI).abs() < 3e-3 * amp);
+        assert!((dense.wheel_speed_fluctuation_max_deg_s.to_radians() - amp).abs() < 1e-3 * amp);
+        assert!((dense.tangential_force_mean_n - 1000.0 * kin).abs() < 1e-6 * kin * 1000.0);
+        let aliased = sampled(&tr, period, kin, w);
+        assert_eq!(aliased.samples, 161);
+        assert!(aliased.wheel_speed_fluctuation_max_deg_s.to_radians() < 1e-9);
+        assert!(aliased.tangential_force_fluctuation_max_n < 1e-6);
     }
 }

@@ -79,6 +79,10 @@ pub struct MeshTable {
     /// Friction moments per unit friction coefficient (Φ₁, Φ₂) = (Σ F ℓ₁,
     /// Σ F ℓ₂), N·m (see [`crate::element::slices::friction_levers`]), same layout.
     pub friction: Vec<[f64; 2]>,
+    /// Tangential (circumferential) component of the contact force on the
+    /// wheel, Σ F λ₂ / ρ₂ (N, [`crate::element::slices::Slice::wheel_tangential`]),
+    /// same layout.
+    pub tangential: Vec<f64>,
     /// Geometry + assembly + lag-controlled solves, s per position (one core).
     pub cpu_s_per_position: f64,
     /// The impact law's own fields when the table holds that law instead of
@@ -344,6 +348,7 @@ pub(crate) struct Column {
     pub(crate) force: Vec<[f64; 3]>,
     pub(crate) wrench: Vec<[f64; 6]>,
     pub(crate) friction: Vec<[f64; 2]>,
+    pub(crate) tangential: Vec<f64>,
     pub(crate) cpu: f64,
 }
 
@@ -369,6 +374,10 @@ impl MeshTable {
             friction: cols
                 .iter()
                 .flat_map(|c| c.friction.iter().copied())
+                .collect(),
+            tangential: cols
+                .iter()
+                .flat_map(|c| c.tangential.iter().copied())
                 .collect(),
             cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / cols.len() as f64,
             impact,
@@ -429,6 +438,7 @@ impl MeshTable {
                 let mut force = Vec::with_capacity(spec.lag_nodes);
                 let mut wrench = Vec::with_capacity(spec.lag_nodes);
                 let mut friction = Vec::with_capacity(spec.lag_nodes);
+                let mut tangential = Vec::with_capacity(spec.lag_nodes);
                 let mut warm: Option<Vec<bool>> = None;
                 for &lag in &lags {
                     let s = p.solve_at_lag(lag, warm.as_deref())?;
@@ -466,6 +476,13 @@ impl MeshTable {
                             .map(|(sl, f)| f * sl.friction_lever[i])
                             .sum::<f64>()
                     }));
+                    tangential.push(
+                        g.slices
+                            .iter()
+                            .zip(&s.force)
+                            .map(|(sl, &f)| sl.wheel_tangential(f))
+                            .sum::<f64>(),
+                    );
                     if s.active.iter().any(|&x| x) {
                         warm = Some(s.active);
                     }
@@ -476,6 +493,7 @@ impl MeshTable {
                     force,
                     wrench,
                     friction,
+                    tangential,
                     cpu: cpu0 + t.elapsed().as_secs_f64(),
                 })
             })
@@ -640,6 +658,18 @@ impl MeshTable {
             *o = [f, fq, ft];
         }
         Ok(out)
+    }
+
+    /// The tangential component of the contact force on the wheel
+    /// ([`MeshTable::tangential`]) at (q₁, q₂), N; zero where the flanks
+    /// are open (interpolated as the torque is).
+    pub fn tangential_at(&self, q1: f64, q2: f64) -> Result<f64, SolverError> {
+        let theta = self.ratio * q1 - q2;
+        if theta <= self.theta_lo() {
+            return Ok(0.0);
+        }
+        let nu = self.spec.lag_nodes;
+        Ok(self.field(|p, m| self.tangential[p * nu + m], q1, theta)?[0].max(0.0))
     }
 
     /// The impact law's damping levers and slip speed at (q₁, q₂); None

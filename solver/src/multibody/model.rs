@@ -309,6 +309,22 @@ impl Model<'_> {
         Ok((ms, Some(cs)))
     }
 
+    /// Tangential (circumferential) component of the contact forces on the
+    /// wheel at q, N ([`MeshTable::tangential_at`]): the drive flanks' in
+    /// the direction of their wheel torque, the coast flanks' (which push
+    /// the wheel the other way) subtracted.
+    pub fn wheel_tangential_force(&self, q: [f64; 2]) -> Result<f64, SolverError> {
+        let drive = self.table.tangential_at(q[0], q[1])?;
+        let coast = match self.coast {
+            Some(c) => {
+                let [q1, q2] = c.coordinates(q);
+                c.table.tangential_at(q1, q2)?
+            }
+            None => 0.0,
+        };
+        Ok(drive - coast)
+    }
+
     /// Potential of both flank pairs at q, J.
     pub fn potential(&self, q: [f64; 2]) -> Result<f64, SolverError> {
         Ok(self.mesh(q)?.0.potential)

@@ -86,11 +86,14 @@ pub struct SeedContactLaw {
     /// speed (%, as the seed prints it: unsigned).
     pub wheel_speed_deg_s: Option<Quoted>,
     pub wheel_speed_error_percent: Option<Quoted>,
-    /// Mean tangential force (N), the seed's 2T/d (N) and the relative
-    /// difference (%).
+    /// Mean and largest tangential force (N), the seed's 2T/d (N) and the
+    /// relative difference (%, on the base of the simulated mean).
     pub tangential_force_n: Option<Quoted>,
+    pub tangential_force_max_n: Option<Quoted>,
     pub tangential_force_theory_n: Option<Quoted>,
     pub tangential_force_error_percent: Option<Quoted>,
+    /// The seed's output interval, s (its simulation steps over its time).
+    pub output_interval_s: Option<Quoted>,
     /// Mean and largest |ω₂ − kinematic|, °/s.
     pub speed_fluctuation_mean_deg_s: Option<Quoted>,
     pub speed_fluctuation_max_deg_s: Option<Quoted>,
@@ -264,6 +267,8 @@ mod tests {
             ("wheel_speed_deg_s", &s2.wheel_speed_deg_s),
             ("wheel_speed_error_percent", &s2.wheel_speed_error_percent),
             ("tangential_force_n", &s2.tangential_force_n),
+            ("tangential_force_max_n", &s2.tangential_force_max_n),
+            ("output_interval_s", &s2.output_interval_s),
             ("tangential_force_theory_n", &s2.tangential_force_theory_n),
             (
                 "tangential_force_error_percent",

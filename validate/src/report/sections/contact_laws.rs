@@ -12,7 +12,7 @@
 //! copied into the report directory.
 
 use crate::report::figures::{copied, Figure};
-use crate::report::published::{seed_contact_laws, Quoted, SeedContactLaw};
+use crate::report::published::{seed_contact_laws, SeedContactLaw};
 use formats::summaries::{DynamicSummary, ImpactLawSummary, LoadRunSummary};
 use solver::multibody::impact_law::{
     seed_001_stiffness, seed_002_back_cone_stiffness, SeedStiffness,
@@ -165,160 +165,6 @@ pub fn seed_runs(
     }
 }
 
-/// Signed relative difference in percent (in powers of ten below
-/// 0.001 %, so that a small difference does not print as zero).
-fn pct(x: f64) -> String {
-    let v = 100.0 * x;
-    if v != 0.0 && v.abs() < 1e-3 {
-        format!("{v:+.1e} %")
-    } else {
-        format!("{v:+.3} %")
-    }
-}
-
-/// |x| in percent for differences near zero.
-fn small_pct(x: f64) -> String {
-    format!("{:.1e} %", 100.0 * x.abs())
-}
-
-/// A seed's value as it prints it (its own digits), and where.
-fn quoted(v: Option<&Quoted>, unit: &str) -> String {
-    v.map_or_else(
-        || "not given".to_string(),
-        |p| format!("{}{unit} ({})", p.value, p.source),
-    )
-}
-
-fn pair(a: Option<&Quoted>, b: Option<&Quoted>) -> String {
-    match (a, b) {
-        (Some(a), Some(b)) if a.source == b.source => {
-            format!("{} / {} ({})", a.value, b.value, a.source)
-        }
-        (None, None) => "not given".into(),
-        (a, b) => format!("{} / {}", quoted(a, ""), quoted(b, "")),
-    }
-}
-
-/// The load-run table of one seed.
-fn load_run_table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRunSummary) {
-    let _ = writeln!(
-        s,
-        "| quantity | impact law | FE-analytical element | seed {} |",
-        p.id
-    );
-    let _ = writeln!(s, "|---|---|---|---|");
-    let mut row = |q: &str, f: &dyn Fn(&LoadRunSummary) -> String, seed: String| {
-        let _ = writeln!(s, "| {q} | {} | {} | {seed} |", f(i), f(e));
-    };
-    row(
-        "steady window, s (mesh cycles)",
-        &|l| {
-            format!(
-                "{:.3} – {:.3} ({})",
-                l.window_s[0], l.window_s[1], l.window_mesh_cycles
-            )
-        },
-        String::new(),
-    );
-    row(
-        &format!(
-            "mean wheel speed, °/s (kinematic {:.3})",
-            i.wheel_speed_kinematic_deg_s
-        ),
-        &|l| format!("{:.3}", l.wheel_speed_mean_deg_s),
-        quoted(p.wheel_speed_deg_s.as_ref(), ""),
-    );
-    row(
-        "mean wheel speed against kinematic",
-        &|l| pct(l.wheel_speed_error),
-        quoted(p.wheel_speed_error_percent.as_ref(), " %"),
-    );
-    row(
-        &format!(
-            "mean tangential force, N (2T/d = {:.1})",
-            i.tangential_force_theory_n
-        ),
-        &|l| format!("{:.1}", l.tangential_force_mean_n),
-        match (
-            p.tangential_force_n.as_ref(),
-            p.tangential_force_theory_n.as_ref(),
-        ) {
-            (Some(f), Some(t)) if f.source == t.source => {
-                format!("{} against 2T/d = {} ({})", f.value, t.value, f.source)
-            }
-            (f, _) => quoted(f, ""),
-        },
-    );
-    row(
-        "mean tangential force against 2T/d",
-        &|l| pct(l.tangential_force_error),
-        quoted(p.tangential_force_error_percent.as_ref(), " %"),
-    );
-    row(
-        "wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s",
-        &|l| {
-            format!(
-                "{:.2} / {:.2}",
-                l.wheel_speed_fluctuation_mean_deg_s, l.wheel_speed_fluctuation_max_deg_s
-            )
-        },
-        pair(
-            p.speed_fluctuation_mean_deg_s.as_ref(),
-            p.speed_fluctuation_max_deg_s.as_ref(),
-        ),
-    );
-    row(
-        "tangential force fluctuation \\|F_t − mean\\| mean / max, N",
-        &|l| {
-            format!(
-                "{:.1} / {:.1}",
-                l.tangential_force_fluctuation_mean_n, l.tangential_force_fluctuation_max_n
-            )
-        },
-        pair(
-            p.force_fluctuation_mean_n.as_ref(),
-            p.force_fluctuation_max_n.as_ref(),
-        ),
-    );
-    row(
-        &format!(
-            "meshing force mean / max, N (theory T / (r_m cos α_n cos β_m) = {:.0})",
-            i.mesh_force_theory_n
-        ),
-        &|l| format!("{:.0} / {:.0}", l.mesh_force_mean_n, l.mesh_force_max_n),
-        p.mesh_force_statement
-            .as_deref()
-            .unwrap_or("not given")
-            .to_string(),
-    );
-    row(
-        "meshing force mean against theory",
-        &|l| pct(l.mesh_force_mean_n / l.mesh_force_theory_n - 1.0),
-        String::new(),
-    );
-    row(
-        "TE mean / peak-to-peak, µrad",
-        &|l| format!("{:.1} / {:.1}", l.te_mean_urad, l.te_ptp_urad),
-        "not given".into(),
-    );
-    row(
-        "mesh efficiency mean(T₂ω₂) / mean(T₁ω₁)",
-        &|l| format!("{:.4}", l.mesh_efficiency),
-        "not given".into(),
-    );
-    row(
-        "steps (rejected)",
-        &|l| format!("{} ({})", l.steps, l.rejected_steps),
-        String::new(),
-    );
-    row(
-        "CPU per step, µs (whole run, s)",
-        &|l| format!("{:.1} ({:.1})", l.cpu_s_per_step * 1e6, l.cpu_s),
-        String::new(),
-    );
-    s.push('\n');
-}
-
 /// The impact law's parameters as used, beside the seed's printed values,
 /// and the Hertz K recomputed from the pair's pitch radii.
 fn parameter_table(
@@ -444,21 +290,7 @@ fn differences(s: &mut String, p: &SeedContactLaw, i: &LawRun, e: &LawRun, mesh:
         format!("coarse {} × {}", m[0], m[1])
     });
     let _ = writeln!(s, "Where the differences come from:\n");
-    let _ = writeln!(
-        s,
-        "- Means: both laws hold the mean wheel speed within {} and {} of kinematic and the mean tangential force within {} and {} of 2T/d over whole mesh cycles of the steady window: in a steady run the time mean has to balance the load, whatever the contact law.{}",
-        small_pct(li.wheel_speed_error),
-        small_pct(le.wheel_speed_error),
-        small_pct(li.tangential_force_error),
-        small_pct(le.tangential_force_error),
-        match &p.tangential_force_error_percent {
-            Some(t) => format!(
-                " The seed's {} % ({}) therefore measures its averaging (window, start-up) or its solver, not the contact law.",
-                t.value, t.source
-            ),
-            None => String::new(),
-        }
-    );
+    super::contact_laws_load_run::tangential_paragraph(s, p, li, le);
     let _ = writeln!(
         s,
         "- The element runs use the FE-analytical contact on the {mesh} reduced meshes (profile × face per flank) of the seed pairs: their TE mean ({:.0} µrad against {:.0} µrad with the impact law) holds the tooth and body compliance of these coarse meshes, which the impact law does not have, and their force and speed fluctuations follow the mesh stiffness variation that these meshes resolve.",
@@ -550,7 +382,7 @@ pub fn section(runs: &[(&SeedContactLaw, SeedRuns)], reports: &Path) -> ContactL
                     "Pinion at {:.1} rpm (ramp {} s), wheel load {} N·m (rise {} s), {} s simulated.\n",
                     li.pinion_rpm, li.pinion_ramp_s, li.wheel_torque_nm, li.wheel_torque_rise_s, li.sim_time_s
                 );
-                load_run_table(&mut s, p, li, le);
+                super::contact_laws_load_run::table(&mut s, p, li, le);
                 let hertz = seed_hertz(p);
                 if let Some(law) = &impact.run.impact_law {
                     parameter_table(&mut s, p, law, element.run.friction_coefficient, &hertz);

@@ -4,6 +4,7 @@
 
 pub mod compliant_bearings;
 pub mod contact_laws;
+pub mod contact_laws_load_run;
 pub mod lightweight_revolution;
 pub mod loaded_contact;
 pub mod lumped;
