@@ -126,7 +126,12 @@ fn load_run_output_interval_outside_step_and_window_is_rejected() {
     let run = "[multibody.load_run]\npinion_rpm = 150.0\npinion_ramp_s = 0.0\nwheel_torque_nm = 100.0\nwheel_torque_rise_s = 0.1\nmax_step_s = 1e-5\ntime_s = 0.4\nsteady_from_s = 0.2\n";
     let s = scene_with(&format!("{run}output_interval_s = 0.002")).unwrap();
     assert_eq!(
-        s.scene.multibody.load_run.as_ref().unwrap().output_interval_s,
+        s.scene
+            .multibody
+            .load_run
+            .as_ref()
+            .unwrap()
+            .output_interval_s,
         Some(0.002)
     );
     for bad in ["1e-6", "0.15"] {

@@ -53,7 +53,7 @@ pub struct ReferenceArgs {
     /// Output directory.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// Mesh level of both bodies: reduced or reference.
+    /// Mesh level of both bodies: reduced, medium or reference.
     #[arg(long, default_value = "reduced")]
     pub level: String,
     /// Penalty ε = factor · E / (local face size).

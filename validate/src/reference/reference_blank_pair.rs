@@ -209,7 +209,10 @@ impl Run<'_> {
         let partial = opt.compare_cache || opt.shard.is_some();
         if let (false, Ok(text)) = (partial, std::fs::read_to_string(&summary_path)) {
             if let Ok(s) = serde_json::from_str::<BlankSummary>(&text) {
-                if s.input_hash == hash {
+                // A summary from before the check-penalty statistics is
+                // rebuilt from the position cache (nothing is solved).
+                let complete = s.loads.iter().all(|l| l.te_check_mean_urad.is_some());
+                if s.input_hash == hash && complete {
                     eprintln!(
                         "reference {name}: inputs unchanged, reusing {}",
                         summary_path.display()
@@ -306,7 +309,14 @@ impl Run<'_> {
             sweep_s: swept.sweep_s,
             total_cpu_s: cpu + factor_s.iter().sum::<f64>(),
             cpu_s_per_position: cpu / n,
-            loads: load_summaries(res, &sc.pinion_torque_nm),
+            loads: load_summaries(
+                res,
+                &sc.pinion_torque_nm,
+                [
+                    opt.settings.penalty_factor,
+                    opt.settings.penalty_factor_check,
+                ],
+            ),
             unloaded: unloaded_check(res, &utca.te),
         };
         write_json(&sdir.join("summary.json"), &summary)?;

@@ -91,8 +91,15 @@ pub(crate) fn report_factor(name: &str, m: Option<&Member>) {
     }
 }
 
-pub(crate) fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummary> {
+/// Per-torque statistics of the positions `res`, solved at the penalty
+/// factors `penalty` = [p, p_c] (the TE at p and at the check factor p_c).
+pub(crate) fn load_summaries(
+    res: &[PositionResult],
+    torques: &[f64],
+    penalty: [f64; 2],
+) -> Vec<LoadSummary> {
     let n = res.len().max(1) as f64;
+    let [p, pc] = penalty;
     torques
         .iter()
         .enumerate()
@@ -103,12 +110,26 @@ pub(crate) fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<Loa
                 .iter()
                 .map(|r| (r.loads[k].te - r.loads[k].te_check).abs())
                 .fold(0.0, f64::max);
+            let check: Vec<f64> = res.iter().map(|r| r.loads[k].te_check).collect();
+            let (check_mean, check_ptp) = mean_ptp(&check);
+            let rigid = (p != pc).then(|| {
+                mean_ptp(
+                    &te.iter()
+                        .zip(&check)
+                        .map(|(a, b)| rigid_limit(*a, *b, p, pc))
+                        .collect::<Vec<f64>>(),
+                )
+            });
             LoadSummary {
                 torque_nm: t,
                 te_mean_urad: mean * 1e6,
                 te_ptp_urad: ptp * 1e6,
                 penalty_difference_pct: penalty_max / mean.abs() * 100.0,
                 penalty_difference_max_urad: penalty_max * 1e6,
+                te_check_mean_urad: Some(check_mean * 1e6),
+                te_check_ptp_urad: Some(check_ptp * 1e6),
+                te_rigid_mean_urad: rigid.map(|r| r.0 * 1e6),
+                te_rigid_ptp_urad: rigid.map(|r| r.1 * 1e6),
                 max_pressure_mpa: res
                     .iter()
                     .map(|r| r.loads[k].max_pressure_pa)
@@ -132,6 +153,13 @@ pub(crate) fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<Loa
             }
         })
         .collect()
+}
+
+/// The TE extrapolated to an infinite penalty from the TEs `te` at
+/// penalty factor `p` and `te_check` at `p_check` (p ≠ p_check), for
+/// TE(p) = TE∞ + c/p: TE∞ = (p TE(p) − p_c TE(p_c)) / (p − p_c).
+pub fn rigid_limit(te: f64, te_check: f64, p: f64, p_check: f64) -> f64 {
+    (p * te - p_check * te_check) / (p - p_check)
 }
 
 pub(crate) fn write_te_csv(
@@ -170,4 +198,19 @@ pub(crate) fn write_te_csv(
     }
     write_atomic(path, s.as_bytes())?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rigid_limit;
+
+    /// Springs in series: TE(p) = TE∞ + c/p at two factors gives TE∞
+    /// back exactly; equal TEs (no penalty share) give themselves.
+    #[test]
+    fn rigid_limit_of_a_series_penalty_spring_is_its_intercept() {
+        let te = |p: f64| 350e-6 + 0.8e-3 / p;
+        let inf = rigid_limit(te(100.0), te(200.0), 100.0, 200.0);
+        assert!((inf - 350e-6).abs() < 1e-15, "{inf}");
+        assert_eq!(rigid_limit(2e-4, 2e-4, 100.0, 200.0), 2e-4);
+    }
 }

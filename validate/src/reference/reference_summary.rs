@@ -74,6 +74,19 @@ pub struct LoadSummary {
     pub penalty_difference_pct: f64,
     /// The same difference, µrad.
     pub penalty_difference_max_urad: f64,
+    /// Mean and peak-to-peak TE at the check penalty factor, µrad, and of
+    /// the TE extrapolated to the rigid limit per position: with a fixed
+    /// active set the penalty springs act in series with the bodies, TE(p)
+    /// = TE∞ + c/p, so TE∞ = (p TE(p) − p_c TE(p_c)) / (p − p_c). None in
+    /// summaries written before they were recorded.
+    #[serde(default)]
+    pub te_check_mean_urad: Option<f64>,
+    #[serde(default)]
+    pub te_check_ptp_urad: Option<f64>,
+    #[serde(default)]
+    pub te_rigid_mean_urad: Option<f64>,
+    #[serde(default)]
+    pub te_rigid_ptp_urad: Option<f64>,
     pub max_pressure_mpa: f64,
     /// Largest |Σ forces × levers − torque| / torque over the positions.
     pub torque_balance_max: f64,

@@ -19,6 +19,9 @@ pub struct ReportFigures {
     pub tradeoff: Option<Figure>,
     /// The flank stage's plots: unloaded TE, path of contact, ease-off.
     pub unloaded: Vec<Figure>,
+    /// The reference's mesh levels and penalty against the reduced model's
+    /// differences (no figures).
+    pub reference_uncertainty: crate::report::sections::reference_uncertainty::ReferenceUncertainty,
     /// The "Contact laws" section with its load-run charts (seeds 001/002).
     pub contact_laws: Option<crate::report::sections::contact_laws::ContactLaws>,
     /// The lumped model's section with its charts.

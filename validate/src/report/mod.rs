@@ -131,6 +131,7 @@ pub fn markdown(
         );
         figure_lines(&mut s, &figs.loaded_te, true);
     }
+    s.push_str(&figs.reference_uncertainty.markdown);
     if let Some(p) = &parts {
         s.push_str(&p.discussion);
     }

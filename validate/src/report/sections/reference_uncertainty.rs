@@ -1,0 +1,404 @@
+//! The report's "The reference's own uncertainty" section: the reference FE
+//! sweeps of every mesh level that ran (`reference/`, `reference_medium/`,
+//! `reference_reference/` under `<out>/<scene>/`), their mean and
+//! peak-to-peak TE per blank pair and load, how far the finest level is
+//! from its mesh limit (Richardson over three levels where the differences
+//! are monotone, else the difference of the two finest levels) and from
+//! its rigid-contact limit (the two penalty factors), and the reduced
+//! model's difference to the finest level beside that uncertainty.
+//!
+//! A verdict in the section is a function of the numbers it judges
+//! ([`judge`], [`pressure_trend`]), each with tests of its outcomes.
+
+use crate::reference::reference_stage::{reference_dir, BlankSummary};
+use crate::report::comparison_row::Row;
+use crate::studies::convergence::richardson;
+use geometry::scene::{FlankElements, Scene};
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The accuracy asked of the reduced model's peak-to-peak TE against the
+/// reference, %.
+pub const PTP_TARGET_PCT: f64 = 3.0;
+/// The accuracy asked of the reduced model's mean TE, %.
+pub const MEAN_TARGET_PCT: f64 = 1.0;
+
+/// One mesh level's sweep at one load.
+#[derive(Debug, Clone, Serialize)]
+pub struct LevelValue {
+    pub level: String,
+    /// Flank elements (profile × face) of the level.
+    pub elements: [u32; 2],
+    /// Relative element size 1/√(profile · face).
+    pub h: f64,
+    pub mean_urad: f64,
+    pub ptp_urad: f64,
+    /// TE extrapolated to the rigid contact (infinite penalty), µrad.
+    pub rigid_mean_urad: Option<f64>,
+    pub rigid_ptp_urad: Option<f64>,
+    pub max_pressure_mpa: f64,
+    pub positions: usize,
+}
+
+/// How far the finest level's value is from the mesh limit.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Estimate {
+    /// Three levels converging monotonically: observed order and limit.
+    Richardson { order: f64, limit: f64 },
+    /// Not monotone, or two levels: the two finest levels' difference is
+    /// the uncertainty.
+    Spread,
+}
+
+/// The finest level's uncertainty of one quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Uncertainty {
+    pub estimate: Estimate,
+    /// |finest − limit| (Richardson) or |finest − next finest| (spread),
+    /// relative to the finest value, %.
+    pub pct: f64,
+}
+
+/// The uncertainty of the finest of the values `f` at relative element
+/// sizes `h` (coarse to fine); None with fewer than two levels.
+pub fn uncertainty(h: &[f64], f: &[f64]) -> Option<Uncertainty> {
+    let n = f.len();
+    if n < 2 || h.len() != n {
+        return None;
+    }
+    let fine = f[n - 1];
+    let three = (n >= 3)
+        .then(|| {
+            richardson(
+                [h[n - 3], h[n - 2], h[n - 1]],
+                [f[n - 3], f[n - 2], f[n - 1]],
+            )
+        })
+        .flatten();
+    Some(match three {
+        Some((order, limit)) => Uncertainty {
+            estimate: Estimate::Richardson { order, limit },
+            pct: ((fine - limit) / fine).abs() * 100.0,
+        },
+        None => Uncertainty {
+            estimate: Estimate::Spread,
+            pct: ((fine - f[n - 2]) / fine).abs() * 100.0,
+        },
+    })
+}
+
+/// What the reduced model's difference `diff_pct` to the finest reference
+/// amounts to, with the target `target_pct` and the reference's own
+/// uncertainty `reference_pct` (%).
+pub fn judge(diff_pct: f64, target_pct: f64, reference_pct: Option<f64>) -> &'static str {
+    if diff_pct.abs() <= target_pct {
+        "within the target"
+    } else if reference_pct.is_some_and(|u| diff_pct.abs() <= u) {
+        "within the reference's uncertainty"
+    } else {
+        "outside both"
+    }
+}
+
+/// How the peak pressure changes over the levels, coarse to fine.
+pub fn pressure_trend(p: &[f64]) -> &'static str {
+    let steps: Vec<f64> = p.windows(2).map(|w| w[1] - w[0]).collect();
+    if steps.is_empty() {
+        "one level only"
+    } else if steps.iter().all(|d| *d > 0.0) {
+        "grows with every refinement"
+    } else if steps.iter().all(|d| *d < 0.0) {
+        "falls with every refinement"
+    } else {
+        "changes direction between refinements"
+    }
+}
+
+/// One blank pair and load over the levels.
+#[derive(Debug, Clone, Serialize)]
+pub struct LoadRow {
+    pub blank: String,
+    pub torque_nm: f64,
+    /// Coarse to fine.
+    pub levels: Vec<LevelValue>,
+    pub mean: Option<Uncertainty>,
+    pub ptp: Option<Uncertainty>,
+    /// (finest − its rigid limit) / finest, %.
+    pub penalty_mean_pct: Option<f64>,
+    pub penalty_ptp_pct: Option<f64>,
+    /// The reduced model against the finest level, % (from the loaded-TE
+    /// comparison), when it judges against that level.
+    pub reduced_mean_difference_pct: Option<f64>,
+    pub reduced_ptp_difference_pct: Option<f64>,
+}
+
+/// The section's numbers and markdown.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct ReferenceUncertainty {
+    pub rows: Vec<LoadRow>,
+    #[serde(skip)]
+    pub markdown: String,
+}
+
+fn elements(scene: &Scene, level: &str) -> Option<FlankElements> {
+    match level {
+        "reduced" => Some(scene.mesh.reduced_order),
+        "medium" => Some(scene.mesh.medium()),
+        "reference" => Some(scene.mesh.reference),
+        _ => None,
+    }
+}
+
+/// Reads every level's blank summaries of `scene` under `out` and builds
+/// the section; `rows` are the loaded-TE comparison's rows.
+pub fn build(out: &Path, scene: &Scene, rows: &[Row]) -> ReferenceUncertainty {
+    let mut per: Vec<(String, String, BlankSummary)> = Vec::new();
+    for level in ["reduced", "medium", "reference"] {
+        let dir = reference_dir(out, &scene.name, level);
+        let Ok(d) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        let mut dirs: Vec<_> = d
+            .filter_map(|e| e.ok())
+            .map(|e| e.path())
+            .filter(|p| p.join("summary.json").exists())
+            .collect();
+        dirs.sort();
+        for p in dirs {
+            let Some(s) = std::fs::read_to_string(p.join("summary.json"))
+                .ok()
+                .and_then(|t| serde_json::from_str::<BlankSummary>(&t).ok())
+            else {
+                continue;
+            };
+            let blank = format!("{}_{}", s.pinion_blank, s.wheel_blank);
+            per.push((level.to_string(), blank, s));
+        }
+    }
+    let mut blanks: Vec<String> = per.iter().map(|p| p.1.clone()).collect();
+    blanks.sort_by_key(|b| (!b.ends_with("_standard"), b.clone()));
+    blanks.dedup();
+    let mut out_rows = Vec::new();
+    for blank in &blanks {
+        let of_blank: Vec<&(String, String, BlankSummary)> =
+            per.iter().filter(|p| &p.1 == blank).collect();
+        let Some(first) = of_blank.first() else {
+            continue;
+        };
+        for load in &first.2.loads {
+            let t = load.torque_nm;
+            let mut levels: Vec<LevelValue> = of_blank
+                .iter()
+                .filter_map(|(level, _, s)| {
+                    let e = elements(scene, level)?;
+                    let l = s.loads.iter().find(|l| (l.torque_nm - t).abs() < 1e-9)?;
+                    Some(LevelValue {
+                        level: level.clone(),
+                        elements: [e.profile, e.face],
+                        h: 1.0 / (e.profile as f64 * e.face as f64).sqrt(),
+                        mean_urad: l.te_mean_urad,
+                        ptp_urad: l.te_ptp_urad,
+                        rigid_mean_urad: l.te_rigid_mean_urad,
+                        rigid_ptp_urad: l.te_rigid_ptp_urad,
+                        max_pressure_mpa: l.max_pressure_mpa,
+                        positions: s.positions,
+                    })
+                })
+                .collect();
+            levels.sort_by(|a, b| b.h.total_cmp(&a.h));
+            let h: Vec<f64> = levels.iter().map(|l| l.h).collect();
+            let mean: Vec<f64> = levels.iter().map(|l| l.mean_urad).collect();
+            let ptp: Vec<f64> = levels.iter().map(|l| l.ptp_urad).collect();
+            let fine = levels.last();
+            let share = |v: f64, r: Option<f64>| r.map(|r| (v - r) / v * 100.0);
+            let reduced = rows.iter().find(|r| {
+                format!("{}_{}", r.pinion_blank, r.wheel_blank) == *blank
+                    && (r.torque_nm - t).abs() < 1e-9
+                    && fine.is_some_and(|f| f.level == r.reference_level)
+            });
+            out_rows.push(LoadRow {
+                blank: blank.clone(),
+                torque_nm: t,
+                mean: uncertainty(&h, &mean),
+                ptp: uncertainty(&h, &ptp),
+                penalty_mean_pct: fine.and_then(|f| share(f.mean_urad, f.rigid_mean_urad)),
+                penalty_ptp_pct: fine.and_then(|f| share(f.ptp_urad, f.rigid_ptp_urad)),
+                reduced_mean_difference_pct: reduced.map(|r| r.te_mean_difference_pct),
+                reduced_ptp_difference_pct: reduced.map(|r| r.te_ptp_difference_pct),
+                levels,
+            });
+        }
+    }
+    let markdown = markdown(&out_rows);
+    ReferenceUncertainty {
+        rows: out_rows,
+        markdown,
+    }
+}
+
+fn estimate_text(u: Option<Uncertainty>) -> String {
+    match u {
+        Some(Uncertainty {
+            estimate: Estimate::Richardson { order, limit },
+            pct,
+        }) => format!("{limit:.2} (order {order:.1}); {pct:.1} %"),
+        Some(Uncertainty {
+            estimate: Estimate::Spread,
+            pct,
+        }) => format!("not monotone; {pct:.1} % (two finest)"),
+        None => "one level".into(),
+    }
+}
+
+fn opt_pct(v: Option<f64>) -> String {
+    v.map_or("–".into(), |x| format!("{x:+.2} %"))
+}
+
+/// The section's markdown from its rows.
+pub fn markdown(rows: &[LoadRow]) -> String {
+    let mut s = String::new();
+    if rows.is_empty() {
+        return s;
+    }
+    let _ = writeln!(
+        s,
+        "### The reference's own uncertainty: mesh levels and penalty\n"
+    );
+    let _ = writeln!(
+        s,
+        "The reference FE sweep on every mesh level that ran, the same positions and loads. The finest level's uncertainty is its distance from the mesh limit: Richardson's extrapolation over three levels where the three values change monotonically (observed order and limit), else the difference of the two finest levels. The penalty's share is the finest level's distance from its rigid-contact limit (TE at the two penalty factors, TE(p) = TE∞ + c/p per position). The reduced model's difference to the finest level (the loaded-TE table's) stands beside them, judged against the {MEAN_TARGET_PCT} % (mean) and {PTP_TARGET_PCT} % (peak-to-peak) targets and the reference's uncertainty.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| blanks | N·m | levels (profile × face) | mean TE per level, µrad | mesh limit of the mean (order); uncertainty | ptp TE per level, µrad | mesh limit of the ptp (order); uncertainty | penalty share mean / ptp | reduced model mean / ptp against the finest | verdict mean / ptp |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        let join = |f: &dyn Fn(&LevelValue) -> String| {
+            r.levels.iter().map(f).collect::<Vec<_>>().join(" / ")
+        };
+        let verdict = match (r.reduced_mean_difference_pct, r.reduced_ptp_difference_pct) {
+            (Some(m), Some(p)) => format!(
+                "{} / {}",
+                judge(m, MEAN_TARGET_PCT, r.mean.map(|u| u.pct)),
+                judge(p, PTP_TARGET_PCT, r.ptp.map(|u| u.pct))
+            ),
+            _ => "–".into(),
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} / {} | {} |",
+            r.blank.replace('_', " / "),
+            r.torque_nm,
+            join(&|l| format!("{} × {}", l.elements[0], l.elements[1])),
+            join(&|l| format!("{:.2}", l.mean_urad)),
+            estimate_text(r.mean),
+            join(&|l| format!("{:.2}", l.ptp_urad)),
+            estimate_text(r.ptp),
+            opt_pct(r.penalty_mean_pct),
+            opt_pct(r.penalty_ptp_pct),
+            opt_pct(r.reduced_mean_difference_pct),
+            opt_pct(r.reduced_ptp_difference_pct),
+            verdict
+        );
+    }
+    s.push('\n');
+    // The peak pressure per level at the largest load of each blank pair.
+    let mut blanks: Vec<&str> = rows.iter().map(|r| r.blank.as_str()).collect();
+    blanks.dedup();
+    for b in blanks {
+        let Some(r) = rows
+            .iter()
+            .filter(|r| r.blank == b)
+            .max_by(|x, y| x.torque_nm.total_cmp(&y.torque_nm))
+        else {
+            continue;
+        };
+        if r.levels.len() < 2 {
+            continue;
+        }
+        let p: Vec<f64> = r.levels.iter().map(|l| l.max_pressure_mpa).collect();
+        let _ = writeln!(
+            s,
+            "Peak contact pressure of the reference, {} at {} N·m: {} MPa ({}): it {}. Where the peak sits on a flank edge (a corner of the contact) it is no converged number; the TE, an integral of the contact, is.\n",
+            b.replace('_', " / "),
+            r.torque_nm,
+            p.iter()
+                .map(|x| format!("{x:.0}"))
+                .collect::<Vec<_>>()
+                .join(" / "),
+            r.levels
+                .iter()
+                .map(|l| l.level.as_str())
+                .collect::<Vec<_>>()
+                .join(" / "),
+            pressure_trend(&p)
+        );
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn judge_names_target_reference_uncertainty_or_neither() {
+        assert_eq!(judge(-2.5, 3.0, Some(1.0)), "within the target");
+        assert_eq!(
+            judge(4.0, 3.0, Some(5.0)),
+            "within the reference's uncertainty"
+        );
+        assert_eq!(judge(6.9, 3.0, Some(5.0)), "outside both");
+        assert_eq!(judge(6.9, 3.0, None), "outside both");
+    }
+
+    #[test]
+    fn pressure_trend_reads_the_direction_of_every_refinement() {
+        assert_eq!(
+            pressure_trend(&[900.0, 1200.0, 1890.0]),
+            "grows with every refinement"
+        );
+        assert_eq!(
+            pressure_trend(&[1900.0, 1200.0]),
+            "falls with every refinement"
+        );
+        assert_eq!(
+            pressure_trend(&[900.0, 1300.0, 1200.0]),
+            "changes direction between refinements"
+        );
+        assert_eq!(pressure_trend(&[900.0]), "one level only");
+    }
+
+    /// f(h) = 10 + 4 h²: three levels give order 2 and the limit 10, the
+    /// finest level's uncertainty its distance from it.
+    #[test]
+    fn second_order_values_extrapolate_to_their_limit() {
+        let h = [0.2, 0.1, 0.05];
+        let f = h.map(|x| 10.0 + 4.0 * x * x);
+        let u = uncertainty(&h, &f).unwrap();
+        let Estimate::Richardson { order, limit } = u.estimate else {
+            panic!("{u:?}");
+        };
+        assert!(
+            (order - 2.0).abs() < 1e-6 && (limit - 10.0).abs() < 1e-9,
+            "{u:?}"
+        );
+        assert!((u.pct - 100.0 * 0.01 / 10.01).abs() < 1e-9, "{u:?}");
+    }
+
+    /// A value that rises then falls has no Richardson limit: the two
+    /// finest levels' difference is the uncertainty; so it is with two
+    /// levels; one level gives none.
+    #[test]
+    fn non_monotone_or_two_levels_give_the_spread_of_the_two_finest() {
+        let u = uncertainty(&[0.2, 0.1, 0.05], &[16.0, 17.0, 16.5]).unwrap();
+        assert_eq!(u.estimate, Estimate::Spread);
+        assert!((u.pct - 100.0 * 0.5 / 16.5).abs() < 1e-12);
+        let u = uncertainty(&[0.1, 0.05], &[17.0, 16.0]).unwrap();
+        assert_eq!(u.estimate, Estimate::Spread);
+        assert!((u.pct - 100.0 / 16.0).abs() < 1e-12);
+        assert!(uncertainty(&[0.1], &[17.0]).is_none());
+    }
+}
