@@ -198,7 +198,9 @@ pub struct LtcaSettings {
     /// Slices across the face width per tooth pair.
     pub slices: usize,
     /// Coulomb friction coefficient μ between the flanks, in the loaded TCA
-    /// and the multibody element (0: frictionless, as in the white paper).
+    /// and the multibody element (0: frictionless; our default: the white
+    /// paper's element has a Coulomb friction force but states no μ for its
+    /// validation).
     pub friction_coefficient: f64,
 }
 

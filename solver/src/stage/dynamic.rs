@@ -4,7 +4,9 @@
 //!   (imposed wheel speed, torque on the pinion) over the LTCA's rotation
 //!   range: time, pinion rotation, TE, mesh torques, bearing forces;
 //! - `runup.csv`, `runup_te.svg` (dynamic against quasi-static TE over the
-//!   pinion speed, the white paper's Figure 13) and `runup_spectrogram.svg`
+//!   pinion speed; the white paper's Figure 13 compares the two in the
+//!   angle domain, lightweight pair, first pinion revolution, which this
+//!   chart is not) and `runup_spectrogram.svg`
 //!   (the wheel bearing force with the mesh orders) for the blanks that run up;
 //! - `summary.json`: per torque TE mean and peak-to-peak, steps and CPU time.
 //!

@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 /// One blank × load row.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Default, Serialize)]
 pub struct Row {
     pub pinion_blank: String,
     pub wheel_blank: String,

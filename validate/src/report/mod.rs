@@ -15,6 +15,7 @@ pub mod gather;
 pub mod html;
 pub mod layout;
 pub mod published;
+pub mod published_comparison;
 pub mod results;
 pub mod run;
 pub mod sections;
@@ -132,6 +133,9 @@ pub fn markdown(
         figure_lines(&mut s, &figs.loaded_te, true);
     }
     s.push_str(&figs.reference_uncertainty.markdown);
+    if let Some(l) = loaded {
+        s.push_str(&published_comparison::paragraph(&l.rows));
+    }
     if let Some(p) = &parts {
         s.push_str(&p.discussion);
     }

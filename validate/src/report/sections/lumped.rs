@@ -264,7 +264,7 @@ fn differences_markdown(s: &mut String, r: &LumpedSummary) {
 - **Meshes.** The scene runs the coarse 6 × 10 flank-element meshes of `reference/scenes/seed004_lumped.toml`; the stiffness, loaded TE and impact velocity come from that reduced model, not a converged one.\n\
 - **Bearings.** Seed 004 publishes no bearing stiffness; the scene assumes {} with {:.0} % damping. The body accelerations depend on that choice: with it the linear model's natural frequencies are {} Hz against the mesh frequency {:.1} Hz.\n\
 - **Our design file.** Seed 004 gives no flank modification; `reference/seed004_23x86.toml` carries an assumed ease-off (profile and lengthwise crowning, a parabolic motion error). The localized contact it gives lowers the tangent stiffness at this load and shapes the loaded TE that drives the model.\n\
-- **Mean stiffness.** Seed 004's {seed_k:.1e} N/m is {k_ratio:.1} times our tangent mean; it is a \"typical value\" from its Table 1, whose other entries (mesh frequency 2π × 1000 rad/s, impact velocity 0.5 m/s) do not match its own case study either.\n\
+- **Mean stiffness.** Seed 004's {seed_k:.1e} N/m is {k_ratio:.1} times our tangent mean; it is a \"typical value\" from its Table 1, beside a mesh frequency of 2π × 1000 rad/s (its case study runs at about 2260 Hz) and an impact velocity of 0.5 m/s (its case study publishes no impact velocity to set it against).\n\
 - **Impact.** Seed 004's {seed_impact_n:.0} N is {:.1} times the static mesh force T₁/r₁ = {static_force:.0} N of this load; ours is seed 004's F_s formula with the impact velocity ({:.4} m/s) and entering pair's stiffness of our LTCA, {:.0} N.\n",
         bearings_text(&r.bearing_stiffness_n_per_m),
         100.0 * r.bearing_damping_ratio,

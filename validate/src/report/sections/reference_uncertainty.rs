@@ -44,7 +44,8 @@ pub struct LevelValue {
 /// How far the finest level's value is from the mesh limit.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum Estimate {
-    /// Three levels converging monotonically: observed order and limit.
+    /// Three levels converging monotonically with an observed order of at
+    /// least the convergence study's smallest: order and limit.
     Richardson { order: f64, limit: f64 },
     /// Not monotone, or two levels: the two finest levels' difference is
     /// the uncertainty.
@@ -76,6 +77,9 @@ pub fn uncertainty(h: &[f64], f: &[f64]) -> Option<Uncertainty> {
             )
         })
         .flatten();
+    // As the convergence study: below its smallest order the levels are
+    // not yet in the asymptotic range.
+    let three = three.filter(|(order, _)| *order >= crate::studies::convergence::MIN_ORDER);
     Some(match three {
         Some((order, limit)) => Uncertainty {
             estimate: Estimate::Richardson { order, limit },
