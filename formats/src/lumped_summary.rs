@@ -54,7 +54,7 @@ pub struct RoughnessSummary {
     /// two independent flanks carried on the pinion), µm.
     pub ra_um: f64,
     pub composite_ra_um: f64,
-    /// Fractal dimension D (seed 003's Eq. (33)) and the scale G set for the composite Ra, m.
+    /// Fractal dimension D (seed 003's Eq. (41)) and the scale G set for the composite Ra, m.
     pub dimension: f64,
     pub scale_m: f64,
     /// W–M terms between λ_s = 2.5 µm and λ_c = 0.8 mm, and those the

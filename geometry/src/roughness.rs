@@ -26,12 +26,13 @@
 //! Berman) surface would add ridges at other angles that the seed's cutting
 //! model does not have.
 //!
-//! **Amplitude.** Seed 003's Eqs. (33)–(34) give D and G from Ra
+//! **Amplitude.** Seed 003's Eqs. (41) (D; its Eq. (33) does not
+//! reproduce its Table 2) and (34) (G) give D and G from Ra
 //! ([`seed003_fractal`]); with G read in mm, λ_l = 1 mm and λ_s = 2.5 µm its
 //! G gives an expected Ra of 1.31 / 0.35 / 0.082 µm for the requested
 //! 0.8 / 0.4 / 0.2 µm (1.64 / 0.87 / 0.41 times), so the fit does not
 //! reproduce its own roughness. [`WmProfile::with_ra`]
-//! therefore keeps D from Eq. (33) and sets G so that the expected Ra over the
+//! therefore keeps D from Eq. (41) and sets G so that the expected Ra over the
 //! random phases equals the requested Ra:
 //!
 //! E|z| = (2/π) ∫₀^∞ (1 − Π_n J₀(a_n t)) / t² dt,   a_n = G^(D−1) ω_n^(D−2)
@@ -83,30 +84,36 @@ fn invalid(field: &'static str, value: f64, limit: &'static str) -> RoughnessErr
     }
 }
 
-/// D and G from seed 003's fits, Eqs. (33) and (34), Ra in µm (seed 003,
-/// Tables 1–2: "Surface Roughness/µm", the contour arithmetic mean deviation):
+/// D and G from seed 003's fits, Ra in µm (seed 003, Tables 1–2: "Surface
+/// Roughness/µm", the contour arithmetic mean deviation). The seed gives
+/// D twice:
 ///
-/// D = 1.515 / Ra^0.088,   G = 10^(−5.26 / Ra^0.042)
+/// Eq. (33): D = 1.515 / Ra^0.088,   Eq. (41): D = 1.528 / Ra^0.042,
 ///
-/// Ra 0.8 / 0.4 / 0.2 µm give D = 1.545 / 1.642 / 1.746 and G = 4.90e-6 /
-/// 3.42e-6 / 2.36e-6; the seed's Table 2 lists D = 1.55 / 1.60 / 1.65 and
-/// G = 5e-6 / 3e-6 / 2e-6, so Eq. (33) matches its own table only at 0.8 µm.
-/// The seed gives no unit for G; read with x in mm (its Figure 1 spans mm),
-/// G is in mm.
+/// and G = 10^(−5.26 / Ra^0.042) (Eq. (34)). Ra 0.8 / 0.4 / 0.2 µm give
+/// D = 1.545 / 1.642 / 1.746 by Eq. (33) and 1.542 / 1.588 / 1.635 by
+/// Eq. (41); the seed's Table 2 lists D = 1.55 / 1.60 / 1.65, which Eq. (41)
+/// reproduces within 0.016 and Eq. (33) only at 0.8 µm (0.096 off at
+/// 0.2 µm). `dimension` is therefore Eq. (41)'s (our choice between the
+/// seed's two fits), `dimension_eq33` kept for the report. G = 4.90e-6 /
+/// 3.42e-6 / 2.36e-6 against Table 2's 5e-6 / 3e-6 / 2e-6. The seed gives
+/// no unit for G; read with x in mm (its Figure 1 spans mm), G is in mm.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Seed003Fractal {
     pub dimension: f64,
+    pub dimension_eq33: f64,
     pub scale_mm: f64,
 }
 
-/// Seed 003's Eqs. (33)–(34) for a roughness Ra in µm; Ra must lie in
+/// Seed 003's Eqs. (41), (33) and (34) for a roughness Ra in µm; Ra must lie in
 /// (0, 10] µm (the fit covers 0.2–0.8 µm; beyond 10 µm D drops below 1.24).
 pub fn seed003_fractal(ra_um: f64) -> Result<Seed003Fractal, RoughnessError> {
     if !(ra_um.is_finite() && ra_um > 0.0 && ra_um <= 10.0) {
         return Err(invalid("ra_um", ra_um, "must lie in (0, 10] µm"));
     }
     Ok(Seed003Fractal {
-        dimension: 1.515 / ra_um.powf(0.088),
+        dimension: 1.528 / ra_um.powf(0.042),
+        dimension_eq33: 1.515 / ra_um.powf(0.088),
         scale_mm: 10f64.powf(-5.26 / ra_um.powf(0.042)),
     })
 }
@@ -233,7 +240,7 @@ impl WmProfile {
         WmProfile::new(WmSpec { scale_m, ..spec }, seed)
     }
 
-    /// Seed 003's roughness grade: D from Eq. (33) for `ra_um`, γ = 1.5, the
+    /// Seed 003's roughness grade: D from Eq. (41) for `ra_um`, γ = 1.5, the
     /// ISO roughness band λs = 2.5 µm to λc = 0.8 mm, G set for the expected
     /// Ra (see the module notes for why not Eq. (34)).
     pub fn seed003(ra_um: f64, seed: u64) -> Result<Self, RoughnessError> {

@@ -133,7 +133,7 @@ pub struct LumpedFriction {
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct LumpedRoughness {
-    /// Ra of each grade, µm (D from seed 003's Eq. (33), G for the Ra).
+    /// Ra of each grade, µm (D from seed 003's Eq. (41), G for the Ra).
     pub ra_um: Vec<f64>,
     /// Seed of the W–M phases (the same seed, the same flanks).
     pub seed: u64,

@@ -17,28 +17,34 @@ fn ra(z: &[f64]) -> f64 {
 }
 
 #[test]
-fn seed003_relations_give_its_eqs_33_34_values() {
-    // Hand-evaluated Eqs. (33)-(34); Table 2's D = 1.55/1.60/1.65 agree
-    // with Eq. (33) only at 0.8 µm.
+fn seed003_relations_give_its_eqs_33_34_41_values_and_eq_41_its_table_2() {
+    // Hand-evaluated Eqs. (33), (34) and (41); Table 2's D = 1.55/1.60/1.65
+    // agree with Eq. (41) within 0.016 and with Eq. (33) only at 0.8 µm.
     let expected = [
-        (0.8, 1.5450, 4.903e-6),
-        (0.4, 1.6422, 3.417e-6),
-        (0.2, 1.7455, 2.356e-6),
+        (0.8, 1.5450, 1.5424, 4.903e-6, 1.55),
+        (0.4, 1.6422, 1.5880, 3.417e-6, 1.60),
+        (0.2, 1.7455, 1.6349, 2.356e-6, 1.65),
     ];
-    for (ra_um, d, g) in expected {
+    for (ra_um, d33, d41, g, table) in expected {
         let f = seed003_fractal(ra_um).unwrap();
         assert!(
-            (f.dimension - d).abs() < 1e-4,
-            "D({ra_um}) = {}",
+            (f.dimension_eq33 - d33).abs() < 1e-4,
+            "Eq. (33) D({ra_um}) = {}",
+            f.dimension_eq33
+        );
+        assert!(
+            (f.dimension - d41).abs() < 1e-4,
+            "Eq. (41) D({ra_um}) = {}",
             f.dimension
         );
+        assert!((f.dimension - table).abs() < 0.016, "Table 2 at {ra_um}");
         assert!(
             (f.scale_mm / g - 1.0).abs() < 1e-3,
             "G({ra_um}) = {}",
             f.scale_mm
         );
     }
-    assert!((seed003_fractal(0.8).unwrap().dimension - 1.55).abs() < 0.01);
+    assert!((seed003_fractal(0.2).unwrap().dimension_eq33 - 1.65).abs() > 0.09);
 }
 
 #[test]

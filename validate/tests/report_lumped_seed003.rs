@@ -29,8 +29,10 @@ fn seed003_part_puts_our_velocities_beside_the_test_rig_and_says_what_the_roughn
     .unwrap();
     let md = markdown(out.path());
     for row in [
-        "| 77 | 45.63 | 1.500 | 2.100 | 4.195 | 4.060 |",
-        "| 105 | 62.22 | 1.800 | 2.400 | 4.384 | 4.116 |",
+        "| 77 | 45.63 | 1.500 | 2.100 | 4.195 / 4.123 | 4.060 / 4.055 |",
+        "| 105 | 62.22 | 1.800 | 2.400 | 4.384 / 4.413 | 4.116 / 4.135 |",
+        // Seed 003's Table 2 against its two fits of D.
+        "| 0.2 | 1.65 | 1.746 (+0.096) | 1.635 (-0.015) |",
         "| 45.63 | smooth | 0.600 | 6.0000e7 | +0.00 | 1.500 / 1.000 | 150.0 |",
         "| 45.63 | Ra 0.8 µm | 0.611 | 6.0300e7 | +0.50 | 2.100 / 1.000 | 150.0 |",
         "| 62.22 | Ra 0.8 µm | 0.611 | 6.3100e7 | +1.77 | 2.400 / 1.000 | 150.0 |",
@@ -46,6 +48,10 @@ fn seed003_part_puts_our_velocities_beside_the_test_rig_and_says_what_the_roughn
     assert!(md.contains("ours +20 % from 77 to 105 N·m"));
     assert!(md.contains("measured +4.5 %"));
     assert!(md.contains("neither a calibration nor a validation"));
+    assert!(md.contains("the two do not agree; the comparison below uses the text's"));
+    // Eq. (31) with Table 2's L and D is no roughness in µm: 823 at Ra 0.8.
+    assert!(md.contains("823 at Ra 0.8"), "{md}");
+    assert!(md.contains("R = √2 Ra, the composite roughness of two flanks of roughness Ra (our choice, not the seed's)"));
     assert!(md.contains("1200 rpm (mesh frequency 320.0 Hz)"));
 }
 

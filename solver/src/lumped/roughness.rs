@@ -6,7 +6,7 @@
 //! direction (seed 003's cutting model). Our contact element sees only the
 //! relative geometry of the two flanks (the ease-off lives on the pinion
 //! flank), so the pair is given one relative topography on the pinion
-//! flank: a W–M profile with D of Ra (seed 003's Eq. (33)) and G set for
+//! flank: a W–M profile with D of Ra (seed 003's Eq. (41), which reproduces its Table 2) and G set for
 //! the composite roughness √2 Ra of two independent flanks. It enters as
 //! the design's `[ease_off.topography]`, sampled on the scene's node
 //! count along the profile; terms shorter than two node spacings are left

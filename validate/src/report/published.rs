@@ -126,6 +126,45 @@ pub struct Seed003 {
     pub friction_mu0: f64,
     pub friction_mur: f64,
     pub measured: Vec<Seed003Measured>,
+    /// Table 2: roughness, fractal dimension and characteristic scale
+    /// coefficient per finishing process.
+    pub table2: Vec<Seed003Table2Row>,
+    /// Table 4: the 30 one-second values of the test-rig comparison, mm/s.
+    pub table4: Vec<Seed003Table4Row>,
+}
+
+/// One row of seed 003's Table 2.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Seed003Table2Row {
+    pub ra_um: f64,
+    pub dimension: f64,
+    pub scale_coefficient: f64,
+}
+
+/// One row of seed 003's Table 4 (vibration velocity, mm/s).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Seed003Table4Row {
+    pub time_s: f64,
+    pub simulated_77nm: f64,
+    pub measured_77nm: f64,
+    pub simulated_105nm: f64,
+    pub measured_105nm: f64,
+}
+
+impl Seed003 {
+    /// Means over Table 4's rows: (simulated, measured) at 77 N·m and at
+    /// 105 N·m, mm/s.
+    pub fn table4_means(&self) -> [[f64; 2]; 2] {
+        let n = self.table4.len().max(1) as f64;
+        let mean =
+            |f: &dyn Fn(&Seed003Table4Row) -> f64| self.table4.iter().map(f).sum::<f64>() / n;
+        [
+            [mean(&|r| r.simulated_77nm), mean(&|r| r.measured_77nm)],
+            [mean(&|r| r.simulated_105nm), mean(&|r| r.measured_105nm)],
+        ]
+    }
 }
 
 /// One loader torque of seed 003's test rig.
@@ -288,6 +327,18 @@ mod tests {
             assert!(q.is_some(), "seed 002 prints {name}");
         }
         assert_eq!(seed003().measured.len(), 2);
+        assert_eq!(seed003().table2.len(), 3);
+        assert_eq!(seed003().table4.len(), 30);
+        // Table 4's means are not the text's 4.195 / 4.384 mm/s.
+        let m = seed003().table4_means();
+        assert!(
+            (m[0][1] - 4.123).abs() < 1e-3 && (m[1][1] - 4.413).abs() < 1e-3,
+            "{m:?}"
+        );
+        assert!(
+            (m[0][0] - 4.055).abs() < 1e-3 && (m[1][0] - 4.135).abs() < 1e-3,
+            "{m:?}"
+        );
         let s4 = seed004();
         assert_eq!(s4.table3.len(), 7);
         assert_eq!(s4.te_slope.rows.len(), 3);

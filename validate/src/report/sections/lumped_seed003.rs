@@ -58,7 +58,7 @@ pub fn markdown(out: &Path) -> String {
     let r0 = &all[0];
     let _ = writeln!(
         s,
-        "The scene `{SEED003_SCENE}` runs the 8-DOF model at {:.0} rpm (mesh frequency {:.1} Hz), {:.0} mesh cycles with the first {:.0} dropped, for the smooth flanks and each W–M roughness grade at both of seed 003's loads. Seed 003's loads are the loader's set torques on the output side; we take them as the wheel torque (pinion T₂ × {:.0}/{:.0}). Friction: seed 003's μ = μ₀ + μ_r R with μ₀ = {}, μ_r = {} per µm and R = √2 Ra (both flanks of roughness Ra); the friction force's direction and moment arms come from our LTCA's slices (sliding direction and friction levers, force-weighted), its size from the dynamic normal force. Seed 003 calls μ₀ = 0.6 the value for good lubrication; a lubricated steel gear mesh usually has 0.04–0.08. Bearings {:.2e} N/m with {:.0} % damping are our choice (seed 003 publishes none), mesh damping ratio 0.1 is seed 003's. The mesh normal's direction comes from our LTCA's force-weighted flank normal, {:.1}° from seed 004's formula with the spiral sign of the loaded flank.\n",
+        "The scene `{SEED003_SCENE}` runs the 8-DOF model at {:.0} rpm (mesh frequency {:.1} Hz), {:.0} mesh cycles with the first {:.0} dropped, for the smooth flanks and each W–M roughness grade at both of seed 003's loads. Seed 003's loads are the loader's set torques on the output side; we take them as the wheel torque (pinion T₂ × {:.0}/{:.0}). Friction: seed 003's μ = μ₀ + μ_r R with μ₀ = {}, μ_r = {} per µm; its R is C L^(1−D) (its Eqs. (31) and (35), C = 1, L the characteristic scale), which with its Table 2's L and D is {} (L in m), no roughness in µm, so we take R = √2 Ra, the composite roughness of two flanks of roughness Ra (our choice, not the seed's); the friction force's direction and moment arms come from our LTCA's slices (sliding direction and friction levers, force-weighted), its size from the dynamic normal force. Seed 003 calls μ₀ = 0.6 the value for good lubrication; a lubricated steel gear mesh usually has 0.04–0.08. Bearings {:.2e} N/m with {:.0} % damping are our choice (seed 003 publishes none), mesh damping ratio 0.1 is seed 003's. The mesh normal's direction comes from our LTCA's force-weighted flank normal, {:.1}° from seed 004's formula with the spiral sign of the loaded flank.\n",
         r0.pinion_speed_rpm,
         r0.mesh_frequency_hz,
         r0.mesh_cycles,
@@ -67,6 +67,7 @@ pub fn markdown(out: &Path) -> String {
         seed003().teeth[1],
         seed003().friction_mu0,
         seed003().friction_mur,
+        eq31_values(),
         r0.bearing_stiffness_n_per_m[0][0],
         100.0 * r0.bearing_damping_ratio,
         r0.friction_normal_angle_deg
@@ -74,7 +75,71 @@ pub fn markdown(out: &Path) -> String {
     velocity_table(&mut s, &all);
     stiffness_table(&mut s, &all);
     roughness_table(&mut s, &all);
+    dimension_table(&mut s);
     s
+}
+
+/// "agree" when every printed value equals its recomputed mean to the
+/// printed digits (within 5e-4, the half unit of three decimals), else
+/// "do not agree".
+pub fn agree_word(printed: &[f64], recomputed: &[f64]) -> &'static str {
+    if printed
+        .iter()
+        .zip(recomputed)
+        .all(|(a, b)| (a - b).abs() <= 5e-4 + 1e-12)
+    {
+        "agree"
+    } else {
+        "do not agree"
+    }
+}
+
+/// Seed 003's Eq. (31) R = C L^(1−D) with C = 1 and its Table 2's L and D
+/// per grade, as "Ra 0.8: 823, …".
+fn eq31_values() -> String {
+    seed003()
+        .table2
+        .iter()
+        .map(|r| {
+            format!(
+                "{:.0} at Ra {}",
+                r.scale_coefficient.powf(1.0 - r.dimension),
+                r.ra_um
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Seed 003's two fits of D against its Table 2, and which one runs.
+fn dimension_table(s: &mut String) {
+    let _ = writeln!(
+        s,
+        "Fractal dimension D per grade: seed 003's Table 2 against its two fits, Eq. (33) D = 1.515/Ra^0.088 and Eq. (41) D = 1.528/Ra^0.042. The runs use Eq. (41), the fit that reproduces the table (our choice between the seed's two):
+"
+    );
+    let _ = writeln!(s, "| Ra (µm) | Table 2 | Eq. (33) | Eq. (41), used |");
+    let _ = writeln!(s, "|---|---|---|---|");
+    for r in &seed003().table2 {
+        match geometry::roughness::seed003_fractal(r.ra_um) {
+            Ok(f) => {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {:.3} ({:+.3}) | {:.3} ({:+.3}) |",
+                    r.ra_um,
+                    r.dimension,
+                    f.dimension_eq33,
+                    f.dimension_eq33 - r.dimension,
+                    f.dimension,
+                    f.dimension - r.dimension
+                );
+            }
+            Err(e) => {
+                let _ = writeln!(s, "| {} | {} | {e} | |", r.ra_um, r.dimension);
+            }
+        }
+    }
+    s.push('\n');
 }
 
 fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
@@ -93,9 +158,14 @@ fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
     for g in &grades {
         let _ = write!(s, " ours, {g} |");
     }
-    let _ = writeln!(s, " measured | seed 003's simulation |");
+    let _ = writeln!(
+        s,
+        " measured, text / Table 4 mean | seed 003's simulation, text / Table 4 mean |"
+    );
     let _ = writeln!(s, "|---|---|{}---|---|", "---|".repeat(grades.len()));
-    for row in m {
+    let means = rig.table4_means();
+    for (k, row) in m.iter().enumerate() {
+        let [sim_mean, meas_mean] = means.get(k).copied().unwrap_or([f64::NAN; 2]);
         let (t2, measured, simulated) = (
             row.loader_torque_nm,
             row.measured_velocity_mm_s,
@@ -110,7 +180,10 @@ fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
         for r in &runs {
             let _ = write!(s, " {:.3} |", 1e3 * r.member_velocity_rms_m_s[0]);
         }
-        let _ = writeln!(s, " {measured:.3} | {simulated:.3} |");
+        let _ = writeln!(
+            s,
+            " {measured:.3} / {meas_mean:.3} | {simulated:.3} / {sim_mean:.3} |"
+        );
     }
     let ratios: Vec<f64> = m
         .iter()
@@ -127,7 +200,24 @@ fn velocity_table(s: &mut String, all: &[LumpedSummary]) {
         });
     let _ = writeln!(
         s,
-        "\nSource: {measured_source}. Ours are {:.0}–{:.0} % of the measured values. What the comparison can carry: seed 003's sensor sits on the rig (a vibration sensor at the input coupling; the paper does not give its position, direction or frequency band); the nearest quantity of our model is the pinion's velocity on its bearings, since the model has no housing, shafts, coupling, motor or loader, and its bearings are assumed. The measured signal also holds the shaft orders, the motor and the loader, which the model does not. So the comparison checks the order of magnitude and the rise with load (ours {:+.0} % from 77 to 105 N·m for the smooth flanks, measured {:+.1} %), not a level; it is neither a calibration nor a validation.\n",
+        "\nSource: {measured_source}. The seed's text gives the means {:.3} / {:.3} mm/s (measured) and {:.3} / {:.3} mm/s (simulated) at 77 / 105 N·m; the 30 rows of its Table 4 average {:.3} / {:.3} and {:.3} / {:.3}: the two {}; the comparison below uses the text's. Ours are {:.0}–{:.0} % of the measured values. What the comparison can carry: seed 003's sensor sits on the rig (a vibration sensor at the input coupling; the paper does not give its position, direction or frequency band); the nearest quantity of our model is the pinion's velocity on its bearings, since the model has no housing, shafts, coupling, motor or loader, and its bearings are assumed. The measured signal also holds the shaft orders, the motor and the loader, which the model does not. So the comparison checks the order of magnitude and the rise with load (ours {:+.0} % from 77 to 105 N·m for the smooth flanks, measured {:+.1} %), not a level; it is neither a calibration nor a validation.\n",
+        m[0].measured_velocity_mm_s,
+        m[1].measured_velocity_mm_s,
+        m[0].simulated_velocity_mm_s,
+        m[1].simulated_velocity_mm_s,
+        means[0][1],
+        means[1][1],
+        means[0][0],
+        means[1][0],
+        agree_word(
+            &[
+                m[0].measured_velocity_mm_s,
+                m[1].measured_velocity_mm_s,
+                m[0].simulated_velocity_mm_s,
+                m[1].simulated_velocity_mm_s
+            ],
+            &[means[0][1], means[1][1], means[0][0], means[1][0]]
+        ),
         100.0 * lo,
         100.0 * hi,
         rise(all),
@@ -217,6 +307,17 @@ fn roughness_table(s: &mut String, all: &[LumpedSummary]) {
     }
     let _ = writeln!(
         s,
-        "\nThe W–M profile runs from λ_c = 0.8 mm down to λ_s = 2.5 µm along the profile; the topography grid carries only the terms longer than two node spacings, the profile's longest wavelengths. Because a W–M spectrum puts most of its power there, those few terms hold the share of Rq given above, but they are a waviness of about the contact's own width, not roughness: everything shorter, the asperities that decide real contact area and contact compliance, is left out. The FE meshes (6 × 10 flank elements) carry none of it; they are the smooth flanks' meshes, and their element along the profile is longer than every wavelength of the profile. D from seed 003's Eq. (33) and G set for the composite Ra, since its Eq. (34) does not reproduce its own Ra.\n\n"
+        "\nThe W–M profile runs from λ_c = 0.8 mm down to λ_s = 2.5 µm along the profile; the topography grid carries only the terms longer than two node spacings, the profile's longest wavelengths. Because a W–M spectrum puts most of its power there, those few terms hold the share of Rq given above, but they are a waviness of about the contact's own width, not roughness: everything shorter, the asperities that decide real contact area and contact compliance, is left out. The FE meshes (6 × 10 flank elements) carry none of it; they are the smooth flanks' meshes, and their element along the profile is longer than every wavelength of the profile. D from seed 003's Eq. (41) (see the table below) and G set for the composite Ra, since its Eq. (34) does not reproduce its own Ra.\n\n"
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn printed_means_agree_only_to_their_digits() {
+        assert_eq!(agree_word(&[4.123, 4.413], &[4.1232, 4.4128]), "agree");
+        assert_eq!(agree_word(&[4.195, 4.384], &[4.123, 4.413]), "do not agree");
+    }
 }
