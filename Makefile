@@ -37,7 +37,7 @@ FINE_STRIDE_LW ?= $(FINE_STRIDE)
 # impact scene's (same inputs hashes).
 # CONTACT_LAWS=0 leaves them out.
 CONTACT_LAWS       ?= 1
-CONTACT_LAW_SCENES := seed001_impact seed001_element seed002_impact seed002_element
+CONTACT_LAW_SCENES := seed001_impact seed001_element seed001_impact_haversine seed002_impact seed002_element
 # The 8-DOF lumped model on seed 004's 23/86 pair and seed 003's 16/27 pair
 # (reference/scenes/seed004_lumped.toml, seed003_lumped.toml): flanks,
 # reduced meshes (6 x 10 flank elements), stiffness, then `solver lumped`;

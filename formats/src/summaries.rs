@@ -323,6 +323,14 @@ pub struct ImpactLawSummary {
     pub dynamic_friction: f64,
     pub stiction_speed_mm_s: f64,
     pub friction_transition_speed_mm_s: f64,
+    /// The damping ramp's shape: "cubic" (ADAMS's STEP) or "haversine"
+    /// (absent in summaries written before it was recorded: cubic).
+    #[serde(default = "cubic")]
+    pub damping_step: String,
+}
+
+fn cubic() -> String {
+    "cubic".into()
 }
 
 /// The imposed-speed load run: drive, cost, and the means and

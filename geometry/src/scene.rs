@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 pub use crate::gear_body::Blank;
-pub use crate::scene_contact_law::{ForceLaw, ImpactSettings, LoadRun};
+pub use crate::scene_contact_law::{ForceLaw, ImpactSettings, LoadRun, StepShape};
 
 /// Top level of a scene file.
 #[derive(Debug, Clone, Serialize, Deserialize)]

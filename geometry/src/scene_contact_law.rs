@@ -38,6 +38,29 @@ pub struct ImpactSettings {
     /// Stiction and friction transition slip speeds, mm/s (ADAMS defaults).
     pub stiction_speed_mm_s: f64,
     pub friction_transition_speed_mm_s: f64,
+    /// Shape of the damping's ramp over the penetration depth: ADAMS's
+    /// cubic STEP (default) or the haversine step seed 001 names.
+    pub damping_step: StepShape,
+}
+
+/// Shape of a smooth step from h₀ to h₁ over [x₀, x₁].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StepShape {
+    /// ADAMS's STEP: h₀ + (h₁ − h₀) Δ² (3 − 2Δ).
+    #[default]
+    Cubic,
+    /// h₀ + (h₁ − h₀) (1 − cos πΔ)/2.
+    Haversine,
+}
+
+impl StepShape {
+    pub fn name(self) -> &'static str {
+        match self {
+            StepShape::Cubic => "cubic",
+            StepShape::Haversine => "haversine",
+        }
+    }
 }
 
 impl Default for ImpactSettings {
@@ -51,6 +74,7 @@ impl Default for ImpactSettings {
             dynamic_friction: 0.0,
             stiction_speed_mm_s: 100.0,
             friction_transition_speed_mm_s: 1000.0,
+            damping_step: StepShape::Cubic,
         }
     }
 }

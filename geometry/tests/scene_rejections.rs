@@ -150,6 +150,10 @@ fn seed_scenes_load_with_both_force_laws() {
     for (name, law) in [
         ("seed001_impact", geometry::scene::ForceLaw::Impact),
         ("seed001_element", geometry::scene::ForceLaw::Element),
+        (
+            "seed001_impact_haversine",
+            geometry::scene::ForceLaw::Impact,
+        ),
         ("seed002_impact", geometry::scene::ForceLaw::Impact),
         ("seed002_element", geometry::scene::ForceLaw::Element),
     ] {
@@ -157,6 +161,9 @@ fn seed_scenes_load_with_both_force_laws() {
         let s = Scene::load(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(s.scene.multibody.force_law, law, "{name}");
         assert!(s.scene.multibody.load_run.is_some(), "{name}");
+        let haversine =
+            s.scene.multibody.impact.damping_step == geometry::scene::StepShape::Haversine;
+        assert_eq!(haversine, name.ends_with("_haversine"), "{name}");
     }
 }
 

@@ -4,11 +4,42 @@
 //! energy kept with C = 0; restitution from the damping), the friction
 //! coefficient's transitions, and the seeds' Hertz stiffness recomputed.
 
+use geometry::scene::StepShape;
 use solver::multibody::impact_law::{
-    effective_modulus, gamma, restitution_estimate, seed_001_stiffness,
+    effective_modulus, gamma, haversine_with_slope, restitution_estimate, seed_001_stiffness,
     seed_002_back_cone_stiffness, seed_002_stiffness, single_impact, step, step_with_slope,
     Friction, ImpactLaw,
 };
+
+/// The haversine step of seed 001: end values with zero slope, half way
+/// at the midpoint with slope π/2 (h₁ − h₀)/(x₁ − x₀), the slope the
+/// derivative of the value, and below the cubic STEP on the first half
+/// of the ramp, above it on the second.
+#[test]
+fn haversine_step_is_c1_half_way_at_its_midpoint_and_crosses_the_cubic_there() {
+    let (x0, h0, x1, h1) = (0.2, -1.0, 0.7, 3.0);
+    assert_eq!(haversine_with_slope(x0, x0, h0, x1, h1), (h0, 0.0));
+    assert_eq!(haversine_with_slope(x1 + 1.0, x0, h0, x1, h1), (h1, 0.0));
+    let (v, s) = haversine_with_slope(0.45, x0, h0, x1, h1);
+    assert!((v - 1.0).abs() < 1e-14);
+    assert!((s - std::f64::consts::FRAC_PI_2 * 4.0 / 0.5).abs() < 1e-12);
+    for x in [0.21, 0.3, 0.44, 0.46, 0.6, 0.69] {
+        let h = 1e-6;
+        let (a, b) = (
+            haversine_with_slope(x + h, x0, h0, x1, h1).0,
+            haversine_with_slope(x - h, x0, h0, x1, h1).0,
+        );
+        let (v, s) = haversine_with_slope(x, x0, h0, x1, h1);
+        assert!(((a - b) / (2.0 * h) - s).abs() < 1e-7, "{x}");
+        let cubic = step(x, x0, h0, x1, h1);
+        if x < 0.45 {
+            assert!(v < cubic, "{x}: {v} vs {cubic}");
+        } else {
+            assert!(v > cubic, "{x}: {v} vs {cubic}");
+        }
+    }
+    assert!(haversine_with_slope(x0 + 1e-5, x0, h0, x1, h1).1 < 1e-3);
+}
 
 #[test]
 fn step_takes_its_end_values_with_zero_slope_and_is_c1_across_both_ends() {
@@ -150,12 +181,18 @@ fn impact_without_damping_keeps_the_energy() {
 #[test]
 fn restitution_falls_monotonically_with_damping_and_matches_its_first_order_estimate() {
     // δ_m ≈ 0.11 mm, d = 0.01 mm: the damping acts over most of the contact.
-    let base = ImpactLaw {
-        stiffness: 1e10,
-        exponent: 1.5,
-        damping: 0.0,
-        depth: 1e-5,
-    };
+    for step in [StepShape::Cubic, StepShape::Haversine] {
+        restitution_with(ImpactLaw {
+            stiffness: 1e10,
+            exponent: 1.5,
+            damping: 0.0,
+            depth: 1e-5,
+            step,
+        });
+    }
+}
+
+fn restitution_with(base: ImpactLaw) {
     let (m, v) = ([1.0, 1e9], [1.0, 0.0]);
     let mass = m[0] * m[1] / (m[0] + m[1]);
     let mut last = 1.0 + 1e-12;

@@ -284,3 +284,26 @@ fn the_section_and_its_charts_go_into_the_report_figures() {
     figs.contact_laws = None;
     assert_eq!(figs.all().count(), 0);
 }
+
+#[test]
+fn seed_001_impact_law_with_the_haversine_ramp_stands_beside_the_cubic() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, reports) = (tmp.path().join("out"), tmp.path().join("reports"));
+    for (law, scene, base) in [
+        ("impact", "seed001_impact", 10.0),
+        ("element", "seed001_element", 30.0),
+        ("impact", "seed001_impact_haversine", 50.0),
+    ] {
+        write(&out, scene, &run(law, scene, base).to_string());
+    }
+    let md = build(&out, None, &reports).unwrap().markdown;
+    assert!(md.contains("(scene `seed001_impact_haversine`)"), "{md}");
+    assert_eq!(
+        row(&md, "| wheel speed fluctuation mean, °/s"),
+        "| wheel speed fluctuation mean, °/s | 10.1100 | 50.1100 | +395.648 % |"
+    );
+    // Without the haversine run there is no such table.
+    std::fs::remove_dir_all(out.join("seed001_impact_haversine")).unwrap();
+    let md = build(&out, None, &reports).unwrap().markdown;
+    assert!(!md.contains("seed001_impact_haversine"));
+}

@@ -15,7 +15,7 @@
 //! (K_SI = K_mm · 1000^e, C_SI = 1000 C_mm, d_SI = d_mm / 1000).
 
 use formats::summaries::ImpactLawSummary;
-use geometry::scene::ImpactSettings;
+use geometry::scene::{ImpactSettings, StepShape};
 
 /// ADAMS's cubic STEP(x, x₀, h₀, x₁, h₁): h₀ for x ≤ x₀, h₁ for x ≥ x₁,
 /// between them h₀ + (h₁ − h₀) Δ² (3 − 2Δ) with Δ = (x − x₀)/(x₁ − x₀).
@@ -43,6 +43,27 @@ pub fn step_with_slope(x: f64, x0: f64, h0: f64, x1: f64, h1: f64) -> (f64, f64)
     )
 }
 
+/// The haversine step: h₀ for x ≤ x₀, h₁ for x ≥ x₁, between them
+/// h₀ + (h₁ − h₀) (1 − cos πΔ)/2, Δ = (x − x₀)/(x₁ − x₀), and its slope
+/// (h₁ − h₀) π sin(πΔ) / (2 (x₁ − x₀)). Like the cubic STEP it is C¹ with
+/// zero slope at both ends; its largest slope is π/2 (h₁ − h₀)/(x₁ − x₀)
+/// against the cubic's 3/2 times that, and it lies below the cubic on the
+/// first half of the ramp (above on the second).
+pub fn haversine_with_slope(x: f64, x0: f64, h0: f64, x1: f64, h1: f64) -> (f64, f64) {
+    if x <= x0 {
+        return (h0, 0.0);
+    }
+    if x >= x1 {
+        return (h1, 0.0);
+    }
+    let w = x1 - x0;
+    let a = std::f64::consts::PI * (x - x0) / w;
+    (
+        h0 + (h1 - h0) * 0.5 * (1.0 - a.cos()),
+        (h1 - h0) * std::f64::consts::PI * a.sin() / (2.0 * w),
+    )
+}
+
 /// The impact law's parameters, SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpactLaw {
@@ -54,6 +75,8 @@ pub struct ImpactLaw {
     pub damping: f64,
     /// d, m: the penetration over which the damping ramps in.
     pub depth: f64,
+    /// Shape of that ramp.
+    pub step: StepShape,
 }
 
 /// Force of the law and its tangents.
@@ -79,6 +102,7 @@ impl ImpactLaw {
             exponent,
             damping: damping_n_s_per_mm * 1e3,
             depth: depth_mm * 1e-3,
+            step: StepShape::Cubic,
         }
     }
 
@@ -99,9 +123,13 @@ impl ImpactLaw {
         self.stiffness * delta.powf(self.exponent + 1.0) / (self.exponent + 1.0)
     }
 
-    /// Damping weight STEP(δ, 0, 0, d, 1) and its derivative in δ (1/m).
+    /// Damping weight STEP(δ, 0, 0, d, 1) and its derivative in δ (1/m),
+    /// of the law's step shape.
     pub fn damping_weight(&self, delta: f64) -> (f64, f64) {
-        step_with_slope(delta, 0.0, 0.0, self.depth, 1.0)
+        match self.step {
+            StepShape::Cubic => step_with_slope(delta, 0.0, 0.0, self.depth, 1.0),
+            StepShape::Haversine => haversine_with_slope(delta, 0.0, 0.0, self.depth, 1.0),
+        }
     }
 
     /// F(δ, δ̇) = max(0, K δ^e + C δ̇ STEP(δ, 0, 0, d, 1)) for δ > 0, and
@@ -358,7 +386,10 @@ pub fn from_settings(
         Some(k) => (k, "scene"),
         None => (hertz, "hertz"),
     };
-    let law = ImpactLaw::from_mm_units(k, s.exponent, s.damping_n_s_per_mm, s.penetration_depth_mm);
+    let law = ImpactLaw {
+        step: s.damping_step,
+        ..ImpactLaw::from_mm_units(k, s.exponent, s.damping_n_s_per_mm, s.penetration_depth_mm)
+    };
     let friction = (s.static_friction > 0.0 || s.dynamic_friction > 0.0).then_some(Friction {
         static_coefficient: s.static_friction,
         dynamic_coefficient: s.dynamic_friction,
@@ -377,6 +408,7 @@ pub fn from_settings(
         dynamic_friction: s.dynamic_friction,
         stiction_speed_mm_s: s.stiction_speed_mm_s,
         friction_transition_speed_mm_s: s.friction_transition_speed_mm_s,
+        damping_step: s.damping_step.name().into(),
     };
     (law, friction, summary)
 }

@@ -343,11 +343,24 @@ pub fn build(
         .iter()
         .map(|p| seed_runs(out, scenes, p).map(|r| (p, r)))
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(section(&runs, reports))
+    // Seed 001's impact law with the haversine damping ramp it names.
+    let mut haversine = std::collections::BTreeMap::new();
+    if let Some(h) = read_run(out, HAVERSINE_SCENE, "impact")? {
+        haversine.insert("001".to_string(), h);
+    }
+    Ok(section(&runs, &haversine, reports))
 }
 
-/// The section's markdown from the seeds' runs.
-pub fn section(runs: &[(&SeedContactLaw, SeedRuns)], reports: &Path) -> ContactLaws {
+/// The scene of seed 001's impact law with the haversine damping ramp.
+pub const HAVERSINE_SCENE: &str = "seed001_impact_haversine";
+
+/// The section's markdown from the seeds' runs; `haversine` holds, by
+/// seed id, the impact-law run with the haversine damping ramp.
+pub fn section(
+    runs: &[(&SeedContactLaw, SeedRuns)],
+    haversine: &std::collections::BTreeMap<String, LawRun>,
+    reports: &Path,
+) -> ContactLaws {
     let mut s = String::new();
     let mut figures = Vec::new();
     let _ = writeln!(s, "## Contact laws: Hertz impact function against the FE-analytical contact element (seeds 001 and 002)\n");
@@ -389,6 +402,13 @@ pub fn section(runs: &[(&SeedContactLaw, SeedRuns)], reports: &Path) -> ContactL
                     stiffness_finding(&mut s, p, law, &hertz);
                 }
                 differences(&mut s, p, impact, element, *mesh);
+                if let Some(h) = haversine.get(p.id.as_str()) {
+                    super::contact_laws_load_run::step_shape_table(
+                        &mut s,
+                        &impact.load_run,
+                        &h.load_run,
+                    );
+                }
                 let figs = seed_figures(p, impact, element, reports);
                 for f in &figs {
                     let _ = writeln!(s, "![{}]({})", f.title.replace(['[', ']'], ""), f.file);

@@ -360,6 +360,46 @@ pub fn tangential_paragraph(
     }
 }
 
+/// Seed 001's impact law with its damping ramped in by the haversine
+/// step it names against ADAMS's cubic STEP (the run above): the same
+/// quantities side by side and their relative differences.
+pub fn step_shape_table(s: &mut String, cubic: &LoadRunSummary, haversine: &LoadRunSummary) {
+    let _ = writeln!(
+        s,
+        "The damping ramp's shape: seed 001 names STEP a haversine step; ADAMS's STEP, which the impact-law run above uses, is a cubic. The same run with the haversine ramp (scene `seed001_impact_haversine`):\n"
+    );
+    let _ = writeln!(s, "| quantity | cubic STEP | haversine | difference |");
+    let _ = writeln!(s, "|---|---|---|---|");
+    let rows: [(&str, fn(&LoadRunSummary) -> f64); 7] = [
+        ("mean wheel speed, °/s", |l| l.wheel_speed_mean_deg_s),
+        ("wheel speed fluctuation mean, °/s", |l| {
+            l.wheel_speed_fluctuation_mean_deg_s
+        }),
+        ("wheel speed fluctuation max, °/s", |l| {
+            l.wheel_speed_fluctuation_max_deg_s
+        }),
+        ("mean tangential force, N", |l| l.tangential_force_mean_n),
+        ("tangential force fluctuation max, N", |l| {
+            l.tangential_force_fluctuation_max_n
+        }),
+        ("meshing force max, N", |l| l.mesh_force_max_n),
+        ("mesh efficiency", |l| l.mesh_efficiency),
+    ];
+    for (q, f) in rows {
+        let (a, b) = (f(cubic), f(haversine));
+        let _ = writeln!(
+            s,
+            "| {q} | {a:.4} | {b:.4} | {} |",
+            if a != 0.0 {
+                pct(b / a - 1.0)
+            } else {
+                "–".into()
+            }
+        );
+    }
+    s.push('\n');
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
