@@ -360,6 +360,9 @@ pub fn tangential_paragraph(
     }
 }
 
+/// One quantity of a load run.
+type Quantity = fn(&LoadRunSummary) -> f64;
+
 /// Seed 001's impact law with its damping ramped in by the haversine
 /// step it names against ADAMS's cubic STEP (the run above): the same
 /// quantities side by side and their relative differences.
@@ -370,7 +373,7 @@ pub fn step_shape_table(s: &mut String, cubic: &LoadRunSummary, haversine: &Load
     );
     let _ = writeln!(s, "| quantity | cubic STEP | haversine | difference |");
     let _ = writeln!(s, "|---|---|---|---|");
-    let rows: [(&str, fn(&LoadRunSummary) -> f64); 7] = [
+    let rows: [(&str, Quantity); 7] = [
         ("mean wheel speed, °/s", |l| l.wheel_speed_mean_deg_s),
         ("wheel speed fluctuation mean, °/s", |l| {
             l.wheel_speed_fluctuation_mean_deg_s
