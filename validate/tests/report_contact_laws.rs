@@ -298,6 +298,11 @@ fn seed_001_impact_law_with_the_haversine_ramp_stands_beside_the_cubic() {
     }
     let md = build(&out, None, &reports).unwrap().markdown;
     assert!(md.contains("(scene `seed001_impact_haversine`)"), "{md}");
+    // Seed 001's printed K against the Hertz value with its rounded E*.
+    assert!(
+        md.contains("8.4332e5 (-0.002 %: the printed value to its digits)"),
+        "{md}"
+    );
     assert_eq!(
         row(&md, "| wheel speed fluctuation mean, °/s"),
         "| wheel speed fluctuation mean, °/s | 10.1100 | 50.1100 | +395.648 % |"

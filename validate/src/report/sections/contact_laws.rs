@@ -256,14 +256,24 @@ fn stiffness_finding(
     let pitch = law.hertz_stiffness_n_per_mm_1_5;
     match (p.id.as_str(), hertz.first()) {
         ("001", Some((_, k))) => {
+            // The seed's rounded E* (its printed 1.1e5 N/mm²).
+            let rounded =
+                solver::multibody::impact_law::hertz_point_stiffness(k.radius_mm, 1.1e5);
             let _ = writeln!(
                 s,
-                "Stiffness: 4/3 √R E* with the seed's inputs is {:.4e} N/mm^1.5 (R = {:.3} mm, E* = {:.4e} N/mm²); the printed {:.4e} differs by {:+.2} % and reproduces only with E* rounded to 1.1e5 N/mm² as printed. The seed derives K for F = K δ^1.5 and uses it with the exponent {}: with δ in mm that is a different law, weaker below 1 mm penetration. This run uses the printed K with the printed exponent, as the seed did.\n",
+                "Stiffness: 4/3 √R E* with the seed's inputs is {:.4e} N/mm^1.5 (R = {:.3} mm, E* = {:.4e} N/mm²); the printed {:.4e} differs by {:+.2} %; with E* rounded to 1.1e5 N/mm² as the seed prints it, {:.4e} ({:+.3} %: {}). The seed derives K for F = K δ^1.5 and uses it with the exponent {}: with δ in mm that is a different law, weaker below 1 mm penetration. This run uses the printed K with the printed exponent, as the seed did.\n",
                 k.recomputed,
                 k.radius_mm,
                 k.modulus_n_per_mm2,
                 p.stiffness.value,
                 100.0 * (k.ratio() - 1.0),
+                rounded,
+                100.0 * (p.stiffness.value / rounded - 1.0),
+                if (p.stiffness.value / rounded - 1.0).abs() < 5e-4 {
+                    "the printed value to its digits"
+                } else {
+                    "not the printed value either"
+                },
                 p.exponent
             );
         }
