@@ -257,8 +257,7 @@ fn stiffness_finding(
     match (p.id.as_str(), hertz.first()) {
         ("001", Some((_, k))) => {
             // The seed's rounded E* (its printed 1.1e5 N/mm²).
-            let rounded =
-                solver::multibody::impact_law::hertz_point_stiffness(k.radius_mm, 1.1e5);
+            let rounded = solver::multibody::impact_law::hertz_point_stiffness(k.radius_mm, 1.1e5);
             let _ = writeln!(
                 s,
                 "Stiffness: 4/3 √R E* with the seed's inputs is {:.4e} N/mm^1.5 (R = {:.3} mm, E* = {:.4e} N/mm²); the printed {:.4e} differs by {:+.2} %; with E* rounded to 1.1e5 N/mm² as the seed prints it, {:.4e} ({:+.3} %: {}). The seed derives K for F = K δ^1.5 and uses it with the exponent {}: with δ in mm that is a different law, weaker below 1 mm penetration. This run uses the printed K with the printed exponent, as the seed did.\n",

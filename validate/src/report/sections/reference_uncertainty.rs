@@ -59,6 +59,8 @@ pub struct Uncertainty {
     /// |finest − limit| (Richardson) or |finest − next finest| (spread),
     /// relative to the finest value, %.
     pub pct: f64,
+    /// Levels it was estimated from.
+    pub levels: usize,
 }
 
 /// The uncertainty of the finest of the values `f` at relative element
@@ -84,10 +86,12 @@ pub fn uncertainty(h: &[f64], f: &[f64]) -> Option<Uncertainty> {
         Some((order, limit)) => Uncertainty {
             estimate: Estimate::Richardson { order, limit },
             pct: ((fine - limit) / fine).abs() * 100.0,
+            levels: n,
         },
         None => Uncertainty {
             estimate: Estimate::Spread,
             pct: ((fine - f[n - 2]) / fine).abs() * 100.0,
+            levels: n,
         },
     })
 }
@@ -241,16 +245,25 @@ pub fn build(out: &Path, scene: &Scene, rows: &[Row]) -> ReferenceUncertainty {
     }
 }
 
+const MIN: f64 = crate::studies::convergence::MIN_ORDER;
+
 fn estimate_text(u: Option<Uncertainty>) -> String {
     match u {
         Some(Uncertainty {
             estimate: Estimate::Richardson { order, limit },
             pct,
+            ..
         }) => format!("{limit:.2} (order {order:.1}); {pct:.1} %"),
         Some(Uncertainty {
             estimate: Estimate::Spread,
             pct,
-        }) => format!("not monotone; {pct:.1} % (two finest)"),
+            levels: 2,
+        }) => format!("two levels only; {pct:.1} % (their difference)"),
+        Some(Uncertainty {
+            estimate: Estimate::Spread,
+            pct,
+            ..
+        }) => format!("not monotone or order below {MIN}; {pct:.1} % (two finest)"),
         None => "one level".into(),
     }
 }
@@ -404,5 +417,20 @@ mod tests {
         assert_eq!(u.estimate, Estimate::Spread);
         assert!((u.pct - 100.0 / 16.0).abs() < 1e-12);
         assert!(uncertainty(&[0.1], &[17.0]).is_none());
+    }
+
+    /// Two levels are said to be two levels, not a failed Richardson.
+    #[test]
+    fn estimate_text_names_two_levels_apart_from_a_non_monotone_three() {
+        let two = uncertainty(&[0.1, 0.05], &[17.0, 16.0]);
+        assert!(estimate_text(two).starts_with("two levels only"));
+        let three = uncertainty(&[0.2, 0.1, 0.05], &[16.0, 17.0, 16.5]);
+        assert!(estimate_text(three).starts_with("not monotone"));
+        let rich = uncertainty(&[0.2, 0.1, 0.05], &[10.16, 10.04, 10.01]);
+        assert!(
+            estimate_text(rich).contains("(order 2.0)"),
+            "{}",
+            estimate_text(rich)
+        );
     }
 }
