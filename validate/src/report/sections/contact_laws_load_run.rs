@@ -327,7 +327,7 @@ pub fn tangential_paragraph(
     );
     let _ = write!(
         s,
-        "- Tangential force: the wheel torque is the tangential force times the radius where the contact acts, so the mean tangential force equals 2T/d only where that radius is the outer pitch radius d/2 = {:.2} mm. The contact acts on average at {:.2} mm (impact law) and {:.2} mm (element), {} and {} the outer pitch circle, so the mean tangential force lies {:.2} % {} and {:.2} % {} 2T/d (on the base of the mean, as the seed states its difference).",
+        "- Tangential force: the wheel torque is the tangential force times the radius where the contact acts, so the mean tangential force equals 2T/d only where that radius is the outer pitch radius d/2 = {:.2} mm. The contact acts on average at {:.2} mm (impact law) and {:.2} mm (element), {} and {} the outer pitch circle, so the mean tangential force lies {:.2} % {} and {:.2} % {} 2T/d (relative to the mean, the base on which seed 002 states its difference).",
         li.outer_pitch_radius_mm,
         li.contact_radius_mm,
         le.contact_radius_mm,
