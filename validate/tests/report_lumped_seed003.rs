@@ -49,6 +49,10 @@ fn seed003_part_puts_our_velocities_beside_the_test_rig_and_says_what_the_roughn
     assert!(md.contains("measured +4.5 %"));
     assert!(md.contains("neither a calibration nor a validation"));
     assert!(md.contains("the two do not agree; the comparison below uses the text's"));
+    assert!(
+        md.contains("from the smooth flanks through Ra 0.8 µm, the mean stiffness rises with every grade at 45.63 N·m and rises with every grade at 62.22 N·m"),
+        "{md}"
+    );
     // Eq. (31) with Table 2's L and D is no roughness in µm: 823 at Ra 0.8.
     assert!(md.contains("823 at Ra 0.8"), "{md}");
     assert!(md.contains("R = √2 Ra, the composite roughness of two flanks of roughness Ra (our choice, not the seed's)"));
