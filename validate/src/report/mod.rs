@@ -19,6 +19,7 @@ pub mod published_comparison;
 pub mod results;
 pub mod run;
 pub mod sections;
+pub mod trend;
 
 use crate::report::figures::{figure_lines, figures_before_table, Figure};
 use crate::report::gather::ReportFigures;

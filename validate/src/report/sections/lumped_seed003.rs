@@ -241,13 +241,11 @@ fn rise(all: &[LumpedSummary]) -> f64 {
 /// first, then rougher): "rises with every grade", "falls with every
 /// grade", or "has no monotone trend".
 pub fn roughness_trend(values: &[f64]) -> &'static str {
-    let steps: Vec<f64> = values.windows(2).map(|w| w[1] - w[0]).collect();
-    if !steps.is_empty() && steps.iter().all(|d| *d > 0.0) {
-        "rises with every grade"
-    } else if !steps.is_empty() && steps.iter().all(|d| *d < 0.0) {
-        "falls with every grade"
-    } else {
-        "has no monotone trend"
+    use crate::report::trend::{trend, Trend};
+    match trend(values) {
+        Trend::Rises => "rises with every grade",
+        Trend::Falls => "falls with every grade",
+        Trend::Single | Trend::Neither => "has no monotone trend",
     }
 }
 

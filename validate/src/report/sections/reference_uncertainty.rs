@@ -111,15 +111,12 @@ pub fn judge(diff_pct: f64, target_pct: f64, reference_pct: Option<f64>) -> &'st
 
 /// How the peak pressure changes over the levels, coarse to fine.
 pub fn pressure_trend(p: &[f64]) -> &'static str {
-    let steps: Vec<f64> = p.windows(2).map(|w| w[1] - w[0]).collect();
-    if steps.is_empty() {
-        "one level only"
-    } else if steps.iter().all(|d| *d > 0.0) {
-        "grows with every refinement"
-    } else if steps.iter().all(|d| *d < 0.0) {
-        "falls with every refinement"
-    } else {
-        "changes direction between refinements"
+    use crate::report::trend::{trend, Trend};
+    match trend(p) {
+        Trend::Single => "one level only",
+        Trend::Rises => "grows with every refinement",
+        Trend::Falls => "falls with every refinement",
+        Trend::Neither => "changes direction between refinements",
     }
 }
 
