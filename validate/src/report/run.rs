@@ -73,7 +73,7 @@ pub fn run(i: &ReportInputs) -> anyhow::Result<Made> {
     );
     if let (Some(o), Some(sc), Some(l)) = (i.out, sc.as_ref(), loaded.as_ref()) {
         figures.reference_uncertainty =
-            crate::report::sections::reference_uncertainty::build(o, &sc.scene, &l.rows);
+            crate::report::sections::reference_uncertainty::build(o, &sc.scene, &l.rows)?;
     }
     if let Some(o) = i.out {
         figures.contact_laws = Some(crate::report::sections::contact_laws::build(

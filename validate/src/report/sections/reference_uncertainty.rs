@@ -10,7 +10,8 @@
 //! A verdict in the section is a function of the numbers it judges
 //! ([`judge`], [`pressure_trend`]), each with tests of its outcomes.
 
-use crate::reference::reference_stage::{reference_dir, BlankSummary};
+use crate::reference::reference_stage::{reference_dir, BlankSummary, LEVELS_FINEST_FIRST};
+use crate::report::comparison::{read, ComparisonError};
 use crate::report::comparison_row::Row;
 use crate::studies::convergence::richardson;
 use geometry::scene::{FlankElements, Scene};
@@ -156,10 +157,15 @@ fn elements(scene: &Scene, level: &str) -> Option<FlankElements> {
 }
 
 /// Reads every level's blank summaries of `scene` under `out` and builds
-/// the section; `rows` are the loaded-TE comparison's rows.
-pub fn build(out: &Path, scene: &Scene, rows: &[Row]) -> ReferenceUncertainty {
+/// the section; `rows` are the loaded-TE comparison's rows. A summary that
+/// is there but cannot be read is an error, not a level left out.
+pub fn build(
+    out: &Path,
+    scene: &Scene,
+    rows: &[Row],
+) -> Result<ReferenceUncertainty, ComparisonError> {
     let mut per: Vec<(String, String, BlankSummary)> = Vec::new();
-    for level in ["reduced", "medium", "reference"] {
+    for &level in LEVELS_FINEST_FIRST.iter().rev() {
         let dir = reference_dir(out, &scene.name, level);
         let Ok(d) = std::fs::read_dir(&dir) else {
             continue;
@@ -171,10 +177,7 @@ pub fn build(out: &Path, scene: &Scene, rows: &[Row]) -> ReferenceUncertainty {
             .collect();
         dirs.sort();
         for p in dirs {
-            let Some(s) = std::fs::read_to_string(p.join("summary.json"))
-                .ok()
-                .and_then(|t| serde_json::from_str::<BlankSummary>(&t).ok())
-            else {
+            let Some(s) = read::<BlankSummary>(&p.join("summary.json"))? else {
                 continue;
             };
             let blank = format!("{}_{}", s.pinion_blank, s.wheel_blank);
@@ -236,10 +239,10 @@ pub fn build(out: &Path, scene: &Scene, rows: &[Row]) -> ReferenceUncertainty {
         }
     }
     let markdown = markdown(&out_rows);
-    ReferenceUncertainty {
+    Ok(ReferenceUncertainty {
         rows: out_rows,
         markdown,
-    }
+    })
 }
 
 const MIN: f64 = crate::studies::convergence::MIN_ORDER;
@@ -429,5 +432,22 @@ mod tests {
             "{}",
             estimate_text(rich)
         );
+    }
+
+    /// A level's summary that is there but unreadable stops the section
+    /// with the file named; without any summary the section is empty.
+    #[test]
+    fn an_unreadable_level_summary_is_an_error_not_a_level_left_out() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../reference/scenes/default.toml");
+        let scene = geometry::scene::Scene::load(&path).unwrap().scene;
+        let out = tempfile::tempdir().unwrap();
+        let built = build(out.path(), &scene, &[]).unwrap();
+        assert!(built.rows.is_empty() && built.markdown.is_empty());
+        let dir = reference_dir(out.path(), &scene.name, "medium").join("standard_standard");
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("summary.json"), "{ not json").unwrap();
+        let e = build(out.path(), &scene, &[]).unwrap_err();
+        assert!(e.to_string().contains("summary.json"), "{e}");
     }
 }
