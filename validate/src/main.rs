@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand};
 use cli::args::{
-    ConvergenceArgs, LineLoadArgs, MeshStiffnessArgs, ReferenceArgs, ReportArgs,
+    CalibrateArgs, ConvergenceArgs, LineLoadArgs, MeshStiffnessArgs, ReferenceArgs, ReportArgs,
     StageTradeoffsArgs, StressArgs, TradeoffArgs, UtcaArgs,
 };
 use cli::commands;
@@ -54,6 +54,11 @@ enum Cmd {
     /// The line-load check: a Hertzian line load on one pinion tooth,
     /// fine-mesh FE against the reduced model's global FE + Weber–Banaschek.
     LineLoad(LineLoadArgs),
+    /// A calibrated variant of the white-paper design: the unpublished
+    /// pinion ease-off and lightweight web fitted to the published NLFEA
+    /// rows at 1 and 100 N·m; writes the calibrated design, its scene and
+    /// the fit's record (reference/white_paper_20x43_calibrat*).
+    Calibrate(CalibrateArgs),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -69,6 +74,7 @@ fn main() -> anyhow::Result<()> {
         Cmd::Convergence(a) => commands::convergence(a)?,
         Cmd::MeshStiffness(a) => commands::mesh_stiffness(a)?,
         Cmd::LineLoad(a) => commands::line_load(a)?,
+        Cmd::Calibrate(a) => commands::calibrate(a)?,
     }
     Ok(())
 }

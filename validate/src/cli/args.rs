@@ -296,3 +296,25 @@ pub fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
     }
     Ok((i, n))
 }
+
+#[derive(clap::Args)]
+pub struct CalibrateArgs {
+    /// The base scene (the white-paper pair's default scene); its
+    /// standard/standard stiffness files must exist.
+    pub scene: PathBuf,
+    /// Mesh directory; the web trials' meshes and stiffness files go here.
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    /// Output root: the web trials' scenes go to `<out>/calibration/`.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// The calibrated design file to write.
+    #[arg(long, default_value = "reference/white_paper_20x43_calibrated.toml")]
+    pub design_out: PathBuf,
+    /// The calibrated scene file to write.
+    #[arg(long, default_value = "reference/scenes/white_paper_calibrated.toml")]
+    pub scene_out: PathBuf,
+    /// The calibration record to write (read by the report).
+    #[arg(long, default_value = "reference/white_paper_20x43_calibration.json")]
+    pub record_out: PathBuf,
+}

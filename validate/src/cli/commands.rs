@@ -352,3 +352,38 @@ pub fn line_load(
     }
     Ok(())
 }
+
+pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
+    let scene = geometry::scene::Scene::load(&a.scene)?;
+    let r = validate::studies::calibration::run(
+        &scene,
+        &a.meshes,
+        &a.out.join("calibration"),
+        &validate::studies::calibration::Targets {
+            design: &a.design_out,
+            scene: &a.scene_out,
+            record: &a.record_out,
+        },
+    )?;
+    println!("calibrated ease-off (base -> calibrated):");
+    for v in r.ease_off.iter().chain(std::iter::once(&r.web)) {
+        println!("  {:28} {:9.3} -> {:9.3}", v.name, v.base, v.calibrated);
+    }
+    println!("fitted rows (published NLFEA | model at the fit):");
+    for f in &r.fitted_rows {
+        println!(
+            "  {:11} {:5} N·m {:4}: {:8.2} | {:8.2} urad",
+            f.blank, f.load_nm, f.quantity, f.published_nlfea_urad, f.model_at_fit_urad
+        );
+    }
+    println!(
+        "{} + {} evaluations, {:.0} s CPU (this process); written {}, {}, {}",
+        r.ease_off_evaluations,
+        r.web_evaluations,
+        r.cpu_s,
+        a.design_out.display(),
+        a.scene_out.display(),
+        a.record_out.display()
+    );
+    Ok(())
+}

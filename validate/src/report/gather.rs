@@ -22,6 +22,8 @@ pub struct ReportFigures {
     /// The reference's mesh levels and penalty against the reduced model's
     /// differences (no figures).
     pub reference_uncertainty: crate::report::sections::reference_uncertainty::ReferenceUncertainty,
+    /// The calibrated variant of the design (no figures).
+    pub calibrated_variant: crate::report::sections::calibrated_variant::CalibratedSection,
     /// The "Contact laws" section with its load-run charts (seeds 001/002).
     pub contact_laws: Option<crate::report::sections::contact_laws::ContactLaws>,
     /// The lumped model's section with its charts.

@@ -137,6 +137,7 @@ pub fn markdown(
     if let Some(l) = loaded {
         s.push_str(&published_comparison::paragraph(&l.rows));
     }
+    s.push_str(&figs.calibrated_variant.markdown);
     if let Some(p) = &parts {
         s.push_str(&p.discussion);
     }

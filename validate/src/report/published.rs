@@ -43,6 +43,42 @@ pub fn te_ptp_1nm(published: &PublishedDesign) -> Result<Option<Published>, Publ
     }))
 }
 
+/// One load of the white paper's Tables 3–4: the multibody element's and
+/// the NLFEA's mean and peak-to-peak TE, µrad.
+#[derive(Debug, Clone, Deserialize)]
+pub struct PublishedTeRow {
+    pub load_nm: f64,
+    pub mean_te_multibody_urad: f64,
+    pub mean_te_nlfea_urad: f64,
+    pub ptp_te_multibody_urad: f64,
+    pub ptp_te_nlfea_urad: f64,
+}
+
+/// The white paper's Tables 3 (standard blank) and 4 (lightweight blank).
+#[derive(Debug, Clone, Deserialize)]
+pub struct PublishedTeTables {
+    pub source: String,
+    pub standard_blank: Vec<PublishedTeRow>,
+    pub lightweight_blank: Vec<PublishedTeRow>,
+}
+
+impl PublishedTeTables {
+    /// The tables the design's `[published] loaded_te` names.
+    pub fn of(published: &PublishedDesign) -> Result<Option<Self>, PublishedError> {
+        published.loaded_te.as_deref().map(read_toml).transpose()
+    }
+
+    /// The row of `blank` at `load_nm`, if printed.
+    pub fn row(&self, lightweight: bool, load_nm: f64) -> Option<&PublishedTeRow> {
+        let rows = if lightweight {
+            &self.lightweight_blank
+        } else {
+            &self.standard_blank
+        };
+        rows.iter().find(|r| r.load_nm == load_nm)
+    }
+}
+
 /// A published table that the design names but that cannot be read.
 #[derive(Debug, thiserror::Error)]
 #[error("{}: published table named in the design's [published]: {message}", .path.display())]

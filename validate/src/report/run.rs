@@ -75,6 +75,13 @@ pub fn run(i: &ReportInputs) -> anyhow::Result<Made> {
         figures.reference_uncertainty =
             crate::report::sections::reference_uncertainty::build(o, &sc.scene, &l.rows)?;
     }
+    if let (Some(o), Some(sc)) = (i.out, sc.as_ref()) {
+        figures.calibrated_variant = crate::report::sections::calibrated_variant::build(
+            o,
+            sc,
+            loaded.as_ref().map_or(&[][..], |l| l.rows.as_slice()),
+        )?;
+    }
     if let Some(o) = i.out {
         figures.contact_laws = Some(crate::report::sections::contact_laws::build(
             o,

@@ -11,6 +11,7 @@
 //!   [`tradeoff_stage`], other contact grids' scenes in [`grid_scenes`]).
 
 pub mod asperity_resolution;
+pub mod calibration;
 pub mod convergence;
 pub mod grid_scenes;
 pub mod line_load;
