@@ -92,7 +92,10 @@ BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
 # Measured 2026-11-27 after `make calibrate` (2 shared cores): mesh 63 s,
 # stiffness 32 s, ltca 0.9 s; the pinion and the lightweight wheel are
 # copied from the calibration's last web trial (same inputs), the standard
-# wheel is meshed and solved. CALIBRATED=0 leaves it out.
+# wheel is meshed and solved. On a fresh machine (no web trials in
+# meshes/) all three bodies are meshed and solved: about as long as the
+# default scene's reduced meshes and stiffness files (77 + 131 s measured
+# 2026-11-27). CALIBRATED=0 leaves it out.
 CALIBRATED       ?= 1
 CALIBRATED_SCENE := reference/scenes/white_paper_calibrated.toml
 

@@ -233,6 +233,36 @@ pub fn mean_growth(rows: &[CompareRow], from_nm: f64) -> Vec<(String, f64, f64, 
     out
 }
 
+/// The loads (per wheel blank) where the LTCA's contact reaches an edge of
+/// the active flank, which the reduced model does not hold beyond; None
+/// where it never does.
+pub fn edge_line(design: &str, summaries: &[BlankSummary]) -> Option<String> {
+    let parts: Vec<String> = summaries
+        .iter()
+        .filter_map(|b| {
+            let loads: Vec<String> = b
+                .loads
+                .iter()
+                .filter(|l| l.edge_contact.is_some())
+                .map(|l| format!("{}", l.torque_nm))
+                .collect();
+            (!loads.is_empty()).then(|| {
+                format!(
+                    "{} wheel at {} N·m",
+                    format!("{:?}", b.wheel_blank).to_lowercase(),
+                    loads.join(", ")
+                )
+            })
+        })
+        .collect();
+    (!parts.is_empty()).then(|| {
+        format!(
+            "The {design} design's contact reaches an edge of the active flank (the reduced model does not hold beyond it; the reference FE shows edge contact) with the {}.",
+            parts.join(" and the ")
+        )
+    })
+}
+
 /// How the mean TE's growth with load compares: ours growing more than
 /// the published by over 2 % is a contact (and body) that stiffens less
 /// with load, and the other way round.
@@ -307,6 +337,12 @@ pub fn build(
         .collect();
     let rows = compare_rows(&tables, &default, &cal, &fitted);
     write_text(&mut s, &rec, &rows, ltca_against_multibody(&default, mb));
+    for (name, summaries) in [("default", &default), ("calibrated", &cal)] {
+        if let Some(line) = edge_line(name, summaries) {
+            let _ = writeln!(s, "- {line}");
+        }
+    }
+    s.push('\n');
     Ok(CalibratedSection { markdown: s })
 }
 
@@ -372,7 +408,6 @@ fn write_text(
     for (blank, to, nlfea, ours) in mean_growth(rows, 100.0) {
         let _ = writeln!(s, "- {}", growth_sentence(&blank, to, nlfea, ours));
     }
-    s.push('\n');
 }
 
 #[cfg(test)]
@@ -451,6 +486,52 @@ mod tests {
         assert!(
             growth_sentence("standard", 700.0, 4.0, 4.05).contains("as the published (within 2 %)")
         );
+    }
+
+    #[test]
+    fn edge_line_lists_the_loads_with_edge_contact_and_is_silent_without() {
+        use formats::summaries::{Edge, EdgeContact, LoadSummary};
+        let load = |t: f64, edge: bool| LoadSummary {
+            torque_nm: t,
+            te_mean_urad: 0.0,
+            te_ptp_urad: 0.0,
+            cpu_s_per_position: 0.0,
+            solve_s_per_position: 0.0,
+            max_pressure_mpa: 0.0,
+            mesh_stiffness_mean_nm_per_rad: 0.0,
+            max_pair_share: 0.0,
+            wheel_torque_mean_nm: 0.0,
+            edge_contact: edge.then_some(EdgeContact {
+                edge: Edge::PinionTip,
+                pinion_rotation_deg: 0.0,
+                pair: 2,
+                overshoot_mm: 0.3,
+            }),
+        };
+        let mut b = BlankSummary {
+            pinion_blank: Blank::Standard,
+            wheel_blank: Blank::Lightweight,
+            positions: 1,
+            step_deg: 0.5,
+            mesh_cycles: 1.0,
+            slices_per_pair: 30,
+            friction_coefficient: 0.0,
+            utca_te_mean_urad: 0.0,
+            utca_te_ptp_urad: 0.0,
+            stiffness_files: Vec::new(),
+            wall_s: 0.0,
+            loads: vec![load(100.0, false), load(700.0, true)],
+            dir: PathBuf::new(),
+            coast: None,
+            bearings: None,
+        };
+        let l = edge_line("calibrated", std::slice::from_ref(&b)).unwrap();
+        assert!(
+            l.contains("lightweight wheel at 700 N·m") && !l.contains("100"),
+            "{l}"
+        );
+        b.loads[1].edge_contact = None;
+        assert!(edge_line("calibrated", &[b]).is_none());
     }
 
     #[test]
