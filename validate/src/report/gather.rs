@@ -15,6 +15,9 @@ pub struct ReportFigures {
     /// Contact patterns at [`ReportFigures::pattern_torque_nm`].
     pub patterns: Vec<Figure>,
     pub pattern_torque_nm: Option<f64>,
+    /// The contact patterns as numbers, one line per blank combination
+    /// (markdown list items).
+    pub pattern_numbers: String,
     /// The reduced model's error to the reference against its run time.
     pub tradeoff: Option<Figure>,
     /// The flank stage's plots: unloaded TE, path of contact, ease-off.
@@ -120,6 +123,21 @@ pub fn report_figures(
                 let blank = format!("{pb:?}_{wb:?}").to_lowercase();
                 f.patterns
                     .extend(pattern_figure(o, &s.name, &blank, t, reports));
+                if let Some(n) =
+                    crate::report::sections::loaded_contact::pattern_points(o, &s.name, &blank, t)
+                        .and_then(|(a, b)| {
+                            crate::report::sections::pattern_numbers::numbers(&a, &b)
+                        })
+                {
+                    f.pattern_numbers.push_str(&format!(
+                        "- {}\n",
+                        crate::report::sections::pattern_numbers::sentence(
+                            &blank.replace('_', " / "),
+                            t,
+                            &n
+                        )
+                    ));
+                }
             }
         }
         f.pattern_torque_nm = (!f.patterns.is_empty()).then_some(t);

@@ -152,6 +152,10 @@ pub fn markdown(
             }
         }
         s.push_str(pattern_text);
+        if !figs.pattern_numbers.is_empty() {
+            s.push_str(&figs.pattern_numbers);
+            s.push('\n');
+        }
         if !figs.patterns.is_empty() {
             let _ = writeln!(
                 s,

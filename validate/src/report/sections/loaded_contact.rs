@@ -145,23 +145,24 @@ pub fn envelope_cells(
         .collect()
 }
 
-/// Contact pattern at torque `t` of one blank combination: the reduced
-/// model's slices (quasi-static LTCA, all positions) and the reference's
-/// pressure envelope, on the pinion flank's unit coordinates (ξ along the
-/// face, toe → heel; η up the profile, root → tip), one colour scale.
-pub fn pattern_figure(
+/// A point of a contact pattern: ξ, η on the pinion flank, pressure MPa.
+pub type PatternPoint = (f64, f64, f64);
+
+/// The contact pattern at torque `t` of one blank combination, both models'
+/// loaded points (pressure > 0): the reduced model's slices (quasi-static
+/// LTCA, all positions at `t`) and the finest reference's nodal envelope.
+pub fn pattern_points(
     out: &Path,
     scene: &str,
     blank: &str,
     t: f64,
-    reports: &Path,
-) -> Option<Figure> {
+) -> Option<(Vec<PatternPoint>, Vec<PatternPoint>)> {
     let reduced = read_csv(&out.join(scene).join("ltca").join(blank).join("slices.csv"))?;
     let reference = read_csv(
         &crate::reference::reference_stage::finest_reference(out, scene, blank)?
             .join(format!("pattern_{t}nm.csv")),
     )?;
-    let pick = |csv: &Csv, at: Option<f64>| -> Vec<(f64, f64, f64)> {
+    let pick = |csv: &Csv, at: Option<f64>| -> Vec<PatternPoint> {
         let (Some(xi), Some(eta), Some(p)) = (
             column(csv, "xi"),
             column(csv, "eta"),
@@ -179,7 +180,21 @@ pub fn pattern_figure(
             .map(|i| (xi[i], eta[i], p[i]))
             .collect()
     };
-    let (a, b) = (pick(&reduced, Some(t)), pick(&reference, None));
+    Some((pick(&reduced, Some(t)), pick(&reference, None)))
+}
+
+/// Contact pattern at torque `t` of one blank combination: the reduced
+/// model's slices (quasi-static LTCA, all positions) and the reference's
+/// pressure envelope, on the pinion flank's unit coordinates (ξ along the
+/// face, toe → heel; η up the profile, root → tip), one colour scale.
+pub fn pattern_figure(
+    out: &Path,
+    scene: &str,
+    blank: &str,
+    t: f64,
+    reports: &Path,
+) -> Option<Figure> {
+    let (a, b) = pattern_points(out, scene, blank, t)?;
     let p_max = a.iter().chain(&b).map(|p| p.2).fold(0.0, f64::max);
     // Points below 2% of the largest pressure are left out: the nodal
     // recovery leaves small positive values around the contact.

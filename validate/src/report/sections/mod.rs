@@ -13,6 +13,7 @@ pub mod lumped_fe_stiffness;
 pub mod lumped_order_map;
 pub mod lumped_seed003;
 pub mod lumped_studies;
+pub mod pattern_numbers;
 pub mod reference_uncertainty;
 pub mod sensitivity;
 pub mod stage_tradeoffs;
