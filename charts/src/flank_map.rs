@@ -3,7 +3,7 @@
 
 use crate::frame::{
     chart_builder, colormap, de, decimals_for, draw_mesh, fmt_num, frame, padded, plot_pixel_range,
-    render_to_file, text_style, text_width, BBox, DESC_FONT,
+    render_to_file, text_style, text_width, Area, BBox, DResult, DESC_FONT,
 };
 use crate::numeric::{grid_is_consistent, iso_segments, nice_step, nice_ticks, Segment};
 use crate::PlotError;
@@ -71,34 +71,7 @@ pub fn flank_map(
             grid.value.len()
         )));
     }
-    let np = grid.n_profile;
-    let node_ok =
-        |j: usize| grid.x[j].is_finite() && grid.y[j].is_finite() && grid.value[j].is_finite();
-    // cells with four finite nodes: (polygon, mean value)
-    let mut cells: Vec<(Vec<(f64, f64)>, f64)> = Vec::new();
-    let mut bb = BBox::empty();
-    let (mut vmin, mut vmax) = (f64::INFINITY, f64::NEG_INFINITY);
-    for i in 0..grid.n_face - 1 {
-        for k in 0..np - 1 {
-            let c = [
-                i * np + k,
-                (i + 1) * np + k,
-                (i + 1) * np + k + 1,
-                i * np + k + 1,
-            ];
-            if !c.iter().all(|&j| node_ok(j)) {
-                continue;
-            }
-            let poly: Vec<(f64, f64)> = c.iter().map(|&j| (grid.x[j], grid.y[j])).collect();
-            for &j in &c {
-                bb.add((grid.x[j], grid.y[j]));
-                vmin = vmin.min(grid.value[j]);
-                vmax = vmax.max(grid.value[j]);
-            }
-            let mean = c.iter().map(|&j| grid.value[j]).sum::<f64>() / 4.0;
-            cells.push((poly, mean));
-        }
-    }
+    let (cells, bb, vmin, vmax) = finite_cells(grid);
     if cells.is_empty() {
         return Err(input("no grid cell with four finite nodes".into()));
     }
@@ -140,6 +113,16 @@ pub fn flank_map(
     // x of the (rotated) colour bar label in the column, and the column width
     let label_x = (BAR_X.1 + 10 + tick_w + 22).max(BAR_X.0 + 30);
     let colorbar_w = ((label_x + 22).max(BAR_X.0 - 8 + end_w + 8)) as u32;
+
+    let bar = ColourBar {
+        levels: &levels,
+        level_text: &level_text,
+        range: (cmin, cmax),
+        max_text: &max_text,
+        min_text: &min_text,
+        label: colorbar_label,
+        label_x,
+    };
 
     render_to_file(path, (1100, 720), |root| {
         let (main, side) = frame(root, title, colorbar_w)?;
@@ -183,42 +166,7 @@ pub fn flank_map(
         // iso-line labels: per level, the segment midpoint farthest from the
         // labels already placed and from the plot border
         let area = chart.plotting_area();
-        let (ax, ay) = (px.0.clone(), px.1.clone());
-        let mut placed: Vec<(i32, i32)> = Vec::new();
-        let mut labels = Vec::new();
-        for (segs, text) in contours.iter().zip(&level_text) {
-            let tw = text_width(text, CONTOUR_FONT);
-            let mut best: Option<((i32, i32), f64)> = None;
-            for &(a, b) in segs {
-                let m = (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1));
-                let p = area.map_coordinate(&m);
-                let border = [
-                    (p.0 - ax.start - tw / 2) as f64,
-                    (ax.end - p.0 - tw / 2) as f64,
-                    (p.1 - ay.start - 10) as f64,
-                    (ay.end - p.1 - 10) as f64,
-                ]
-                .into_iter()
-                .fold(f64::INFINITY, f64::min);
-                if border < 2.0 {
-                    continue;
-                }
-                let near = placed
-                    .iter()
-                    .map(|q| (((p.0 - q.0).pow(2) + (p.1 - q.1).pow(2)) as f64).sqrt())
-                    .fold(f64::INFINITY, f64::min);
-                let score = near.min(3.0 * border);
-                if best.is_none_or(|(_, s)| score > s) {
-                    best = Some((p, score));
-                }
-            }
-            if let Some((p, score)) = best {
-                if score > 50.0 {
-                    placed.push(p);
-                    labels.push((p, text.clone(), tw));
-                }
-            }
-        }
+        let labels = label_places(|m| area.map_coordinate(m), &px, &contours, &level_text);
         for (p, text, tw) in labels {
             root.draw(&Rectangle::new(
                 [(p.0 - tw / 2 - 3, p.1 - 9), (p.0 + tw / 2 + 3, p.1 + 9)],
@@ -232,59 +180,169 @@ pub fn flank_map(
             ))
             .map_err(de)?;
         }
-        // colour bar
-        let base = side.get_base_pixel();
-        let top = px.1.start - base.1 + 26;
-        let bottom = px.1.end - base.1 - 26;
-        let (bx0, bx1) = BAR_X;
-        let span = (bottom - top).max(1);
-        let n_slices = 128;
-        for s in 0..n_slices {
-            let y0 = bottom - (s * span) / n_slices;
-            let y1 = bottom - ((s + 1) * span) / n_slices;
-            let t = (s as f64 + 0.5) / n_slices as f64;
-            side.draw(&Rectangle::new(
-                [(bx0, y1 - 1), (bx1, y0)],
-                colormap(t).filled(),
-            ))
-            .map_err(de)?;
+        colour_bar(&side, &px, &bar)
+    })
+}
+
+/// A grid cell: its polygon and the mean of its four node values.
+type Cell = (Vec<(f64, f64)>, f64);
+
+/// The grid cells with four finite nodes (polygon, mean value), their
+/// bounding box, and the smallest and largest finite node value.
+fn finite_cells(grid: &FlankMap) -> (Vec<Cell>, BBox, f64, f64) {
+    let np = grid.n_profile;
+    let node_ok =
+        |j: usize| grid.x[j].is_finite() && grid.y[j].is_finite() && grid.value[j].is_finite();
+    // cells with four finite nodes: (polygon, mean value)
+    let mut cells: Vec<(Vec<(f64, f64)>, f64)> = Vec::new();
+    let mut bb = BBox::empty();
+    let (mut vmin, mut vmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for i in 0..grid.n_face - 1 {
+        for k in 0..np - 1 {
+            let c = [
+                i * np + k,
+                (i + 1) * np + k,
+                (i + 1) * np + k + 1,
+                i * np + k + 1,
+            ];
+            if !c.iter().all(|&j| node_ok(j)) {
+                continue;
+            }
+            let poly: Vec<(f64, f64)> = c.iter().map(|&j| (grid.x[j], grid.y[j])).collect();
+            for &j in &c {
+                bb.add((grid.x[j], grid.y[j]));
+                vmin = vmin.min(grid.value[j]);
+                vmax = vmax.max(grid.value[j]);
+            }
+            let mean = c.iter().map(|&j| grid.value[j]).sum::<f64>() / 4.0;
+            cells.push((poly, mean));
         }
+    }
+    (cells, bb, vmin, vmax)
+}
+
+/// Where the iso-lines' labels go: per level, the segment midpoint (in
+/// pixels, `map` from the data) farthest from the labels already placed
+/// and from the plot border `px`, if far enough; with its text and width.
+fn label_places(
+    map: impl Fn(&(f64, f64)) -> (i32, i32),
+    px: &(std::ops::Range<i32>, std::ops::Range<i32>),
+    contours: &[Vec<Segment>],
+    level_text: &[String],
+) -> Vec<((i32, i32), String, i32)> {
+    let (ax, ay) = (px.0.clone(), px.1.clone());
+    let mut placed: Vec<(i32, i32)> = Vec::new();
+    let mut labels = Vec::new();
+    for (segs, text) in contours.iter().zip(level_text) {
+        let tw = text_width(text, CONTOUR_FONT);
+        let mut best: Option<((i32, i32), f64)> = None;
+        for &(a, b) in segs {
+            let m = (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1));
+            let p = map(&m);
+            let border = [
+                (p.0 - ax.start - tw / 2) as f64,
+                (ax.end - p.0 - tw / 2) as f64,
+                (p.1 - ay.start - 10) as f64,
+                (ay.end - p.1 - 10) as f64,
+            ]
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+            if border < 2.0 {
+                continue;
+            }
+            let near = placed
+                .iter()
+                .map(|q| (((p.0 - q.0).pow(2) + (p.1 - q.1).pow(2)) as f64).sqrt())
+                .fold(f64::INFINITY, f64::min);
+            let score = near.min(3.0 * border);
+            if best.is_none_or(|(_, s)| score > s) {
+                best = Some((p, score));
+            }
+        }
+        if let Some((p, score)) = best {
+            if score > 50.0 {
+                placed.push(p);
+                labels.push((p, text.clone(), tw));
+            }
+        }
+    }
+    labels
+}
+
+/// The colour bar: its levels (ticks) with their texts, the colour range,
+/// the texts at its ends, its label and the label's x in the column.
+struct ColourBar<'a> {
+    levels: &'a [f64],
+    level_text: &'a [String],
+    range: (f64, f64),
+    max_text: &'a str,
+    min_text: &'a str,
+    label: &'a str,
+    label_x: i32,
+}
+
+/// Draws the colour bar in its column `side`, spanning the plot's pixel
+/// rows `px.1`.
+fn colour_bar(
+    side: &Area<'_>,
+    px: &(std::ops::Range<i32>, std::ops::Range<i32>),
+    bar: &ColourBar,
+) -> DResult {
+    let (levels, level_text, (cmin, cmax)) = (bar.levels, bar.level_text, bar.range);
+    let (max_text, min_text, colorbar_label, label_x) =
+        (bar.max_text, bar.min_text, bar.label, bar.label_x);
+    // colour bar
+    let base = side.get_base_pixel();
+    let top = px.1.start - base.1 + 26;
+    let bottom = px.1.end - base.1 - 26;
+    let (bx0, bx1) = BAR_X;
+    let span = (bottom - top).max(1);
+    let n_slices = 128;
+    for s in 0..n_slices {
+        let y0 = bottom - (s * span) / n_slices;
+        let y1 = bottom - ((s + 1) * span) / n_slices;
+        let t = (s as f64 + 0.5) / n_slices as f64;
         side.draw(&Rectangle::new(
-            [(bx0, top), (bx1, bottom)],
+            [(bx0, y1 - 1), (bx1, y0)],
+            colormap(t).filled(),
+        ))
+        .map_err(de)?;
+    }
+    side.draw(&Rectangle::new(
+        [(bx0, top), (bx1, bottom)],
+        BLACK.stroke_width(1),
+    ))
+    .map_err(de)?;
+    let vy = |v: f64| bottom - (((v - cmin) / (cmax - cmin)) * span as f64).round() as i32;
+    let tick_style = text_style(BAR_TICK_FONT, HPos::Left, VPos::Center);
+    for (&l, text) in levels.iter().zip(level_text) {
+        let y = vy(l);
+        side.draw(&PathElement::new(
+            vec![(bx0, y), (bx1 + 6, y)],
             BLACK.stroke_width(1),
         ))
         .map_err(de)?;
-        let vy = |v: f64| bottom - (((v - cmin) / (cmax - cmin)) * span as f64).round() as i32;
-        let tick_style = text_style(BAR_TICK_FONT, HPos::Left, VPos::Center);
-        for (&l, text) in levels.iter().zip(&level_text) {
-            let y = vy(l);
-            side.draw(&PathElement::new(
-                vec![(bx0, y), (bx1 + 6, y)],
-                BLACK.stroke_width(1),
-            ))
+        side.draw(&Text::new(text.clone(), (bx1 + 10, y), tick_style.clone()))
             .map_err(de)?;
-            side.draw(&Text::new(text.clone(), (bx1 + 10, y), tick_style.clone()))
-                .map_err(de)?;
-        }
-        let end_style = text_style(BAR_END_FONT, HPos::Left, VPos::Center);
-        side.draw(&Text::new(
-            max_text.clone(),
-            (bx0 - 8, top - 14),
-            end_style.clone(),
-        ))
-        .map_err(de)?;
-        side.draw(&Text::new(
-            min_text.clone(),
-            (bx0 - 8, bottom + 14),
-            end_style,
-        ))
-        .map_err(de)?;
-        side.draw(&Text::new(
-            colorbar_label.to_string(),
-            (label_x, (top + bottom) / 2),
-            text_style(DESC_FONT, HPos::Center, VPos::Center).transform(FontTransform::Rotate270),
-        ))
-        .map_err(de)?;
-        Ok(())
-    })
+    }
+    let end_style = text_style(BAR_END_FONT, HPos::Left, VPos::Center);
+    side.draw(&Text::new(
+        max_text.to_string(),
+        (bx0 - 8, top - 14),
+        end_style.clone(),
+    ))
+    .map_err(de)?;
+    side.draw(&Text::new(
+        min_text.to_string(),
+        (bx0 - 8, bottom + 14),
+        end_style,
+    ))
+    .map_err(de)?;
+    side.draw(&Text::new(
+        colorbar_label.to_string(),
+        (label_x, (top + bottom) / 2),
+        text_style(DESC_FONT, HPos::Center, VPos::Center).transform(FontTransform::Rotate270),
+    ))
+    .map_err(de)?;
+    Ok(())
 }

@@ -160,7 +160,16 @@ pub fn check_plain_name(path: &Path, field: &str, name: &str) -> Result<(), Inpu
 fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
     let c = Checker { path };
     check_plain_name(path, "name", &d.name)?;
-    let p = &d.pair;
+    check_pair(&c, &d.pair)?;
+    check_teeth_and_hands(&c, d)?;
+    let g1 = check_pitch_angles(&c, d)?;
+    check_members(&c, d)?;
+    check_module_and_clearance(&c, d, g1)?;
+    check_cutter_and_ease_off(&c, d)
+}
+
+/// The `[pair]` table: angles, module, cone distance and face width.
+fn check_pair(c: &Checker, p: &PairDesign) -> Result<(), InputError> {
     c.range("pair.shaft_angle_deg", p.shaft_angle_deg, 30.0, 150.0)?;
     c.range(
         "pair.mean_spiral_angle_deg",
@@ -204,6 +213,12 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
             ),
         ));
     }
+    Ok(())
+}
+
+/// Both members' tooth numbers (the pinion's at most the wheel's) and
+/// opposite hands.
+fn check_teeth_and_hands(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
     for (name, m) in [("pinion", &d.pinion), ("wheel", &d.wheel)] {
         let f = |s: &str| format!("{name}.{s}");
         if !(5..=MAX_TEETH).contains(&m.teeth) {
@@ -224,12 +239,20 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
     }
     if d.pinion.hand == d.wheel.hand {
         return Err(InputError::Invalid {
-            path: path.to_path_buf(),
+            path: c.path.to_path_buf(),
             field: "wheel.hand".into(),
             value: format!("{:?}", d.wheel.hand).to_lowercase(),
             limit: "must be the opposite of pinion.hand".into(),
         });
     }
+    Ok(())
+}
+
+/// The pitch angles against the tooth numbers and the shaft angle, before
+/// the root and face angles, whose limits they are; returns the pinion's
+/// pitch angle from the tooth numbers, deg.
+fn check_pitch_angles(c: &Checker, d: &DesignFile) -> Result<f64, InputError> {
+    let p = &d.pair;
     // Pitch angles from the tooth numbers and the shaft angle, before the
     // root and face angles, whose limits are the pitch angles: an
     // inconsistent pitch angle is reported as such.
@@ -251,6 +274,13 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
             format!("must equal {g2:.4} (shaft angle minus pinion pitch angle) within {tol}"),
         ));
     }
+    Ok(g1)
+}
+
+/// Each member's root and face angles, addendum and dedendum, point width
+/// and material.
+fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
+    let p = &d.pair;
     for (name, m) in [("pinion", &d.pinion), ("wheel", &d.wheel)] {
         let f = |s: &str| format!("{name}.{s}");
         let g = m.pitch_angle_deg;
@@ -304,6 +334,14 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
             30000.0,
         )?;
     }
+    Ok(())
+}
+
+/// The mean normal module against the cone distance (`g1` the pinion's
+/// pitch angle from the tooth numbers, deg), and the tip clearance of
+/// both members.
+fn check_module_and_clearance(c: &Checker, d: &DesignFile, g1: f64) -> Result<(), InputError> {
+    let p = &d.pair;
     // Mean normal module from the cone distance: m_n = 2 R_m sin γ₁ cos β / z₁.
     let mn = 2.0
         * p.mean_cone_distance_mm
@@ -335,6 +373,13 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
             ));
         }
     }
+    Ok(())
+}
+
+/// The cutter's radius and edge radius, and the ease-off (with its
+/// topography).
+fn check_cutter_and_ease_off(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
+    let p = &d.pair;
     let (r_min, r_max) = (
         MIN_CUTTER_RADIUS_CONE_DISTANCES * p.mean_cone_distance_mm,
         MAX_CUTTER_RADIUS_CONE_DISTANCES * p.mean_cone_distance_mm,
@@ -365,7 +410,7 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
     }
     c.range("ease_off.bias_um", e.bias_um, -500.0, 500.0)?;
     if let Some(t) = &e.topography {
-        check_topography(&c, t)?;
+        check_topography(c, t)?;
     }
     Ok(())
 }

@@ -42,12 +42,7 @@ impl Scene {
     /// The checks that need no design: every number finite and in range,
     /// names that become paths plain, sizes bounded.
     pub fn check(&self, path: &Path) -> Result<(), InputError> {
-        let fail = |field: &str, value: String, limit: &str| InputError::Invalid {
-            path: path.to_path_buf(),
-            field: field.into(),
-            value,
-            limit: limit.into(),
-        };
+        let ck = SceneCheck { path };
         crate::design_file::check_plain_name(path, "name", &self.name)?;
         if let Some(b) = &self.bearings {
             b.check(path)?;
@@ -55,6 +50,18 @@ impl Scene {
         if let Some(l) = &self.lumped {
             l.check(path)?;
         }
+        self.check_rotation_and_utca(&ck)?;
+        self.check_mesh_levels(&ck)?;
+        self.check_marking_and_torques(&ck)?;
+        self.check_stiffness(&ck)?;
+        self.check_ltca(&ck)?;
+        self.check_multibody_runs(&ck)?;
+        self.check_multibody_rattle_and_laws(&ck)?;
+        self.check_blanks(&ck)
+    }
+
+    /// `[rotation]` and `[utca]`: mesh cycles, steps and sample counts.
+    fn check_rotation_and_utca(&self, ck: &SceneCheck) -> Result<(), InputError> {
         let r = &self.rotation;
         for (f, v) in [
             ("rotation.mesh_cycles_standard", r.mesh_cycles_standard),
@@ -65,7 +72,7 @@ impl Scene {
             ("utca.mesh_cycles", self.utca.mesh_cycles),
         ] {
             if !(v > 0.0 && v <= 100.0) {
-                return Err(fail(f, v.to_string(), "must lie in (0, 100]"));
+                return Err(ck.fail(f, v.to_string(), "must lie in (0, 100]"));
             }
         }
         for (f, v) in [
@@ -73,7 +80,7 @@ impl Scene {
             ("utca.step_deg", self.utca.step_deg),
         ] {
             if !(v > 0.0 && v <= 5.0) {
-                return Err(fail(f, v.to_string(), "must lie in (0, 5]"));
+                return Err(ck.fail(f, v.to_string(), "must lie in (0, 5]"));
             }
         }
         for (f, v) in [
@@ -83,9 +90,14 @@ impl Scene {
             ("utca.flank_grid_face", self.utca.flank_grid_face),
         ] {
             if !(5..=1000).contains(&v) {
-                return Err(fail(f, v.to_string(), "must lie in [5, 1000]"));
+                return Err(ck.fail(f, v.to_string(), "must lie in [5, 1000]"));
             }
         }
+        Ok(())
+    }
+
+    /// `[mesh]`: the elements per loaded flank of every level.
+    fn check_mesh_levels(&self, ck: &SceneCheck) -> Result<(), InputError> {
         for (f, e) in [
             ("mesh.reduced_order", self.mesh.reduced_order),
             ("mesh.reference", self.mesh.reference),
@@ -96,7 +108,7 @@ impl Scene {
                 ("face", e.face, MAX_FLANK_ELEMENTS.face),
             ] {
                 if !(1..=hi).contains(&v) {
-                    return Err(fail(
+                    return Err(ck.fail(
                         &format!("{f}.{k}"),
                         v.to_string(),
                         &format!(
@@ -107,15 +119,20 @@ impl Scene {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// The marking compound's thickness and the pinion torques.
+    fn check_marking_and_torques(&self, ck: &SceneCheck) -> Result<(), InputError> {
         if !(self.utca.marking_compound_um > 0.0 && self.utca.marking_compound_um < 100.0) {
-            return Err(fail(
+            return Err(ck.fail(
                 "utca.marking_compound_um",
                 self.utca.marking_compound_um.to_string(),
                 "must lie in (0, 100)",
             ));
         }
         if self.pinion_torque_nm.is_empty() || self.pinion_torque_nm.len() > MAX_TORQUES {
-            return Err(fail(
+            return Err(ck.fail(
                 "pinion_torque_nm",
                 format!("{} values", self.pinion_torque_nm.len()),
                 &format!("needs 1 to {MAX_TORQUES} torques (the loads analysed)"),
@@ -123,20 +140,25 @@ impl Scene {
         }
         for (i, t) in self.pinion_torque_nm.iter().enumerate() {
             if !(t.is_finite() && *t > 0.0 && *t <= MAX_TORQUE_NM) {
-                return Err(fail(
+                return Err(ck.fail(
                     &format!("pinion_torque_nm[{i}]"),
                     t.to_string(),
                     &format!("must lie in (0, {MAX_TORQUE_NM}] N·m"),
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// `[stiffness]`: grid, load radius, response teeth, solve block.
+    fn check_stiffness(&self, ck: &SceneCheck) -> Result<(), InputError> {
         let st = &self.stiffness;
         for (f, v) in [
             ("stiffness.grid_profile", st.grid_profile),
             ("stiffness.grid_face", st.grid_face),
         ] {
             if v != 0 && !(2..=200).contains(&v) {
-                return Err(fail(
+                return Err(ck.fail(
                     f,
                     v.to_string(),
                     "must be 0 (mesh level) or lie in [2, 200]",
@@ -145,7 +167,7 @@ impl Scene {
         }
         let grid_points = st.grid_profile * st.grid_face;
         if grid_points > MAX_GRID_POINTS {
-            return Err(fail(
+            return Err(ck.fail(
                 "stiffness.grid_profile × stiffness.grid_face",
                 format!("{} × {} = {grid_points}", st.grid_profile, st.grid_face),
                 &format!(
@@ -155,41 +177,52 @@ impl Scene {
             ));
         }
         if !(st.load_radius_factor >= 0.25 && st.load_radius_factor <= 3.0) {
-            return Err(fail(
+            return Err(ck.fail(
                 "stiffness.load_radius_factor",
                 st.load_radius_factor.to_string(),
                 "must lie in [0.25, 3]",
             ));
         }
         if st.response_teeth > 5 {
-            return Err(fail(
+            return Err(ck.fail(
                 "stiffness.response_teeth",
                 st.response_teeth.to_string(),
                 "must be <= 5",
             ));
         }
         if !(1..=256).contains(&st.solve_block) {
-            return Err(fail(
+            return Err(ck.fail(
                 "stiffness.solve_block",
                 st.solve_block.to_string(),
                 "must lie in [1, 256]",
             ));
         }
+        Ok(())
+    }
+
+    /// `[ltca]`: friction coefficient and slices.
+    fn check_ltca(&self, ck: &SceneCheck) -> Result<(), InputError> {
         let mu = self.ltca.friction_coefficient;
         if !(0.0..=0.5).contains(&mu) {
-            return Err(fail(
+            return Err(ck.fail(
                 "ltca.friction_coefficient",
                 mu.to_string(),
                 "must lie in [0, 0.5]",
             ));
         }
         if !(4..=400).contains(&self.ltca.slices) {
-            return Err(fail(
+            return Err(ck.fail(
                 "ltca.slices",
                 self.ltca.slices.to_string(),
                 "must lie in [4, 400]",
             ));
         }
+        Ok(())
+    }
+
+    /// `[multibody]`: the quasi-static and run-up runs, the table and the
+    /// inertias.
+    fn check_multibody_runs(&self, ck: &SceneCheck) -> Result<(), InputError> {
         let mb = &self.multibody;
         for (f, v, lo, hi) in [
             (
@@ -229,7 +262,7 @@ impl Scene {
             ),
         ] {
             if !(v >= lo && v <= hi) {
-                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
+                return Err(ck.fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
             }
         }
         for (f, v) in [
@@ -237,11 +270,11 @@ impl Scene {
             ("multibody.runup_rpm[1]", mb.runup_rpm[1]),
         ] {
             if !(0.0..=1e5).contains(&v) {
-                return Err(fail(f, v.to_string(), "must lie in [0, 100000]"));
+                return Err(ck.fail(f, v.to_string(), "must lie in [0, 100000]"));
             }
         }
         if !(MIN_TABLE_LAG_NODES..=2000).contains(&mb.table_lag_nodes) {
-            return Err(fail(
+            return Err(ck.fail(
                 "multibody.table_lag_nodes",
                 mb.table_lag_nodes.to_string(),
                 &format!(
@@ -255,10 +288,17 @@ impl Scene {
         ] {
             if let Some(j) = v {
                 if !(j > 0.0 && j.is_finite()) {
-                    return Err(fail(f, j.to_string(), "must be finite and > 0"));
+                    return Err(ck.fail(f, j.to_string(), "must be finite and > 0"));
                 }
             }
         }
+        Ok(())
+    }
+
+    /// `[multibody]`: the rattle run, the impact law, the load run, and
+    /// rattle only with coast contact.
+    fn check_multibody_rattle_and_laws(&self, ck: &SceneCheck) -> Result<(), InputError> {
+        let mb = &self.multibody;
         for (f, v, lo, hi) in [
             (
                 "multibody.rattle_pinion_rpm",
@@ -293,22 +333,27 @@ impl Scene {
             ),
         ] {
             if !(v >= lo && v <= hi) {
-                return Err(fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
+                return Err(ck.fail(f, v.to_string(), &format!("must lie in [{lo}, {hi}]")));
             }
         }
         if mb.force_law == crate::scene::ForceLaw::Impact {
-            mb.impact.check(path, mb.coast_contact)?;
+            mb.impact.check(ck.path, mb.coast_contact)?;
         }
         if let Some(run) = &mb.load_run {
-            run.check(path)?;
+            run.check(ck.path)?;
         }
         if mb.rattle_time_s > 0.0 && !mb.coast_contact {
-            return Err(fail(
+            return Err(ck.fail(
                 "multibody.rattle_time_s",
                 mb.rattle_time_s.to_string(),
                 "must be 0 unless multibody.coast_contact = true (rattle needs both flanks)",
             ));
         }
+        Ok(())
+    }
+
+    /// `[blank_dimensions]` and `[blanks]`.
+    fn check_blanks(&self, ck: &SceneCheck) -> Result<(), InputError> {
         let bd = &self.blank_dimensions;
         for (f, v) in [
             ("pinion_bore_radius_mm", bd.pinion_bore_radius_mm),
@@ -327,7 +372,7 @@ impl Scene {
             if let Some(v) = v {
                 let hi = crate::design_file::MAX_CONE_DISTANCE_MM;
                 if !(v.is_finite() && v > 0.0 && v <= hi) {
-                    return Err(fail(
+                    return Err(ck.fail(
                         &format!("blank_dimensions.{f}"),
                         v.to_string(),
                         &format!("must lie in (0, {hi}] mm"),
@@ -336,7 +381,7 @@ impl Scene {
             }
         }
         if self.blanks.pinion.is_empty() || self.blanks.wheel.is_empty() {
-            return Err(fail(
+            return Err(ck.fail(
                 "blanks",
                 "[]".into(),
                 "each member needs at least one blank",
@@ -466,5 +511,22 @@ impl Scene {
             }
         }
         Ok(())
+    }
+}
+
+/// The checks' error for a field of the scene at `path`.
+struct SceneCheck<'a> {
+    path: &'a Path,
+}
+
+impl SceneCheck<'_> {
+    /// `field` = `value` outside `limit`.
+    fn fail(&self, field: &str, value: String, limit: &str) -> InputError {
+        InputError::Invalid {
+            path: self.path.to_path_buf(),
+            field: field.into(),
+            value,
+            limit: limit.into(),
+        }
     }
 }

@@ -175,34 +175,31 @@ impl Default for LumpedSettings {
 impl LumpedSettings {
     /// Checks every value against its limit; errors name field, value and limit.
     pub fn check(&self, path: &Path) -> Result<(), InputError> {
-        let fail = |field: &str, value: String, limit: &str| InputError::Invalid {
-            path: path.to_path_buf(),
-            field: format!("lumped.{field}"),
-            value,
-            limit: limit.into(),
-        };
-        let range = |field: &str, v: f64, lo: f64, hi: f64, limit: &str| {
-            if v.is_finite() && v > lo && v <= hi {
-                Ok(())
-            } else {
-                Err(fail(field, v.to_string(), limit))
-            }
-        };
-        range(
+        let ck = LumpedCheck { path };
+        self.check_run(&ck)?;
+        self.check_model(&ck)?;
+        self.check_friction_and_roughness(&ck)?;
+        self.check_design_variants(&ck)?;
+        self.check_order_map(&ck)
+    }
+
+    /// Speed, torque, mesh cycles, samples and the tolerances.
+    fn check_run(&self, ck: &LumpedCheck) -> Result<(), InputError> {
+        ck.range(
             "pinion_speed_rpm",
             self.pinion_speed_rpm,
             0.0,
             1e5,
             "must lie in (0, 100000]",
         )?;
-        range(
+        ck.range(
             "pinion_torque_nm",
             self.pinion_torque_nm,
             0.0,
             1e6,
             "must lie in (0, 1e6]",
         )?;
-        range(
+        ck.range(
             "mesh_cycles",
             self.mesh_cycles,
             0.0,
@@ -210,39 +207,45 @@ impl LumpedSettings {
             "must lie in (0, 10000]",
         )?;
         if !(self.dropped_mesh_cycles >= 0.0 && self.dropped_mesh_cycles < self.mesh_cycles) {
-            return Err(fail(
+            return Err(ck.fail(
                 "dropped_mesh_cycles",
                 self.dropped_mesh_cycles.to_string(),
                 "must lie in [0, mesh_cycles)",
             ));
         }
         if !(16..=4096).contains(&self.samples_per_mesh_cycle) {
-            return Err(fail(
+            return Err(ck.fail(
                 "samples_per_mesh_cycle",
                 self.samples_per_mesh_cycle.to_string(),
                 "must lie in [16, 4096]",
             ));
         }
-        range(
+        ck.range(
             "relative_tolerance",
             self.relative_tolerance,
             1e-13,
             1e-2,
             "must lie in (1e-13, 1e-2]",
         )?;
-        range(
+        ck.range(
             "fourier_tolerance_of_ptp",
             self.fourier_tolerance_of_ptp,
             0.0,
             1.0,
             "must lie in (0, 1]",
         )?;
+        Ok(())
+    }
+
+    /// Damping ratios, bearing stiffnesses, masses and inertias, the impact
+    /// pulse and the further torques.
+    fn check_model(&self, ck: &LumpedCheck) -> Result<(), InputError> {
         for (f, v) in [
             ("mesh_damping_ratio", self.mesh_damping_ratio),
             ("bearing_damping_ratio", self.bearing_damping_ratio),
         ] {
             if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
-                return Err(fail(f, v.to_string(), "must lie in [0, 1]"));
+                return Err(ck.fail(f, v.to_string(), "must lie in [0, 1]"));
             }
         }
         for (f, k) in [
@@ -256,7 +259,7 @@ impl LumpedSettings {
             ),
         ] {
             if k.iter().any(|v| !(v.is_finite() && *v > 0.0 && *v <= 1e13)) {
-                return Err(fail(f, format!("{k:?}"), "each must lie in (0, 1e13]"));
+                return Err(ck.fail(f, format!("{k:?}"), "each must lie in (0, 1e13]"));
             }
         }
         for (f, v) in [
@@ -267,11 +270,11 @@ impl LumpedSettings {
         ] {
             if let Some(v) = v {
                 if !(v.is_finite() && v > 0.0) {
-                    return Err(fail(f, v.to_string(), "must be finite and > 0"));
+                    return Err(ck.fail(f, v.to_string(), "must be finite and > 0"));
                 }
             }
         }
-        range(
+        ck.range(
             "impact_pulse_of_mesh_period",
             self.impact_pulse_of_mesh_period,
             0.0,
@@ -279,7 +282,7 @@ impl LumpedSettings {
             "must lie in (0, 0.5]",
         )?;
         for t in &self.more_pinion_torques_nm {
-            range(
+            ck.range(
                 "more_pinion_torques_nm",
                 *t,
                 0.0,
@@ -287,6 +290,11 @@ impl LumpedSettings {
                 "each must lie in (0, 1e6]",
             )?;
         }
+        Ok(())
+    }
+
+    /// `[lumped.friction]` and `[lumped.roughness]`.
+    fn check_friction_and_roughness(&self, ck: &LumpedCheck) -> Result<(), InputError> {
         if let Some(f) = &self.friction {
             for (field, v) in [
                 ("friction.base_coefficient", f.base_coefficient),
@@ -296,20 +304,16 @@ impl LumpedSettings {
                 ),
             ] {
                 if !(v.is_finite() && (0.0..=2.0).contains(&v)) {
-                    return Err(fail(field, v.to_string(), "must lie in [0, 2]"));
+                    return Err(ck.fail(field, v.to_string(), "must lie in [0, 2]"));
                 }
             }
         }
         if let Some(r) = &self.roughness {
             if r.ra_um.is_empty() {
-                return Err(fail(
-                    "roughness.ra_um",
-                    "[]".into(),
-                    "needs at least one grade",
-                ));
+                return Err(ck.fail("roughness.ra_um", "[]".into(), "needs at least one grade"));
             }
             for ra in &r.ra_um {
-                range(
+                ck.range(
                     "roughness.ra_um",
                     *ra,
                     0.0,
@@ -322,17 +326,22 @@ impl LumpedSettings {
                 ("roughness.face_nodes", r.face_nodes),
             ] {
                 if !(2..=crate::design_file::MAX_TOPOGRAPHY_NODES).contains(&n) {
-                    return Err(fail(field, n.to_string(), "must lie in [2, 200]"));
+                    return Err(ck.fail(field, n.to_string(), "must lie in [2, 200]"));
                 }
             }
         }
+        Ok(())
+    }
+
+    /// `[[lumped.design_variants]]`: names and ease-off values.
+    fn check_design_variants(&self, ck: &LumpedCheck) -> Result<(), InputError> {
         for v in &self.design_variants {
             let ok_name = !v.name.is_empty()
                 && v.name
                     .chars()
                     .all(|c| c.is_ascii_alphanumeric() || "_.-".contains(c));
             if !ok_name {
-                return Err(fail(
+                return Err(ck.fail(
                     "design_variants.name",
                     format!("{:?}", v.name),
                     "must be non-empty letters, digits, '_', '.', '-'",
@@ -340,7 +349,7 @@ impl LumpedSettings {
             }
             if let Some(m) = v.te_slope_m21 {
                 if !(m.is_finite() && (-0.1..=0.0).contains(&m)) {
-                    return Err(fail(
+                    return Err(ck.fail(
                         "design_variants.te_slope_m21",
                         m.to_string(),
                         "must lie in [-0.1, 0] per rad",
@@ -356,14 +365,19 @@ impl LumpedSettings {
             ] {
                 if let Some(c) = c {
                     if !(c.is_finite() && (0.0..=500.0).contains(&c)) {
-                        return Err(fail(field, c.to_string(), "must lie in [0, 500] µm"));
+                        return Err(ck.fail(field, c.to_string(), "must lie in [0, 500] µm"));
                     }
                 }
             }
         }
+        Ok(())
+    }
+
+    /// `[lumped.order_map]`.
+    fn check_order_map(&self, ck: &LumpedCheck) -> Result<(), InputError> {
         if let Some(o) = &self.order_map {
             if o.pinion_speeds_rpm.is_empty() {
-                return Err(fail(
+                return Err(ck.fail(
                     "order_map.pinion_speeds_rpm",
                     "[]".into(),
                     "must hold at least one speed",
@@ -371,7 +385,7 @@ impl LumpedSettings {
             }
             for &v in &o.pinion_speeds_rpm {
                 if !(v.is_finite() && v > 0.0 && v <= 100_000.0) {
-                    return Err(fail(
+                    return Err(ck.fail(
                         "order_map.pinion_speeds_rpm",
                         v.to_string(),
                         "must lie in (0, 100000] rpm",
@@ -379,7 +393,7 @@ impl LumpedSettings {
                 }
             }
             if !(o.wheel_revolutions.is_finite() && (1.0..=20.0).contains(&o.wheel_revolutions)) {
-                return Err(fail(
+                return Err(ck.fail(
                     "order_map.wheel_revolutions",
                     o.wheel_revolutions.to_string(),
                     "must lie in [1, 20]",
@@ -387,14 +401,14 @@ impl LumpedSettings {
             }
             let d = o.dropped_wheel_revolutions;
             if !(d.is_finite() && d >= 0.0 && o.wheel_revolutions - d >= 1.0) {
-                return Err(fail(
+                return Err(ck.fail(
                     "order_map.dropped_wheel_revolutions",
                     d.to_string(),
                     "must be >= 0 and leave at least one wheel revolution",
                 ));
             }
             if !(o.max_pinion_order.is_finite() && o.max_pinion_order > 0.0) {
-                return Err(fail(
+                return Err(ck.fail(
                     "order_map.max_pinion_order",
                     o.max_pinion_order.to_string(),
                     "must be finite and > 0",
@@ -402,5 +416,31 @@ impl LumpedSettings {
             }
         }
         Ok(())
+    }
+}
+
+/// The checks' error for a field of `[lumped]` in the scene at `path`.
+struct LumpedCheck<'a> {
+    path: &'a Path,
+}
+
+impl LumpedCheck<'_> {
+    /// `lumped.<field>` = `value` outside `limit`.
+    fn fail(&self, field: &str, value: String, limit: &str) -> InputError {
+        InputError::Invalid {
+            path: self.path.to_path_buf(),
+            field: format!("lumped.{field}"),
+            value,
+            limit: limit.into(),
+        }
+    }
+
+    /// `v` finite and in (lo, hi], else `limit`.
+    fn range(&self, field: &str, v: f64, lo: f64, hi: f64, limit: &str) -> Result<(), InputError> {
+        if v.is_finite() && v > lo && v <= hi {
+            Ok(())
+        } else {
+            Err(self.fail(field, v.to_string(), limit))
+        }
     }
 }

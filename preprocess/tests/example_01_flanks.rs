@@ -13,7 +13,7 @@
 mod golden;
 
 use golden::Quantity;
-use preprocess::flank_stage::{load_input, run_stage};
+use preprocess::flank_stage::{load_input, run_stage, FlankSummary};
 use serde_json::Value;
 
 const REL: f64 = 1e-9;
@@ -42,6 +42,28 @@ fn example_01_flanks_matches_its_golden_output() {
         num(&s["utca"]["te_ptp_urad"], "te_ptp"),
         summary.utca.te_ptp_urad
     );
+    summary_quantities(&mut q, &s, &summary);
+
+    // utca.json: the roll range, the TE at five positions, the contact path
+    // at the middle of the sweep.
+    let u = read(&out.join("utca.json"));
+    utca_quantities(&mut q, &u);
+
+    // flanks.json: three grid points of the loaded pinion flank (toe-root,
+    // middle, heel-tip corner) and the middle of the wheel's loaded flank.
+    let grids = read(&out.join("flanks.json"));
+    flank_quantities(&mut q, &grids);
+
+    golden::check(
+        &dir.join("golden.json"),
+        "examples/01_flanks: preprocess::flank_stage::run_stage on examples/01_flanks/scene.toml (test preprocess/tests/example_01_flanks.rs)",
+        &q,
+    );
+}
+
+/// summary.json's key numbers into `q` (`s`; `summary` the returned
+/// FlankSummary).
+fn summary_quantities(q: &mut Vec<Quantity>, s: &Value, summary: &FlankSummary) {
     q.push(Quantity::new(
         "mesh_cycle_deg",
         summary.mesh_cycle_deg,
@@ -122,10 +144,11 @@ fn example_01_flanks_matches_its_golden_output() {
         0.0,
         0.0,
     ));
+}
 
-    // utca.json: the roll range, the TE at five positions, the contact path
-    // at the middle of the sweep.
-    let u = read(&out.join("utca.json"));
+/// Into `q`: utca.json's roll range, the TE at five positions, and the contact path
+/// at the middle of the sweep.
+fn utca_quantities(q: &mut Vec<Quantity>, u: &Value) {
     for (k, v) in u["roll_range_deg"].as_array().unwrap().iter().enumerate() {
         q.push(Quantity::new(
             format!("utca.roll_range_deg[{k}]"),
@@ -196,10 +219,11 @@ fn example_01_flanks_matches_its_golden_output() {
         REL,
         1e-12,
     ));
+}
 
-    // flanks.json: three grid points of the loaded pinion flank (toe-root,
-    // middle, heel-tip corner) and the middle of the wheel's loaded flank.
-    let grids = read(&out.join("flanks.json"));
+/// Into `q`: flanks.json's three grid points of the loaded pinion flank (toe-root,
+/// middle, heel-tip corner) and the middle of the wheel's loaded flank.
+fn flank_quantities(q: &mut Vec<Quantity>, grids: &Value) {
     for g in grids.as_array().unwrap() {
         let (member, flank, side) = (
             g["member"].as_str().unwrap(),
@@ -248,10 +272,4 @@ fn example_01_flanks_matches_its_golden_output() {
             }
         }
     }
-
-    golden::check(
-        &dir.join("golden.json"),
-        "examples/01_flanks: preprocess::flank_stage::run_stage on examples/01_flanks/scene.toml (test preprocess/tests/example_01_flanks.rs)",
-        &q,
-    );
 }

@@ -57,9 +57,11 @@
 mod fixture;
 
 use fixture::Fixture;
-use solver::lumped::excitation::{fit_to_tolerance, MeshExcitation, StaticError};
+use geometry::pair::PairGeometry;
+use solver::lumped::excitation::{fit_to_tolerance, FittedSeries, MeshExcitation, StaticError};
 use solver::lumped::integrate::{integrate as lumped_integrate, Equations, Settings};
 use solver::lumped::model::{Member as LumpedMember, Model as LumpedModel};
+use solver::multibody::mesh_table::MeshTable;
 use solver::multibody::model::{interpolate, Drive, Model, State};
 use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
@@ -67,6 +69,47 @@ use std::f64::consts::PI;
 const TORQUE_NM: f64 = 300.0;
 const CYCLES: f64 = 6.0;
 const FIT_TOLERANCE: f64 = 0.005;
+
+/// The table's quasi-static lag θₛ and tangent κ at the pinion angles
+/// `q1s` over one mesh cycle, and item 3's largest wheel-torque gap.
+struct StaticSamples {
+    q1s: Vec<f64>,
+    lag_s: Vec<f64>,
+    kappa: Vec<f64>,
+    wheel_gap: f64,
+}
+
+/// The operating point: the mean tangent, the torsional natural frequency
+/// (rad/s), the mesh frequency at 1/2.5 of it, the pinion speed and the
+/// mesh period.
+struct Operating {
+    tau: f64,
+    ratio: f64,
+    inertia: [f64; 2],
+    k_mean: f64,
+    w_n: f64,
+    mesh_hz: f64,
+    omega1: f64,
+    period: f64,
+}
+
+/// The multibody run's times, wheel lags and pinion angles at its steps.
+struct MultibodyRun {
+    t: Vec<f64>,
+    lag: Vec<f64>,
+    q1: Vec<f64>,
+}
+
+/// The two runs compared at the multibody's steps.
+struct Comparison {
+    worst: f64,
+    ptp: f64,
+    mean_mb: f64,
+    mean_gap: f64,
+    excursion: f64,
+    /// Item 2's estimate, over the force fluctuation.
+    lin: f64,
+}
 
 #[test]
 fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_multibody_run() {
@@ -90,7 +133,66 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
     };
 
     // The table's quasi-static lag and tangent over one mesh cycle.
-    let n = 8 * per;
+    let st = static_samples(&mb, &table, tau, 8 * per);
+    let op = operating_point(&st, tau, ratio, [j1, j2]);
+
+    // The lumped model on those samples.
+    let (model, exc, kf, df) = lumped_model(g, &st, &op);
+
+    // One start for both: the quasi-static lag at q₁ = 0, moving along it.
+    let (s0, slope) = start_state(&mb, &table, &st, &op);
+    mb.damping = 0.0;
+    let run = run_multibody(&mb, s0, &op);
+    let (lum_t, lag_lum) = run_lumped(&model, &exc, &st, slope, &op);
+
+    // Compare at the multibody's steps; the dynamic part against the
+    // table's static lag at the actual q₁.
+    let c = compare(&mb, &table, &st, &op, &run, &lum_t, &lag_lum);
+    let Comparison {
+        worst,
+        ptp,
+        mean_mb,
+        mean_gap,
+        excursion,
+        lin,
+    } = c;
+    let (mesh_hz, omega1, w_n) = (op.mesh_hz, op.omega1, op.w_n);
+    let (t_mb, lag_s, wheel_gap) = (&run.t, &st.lag_s, st.wheel_gap);
+    eprintln!(
+        "mesh {mesh_hz:.1} Hz (pinion {:.0} rpm, f_n {:.1} Hz); {} multibody steps; lag mean {:.3} µrad, dynamic part ptp {:.4} µrad (largest excursion {:.4} µrad); largest lag difference {:.5} µrad = {:.3} % of the dynamic ptp; mean differs by {:.2e}; fits: k {} harmonics ({:.2} % of ptp), δ {} ({:.2} %); linearization ≈ {:.2} % of the force fluctuation; wheel torque vs T/r up to {:.2e} of T",
+        omega1 * 30.0 / PI,
+        w_n / (2.0 * PI),
+        t_mb.len(),
+        1e6 * mean_mb / t_mb.len() as f64,
+        1e6 * ptp,
+        1e6 * excursion,
+        1e6 * worst,
+        100.0 * worst / ptp,
+        mean_gap,
+        kf.series.harmonics(),
+        100.0 * kf.max_residual_of_ptp,
+        df.series.harmonics(),
+        100.0 * df.max_residual_of_ptp,
+        100.0 * lin,
+        wheel_gap
+    );
+    assert!(
+        ptp > 0.05
+            * (lag_s.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+                - lag_s.iter().cloned().fold(f64::INFINITY, f64::min)),
+        "the operating point is not dynamic: dynamic ptp {ptp:e} rad"
+    );
+    assert!(
+        worst < 0.02 * ptp,
+        "lag differs by {worst:e} rad, dynamic ptp {ptp:e}"
+    );
+    assert!(mean_gap < 1e-3, "mean lag differs by {mean_gap:e}");
+}
+
+/// The table's quasi-static lag and tangent at `n` points over one mesh
+/// cycle `tau`.
+fn static_samples(mb: &Model, table: &MeshTable, tau: f64, n: usize) -> StaticSamples {
+    let ratio = table.ratio;
     let q1s: Vec<f64> = (0..n).map(|k| k as f64 * tau / n as f64).collect();
     let lag_s: Vec<f64> = q1s.iter().map(|q| mb.static_lag(*q).unwrap()).collect();
     let mut kappa = Vec::new();
@@ -101,13 +203,43 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
         // Item 3: pinion torque against r × the wheel's.
         wheel_gap = wheel_gap.max((ms.grad[0] + ratio * ms.grad[1]).abs() / TORQUE_NM);
     }
-    let k_mean = kappa.iter().sum::<f64>() / n as f64;
+    StaticSamples {
+        q1s,
+        lag_s,
+        kappa,
+        wheel_gap,
+    }
+}
+
+/// The dynamic, non-resonant operating point of the samples' mean tangent.
+fn operating_point(st: &StaticSamples, tau: f64, ratio: f64, [j1, j2]: [f64; 2]) -> Operating {
+    let n = st.q1s.len();
+    let k_mean = st.kappa.iter().sum::<f64>() / n as f64;
     let w_n = (k_mean * (ratio / j1 + 1.0 / (ratio * j2))).sqrt();
     let mesh_hz = w_n / (2.0 * PI) / 2.5;
     let omega1 = mesh_hz * tau;
     let period = 1.0 / mesh_hz;
+    Operating {
+        tau,
+        ratio,
+        inertia: [j1, j2],
+        k_mean,
+        w_n,
+        mesh_hz,
+        omega1,
+        period,
+    }
+}
 
-    // The lumped model on those samples.
+/// The lumped model with rigid bearings, its mesh excitation fitted to the
+/// samples, and the two fits (k and δ).
+fn lumped_model(
+    g: &PairGeometry,
+    st: &StaticSamples,
+    op: &Operating,
+) -> (LumpedModel, MeshExcitation, FittedSeries, FittedSeries) {
+    let (ratio, [j1, j2], omega1, period) = (op.ratio, op.inertia, op.omega1, op.period);
+    let (q1s, kappa, lag_s) = (&st.q1s, &st.kappa, &st.lag_s);
     let r2 = g.data.mean_cone_distance * g.data.members[1].pitch_angle.sin();
     let r1 = r2 * ratio;
     let times: Vec<f64> = q1s.iter().map(|q| q / omega1).collect();
@@ -139,8 +271,13 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
         impact: None,
         friction: None,
     };
+    (model, exc, kf, df)
+}
 
-    // One start for both: the quasi-static lag at q₁ = 0, moving along it.
+/// The common start: the quasi-static lag at q₁ = 0, moving along it, with
+/// the multibody's accelerations there; and the static lag's slope.
+fn start_state(mb: &Model, table: &MeshTable, st: &StaticSamples, op: &Operating) -> (State, f64) {
+    let (ratio, [j1, j2], omega1, lag_s) = (op.ratio, op.inertia, op.omega1, &st.lag_s);
     let d = 0.1 * table.spec.step;
     let slope = (mb.static_lag(d).unwrap() - mb.static_lag(-d).unwrap()) / (2.0 * d);
     let s0 = State {
@@ -155,7 +292,13 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
         a: [(ext[0] + contact[0]) / j1, (ext[1] + contact[1]) / j2],
         ..s0
     };
-    mb.damping = 0.0;
+    (s0, slope)
+}
+
+/// The multibody run from `s0` over the cycles: generalized-α without
+/// numerical damping.
+fn run_multibody(mb: &Model, s0: State, op: &Operating) -> MultibodyRun {
+    let (ratio, period) = (op.ratio, op.period);
     let mut integ = Integrator::new(
         Scheme::GeneralizedAlpha { rho_inf: 1.0 },
         StepControl {
@@ -165,15 +308,32 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
         },
     );
     let (mut t_mb, mut lag_mb, mut q1_mb) = (Vec::new(), Vec::new(), Vec::new());
-    integrate(&mb, s0, &mut integ, CYCLES * period, |s| {
+    integrate(mb, s0, &mut integ, CYCLES * period, |s| {
         t_mb.push(s.t);
         lag_mb.push(ratio * s.q[0] - s.q[1]);
         q1_mb.push(s.q[0]);
         Ok(())
     })
     .unwrap();
+    MultibodyRun {
+        t: t_mb,
+        lag: lag_mb,
+        q1: q1_mb,
+    }
+}
 
-    let eq = Equations::new(&model, &exc).rigid_bearings();
+/// The lumped run from the same start (Dormand–Prince): its output times
+/// and wheel lags.
+fn run_lumped(
+    model: &LumpedModel,
+    exc: &MeshExcitation,
+    st: &StaticSamples,
+    slope: f64,
+    op: &Operating,
+) -> (Vec<f64>, Vec<f64>) {
+    let (ratio, omega1, k_mean, w_n, period) = (op.ratio, op.omega1, op.k_mean, op.w_n, op.period);
+    let lag_s = &st.lag_s;
+    let eq = Equations::new(model, exc).rigid_bearings();
     let mut y0 = [0.0; 16];
     y0[7] = -lag_s[0];
     y0[15] = -slope * omega1;
@@ -196,15 +356,29 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
     )
     .unwrap();
     let lag_lum: Vec<f64> = lum.q.iter().map(|q| ratio * q[3] - q[7]).collect();
+    (lum.t, lag_lum)
+}
 
-    // Compare at the multibody's steps; the dynamic part against the
-    // table's static lag at the actual q₁.
+/// The lumped lag interpolated at the multibody's steps: the largest
+/// difference, the dynamic part's peak-to-peak and largest excursion, the
+/// means, and item 2's linearization estimate.
+fn compare(
+    mb: &Model,
+    table: &MeshTable,
+    st: &StaticSamples,
+    op: &Operating,
+    run: &MultibodyRun,
+    lum_t: &[f64],
+    lag_lum: &[f64],
+) -> Comparison {
+    let (tau, lag_s, kappa) = (op.tau, &st.lag_s, &st.kappa);
+    let (t_mb, lag_mb, q1_mb) = (&run.t, &run.lag, &run.q1);
     let mut worst: f64 = 0.0;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut mean_mb, mut mean_lum) = (0.0, 0.0);
     let mut excursion: f64 = 0.0;
     for i in 0..t_mb.len() {
-        let l = interpolate(&lum.t, &lag_lum, t_mb[i]);
+        let l = interpolate(lum_t, lag_lum, t_mb[i]);
         worst = worst.max((l - lag_mb[i]).abs());
         let stat = mb.static_lag(q1_mb[i].rem_euclid(tau)).unwrap();
         let dynamic = lag_mb[i] - stat;
@@ -222,33 +396,12 @@ fn lumped_with_rigid_bearings_and_no_impact_has_the_torsional_response_of_the_mu
         - table.state(0.0, -(lag_s[0] - h)).unwrap().hess[0][1])
         / (2.0 * h);
     let lin = 0.5 * dk.abs() * excursion / kappa[0];
-    eprintln!(
-        "mesh {mesh_hz:.1} Hz (pinion {:.0} rpm, f_n {:.1} Hz); {} multibody steps; lag mean {:.3} µrad, dynamic part ptp {:.4} µrad (largest excursion {:.4} µrad); largest lag difference {:.5} µrad = {:.3} % of the dynamic ptp; mean differs by {:.2e}; fits: k {} harmonics ({:.2} % of ptp), δ {} ({:.2} %); linearization ≈ {:.2} % of the force fluctuation; wheel torque vs T/r up to {:.2e} of T",
-        omega1 * 30.0 / PI,
-        w_n / (2.0 * PI),
-        t_mb.len(),
-        1e6 * mean_mb / t_mb.len() as f64,
-        1e6 * ptp,
-        1e6 * excursion,
-        1e6 * worst,
-        100.0 * worst / ptp,
+    Comparison {
+        worst,
+        ptp,
+        mean_mb,
         mean_gap,
-        kf.series.harmonics(),
-        100.0 * kf.max_residual_of_ptp,
-        df.series.harmonics(),
-        100.0 * df.max_residual_of_ptp,
-        100.0 * lin,
-        wheel_gap
-    );
-    assert!(
-        ptp > 0.05
-            * (lag_s.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
-                - lag_s.iter().cloned().fold(f64::INFINITY, f64::min)),
-        "the operating point is not dynamic: dynamic ptp {ptp:e} rad"
-    );
-    assert!(
-        worst < 0.02 * ptp,
-        "lag differs by {worst:e} rad, dynamic ptp {ptp:e}"
-    );
-    assert!(mean_gap < 1e-3, "mean lag differs by {mean_gap:e}");
+        excursion,
+        lin,
+    }
 }

@@ -269,81 +269,8 @@ pub fn run(
     let force_max = in_window(&tr.force).into_iter().fold(0.0, f64::max);
     let (te_mean, te_ptp) = mean_ptp(&in_window(&tr.te));
     let normal_theory = load / (r_mean * pair.pressure_angle[0].cos() * pair.spiral_angle.cos());
-    let mut csv = String::from(
-        "time_s,pinion_speed_deg_s,wheel_speed_deg_s,wheel_speed_kinematic_deg_s,te_urad,wheel_mesh_torque_nm,tangential_force_n,mesh_force_n\n",
-    );
-    // Rows at most every max_step_s (the step control halves steps where
-    // the contact changes; the summary uses every step).
-    let mut next = f64::NEG_INFINITY;
-    for (k, ftk) in ft.iter().enumerate() {
-        if tr.t[k] < next && k + 1 < ft.len() {
-            continue;
-        }
-        next = tr.t[k] + run.max_step_s * (1.0 - 1e-9);
-        let _ = writeln!(
-            csv,
-            "{:.7},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
-            tr.t[k],
-            deg(tr.w1[k]),
-            deg(tr.w2[k]),
-            deg(r * tr.w1[k]),
-            tr.te[k] * 1e6,
-            tr.wheel_torque[k],
-            ftk,
-            tr.force[k]
-        );
-    }
-    write_atomic(&odir.join("load_run.csv"), csv.as_bytes())?;
-    let series = |name: &str, y: Vec<f64>, dashed: bool| {
-        let (x, y) = envelope(&tr.t, &y, CHART_BUCKETS);
-        Series {
-            name: name.into(),
-            x,
-            y,
-            dashed,
-        }
-    };
-    te_curve(
-        &odir.join("load_run_speed.svg"),
-        &format!("{label}: pinion and wheel speed"),
-        "time (s)",
-        "speed (deg/s)",
-        &[
-            series("pinion", tr.w1.iter().map(|x| deg(*x)).collect(), false),
-            series("wheel", tr.w2.iter().map(|x| deg(*x)).collect(), false),
-            series(
-                "wheel, kinematic",
-                tr.w1.iter().map(|x| deg(r * x)).collect(),
-                true,
-            ),
-        ],
-    )?;
-    let applied: Vec<f64> = tr.t.iter().map(|&t| -m.drive.torques(t)[1]).collect();
-    te_curve(
-        &odir.join("load_run_torque.svg"),
-        &format!("{label}: wheel mesh torque and applied load"),
-        "time (s)",
-        "torque (N·m)",
-        &[
-            series("wheel mesh torque", tr.wheel_torque.clone(), false),
-            series("applied load", applied.clone(), true),
-        ],
-    )?;
-    te_curve(
-        &odir.join("load_run_force.svg"),
-        &format!("{label}: meshing force and its tangential component on the wheel"),
-        "time (s)",
-        "force (N)",
-        &[
-            series("meshing force", tr.force.clone(), false),
-            series("tangential force", ft.clone(), false),
-            series(
-                "2T/d (applied load over the outer pitch radius)",
-                applied.iter().map(|x| x / r_outer).collect(),
-                true,
-            ),
-        ],
-    )?;
+    write_csv(&tr, run, r, odir)?;
+    write_charts(m, &tr, label, r, r_outer, odir)?;
     eprintln!(
         "  load run ({label}): {steps} steps ({} rejected), {:.1} µs/step; wheel {:.3} deg/s vs {:.3} kinematic, torque {:.3} vs {load} N·m, efficiency {efficiency:.5}, |F| mean {:.0} N max {:.0} N",
         integ.rejected,
@@ -409,6 +336,105 @@ pub fn run(
         te_mean_urad: te_mean * 1e6,
         te_ptp_urad: te_ptp * 1e6,
     })
+}
+
+/// `load_run.csv`: speeds, TE, wheel mesh torque and forces of the run `tr`
+/// (`r` the ratio), rows at most every `max_step_s` of `run`.
+fn write_csv(tr: &LoadTrace, run: &LoadRun, r: f64, odir: &Path) -> anyhow::Result<()> {
+    let deg = |x: f64| x.to_degrees();
+    let ft = &tr.tangential;
+    let mut csv = String::from(
+        "time_s,pinion_speed_deg_s,wheel_speed_deg_s,wheel_speed_kinematic_deg_s,te_urad,wheel_mesh_torque_nm,tangential_force_n,mesh_force_n\n",
+    );
+    // Rows at most every max_step_s (the step control halves steps where
+    // the contact changes; the summary uses every step).
+    let mut next = f64::NEG_INFINITY;
+    for (k, ftk) in ft.iter().enumerate() {
+        if tr.t[k] < next && k + 1 < ft.len() {
+            continue;
+        }
+        next = tr.t[k] + run.max_step_s * (1.0 - 1e-9);
+        let _ = writeln!(
+            csv,
+            "{:.7},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4}",
+            tr.t[k],
+            deg(tr.w1[k]),
+            deg(tr.w2[k]),
+            deg(r * tr.w1[k]),
+            tr.te[k] * 1e6,
+            tr.wheel_torque[k],
+            ftk,
+            tr.force[k]
+        );
+    }
+    write_atomic(&odir.join("load_run.csv"), csv.as_bytes())?;
+    Ok(())
+}
+
+/// The run's charts: pinion and wheel speed, wheel mesh torque against the
+/// applied load, meshing and tangential force (`r_outer` the wheel's outer
+/// pitch radius, m).
+fn write_charts(
+    m: &Model,
+    tr: &LoadTrace,
+    label: &str,
+    r: f64,
+    r_outer: f64,
+    odir: &Path,
+) -> anyhow::Result<()> {
+    let deg = |x: f64| x.to_degrees();
+    let ft = &tr.tangential;
+    let series = |name: &str, y: Vec<f64>, dashed: bool| {
+        let (x, y) = envelope(&tr.t, &y, CHART_BUCKETS);
+        Series {
+            name: name.into(),
+            x,
+            y,
+            dashed,
+        }
+    };
+    te_curve(
+        &odir.join("load_run_speed.svg"),
+        &format!("{label}: pinion and wheel speed"),
+        "time (s)",
+        "speed (deg/s)",
+        &[
+            series("pinion", tr.w1.iter().map(|x| deg(*x)).collect(), false),
+            series("wheel", tr.w2.iter().map(|x| deg(*x)).collect(), false),
+            series(
+                "wheel, kinematic",
+                tr.w1.iter().map(|x| deg(r * x)).collect(),
+                true,
+            ),
+        ],
+    )?;
+    let applied: Vec<f64> = tr.t.iter().map(|&t| -m.drive.torques(t)[1]).collect();
+    te_curve(
+        &odir.join("load_run_torque.svg"),
+        &format!("{label}: wheel mesh torque and applied load"),
+        "time (s)",
+        "torque (N·m)",
+        &[
+            series("wheel mesh torque", tr.wheel_torque.clone(), false),
+            series("applied load", applied.clone(), true),
+        ],
+    )?;
+    te_curve(
+        &odir.join("load_run_force.svg"),
+        &format!("{label}: meshing force and its tangential component on the wheel"),
+        "time (s)",
+        "force (N)",
+        &[
+            series("meshing force", tr.force.clone(), false),
+            series("tangential force", ft.clone(), false),
+            series(
+                "2T/d (applied load over the outer pitch radius)",
+                applied.iter().map(|x| x / r_outer).collect(),
+                true,
+            ),
+        ],
+    )?;
+    Ok(())
 }
 
 impl Window {

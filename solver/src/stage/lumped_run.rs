@@ -11,6 +11,7 @@ use crate::lumped::friction::{
     per_unit_force, seed003_coefficient, FrictionExcitation, FrictionGeometry, SliceFriction,
 };
 use crate::lumped::from_ltca::MeshSamples;
+use crate::lumped::integrate::History;
 use crate::lumped::model::{direction_cosines, mesh_damping_for_ratio, Member, Model, WheelHand};
 use crate::lumped::response::{response, Response};
 use crate::lumped::run::simulate;
@@ -56,14 +57,106 @@ pub(crate) fn run_blank(
 ) -> anyhow::Result<(LumpedSummary, Vec<[f64; 3]>)> {
     let Case {
         ls,
-        torque,
         blanks: [pinion_blank, wheel_blank],
+        samples,
+        ..
+    } = *case;
+    let (mut model, mass, inertia) = model_of(case);
+    let period = samples.period_s;
+    let mesh_hz = 1.0 / period;
+    let (engaging, impact) = impact_of(case, &model, inertia);
+    let (exc, normal, angle) = excitation(case, &mut model, impact)?;
+    let t0 = Instant::now();
+    let h = simulate(
+        &model,
+        &exc,
+        mesh_hz,
+        ls.mesh_cycles,
+        ls.samples_per_mesh_cycle,
+        ls.relative_tolerance,
+    )?;
+    let wall = t0.elapsed().as_secs_f64();
+    let first =
+        h.t.iter()
+            .position(|t| *t >= ls.dropped_mesh_cycles * period * (1.0 - 1e-12))
+            .unwrap_or(0);
+    let r = response(&model, &exc, &h, first, mesh_hz, case.max_order);
+    write_files(odir, &model, &exc, &h, samples, &r)?;
+    let label = format!(
+        "{pinion_blank:?} pinion / {wheel_blank:?} wheel, {} rpm",
+        ls.pinion_speed_rpm
+    );
+    crate::stage::lumped_plots::write_plots(
+        odir,
+        &label,
+        &h,
+        first,
+        mesh_hz,
+        model.mean_mesh_force(),
+        &r,
+        case.max_order,
+    )?;
+    let summary = summary_of(
+        case,
+        &Outcome {
+            model: &model,
+            mass,
+            inertia,
+            mesh_hz,
+            engaging,
+            impact,
+            exc: &exc,
+            normal,
+            angle,
+            h: &h,
+            wall,
+            r: &r,
+        },
+    );
+    Ok((summary, r.bearing_spectrum))
+}
+
+/// The seed-004 impact estimate at the engagement: force (N), velocity
+/// (m/s), the entering pair's stiffness (N/m) and the first loaded
+/// rotation (rad); zeros without an engagement.
+#[derive(Clone, Copy)]
+struct Engaging {
+    force_n: f64,
+    velocity_m_s: f64,
+    stiffness_n_per_m: f64,
+    rotation: f64,
+}
+
+/// What a run gives besides its case, for the summary.
+struct Outcome<'a> {
+    model: &'a Model,
+    mass: [f64; 2],
+    inertia: [f64; 2],
+    mesh_hz: f64,
+    engaging: Engaging,
+    impact: Option<ImpactPulse>,
+    exc: &'a MeshExcitation,
+    /// The LTCA's force-weighted flank normal and its angle to the model's
+    /// direction cosines, deg.
+    normal: [f64; 3],
+    angle: f64,
+    h: &'a History,
+    /// Integration wall time, s.
+    wall: f64,
+    r: &'a Response,
+}
+
+/// The 8-DOF model of the case (its mesh damping from the ratio), with the
+/// masses and polar moments it uses.
+fn model_of(case: &Case) -> (Model, [f64; 2], [f64; 2]) {
+    let Case {
+        ls,
+        torque,
         side,
         g,
         bodies,
         samples,
-        fits: [kf, ef, df],
-        eng,
+        fits: [kf, ..],
         ..
     } = *case;
     let d = &g.data;
@@ -105,8 +198,16 @@ pub(crate) fn run_blank(
         kf.series.mean,
         model.equivalent_mass(),
     );
+    (model, mass, inertia)
+}
+
+/// The seed-004 impact estimate at the case's engagement, and the impact
+/// pulse the run applies (seed 004's model with a positive force).
+fn impact_of(case: &Case, model: &Model, inertia: [f64; 2]) -> (Engaging, Option<ImpactPulse>) {
+    let Case {
+        ls, samples, eng, ..
+    } = *case;
     let period = samples.period_s;
-    let mesh_hz = 1.0 / period;
     let (fs, v_s, k_s, rot) = match eng {
         Some(e) => (
             seed004_impact_force(
@@ -132,6 +233,31 @@ pub(crate) fn run_blank(
         }),
         _ => None,
     };
+    let engaging = Engaging {
+        force_n: fs,
+        velocity_m_s: v_s,
+        stiffness_n_per_m: k_s,
+        rotation: rot,
+    };
+    (engaging, impact)
+}
+
+/// The mesh excitation: the fitted stiffness and loaded deflection, the
+/// impact pulse and the friction of the slices (the model's direction
+/// cosines replaced by the LTCA's normal where the settings ask); with that
+/// normal and its angle to the model's direction cosines, deg.
+fn excitation(
+    case: &Case,
+    model: &mut Model,
+    impact: Option<ImpactPulse>,
+) -> anyhow::Result<(MeshExcitation, [f64; 3], f64)> {
+    let Case {
+        ls,
+        samples,
+        fits: [kf, _, df],
+        ..
+    } = *case;
+    let period = samples.period_s;
     let FrictionGeometry {
         per_unit_force: g,
         normal,
@@ -164,41 +290,33 @@ pub(crate) fn run_blank(
         impact,
         friction,
     };
-    let t0 = Instant::now();
-    let h = simulate(
-        &model,
-        &exc,
-        mesh_hz,
-        ls.mesh_cycles,
-        ls.samples_per_mesh_cycle,
-        ls.relative_tolerance,
-    )?;
-    let wall = t0.elapsed().as_secs_f64();
-    let first =
-        h.t.iter()
-            .position(|t| *t >= ls.dropped_mesh_cycles * period * (1.0 - 1e-12))
-            .unwrap_or(0);
-    let r = response(&model, &exc, &h, first, mesh_hz, case.max_order);
-    write_files(odir, &model, &exc, &h, samples, &r)?;
-    let label = format!(
-        "{pinion_blank:?} pinion / {wheel_blank:?} wheel, {} rpm",
-        ls.pinion_speed_rpm
-    );
-    crate::stage::lumped_plots::write_plots(
-        odir,
-        &label,
-        &h,
-        first,
-        mesh_hz,
-        model.mean_mesh_force(),
-        &r,
-        case.max_order,
-    )?;
+    Ok((exc, normal, angle))
+}
+
+/// The run's `summary.json`.
+fn summary_of(case: &Case, o: &Outcome) -> LumpedSummary {
+    let Case {
+        ls,
+        torque,
+        blanks: [pinion_blank, wheel_blank],
+        samples,
+        fits: [kf, ef, df],
+        ..
+    } = *case;
+    let (model, mass, inertia, mesh_hz) = (o.model, o.mass, o.inertia, o.mesh_hz);
+    let (impact, exc, normal, angle) = (o.impact, o.exc, o.normal, o.angle);
+    let (h, wall, r) = (o.h, o.wall, o.r);
+    let Engaging {
+        force_n: fs,
+        velocity_m_s: v_s,
+        stiffness_n_per_m: k_s,
+        rotation: rot,
+    } = o.engaging;
     let share = r
         .rms_acceleration
         .map(|a| 100.0 * a / r.rms_acceleration[6]);
     let f_static = model.mean_mesh_force();
-    let summary = LumpedSummary {
+    LumpedSummary {
         pinion_blank,
         wheel_blank,
         pinion_speed_rpm: ls.pinion_speed_rpm,
@@ -258,8 +376,7 @@ pub(crate) fn run_blank(
         ltca_normal_model_axes: normal,
         rms_velocity_m_s: directions(r.rms_velocity),
         member_velocity_rms_m_s: r.member_velocity_rms,
-    };
-    Ok((summary, r.bearing_spectrum))
+    }
 }
 
 fn write_files(

@@ -269,53 +269,11 @@ impl LevelSolve<'_> {
             "flank": pos.side.flank_name(Which::Pinion),
         });
         let hash = format!("{:x}", Sha256::digest(key.to_string().as_bytes()));
-        let dir = self.lock.dir();
         let rel = format!("{}/{level}.json", self.cache);
-        match read_added(dir, &rel)? {
-            AddedState::Current(bytes) => {
-                if let Some(r) = serde_json::from_slice::<LevelResult>(&bytes)
-                    .ok()
-                    .filter(|r| r.input_hash == hash && r.mesh_sha256 == mesh_sha256)
-                {
-                    eprintln!(
-                        "{} {level}: inputs unchanged, reusing {}",
-                        self.cache,
-                        dir.join(&rel).display()
-                    );
-                    return Ok(r);
-                }
-            }
-            AddedState::Missing => {}
-            other => eprintln!(
-                "{} {level}: not reusing {}: {}",
-                self.cache,
-                dir.join(&rel).display(),
-                other.why_not().unwrap_or_default()
-            ),
+        if let Some(r) = self.kept_result(level, &rel, &hash, &mesh_sha256)? {
+            return Ok(r);
         }
-        // The factors held at once, estimated from the meshes' node counts
-        // before any factoring.
-        let dofs = [Which::Pinion, Which::Wheel].map(|m| {
-            let stem = formats::paths::mesh_stem(m, Blank::Standard, lv);
-            formats::stiffness_plan::check_mesh(
-                scene,
-                g,
-                &scene_meshes,
-                &stem,
-                m,
-                Blank::Standard,
-                lv,
-            )
-            .map(|e| 3 * e.body.nodes)
-        });
-        let dofs = [dofs[0].as_ref(), dofs[1].as_ref()].map(|d| d.map_or(0, |&d| d));
-        let estimated_factor_bytes = dofs.map(|d| formats::memory_estimate::factor(d).bytes);
-        formats::memory_estimate::check_fits(
-            &format!("scene {}: the FE reference at level {level}", sc.name),
-            &[("pinion", dofs[0]), ("wheel", dofs[1])],
-            self.memory_bytes
-                .or_else(fem::cholesky::available_memory_bytes),
-        )?;
+        let estimated_factor_bytes = self.factors_fit(level, lv, &scene_meshes)?;
         eprintln!(
             "{} {level}: reading and factoring {} and {}",
             self.cache,
@@ -379,6 +337,78 @@ impl LevelSolve<'_> {
         );
         add_json(self.lock, &rel, &res, Dependence::Beside)?;
         Ok(res)
+    }
+
+    /// The level result kept at `rel` under the lock's folder, when it is
+    /// current and was computed from `hash` and the meshes `mesh_sha256`;
+    /// why it is not reused otherwise, on stderr.
+    fn kept_result(
+        &self,
+        level: &str,
+        rel: &str,
+        hash: &str,
+        mesh_sha256: &[String; 2],
+    ) -> anyhow::Result<Option<LevelResult>> {
+        let dir = self.lock.dir();
+        match read_added(dir, rel)? {
+            AddedState::Current(bytes) => {
+                if let Some(r) = serde_json::from_slice::<LevelResult>(&bytes)
+                    .ok()
+                    .filter(|r| r.input_hash == hash && r.mesh_sha256 == *mesh_sha256)
+                {
+                    eprintln!(
+                        "{} {level}: inputs unchanged, reusing {}",
+                        self.cache,
+                        dir.join(rel).display()
+                    );
+                    return Ok(Some(r));
+                }
+            }
+            AddedState::Missing => {}
+            other => eprintln!(
+                "{} {level}: not reusing {}: {}",
+                self.cache,
+                dir.join(rel).display(),
+                other.why_not().unwrap_or_default()
+            ),
+        }
+        Ok(None)
+    }
+
+    /// The factors held at once, estimated from the meshes' node counts
+    /// before any factoring, refused above the memory allowed; returns the
+    /// estimated factor bytes of pinion and wheel.
+    fn factors_fit(
+        &self,
+        level: &str,
+        lv: MeshLevel,
+        scene_meshes: &Path,
+    ) -> anyhow::Result<[f64; 2]> {
+        let scene = self.scene;
+        let sc = &scene.scene;
+        let g = &self.position.g;
+        let dofs = [Which::Pinion, Which::Wheel].map(|m| {
+            let stem = formats::paths::mesh_stem(m, Blank::Standard, lv);
+            formats::stiffness_plan::check_mesh(
+                scene,
+                g,
+                scene_meshes,
+                &stem,
+                m,
+                Blank::Standard,
+                lv,
+            )
+            .map(|e| 3 * e.body.nodes)
+        });
+        let dofs = [dofs[0].as_ref(), dofs[1].as_ref()].map(|d| d.map_or(0, |&d| d));
+        let estimated_factor_bytes = dofs.map(|d| formats::memory_estimate::factor(d).bytes);
+        formats::memory_estimate::check_fits(
+            &format!("scene {}: the FE reference at level {level}", sc.name),
+            &[("pinion", dofs[0]), ("wheel", dofs[1])],
+            self.memory_bytes
+                .or_else(fem::cholesky::available_memory_bytes),
+        )?;
+        Ok(estimated_factor_bytes)
     }
 }
 

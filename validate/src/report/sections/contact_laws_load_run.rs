@@ -105,10 +105,32 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
         p.id
     );
     let _ = writeln!(s, "|---|---|---|---|");
-    let mut row = |q: &str, f: &dyn Fn(&LoadRunSummary) -> String, seed: String| {
-        let _ = writeln!(s, "| {q} | {} | {} | {seed} |", f(i), f(e));
-    };
-    row(
+    let mut t = Rows { s, i, e };
+    speed_torque_and_tangential_rows(&mut t, p);
+    fluctuation_rows(&mut t, p);
+    mesh_force_and_cost_rows(&mut t, p);
+    t.s.push('\n');
+}
+
+/// The table being written: each row shows the impact-law run `i` and the
+/// FE-analytical element's run `e` beside the seed's value.
+struct Rows<'a> {
+    s: &'a mut String,
+    i: &'a LoadRunSummary,
+    e: &'a LoadRunSummary,
+}
+
+impl Rows<'_> {
+    fn row(&mut self, q: &str, f: &dyn Fn(&LoadRunSummary) -> String, seed: String) {
+        let _ = writeln!(self.s, "| {q} | {} | {} | {seed} |", f(self.i), f(self.e));
+    }
+}
+
+/// The steady window, the mean wheel speed and mesh torque, the tangential
+/// force against 2T/d, and where the contact acts.
+fn speed_torque_and_tangential_rows(t: &mut Rows, p: &SeedContactLaw) {
+    let i = t.i;
+    t.row(
         "steady window, s (mesh cycles)",
         &|l| {
             format!(
@@ -118,7 +140,7 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
         },
         String::new(),
     );
-    row(
+    t.row(
         &format!(
             "mean wheel speed, °/s (kinematic {:.3})",
             i.wheel_speed_kinematic_deg_s
@@ -126,17 +148,17 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
         &|l| format!("{:.3}", l.wheel_speed_mean_deg_s),
         quoted(p.wheel_speed_deg_s.as_ref(), ""),
     );
-    row(
+    t.row(
         "mean wheel speed against kinematic",
         &|l| pct(l.wheel_speed_error),
         quoted(p.wheel_speed_error_percent.as_ref(), " %"),
     );
-    row(
+    t.row(
         "mean wheel mesh torque against the load",
         &|l| pct(l.torque_balance_error),
         String::new(),
     );
-    row(
+    t.row(
         &format!(
             "mean tangential force (contact forces at their points), N (2T/d = {:.1})",
             i.tangential_force_theory_n
@@ -152,18 +174,18 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
             (f, _) => quoted(f, ""),
         },
     );
-    row(
+    t.row(
         "largest tangential force, N",
         &|l| format!("{:.1}", l.tangential_force_max_n),
         quoted(p.tangential_force_max_n.as_ref(), ""),
     );
-    row(
+    t.row(
         "mean tangential force against 2T/d, (mean − 2T/d) / mean",
         &|l| pct(l.tangential_force_error_of_mean),
         quoted(p.tangential_force_error_percent.as_ref(), " %"),
     );
     let seed = seed_tangential(p, i.wheel_torque_nm);
-    row(
+    t.row(
         "mean tangential force against 2T/d, mean / (2T/d) − 1",
         &|l| pct(l.tangential_force_error),
         seed.as_ref().map_or_else(String::new, |t| {
@@ -174,7 +196,7 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
             )
         }),
     );
-    row(
+    t.row(
         &format!(
             "where the contact acts: mean wheel torque / mean tangential force, mm (outer pitch radius d/2 = {:.2})",
             i.outer_pitch_radius_mm
@@ -187,6 +209,12 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
             )
         }),
     );
+}
+
+/// The wheel speed and tangential force fluctuations, every step and as
+/// sampled; the seed's on the row sampled as the seed sampled.
+fn fluctuation_rows(t: &mut Rows, p: &SeedContactLaw) {
+    let (i, e) = (t.i, t.e);
     // The seed's fluctuations sit on the row sampled as the seed sampled,
     // or on the every-step row when neither run is sampled.
     let sampled = i.sampled.as_ref().or(e.sampled.as_ref());
@@ -205,7 +233,7 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
             seed.clone()
         }
     };
-    row(
+    t.row(
         "wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s, every step",
         &|l| {
             format!(
@@ -216,7 +244,7 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
         every(&seed_speed),
     );
     if let Some(sm) = sampled {
-        row(
+        t.row(
             &sampled_label(
                 "wheel speed fluctuation \\|ω₂ − kinematic\\| mean / max, °/s",
                 sm,
@@ -232,7 +260,7 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
             seed_speed.clone(),
         );
     }
-    row(
+    t.row(
         "tangential force fluctuation \\|F_t − mean\\| mean / max, N, every step",
         &|l| {
             format!(
@@ -243,7 +271,7 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
         every(&seed_force),
     );
     if let Some(sm) = sampled {
-        row(
+        t.row(
             &sampled_label(
                 "tangential force fluctuation \\|F_t − mean\\| mean / max, N",
                 sm,
@@ -259,7 +287,12 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
             seed_force.clone(),
         );
     }
-    row(
+}
+
+/// The meshing force against theory, TE, efficiency and the runs' cost.
+fn mesh_force_and_cost_rows(t: &mut Rows, p: &SeedContactLaw) {
+    let i = t.i;
+    t.row(
         &format!(
             "meshing force mean / max, N (theory T / (r_m cos α_n cos β_m) = {:.0})",
             i.mesh_force_theory_n
@@ -270,32 +303,31 @@ pub fn table(s: &mut String, p: &SeedContactLaw, i: &LoadRunSummary, e: &LoadRun
             .unwrap_or("not given")
             .to_string(),
     );
-    row(
+    t.row(
         "meshing force mean against theory",
         &|l| pct(l.mesh_force_mean_n / l.mesh_force_theory_n - 1.0),
         String::new(),
     );
-    row(
+    t.row(
         "TE mean / peak-to-peak, µrad",
         &|l| format!("{:.1} / {:.1}", l.te_mean_urad, l.te_ptp_urad),
         "not given".into(),
     );
-    row(
+    t.row(
         "mesh efficiency mean(T₂ω₂) / mean(T₁ω₁)",
         &|l| format!("{:.4}", l.mesh_efficiency),
         "not given".into(),
     );
-    row(
+    t.row(
         "steps (rejected)",
         &|l| format!("{} ({})", l.steps, l.rejected_steps),
         String::new(),
     );
-    row(
+    t.row(
         "CPU per step, µs (whole run, s)",
         &|l| format!("{:.1} ({:.1})", l.cpu_s_per_step * 1e6, l.cpu_s),
         String::new(),
     );
-    s.push('\n');
 }
 
 fn sampled_label(what: &str, sm: &SampledLoadRun) -> String {

@@ -5,7 +5,7 @@
 //! and the torque from which each design's contact reaches an edge.
 
 use crate::report::figures::{copied, Figure};
-use crate::studies::stress::{Outcome, StressSummary, Study};
+use crate::studies::stress::{Cell, Outcome, StressSummary, Study};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -77,15 +77,28 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
     if let Some(f) = figure {
         let _ = writeln!(m, "![{}]({})\n", f.title, f.file);
     }
-    let worst_balance = s
-        .cells
-        .iter()
-        .filter_map(|c| c.torque_balance.map(|b| (b, c)))
-        .max_by(|a, b| a.0.total_cmp(&b.0));
     let worst_drift = s
         .cells
         .iter()
         .filter_map(|c| c.energy_drift.map(|b| (b, c)))
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    checks(&mut m, s, worst_drift);
+    m.push('\n');
+    edge_contacts(&mut m, s);
+    m.push('\n');
+    not_converged(&mut m, s);
+    iteration_counts(&mut m, s, worst_drift);
+    m
+}
+
+/// The checks table: non-finite values, the worst torque balance, tensile
+/// slice forces, implausible deflections, TE decreasing with load and the
+/// worst energy drift (`worst_drift`).
+fn checks(m: &mut String, s: &StressSummary, worst_drift: Option<(f64, &Cell)>) {
+    let worst_balance = s
+        .cells
+        .iter()
+        .filter_map(|c| c.torque_balance.map(|b| (b, c)))
         .max_by(|a, b| a.0.total_cmp(&b.0));
     let non_finite = s.cells.iter().filter(|c| c.non_finite).count();
     let tensile = s
@@ -166,7 +179,11 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
             c.label
         );
     }
-    m.push('\n');
+}
+
+/// Per design: its grid and positions, and the torque from which its
+/// contact reaches an edge.
+fn edge_contacts(m: &mut String, s: &StressSummary) {
     let _ = writeln!(
         m,
         "| design | grid | positions | edge contact from | edge | pinion rotation | overshoot | largest load run |"
@@ -198,7 +215,10 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
             }
         }
     }
-    m.push('\n');
+}
+
+/// The cells not converged, with the first line of their reason.
+fn not_converged(m: &mut String, s: &StressSummary) {
     let mut reasons: Vec<String> = Vec::new();
     for c in &s.cells {
         let (kind, msg) = match &c.outcome {
@@ -222,6 +242,10 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
         }
         m.push('\n');
     }
+}
+
+/// The largest iteration counts and the worst energy drift (`worst_drift`).
+fn iteration_counts(m: &mut String, s: &StressSummary, worst_drift: Option<(f64, &Cell)>) {
     let iters = |st: Study| {
         s.cells
             .iter()
@@ -249,7 +273,6 @@ pub fn markdown(s: &StressSummary, figure: Option<&Figure>) -> String {
             .map_or("–".into(), |v| v.to_string()),
         fmt_opt(worst_drift.map(|w| w.0))
     );
-    m
 }
 
 #[cfg(test)]

@@ -3,16 +3,17 @@
 //! or solved (the bodies factored at the first position solved), its
 //! files and summary; a cache comparison or a shard writes no result.
 
-use super::reference_options::{utca_at, StageOptions, COMPARE_TOLERANCE, REFERENCE_SCHEMA};
-use super::reference_outputs::{
-    copy_files, load_summaries, pattern_vtu, report_factor, unloaded_check, write_te_csv,
-};
+mod results;
+mod sweep;
+
+use results::{bodies, print_summary, write_pattern};
+
+use super::reference_options::{utca_at, StageOptions, REFERENCE_SCHEMA};
+use super::reference_outputs::{copy_files, load_summaries, unloaded_check, write_te_csv};
 use super::reference_summary::{BlankSummary, CacheComparison};
-use crate::reference::reference_ltca::{Member, PositionResult, ReferencePair};
+use crate::reference::reference_ltca::{Member, PositionResult};
 use anyhow::Context;
-use formats::added_files::{add_json, Dependence};
-use formats::columns;
-use formats::output::{write_atomic, write_json};
+use formats::output::write_json;
 use formats::paths::MeshLevel;
 use formats::result_set::{ResultSet, RunLock};
 use formats::stiffness_plan;
@@ -21,8 +22,6 @@ use geometry::pair::{teeth_in_contact, PairGeometry};
 use geometry::scene::{Blank, LoadedScene};
 use preprocess::stiffness_stage::sha256_file;
 use sha2::{Digest, Sha256};
-use std::fmt::Write as _;
-use std::path::Path;
 
 /// What every blank pair of one `validate reference` run shares.
 pub(super) struct Run<'a> {
@@ -322,281 +321,6 @@ impl Run<'_> {
         write_json(&sdir.join("summary.json"), &summary)?;
         print_summary(&summary);
         Ok(Some(summary))
-    }
-
-    /// Every position of the sweep (this shard's with `--shard`): from the
-    /// cache, or solved (and cached; compared with the cache under
-    /// `--compare-cache`), the bodies loaded and factored at the first
-    /// position solved.
-    fn sweep(
-        &self,
-        name: &str,
-        positions: &[f64],
-        cache_dir: &Path,
-        meshes: &PairMeshes,
-        pinion: &mut Option<Member>,
-        wheel_teeth: &[usize],
-    ) -> anyhow::Result<Swept> {
-        let (opt, sc) = (self.opt, &self.scene.scene);
-        let mut wheel: Option<Member> = None;
-        let mut pinion_before = (0, 0.0);
-        let bar = indicatif::ProgressBar::new(positions.len() as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "reference {msg} [{bar:30}] {pos}/{len} positions, eta {eta}",
-            )?
-            .progress_chars("=> "),
-        );
-        bar.set_message(name.to_string());
-        let t_sweep = std::time::Instant::now();
-        let mut res = Vec::with_capacity(positions.len());
-        let mut reused = 0;
-        let mut comparison = CacheComparison {
-            tolerance: COMPARE_TOLERANCE,
-            ..Default::default()
-        };
-        for (i, &phi) in positions.iter().enumerate() {
-            if opt.shard.is_some_and(|(k, n)| i % n != k) {
-                bar.inc(1);
-                continue;
-            }
-            let cached = cache_dir.join(format!(
-                "phi_{}udeg.json",
-                (phi.to_degrees() * 1e6).round() as i64
-            ));
-            let from_cache = std::fs::read_to_string(&cached)
-                .ok()
-                .and_then(|t| serde_json::from_str::<PositionResult>(&t).ok())
-                .filter(|r| r.loads.len() == sc.pinion_torque_nm.len());
-            if opt.compare_cache && from_cache.is_none() {
-                comparison.positions_without_cache += 1;
-                bar.inc(1);
-                continue;
-            }
-            if let (false, Some(r)) = (opt.compare_cache, &from_cache) {
-                res.push(r.clone());
-                reused += 1;
-                bar.inc(1);
-                continue;
-            }
-            if pinion.is_none() || wheel.is_none() {
-                self.load_bodies(meshes, pinion, &mut wheel, wheel_teeth)?;
-                let pin = pinion.as_ref().expect("pinion factored above");
-                pinion_before = (pin.compliance.solves, pin.compliance.solve_s);
-            }
-            let mut pair = ReferencePair {
-                pinion: pinion.as_mut().expect("pinion factored above"),
-                wheel: wheel.as_mut().expect("wheel factored above"),
-                flanks: self.fp(),
-                direction: self.direction,
-                settings: opt.settings,
-            };
-            let r = pair.position(phi, &sc.pinion_torque_nm).with_context(|| {
-                format!(
-                    "scene {}: reference LTCA {name} at pinion angle {:.3} deg",
-                    sc.name,
-                    phi.to_degrees()
-                )
-            })?;
-            match &from_cache {
-                Some(old) => comparison.add(&r, old),
-                None => write_json(&cached, &r)?,
-            }
-            if bar.is_hidden() {
-                eprintln!(
-                    "reference {name}: position {}/{}: {} of {} constraints solved, {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
-                    i + 1,
-                    positions.len(),
-                    r.constraints,
-                    r.searched,
-                    r.new_columns,
-                    r.loads.last().map_or(0.0, |l| l.te * 1e6),
-                    r.loads.last().map_or(0.0, |l| l.torque_nm),
-                    r.cpu_s
-                );
-            }
-            res.push(r);
-            bar.inc(1);
-        }
-        bar.finish_and_clear();
-        Ok(Swept {
-            res,
-            reused,
-            comparison,
-            wheel,
-            pinion_before,
-            sweep_s: t_sweep.elapsed().as_secs_f64(),
-        })
-    }
-
-    /// Reads and factors the bodies not yet held, after checking that the
-    /// factors this run will hold at once fit the memory (estimated from
-    /// the meshes' node counts; unknown in manifests from before they were
-    /// recorded).
-    fn load_bodies(
-        &self,
-        meshes: &PairMeshes,
-        pinion: &mut Option<Member>,
-        wheel: &mut Option<Member>,
-        wheel_teeth: &[usize],
-    ) -> anyhow::Result<()> {
-        let opt = self.opt;
-        let mut parts = Vec::new();
-        if pinion.is_none() && meshes.dofs[0] > 0 {
-            parts.push(("pinion", meshes.dofs[0]));
-        }
-        if meshes.dofs[1] > 0 {
-            parts.push(("wheel", meshes.dofs[1]));
-        }
-        formats::memory_estimate::check_fits(
-            &self.what,
-            &parts,
-            opt.memory_bytes
-                .or_else(fem::cholesky::available_memory_bytes),
-        )?;
-        let [pm, wm] = &meshes.paths;
-        if pinion.is_none() {
-            eprintln!("reference: reading and factoring {}", pm.display());
-            *pinion = Some(Member::load(
-                pm,
-                &self.g,
-                Which::Pinion,
-                self.side,
-                &self.pinion_teeth,
-                opt.block,
-            )?);
-            report_factor("pinion", pinion.as_ref());
-        }
-        if wheel.is_none() {
-            eprintln!("reference: reading and factoring {}", wm.display());
-            *wheel = Some(Member::load(
-                wm,
-                &self.g,
-                Which::Wheel,
-                self.side,
-                wheel_teeth,
-                opt.block,
-            )?);
-            report_factor("wheel", wheel.as_ref());
-        }
-        Ok(())
-    }
-
-    /// `--compare-cache`: the comparison recorded beside the set it
-    /// checked, and refused beyond [`COMPARE_TOLERANCE`].
-    fn report_comparison(
-        &self,
-        name: &str,
-        comparison: &CacheComparison,
-        odir: &Path,
-    ) -> anyhow::Result<()> {
-        if let Some(lock) = &self.lock {
-            add_json(
-                lock,
-                &format!("{name}/compare_cache.json"),
-                comparison,
-                Dependence::OnSet,
-            )?;
-        }
-        eprintln!(
-            "reference {name}: {} positions solved anew against the cache ({} not cached): largest relative difference {:.2e} (TE {:.2e}, check-penalty TE {:.2e}, max pressure {:.2e}, search margin {:.2e}; torque balance {:.2e}), {} with other constraint counts",
-            comparison.positions_compared,
-            comparison.positions_without_cache,
-            comparison.worst(),
-            comparison.te,
-            comparison.te_check,
-            comparison.max_pressure,
-            comparison.search_margin,
-            comparison.torque_balance_abs,
-            comparison.count_mismatches
-        );
-        if comparison.worst() > COMPARE_TOLERANCE || comparison.count_mismatches > 0 {
-            anyhow::bail!(
-                "reference {name}: positions solved now differ from the cache by {:.2e} (tolerance {COMPARE_TOLERANCE:e}) with {} constraint-count mismatches; see {}",
-                comparison.worst(),
-                comparison.count_mismatches,
-                odir.join("compare_cache.json").display()
-            );
-        }
-        Ok(())
-    }
-}
-
-/// Contact pattern: the envelope of the pressure at the largest torque `t`
-/// over all positions, on the pinion flank's (ξ, η), as
-/// `pattern_<t>nm.csv` and `.vtu` in `sdir`.
-fn write_pattern(
-    sdir: &Path,
-    res: &[PositionResult],
-    fp: &geometry::pair::FlankPair,
-    t: f64,
-) -> anyhow::Result<()> {
-    let mut envelope: std::collections::HashMap<[u64; 3], ([f64; 3], f64)> =
-        std::collections::HashMap::new();
-    for r in res {
-        for &(p, v) in &r.pattern {
-            let e = envelope.entry(p.map(f64::to_bits)).or_insert((p, 0.0));
-            e.1 = e.1.max(v);
-        }
-    }
-    let mut pts: Vec<([f64; 3], f64)> = envelope.into_values().collect();
-    pts.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
-    let mut csv = format!(
-        "x_m,y_m,z_m,{},{},{}\n",
-        columns::XI,
-        columns::ETA,
-        columns::PRESSURE_MPA
-    );
-    for (p, v) in &pts {
-        let (l, d) = fp.pinion.gen.frame.axial(p);
-        let (xi, eta) = fp.pinion.bounds.to_unit(l, d);
-        writeln!(csv, "{},{},{},{xi},{eta},{}", p[0], p[1], p[2], v * 1e-6)?;
-    }
-    write_atomic(&sdir.join(format!("pattern_{t}nm.csv")), csv.as_bytes())?;
-    write_atomic(
-        &sdir.join(format!("pattern_{t}nm.vtu")),
-        pattern_vtu(&pts).as_bytes(),
-    )?;
-    Ok(())
-}
-
-/// Sizes and factoring times of this run's bodies, or of the run that
-/// solved the positions (kept beside the position cache).
-fn bodies(
-    cache_dir: &Path,
-    pinion: Option<&Member>,
-    wheel: Option<&Member>,
-) -> anyhow::Result<([usize; 2], [f64; 2])> {
-    let bodies_path = cache_dir.join("bodies.json");
-    Ok(match (pinion, wheel) {
-        (Some(p), Some(w)) => {
-            let b = (
-                [p.compliance.dofs_free, w.compliance.dofs_free],
-                [p.compliance.factor_s, w.compliance.factor_s],
-            );
-            write_json(&bodies_path, &b)?;
-            b
-        }
-        _ => std::fs::read_to_string(&bodies_path)
-            .ok()
-            .and_then(|t| serde_json::from_str(&t).ok())
-            .unwrap_or(([0; 2], [0.0; 2])),
-    })
-}
-
-/// A blank pair's unloaded check and loads, on stderr.
-fn print_summary(summary: &BlankSummary) {
-    let u = &summary.unloaded;
-    eprintln!(
-        "  unloaded ({} N·m): TE mean {:.2} µrad (UTCA {:.2}), ptp {:.2} µrad (UTCA {:.2}), largest difference {:.3} µrad",
-        u.torque_nm, u.reference_te_mean_urad, u.utca_te_mean_urad, u.reference_te_ptp_urad,
-        u.utca_te_ptp_urad, u.max_abs_difference_urad
-    );
-    for l in &summary.loads {
-        eprintln!(
-            "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, penalty check {:.3} %, max pressure {:.0} MPa",
-            l.torque_nm, l.te_mean_urad, l.te_ptp_urad, l.penalty_difference_pct, l.max_pressure_mpa
-        );
     }
 }
 

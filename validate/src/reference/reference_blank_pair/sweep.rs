@@ -1,0 +1,213 @@
+//! A blank pair's sweep over its positions: each from the cache or solved
+//! (the bodies loaded and factored at the first position solved), and the
+//! report of a cache comparison.
+
+use super::{PairMeshes, Run, Swept};
+use crate::reference::reference_ltca::{Member, PositionResult, ReferencePair};
+use crate::reference::reference_options::COMPARE_TOLERANCE;
+use crate::reference::reference_outputs::report_factor;
+use crate::reference::reference_summary::CacheComparison;
+use anyhow::Context;
+use formats::added_files::{add_json, Dependence};
+use formats::output::write_json;
+use geometry::design::Member as Which;
+use std::path::Path;
+
+impl Run<'_> {
+    /// Every position of the sweep (this shard's with `--shard`): from the
+    /// cache, or solved (and cached; compared with the cache under
+    /// `--compare-cache`), the bodies loaded and factored at the first
+    /// position solved.
+    pub(super) fn sweep(
+        &self,
+        name: &str,
+        positions: &[f64],
+        cache_dir: &Path,
+        meshes: &PairMeshes,
+        pinion: &mut Option<Member>,
+        wheel_teeth: &[usize],
+    ) -> anyhow::Result<Swept> {
+        let (opt, sc) = (self.opt, &self.scene.scene);
+        let mut wheel: Option<Member> = None;
+        let mut pinion_before = (0, 0.0);
+        let bar = indicatif::ProgressBar::new(positions.len() as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "reference {msg} [{bar:30}] {pos}/{len} positions, eta {eta}",
+            )?
+            .progress_chars("=> "),
+        );
+        bar.set_message(name.to_string());
+        let t_sweep = std::time::Instant::now();
+        let mut res = Vec::with_capacity(positions.len());
+        let mut reused = 0;
+        let mut comparison = CacheComparison {
+            tolerance: COMPARE_TOLERANCE,
+            ..Default::default()
+        };
+        for (i, &phi) in positions.iter().enumerate() {
+            if opt.shard.is_some_and(|(k, n)| i % n != k) {
+                bar.inc(1);
+                continue;
+            }
+            let cached = cache_dir.join(format!(
+                "phi_{}udeg.json",
+                (phi.to_degrees() * 1e6).round() as i64
+            ));
+            let from_cache = std::fs::read_to_string(&cached)
+                .ok()
+                .and_then(|t| serde_json::from_str::<PositionResult>(&t).ok())
+                .filter(|r| r.loads.len() == sc.pinion_torque_nm.len());
+            if opt.compare_cache && from_cache.is_none() {
+                comparison.positions_without_cache += 1;
+                bar.inc(1);
+                continue;
+            }
+            if let (false, Some(r)) = (opt.compare_cache, &from_cache) {
+                res.push(r.clone());
+                reused += 1;
+                bar.inc(1);
+                continue;
+            }
+            if pinion.is_none() || wheel.is_none() {
+                self.load_bodies(meshes, pinion, &mut wheel, wheel_teeth)?;
+                let pin = pinion.as_ref().expect("pinion factored above");
+                pinion_before = (pin.compliance.solves, pin.compliance.solve_s);
+            }
+            let mut pair = ReferencePair {
+                pinion: pinion.as_mut().expect("pinion factored above"),
+                wheel: wheel.as_mut().expect("wheel factored above"),
+                flanks: self.fp(),
+                direction: self.direction,
+                settings: opt.settings,
+            };
+            let r = pair.position(phi, &sc.pinion_torque_nm).with_context(|| {
+                format!(
+                    "scene {}: reference LTCA {name} at pinion angle {:.3} deg",
+                    sc.name,
+                    phi.to_degrees()
+                )
+            })?;
+            match &from_cache {
+                Some(old) => comparison.add(&r, old),
+                None => write_json(&cached, &r)?,
+            }
+            if bar.is_hidden() {
+                eprintln!(
+                    "reference {name}: position {}/{}: {} of {} constraints solved, {} new nodes, TE {:.2} urad at {} N m, {:.1} s",
+                    i + 1,
+                    positions.len(),
+                    r.constraints,
+                    r.searched,
+                    r.new_columns,
+                    r.loads.last().map_or(0.0, |l| l.te * 1e6),
+                    r.loads.last().map_or(0.0, |l| l.torque_nm),
+                    r.cpu_s
+                );
+            }
+            res.push(r);
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        Ok(Swept {
+            res,
+            reused,
+            comparison,
+            wheel,
+            pinion_before,
+            sweep_s: t_sweep.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Reads and factors the bodies not yet held, after checking that the
+    /// factors this run will hold at once fit the memory (estimated from
+    /// the meshes' node counts; unknown in manifests from before they were
+    /// recorded).
+    fn load_bodies(
+        &self,
+        meshes: &PairMeshes,
+        pinion: &mut Option<Member>,
+        wheel: &mut Option<Member>,
+        wheel_teeth: &[usize],
+    ) -> anyhow::Result<()> {
+        let opt = self.opt;
+        let mut parts = Vec::new();
+        if pinion.is_none() && meshes.dofs[0] > 0 {
+            parts.push(("pinion", meshes.dofs[0]));
+        }
+        if meshes.dofs[1] > 0 {
+            parts.push(("wheel", meshes.dofs[1]));
+        }
+        formats::memory_estimate::check_fits(
+            &self.what,
+            &parts,
+            opt.memory_bytes
+                .or_else(fem::cholesky::available_memory_bytes),
+        )?;
+        let [pm, wm] = &meshes.paths;
+        if pinion.is_none() {
+            eprintln!("reference: reading and factoring {}", pm.display());
+            *pinion = Some(Member::load(
+                pm,
+                &self.g,
+                Which::Pinion,
+                self.side,
+                &self.pinion_teeth,
+                opt.block,
+            )?);
+            report_factor("pinion", pinion.as_ref());
+        }
+        if wheel.is_none() {
+            eprintln!("reference: reading and factoring {}", wm.display());
+            *wheel = Some(Member::load(
+                wm,
+                &self.g,
+                Which::Wheel,
+                self.side,
+                wheel_teeth,
+                opt.block,
+            )?);
+            report_factor("wheel", wheel.as_ref());
+        }
+        Ok(())
+    }
+
+    /// `--compare-cache`: the comparison recorded beside the set it
+    /// checked, and refused beyond [`COMPARE_TOLERANCE`].
+    pub(super) fn report_comparison(
+        &self,
+        name: &str,
+        comparison: &CacheComparison,
+        odir: &Path,
+    ) -> anyhow::Result<()> {
+        if let Some(lock) = &self.lock {
+            add_json(
+                lock,
+                &format!("{name}/compare_cache.json"),
+                comparison,
+                Dependence::OnSet,
+            )?;
+        }
+        eprintln!(
+            "reference {name}: {} positions solved anew against the cache ({} not cached): largest relative difference {:.2e} (TE {:.2e}, check-penalty TE {:.2e}, max pressure {:.2e}, search margin {:.2e}; torque balance {:.2e}), {} with other constraint counts",
+            comparison.positions_compared,
+            comparison.positions_without_cache,
+            comparison.worst(),
+            comparison.te,
+            comparison.te_check,
+            comparison.max_pressure,
+            comparison.search_margin,
+            comparison.torque_balance_abs,
+            comparison.count_mismatches
+        );
+        if comparison.worst() > COMPARE_TOLERANCE || comparison.count_mismatches > 0 {
+            anyhow::bail!(
+                "reference {name}: positions solved now differ from the cache by {:.2e} (tolerance {COMPARE_TOLERANCE:e}) with {} constraint-count mismatches; see {}",
+                comparison.worst(),
+                comparison.count_mismatches,
+                odir.join("compare_cache.json").display()
+            );
+        }
+        Ok(())
+    }
+}

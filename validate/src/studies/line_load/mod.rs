@@ -1,0 +1,187 @@
+//! The line-load check of the reduced model's compliance split: a
+//! Hertzian line load on one pinion tooth, solved on a fine FE mesh, against
+//! the reduced-order prediction global FE + Weber–Banaschek.
+//!
+//! The load runs along the loaded flank of tooth 0 at a fixed profile
+//! parameter η₀ (a profile row of the contact grid) over the whole active
+//! face width. Across the line it is a Hertz pressure of half-width b and
+//! line load q:
+//!
+//!   p(s) = 2q/(πb) · √(1 − s²/b²),   |s| < b,
+//!
+//! with s the distance from the line along the flank, pressed along the
+//! flank's inward normal. The fine-mesh approach is the normal displacement
+//! (into the tooth) of the line's surface points at the grid columns, the
+//! bore clamped as in the stiffness files.
+//!
+//! The reduced model puts the same load on the grid: the force q · Lⱼ of
+//! column j's stretch of line at grid point (j, η₀), and predicts the
+//! approach at grid point j as
+//!
+//!   wⱼ = Σₖ G(k → j) q Lₖ + w_WB(q, b, hⱼ),
+//!
+//! G the stiffness file's global field (total − local) and w_WB the
+//! half-plane approach to the stored depth hⱼ
+//! ([`solver::element::weber_banaschek::body_approach`]).
+
+mod load_line;
+mod run;
+#[cfg(test)]
+mod tests;
+
+pub use load_line::{hertz_pressure, strip_forces, surface_value, LoadLine};
+pub use run::run;
+
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+
+/// One half-width's comparison.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct LineLoadCase {
+    pub half_width_mm: f64,
+    /// Fine-mesh elements across the strip (2b over the mean flank element
+    /// size along the profile).
+    pub elements_across: f64,
+    /// The applied force ∫ p dA over q · L (1 when the strip lies on the
+    /// meshed flank and is integrated exactly).
+    pub applied_load_ratio: f64,
+    /// Per compared grid column: ξ, fine FE approach, global part, WB part,
+    /// reduced prediction (µm), and the difference (%).
+    pub xi: Vec<f64>,
+    pub fe_um: Vec<f64>,
+    pub global_um: Vec<f64>,
+    pub weber_banaschek_um: Vec<f64>,
+    pub reduced_um: Vec<f64>,
+    pub difference_pct: Vec<f64>,
+    pub mean_abs_difference_pct: f64,
+    pub max_abs_difference_pct: f64,
+}
+
+/// The reduced model's approach at the grid columns of row `row`: the
+/// global field `global(k, j)` (load at column k, response at column j)
+/// under forces `forces[k]`, plus `wb[j]`.
+pub fn reduced_prediction(
+    global: impl Fn(usize, usize) -> f64,
+    forces: &[f64],
+    wb: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    let g: Vec<f64> = (0..forces.len())
+        .map(|j| {
+            forces
+                .iter()
+                .enumerate()
+                .map(|(k, f)| global(k, j) * f)
+                .sum()
+        })
+        .collect();
+    let total = g.iter().zip(wb).map(|(a, b)| a + b).collect();
+    (g, total)
+}
+
+/// What `validate line-load` solves.
+#[derive(Debug, Clone)]
+pub struct LineLoadStudy {
+    /// Fine mesh levels (medium, reference).
+    pub levels: Vec<String>,
+    /// Hertz half-widths, m.
+    pub half_widths: Vec<f64>,
+    /// Line load, N/m (the comparison is linear in it).
+    pub q: f64,
+    /// Profile row of the contact grid the line runs along (default: the
+    /// middle row).
+    pub row: Option<usize>,
+    /// Grid columns left out at each end (toe and heel) in the statistics.
+    pub end_columns: usize,
+}
+
+/// One fine mesh level's comparison.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct LineLoadLevel {
+    pub level: String,
+    pub mesh: String,
+    pub mesh_sha256: String,
+    pub dofs: usize,
+    pub factor_s: f64,
+    /// Length of the load line that lies on the meshed flank, to the
+    /// line's sampling (ten points per grid column), mm.
+    pub line_on_mesh_mm: f64,
+    /// Mean flank element size along the profile, mm.
+    pub profile_element_mm: f64,
+    pub cases: Vec<LineLoadCase>,
+}
+
+/// The study's result (`out/<scene>/reference/line_load.json`).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct LineLoad {
+    pub member: String,
+    pub flank: String,
+    pub stiffness_file: String,
+    /// SHA-256 of the stiffness file's mesh (the reduced level's).
+    pub stiffness_mesh_sha256: String,
+    pub line_load_n_per_m: f64,
+    pub profile_row: usize,
+    pub eta: f64,
+    pub line_length_mm: f64,
+    /// Columns compared in the statistics (the others lie within
+    /// `end_columns` of the toe or heel).
+    pub compared_columns: Vec<usize>,
+    pub levels: Vec<LineLoadLevel>,
+}
+
+impl LineLoad {
+    /// Whether the meshes under `scene_meshes` are still the ones the study
+    /// ran on.
+    pub fn current(&self, scene_meshes: &std::path::Path) -> bool {
+        let same = |level: &str, hash: &str| {
+            let stem = formats::paths::stem_named(
+                geometry::design::Member::Pinion,
+                geometry::scene::Blank::Standard,
+                level,
+            );
+            preprocess::stiffness_stage::sha256_file(&formats::paths::msh(scene_meshes, &stem))
+                .is_ok_and(|h| h == hash)
+        };
+        same("reduced", &self.stiffness_mesh_sha256)
+            && self.levels.iter().all(|l| same(&l.level, &l.mesh_sha256))
+    }
+
+    /// The report's section.
+    pub fn markdown(&self, s: &mut String) {
+        let _ = writeln!(
+            s,
+            "\n## Line load: global FE + Weber–Banaschek against fine-mesh FE\n"
+        );
+        let _ = writeln!(
+            s,
+            "A Hertzian line load (q = {:.0} N/mm, half-width b) along the {} flank of pinion tooth 0 at profile row {} (η = {:.3}) over the whole face width ({:.1} mm), bore clamped (`validate line-load`). Fine-mesh FE: the normal approach of the line's surface points at the grid columns. Reduced model: the stiffness file's global field (total − local, reduced level) under the column forces q·L plus the Weber–Banaschek approach to the stored depth h. Compared on columns {}..={} (the end columns, where the plane-strain WB term does not hold, left out). The project's bound is 3 %.\n",
+            self.line_load_n_per_m * 1e-3,
+            self.flank,
+            self.profile_row,
+            self.eta,
+            self.line_length_mm,
+            self.compared_columns.first().unwrap_or(&0),
+            self.compared_columns.last().unwrap_or(&0),
+        );
+        let _ = writeln!(s, "| FE mesh | dofs | flank element, mm | b, mm | elements across 2b | FE approach, µm (mid column) | global + WB, µm | of which WB | mean \\|diff\\| % | max \\|diff\\| % |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+        for l in &self.levels {
+            for c in &l.cases {
+                let mid = c.fe_um.len() / 2;
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {:.3} | {:.3} | {:.1} | {:.3} | {:.3} | {:.3} | {:.2} | {:.2} |",
+                    l.level,
+                    l.dofs,
+                    l.profile_element_mm,
+                    c.half_width_mm,
+                    c.elements_across,
+                    c.fe_um.get(mid).copied().unwrap_or(f64::NAN),
+                    c.reduced_um.get(mid).copied().unwrap_or(f64::NAN),
+                    c.weber_banaschek_um.get(mid).copied().unwrap_or(f64::NAN),
+                    c.mean_abs_difference_pct,
+                    c.max_abs_difference_pct
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,73 @@
+use super::*;
+use crate::reference::contact_surface::MasterSurface;
+use fem::structured::{faces_where, mapped_block};
+
+fn straight_line(y: f64, z: f64, len: f64) -> LoadLine {
+    let pts: Vec<[f64; 3]> = (0..=40).map(|i| [len * i as f64 / 40.0, y, z]).collect();
+    let nrm = vec![[0.0, 0.0, 1.0]; pts.len()];
+    LoadLine::new(pts, nrm, [0.0, 1.0, 0.0])
+}
+
+/// Force balance: the consistent forces of the Hertz strip on a flat
+/// face add up to q · L along the inward normal, with no tangential
+/// resultant and the centre of pressure on the line.
+#[test]
+fn hertz_strip_resultant_equals_line_load_times_length() {
+    let block = mapped_block([8, 8, 2], |p| [p[0] * 0.02, p[1] * 0.01, p[2] * 0.004]);
+    let top = faces_where(&block, |p| p[2] > 1.0 - 1e-12);
+    let line = straight_line(0.0043, 0.004, 0.015);
+    let (q, b) = (2.0e5, 0.9e-3);
+    let (f, applied) = strip_forces(&block.mesh, &top, &line, q, b, 8);
+    assert!((applied / (q * 0.015) - 1.0).abs() < 2e-3, "{applied}");
+    let mut res = [0.0; 3];
+    let mut moment_y = 0.0;
+    for &(d, v) in &f {
+        res[d % 3] += v;
+        if d % 3 == 2 {
+            moment_y += v * block.mesh.nodes[d / 3][1];
+        }
+    }
+    let expected = -q * 0.015;
+    assert!(
+        (res[2] / expected - 1.0).abs() < 2e-3,
+        "{res:?} vs {expected}"
+    );
+    assert!(res[0].abs() < 1e-9 * q && res[1].abs() < 1e-9 * q);
+    let y_c = moment_y / res[2];
+    assert!((y_c - 0.0043).abs() < 1e-3 * b, "centre {y_c}");
+}
+
+/// A rigid translation read back at a surface point of a curved
+/// (mid-node displaced) quadratic face gives the translation.
+#[test]
+fn surface_value_reads_an_affine_field_exactly() {
+    let block = mapped_block([3, 3, 2], |p| {
+        [
+            p[0] * 0.01,
+            p[1] * 0.01,
+            p[2] * 0.005 + 1e-4 * (3.0 * p[0]).sin(),
+        ]
+    });
+    let top = faces_where(&block, |p| p[2] > 1.0 - 1e-12);
+    let u: Vec<f64> = block
+        .mesh
+        .nodes
+        .iter()
+        .flat_map(|x| [1e-6, -2e-6, 3e-6 + 1e-4 * x[0]])
+        .collect();
+    let x: f64 = 0.0043;
+    let p = [x, 0.0061, 0.005 + 1e-4 * (3.0 * x / 0.01).sin()];
+    let surface = MasterSurface::new(block.mesh.nodes.clone(), top);
+    let v = surface_value(&surface, &u, p, [0.0, 0.0, 1.0]);
+    let v = v.expect("point on the top face");
+    assert!((v - (3e-6 + 1e-4 * x)).abs() < 1e-9, "{v}");
+}
+
+/// Summation of the reduced model: global field times forces plus WB.
+#[test]
+fn reduced_prediction_adds_global_response_and_weber_banaschek() {
+    let g = |k: usize, j: usize| 1.0 / (1.0 + (k as f64 - j as f64).abs());
+    let (glob, tot) = reduced_prediction(g, &[1.0, 2.0], &[0.5, 0.25]);
+    assert_eq!(glob, vec![1.0 + 1.0, 0.5 + 2.0]);
+    assert_eq!(tot, vec![2.5, 2.75]);
+}
