@@ -7,11 +7,11 @@
 //! and y_j = L⁻¹ P e_j is nonzero only on the supernodes of the elimination
 //! tree's path from the supernode holding row (P e_j) to the root. So a
 //! unit load needs only the forward half of a solve, and only along its path
-//! ([`Factor::forward_units`]); a compliance is a dot product over the part
+//! ([`PathFactor::forward_units`]); a compliance is a dot product over the part
 //! two paths share ([`gram`]). A displacement field u = K⁻¹ f is wanted at a
 //! few dofs only: with z = L⁻¹ P f known on its paths, u at a dof needs the
 //! backward solve x = L⁻ᵀ z on the path of that dof alone
-//! ([`Factor::backward_at`]: a supernode's rows of x depend only on z there
+//! ([`PathFactor::backward_at`]: a supernode's rows of x depend only on z there
 //! and on x at its ancestors).
 //!
 //! A supernode's parent is the supernode holding the first row of its
