@@ -76,3 +76,31 @@ fn calibrated_scene_loads_with_the_fitted_ease_off_and_web() {
     );
     assert_eq!(s.scene.pinion_torque_nm, d.scene.pinion_torque_nm);
 }
+
+#[test]
+fn calibration_without_the_standard_blanks_is_refused_before_any_work() {
+    let mut s =
+        geometry::scene::Scene::load(&root().join("reference/scenes/default.toml")).unwrap();
+    s.scene.blanks.wheel = vec![geometry::scene::Blank::Lightweight];
+    let d = tempfile::tempdir().unwrap();
+    let err = validate::studies::calibration::run(
+        &s,
+        d.path(),
+        d.path(),
+        &validate::studies::calibration::Targets {
+            design: &d.path().join("design.toml"),
+            scene: &d.path().join("scene.toml"),
+            record: &d.path().join("record.json"),
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("[blanks]") && err.contains("standard"),
+        "{err}"
+    );
+    assert!(
+        std::fs::read_dir(d.path()).unwrap().next().is_none(),
+        "nothing written"
+    );
+}

@@ -145,6 +145,11 @@ pub fn run(
         b.pinion,
         b.wheel
     );
+    anyhow::ensure!(
+        scene.pair.ease_off.topography.is_none(),
+        "design {}: [ease_off] topography: a measured topography is not calibrated (the fit varies the parametric ease-off only)",
+        scene.design_path.display()
+    );
     let std_target = published_targets(scene, false, &FITTED_LOADS_NM)?;
     let lw_target = published_targets(scene, true, &[WEB_FIT_LOAD_NM])?[0];
     let ctx = StageContext::new(scene, meshes)?;
