@@ -257,7 +257,7 @@ pub fn edge_line(design: &str, summaries: &[BlankSummary]) -> Option<String> {
         .collect();
     (!parts.is_empty()).then(|| {
         format!(
-            "The {design} design's contact reaches an edge of the active flank (the reduced model does not hold beyond it; the reference FE shows edge contact) with the {}.",
+            "The {design} design's contact reaches an edge of the active flank (the reduced model does not hold beyond it) with the {}.",
             parts.join(" and the ")
         )
     })
