@@ -12,26 +12,13 @@ pub struct Published {
     pub source: String,
 }
 
-#[derive(Deserialize)]
-struct TeRow {
-    load_nm: f64,
-    ptp_te_nlfea_urad: f64,
-}
-
-#[derive(Deserialize)]
-struct TeTables {
-    source: String,
-    standard_blank: Vec<TeRow>,
-}
-
 /// The NLFEA peak-to-peak TE at 1 N·m, standard blank (Table 3), when the
 /// design names a published loaded-TE table with a 1 N·m row.
 pub fn te_ptp_1nm(published: &PublishedDesign) -> Result<Option<Published>, PublishedError> {
-    let Some(file) = &published.loaded_te else {
+    let Some(t) = PublishedTeTables::of(published)? else {
         return Ok(None);
     };
-    let t: TeTables = read_toml(file)?;
-    let Some(row) = t.standard_blank.iter().find(|r| r.load_nm == 1.0) else {
+    let Some(row) = t.row(false, 1.0) else {
         return Ok(None);
     };
     Ok(Some(Published {

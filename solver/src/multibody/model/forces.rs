@@ -101,14 +101,7 @@ impl Model<'_> {
                 self.friction * th,
                 self.friction * (1.0 - th * th) / FRICTION_SPEED,
             );
-            q_c[0] -= mu * phi[0];
-            q_c[1] += mu * phi[1];
-            for j in 0..2 {
-                k[0][j] += mu * dphi[0][j];
-                k[1][j] -= mu * dphi[1][j];
-            }
-            d[0][0] += dmu * phi[0];
-            d[1][0] -= dmu * phi[1];
+            add_friction(&mut q_c, &mut k, &mut d, mu, dmu, phi, dphi);
         }
         Ok(Contact {
             force: q_c,
@@ -178,14 +171,7 @@ impl Model<'_> {
                 0.0
             };
             let (mu, dmu) = (sgn * mu, g * dmu);
-            q_c[0] -= mu * phi[0];
-            q_c[1] += mu * phi[1];
-            for j in 0..2 {
-                k[0][j] += mu * dphi[0][j];
-                k[1][j] -= mu * dphi[1][j];
-            }
-            d[0][0] += dmu * phi[0];
-            d[1][0] -= dmu * phi[1];
+            add_friction(q_c, k, d, mu, dmu, phi, dphi);
         }
         Ok(())
     }
@@ -200,4 +186,27 @@ impl Model<'_> {
             - ext[0] * s.q[0]
             - ext[1] * s.q[1])
     }
+}
+
+/// Adds the friction of coefficient μ (and ∂μ/∂θ̇₁ = `dmu`) on the friction
+/// levers φ (with their Jacobian ∂φ/∂q) to the forces `q_c`, the
+/// stiffness `k` and the damping `d`: Q₁ −= μφ₁, Q₂ += μφ₂,
+/// K₁ⱼ += μ∂φ₁/∂qⱼ, K₂ⱼ −= μ∂φ₂/∂qⱼ, D₁₁ += μ′φ₁, D₂₁ −= μ′φ₂.
+fn add_friction(
+    q_c: &mut [f64; 2],
+    k: &mut [[f64; 2]; 2],
+    d: &mut [[f64; 2]; 2],
+    mu: f64,
+    dmu: f64,
+    phi: [f64; 2],
+    dphi: [[f64; 2]; 2],
+) {
+    q_c[0] -= mu * phi[0];
+    q_c[1] += mu * phi[1];
+    for j in 0..2 {
+        k[0][j] += mu * dphi[0][j];
+        k[1][j] -= mu * dphi[1][j];
+    }
+    d[0][0] += dmu * phi[0];
+    d[1][0] -= dmu * phi[1];
 }

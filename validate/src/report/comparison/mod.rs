@@ -111,7 +111,7 @@ pub fn compare(
     if rf.is_empty() {
         return Ok(None);
     }
-    let pub_te: Option<published_tables::PubTables> = published
+    let pub_te: Option<crate::report::published::PublishedTeTables> = published
         .loaded_te
         .as_deref()
         .map(crate::report::published::read_toml)

@@ -1,22 +1,7 @@
-//! The white paper's published tables the comparison reads: Tables 3–4
-//! (loaded TE) and Table 5 (CPU), as printed.
+//! The white paper's Table 5 (CPU) as printed, which the comparison reads
+//! beside Tables 3–4 ([`crate::report::published::PublishedTeTables`]).
 
 use serde::Deserialize;
-
-#[derive(Deserialize)]
-pub(super) struct PubTe {
-    pub(super) load_nm: f64,
-    pub(super) mean_te_multibody_urad: f64,
-    pub(super) mean_te_nlfea_urad: f64,
-    pub(super) ptp_te_multibody_urad: f64,
-    pub(super) ptp_te_nlfea_urad: f64,
-}
-
-#[derive(Deserialize)]
-pub(super) struct PubTables {
-    pub(super) standard_blank: Vec<PubTe>,
-    pub(super) lightweight_blank: Vec<PubTe>,
-}
 
 #[derive(Deserialize)]
 pub(super) struct PubCpu {

@@ -2,9 +2,10 @@
 //! against the finest reference (and the reduced level's beside it), with
 //! the published values of the same load.
 
-use super::published_tables::{published_cpu_row, PubCpu, PubCpuTable, PubTables};
+use super::published_tables::{published_cpu_row, PubCpu, PubCpuTable};
 use super::{read, ComparisonError, Row};
 use crate::reference::reference_stage::BlankSummary;
+use crate::report::published::PublishedTeTables;
 use formats::summaries::DynamicSummary;
 use std::path::{Path, PathBuf};
 
@@ -66,7 +67,7 @@ pub(super) fn build(
     mb: &[DynamicSummary],
     rf: &[BlankSummary],
     reduced_level: &[BlankSummary],
-    pub_te: Option<&PubTables>,
+    pub_te: Option<&PublishedTeTables>,
     pub_cpu: Option<&PubCpuTable>,
 ) -> Vec<Row> {
     let mut rows = Vec::new();

@@ -16,7 +16,7 @@ use geometry::scene::LoadedScene;
 use geometry::utca::roll_surface;
 use serde::Serialize;
 use solver::element::compliance::PairCompliance;
-use solver::ltca::{mean_ptp, Sweep};
+use solver::ltca::Sweep;
 
 /// A fitted parameter: its name in the design's `[ease_off]`, start, bounds.
 pub const PARAMETERS: [(&str, f64, f64, f64); 4] = [
@@ -73,16 +73,12 @@ pub fn ltca_te(
     let fp = g.side(scene.scene.loaded_flank);
     let rs = roll_surface(fp, &scene.scene.utca)?;
     let res = solver::ltca::run(fp, &rs, pc, sweep, loads_nm)?;
-    Ok(loads_nm
-        .iter()
-        .enumerate()
-        .map(|(i, &load_nm)| {
-            let (m, p) = mean_ptp(&res.iter().map(|r| r.loads[i].te).collect::<Vec<_>>());
-            Te {
-                load_nm,
-                mean_urad: m * 1e6,
-                ptp_urad: p * 1e6,
-            }
+    Ok(solver::stage::ltca::load_summaries(&res, loads_nm)
+        .into_iter()
+        .map(|l| Te {
+            load_nm: l.torque_nm,
+            mean_urad: l.te_mean_urad,
+            ptp_urad: l.te_ptp_urad,
         })
         .collect())
 }
