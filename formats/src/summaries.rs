@@ -102,6 +102,22 @@ pub struct BlankSummary {
     /// their compliant bearings (`bearings.csv` per position).
     #[serde(default)]
     pub bearings: Option<Vec<BearingLoadSummary>>,
+    /// The ablation study: the same sweep with one of the element's
+    /// modelling changes switched off per entry (empty in files written
+    /// before the study existed).
+    #[serde(default)]
+    pub ablation: Vec<AblationVariant>,
+}
+
+/// One variant of the ablation study: the element with one modelling
+/// change switched off, over the same sweep and loads.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AblationVariant {
+    /// Short name of the variant.
+    pub variant: String,
+    /// The modelling change switched off, in words.
+    pub change_off: String,
+    pub loads: Vec<LoadSummary>,
 }
 
 /// One torque of the LTCA with bearing deflection, over the sweep.

@@ -329,6 +329,47 @@ fn position_load(
     }
 }
 
+/// The element with one of its modelling changes switched off, for the
+/// ablation study that measures what each change does (the element itself
+/// always runs [`Variant::Element`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variant {
+    /// The element as it is.
+    Element,
+    /// Without the edge cut: every slice a Hertz strip, tip edges or not
+    /// ([`crate::element::edge_cut`]).
+    WithoutEdgeCut,
+}
+
+impl Variant {
+    /// The variants the ablation study runs beside the element.
+    pub const ABLATED: [Variant; 1] = [Variant::WithoutEdgeCut];
+
+    /// Short name (file key).
+    pub fn name(self) -> &'static str {
+        match self {
+            Variant::Element => "element",
+            Variant::WithoutEdgeCut => "without_edge_cut",
+        }
+    }
+
+    /// The modelling change this variant switches off, in words.
+    pub fn change(self) -> &'static str {
+        match self {
+            Variant::Element => "none",
+            Variant::WithoutEdgeCut => "edge cut (a tip edge cutting a slice's contact strip)",
+        }
+    }
+
+    fn apply(self, a: &mut Assembled) {
+        if self == Variant::WithoutEdgeCut {
+            for l in &mut a.line {
+                l.edge = None;
+            }
+        }
+    }
+}
+
 /// Runs the sweep for every torque (positions in parallel).
 pub fn run(
     fp: &FlankPair,
@@ -336,6 +377,18 @@ pub fn run(
     pc: &PairCompliance,
     sweep: &Sweep,
     torques: &[f64],
+) -> Result<Vec<PositionResult>, SolverError> {
+    run_variant(fp, rs, pc, sweep, torques, Variant::Element)
+}
+
+/// [`run`] with the element's `variant`.
+pub fn run_variant(
+    fp: &FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    sweep: &Sweep,
+    torques: &[f64],
+    variant: Variant,
 ) -> Result<Vec<PositionResult>, SolverError> {
     let tau = fp.pinion.gen.frame.pitch();
     (0..sweep.positions)
@@ -348,7 +401,8 @@ pub fn run(
                 return Err(SolverError::NoContact);
             }
             let (a, assembly_s) = timed(|| assemble(&g, pc, sweep.friction));
-            let a = a?;
+            let mut a = a?;
+            variant.apply(&mut a);
             let mut loads = Vec::with_capacity(torques.len());
             let mut warm: Option<Vec<bool>> = None;
             for &torque in torques {

@@ -129,6 +129,7 @@ fn ltca() -> BlankSummary {
         loads: vec![],
         dir: "synthetic".into(),
         coast: None,
+        ablation: Vec::new(),
         bearings: Some(vec![BearingLoadSummary {
             torque_nm: 300.0,
             te_mean_urad: 671.25,

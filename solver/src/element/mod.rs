@@ -6,11 +6,13 @@
 //! stiffness files' global fields, [`interp`] on their flank grids) +
 //! [`weber_banaschek`] (the local, near-contact approach of a line
 //! contact) → [`contact_problem`] (slice forces and loaded TE);
-//! [`edge_contact`] tells when a slice's contact reaches a flank edge.
+//! [`edge_cut`] is the local approach of a slice whose strip a tip edge
+//! cuts; [`edge_contact`] tells when a slice's contact reaches a flank edge.
 
 pub mod compliance;
 pub mod contact_problem;
 pub mod edge_contact;
+pub mod edge_cut;
 pub mod interp;
 pub mod slices;
 pub mod weber_banaschek;

@@ -16,6 +16,7 @@
 //! w = w₁(h₁) + w₂(h₂), with b = √(4qρ/(πE*)), 1/E* = Σ (1 − νᵢ²)/Eᵢ and ρ the
 //! relative radius of curvature across the contact line.
 
+use crate::element::edge_cut::{self, EdgeCut};
 use geometry::Material;
 
 /// Plane-strain compliance (1 − ν²)/E of a body, 1/Pa.
@@ -68,8 +69,8 @@ pub fn body_approach_log(q: f64, b: f64, h: f64, m: Material) -> f64 {
         * ((2.0 * h / b).ln() - nu / (2.0 * (1.0 - nu)))
 }
 
-/// A line-contact slice: relative radius of curvature, length and the two
-/// bodies' reference depths and materials.
+/// A line-contact slice: relative radius of curvature, length, the two
+/// bodies' reference depths and materials, and the tip edge near it if any.
 #[derive(Debug, Clone, Copy)]
 pub struct LineContact {
     /// Relative radius of curvature across the contact line, m.
@@ -78,19 +79,34 @@ pub struct LineContact {
     pub length: f64,
     pub h: [f64; 2],
     pub bodies: [Material; 2],
+    /// The tip edge that can cut this slice's strip
+    /// ([`crate::element::edge_cut`]); None far from any.
+    pub edge: Option<EdgeCut>,
 }
 
 impl LineContact {
     /// Approach (m) of the two bodies under the slice force `f` (N):
-    /// w₁(h₁) + w₂(h₂) at q = f/length.
+    /// w₁(h₁) + w₂(h₂) at q = f/length, of the Hertz strip or, where the
+    /// strip reaches a tip edge (the contact point on the edge, or the
+    /// half-width b past the distance to it), of the cut strip.
     pub fn approach(&self, f: f64) -> f64 {
         if f <= 0.0 {
             return 0.0;
         }
         let q = f / self.length;
-        let b = half_width(q, self.rho, contact_modulus(self.bodies[0], self.bodies[1]));
-        body_approach(q, b, self.h[0], self.bodies[0])
-            + body_approach(q, b, self.h[1], self.bodies[1])
+        let e_star = contact_modulus(self.bodies[0], self.bodies[1]);
+        let b = half_width(q, self.rho, e_star);
+        match self.edge {
+            Some(cut) if cut.distance_m == 0.0 || b > cut.distance_m => (0..2)
+                .map(|i| {
+                    edge_cut::body_approach(q, cut, self.rho, e_star, self.h[i], self.bodies[i])
+                })
+                .sum(),
+            _ => {
+                body_approach(q, b, self.h[0], self.bodies[0])
+                    + body_approach(q, b, self.h[1], self.bodies[1])
+            }
+        }
     }
 
     /// Secant compliance w(f)/f, m/N (finite for f > 0, growing like −ln f as f → 0).
@@ -150,6 +166,7 @@ mod tests {
             length: 1e-3,
             h: [1e-4, 1e-4],
             bodies: [STEEL, STEEL],
+            edge: None,
         };
         let mut last = 0.0;
         for k in 0..60 {
@@ -158,6 +175,34 @@ mod tests {
             assert!(w > last && w.is_finite(), "f = {f}: w = {w}");
             last = w;
         }
+    }
+
+    #[test]
+    fn a_slice_near_a_tip_edge_is_hertz_until_its_strip_reaches_the_edge_then_cut() {
+        // Interior contact point 0.1 mm from the edge: below the force at
+        // which b = d the uncut approach, above it the cut strip's, and the
+        // two meet there (the cut law starts from the Hertz strip).
+        let d = 0.1e-3;
+        let uncut = LineContact {
+            rho: 0.01,
+            length: 2e-3,
+            h: [3e-3, 4e-3],
+            bodies: [STEEL, STEEL],
+            edge: None,
+        };
+        let cut = LineContact {
+            edge: Some(EdgeCut {
+                distance_m: d,
+                slope: 0.0,
+            }),
+            ..uncut
+        };
+        let e_star = contact_modulus(STEEL, STEEL);
+        let f0 = edge_cut::threshold_line_load(d, uncut.rho, e_star) * uncut.length;
+        assert_eq!(cut.approach(0.9 * f0), uncut.approach(0.9 * f0));
+        let (below, above) = (cut.approach(f0 * (1.0 - 1e-9)), cut.approach(f0 * (1.0 + 1e-9)));
+        assert!((above / below - 1.0).abs() < 1e-6, "{below} {above}");
+        assert!(cut.approach(2.0 * f0) > uncut.approach(2.0 * f0));
     }
 
     #[test]
@@ -171,6 +216,7 @@ mod tests {
             length: 2e-3,
             h: [3e-3, 4e-3],
             bodies: [STEEL, bronze],
+            edge: None,
         };
         let f = 500.0;
         let q = f / c.length;

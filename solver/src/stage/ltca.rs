@@ -2,7 +2,9 @@
 //! wheel blank of a scene with the reduced model, from the stiffness files
 //! that `preprocess stiffness` wrote (their hashes are checked), to
 //! `<out>/<scene>/ltca/<pinion>_<wheel>/`: `te.csv`, `pairs.csv`,
-//! `slices.csv`, `wheel_torque.csv`, `ltca.h5` and `summary.json`.
+//! `slices.csv`, `wheel_torque.csv`, `ltca.h5` and `summary.json` (with
+//! the ablation study: the sweep again with each of the element's modelling
+//! changes switched off).
 //! `<out>/<scene>/ltca/` is written as one set
 //! ([`formats::result_set`]): into a staging sibling, put in place whole
 //! with its `run.json` once every blank has run; a run that fails leaves
@@ -14,7 +16,7 @@ use crate::stage::context::{analysis_enabled, LoadedPair, StageContext};
 use geometry::utca::RollSurface;
 
 use crate::element::compliance::PairCompliance;
-use crate::ltca::{mean_ptp, run as run_sweep, PositionResult, Sweep};
+use crate::ltca::{mean_ptp, run as run_sweep, run_variant, PositionResult, Sweep, Variant};
 use anyhow::Context;
 use formats::columns::{te_at_urad, PINION_ROTATION_DEG, UTCA_TE_URAD};
 use formats::output::{write_atomic, write_json};
@@ -26,7 +28,9 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-pub use formats::summaries::{BlankSummary, CoastSummary, Edge, EdgeContact, LoadSummary};
+pub use formats::summaries::{
+    AblationVariant, BlankSummary, CoastSummary, Edge, EdgeContact, LoadSummary,
+};
 
 /// Runs the LTCA of the scene.
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec<BlankSummary>> {
@@ -151,9 +155,34 @@ fn blank_pair(
         dir: final_dir,
         coast,
         bearings,
+        ablation: ablation(ctx.fp(), rs, pc, &sweep, &sc.pinion_torque_nm)
+            .with_context(|| format!("scene {}: LTCA ablation, {wb:?} wheel blank", sc.name))?,
     };
     write_json(&odir.join("summary.json"), &summary)?;
     Ok(summary)
+}
+
+/// The ablation study: the same sweep once per [`Variant::ABLATED`], each
+/// with one of the element's modelling changes switched off (a fraction of
+/// the stage's cost: the LTCA sweep is well under a second).
+fn ablation(
+    fp: &geometry::pair::FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    sweep: &Sweep,
+    torques: &[f64],
+) -> Result<Vec<AblationVariant>, crate::SolverError> {
+    Variant::ABLATED
+        .iter()
+        .map(|&v| {
+            let res = run_variant(fp, rs, pc, sweep, torques, v)?;
+            Ok(AblationVariant {
+                variant: v.name().into(),
+                change_off: v.change().into(),
+                loads: load_summaries(&res, torques),
+            })
+        })
+        .collect()
 }
 
 /// The edge-contact warnings and the per-torque lines of one blank pair's

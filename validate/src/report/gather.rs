@@ -25,6 +25,9 @@ pub struct ReportFigures {
     /// The reference's mesh levels and penalty against the reduced model's
     /// differences (no figures).
     pub reference_uncertainty: crate::report::sections::reference_uncertainty::ReferenceUncertainty,
+    /// The ablation study of the element's modelling changes (markdown, no
+    /// figures).
+    pub ablation: String,
     /// The calibrated variant of the design (no figures).
     pub calibrated_variant: crate::report::sections::calibrated_variant::CalibratedSection,
     /// The "Contact laws" section with its load-run charts (seeds 001/002).

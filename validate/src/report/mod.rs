@@ -134,6 +134,7 @@ pub fn markdown(
         figure_lines(&mut s, &figs.loaded_te, true);
     }
     s.push_str(&figs.reference_uncertainty.markdown);
+    s.push_str(&figs.ablation);
     if let Some(l) = loaded {
         s.push_str(&published_comparison::paragraph(&l.rows));
     }

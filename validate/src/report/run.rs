@@ -74,6 +74,7 @@ pub fn run(i: &ReportInputs) -> anyhow::Result<Made> {
     if let (Some(o), Some(sc), Some(l)) = (i.out, sc.as_ref(), loaded.as_ref()) {
         figures.reference_uncertainty =
             crate::report::sections::reference_uncertainty::build(o, &sc.scene, &l.rows)?;
+        figures.ablation = crate::report::sections::ablation::build(o, &sc.scene.name, &l.rows)?;
     }
     if let (Some(o), Some(sc)) = (i.out, sc.as_ref()) {
         figures.calibrated_variant = crate::report::sections::calibrated_variant::build(

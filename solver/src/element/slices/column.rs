@@ -162,6 +162,20 @@ impl Column<'_> {
         Some(best)
     }
 
+    /// At a minimum `lag` on an end of the column's active part: the lag's
+    /// rise per unit η going inward (one-sided difference), ≥ 0. None where
+    /// both neighbours are active (an interior minimum) or neither is.
+    pub(super) fn inward_rise(&self, eta: f64, lag: f64) -> Option<f64> {
+        const STEP: f64 = 1e-4;
+        let below = self.eval(eta - STEP).map(|e| e.0);
+        let above = self.eval(eta + STEP).map(|e| e.0);
+        match (below, above) {
+            (Some(l), None) => Some(((l - lag) / STEP).max(0.0)),
+            (None, Some(u)) => Some(((u - lag) / STEP).max(0.0)),
+            _ => None,
+        }
+    }
+
     /// The smallest-lag point of [`START_SAMPLES`] equally spaced on
     /// [lo, hi] that can be evaluated; None if none can.
     fn evaluable_start(&self, lo: f64, hi: f64) -> Option<f64> {

@@ -25,6 +25,7 @@ mod tests;
 pub use curvature::geometric_curvature;
 pub use sliding::{friction_direction, friction_levers, sliding_velocity};
 
+use crate::element::edge_cut::EdgeCut;
 use crate::element::weber_banaschek::LineContact;
 use column::{tabulated_minimum, Column};
 use curvature::separation_curvature;
@@ -67,6 +68,9 @@ pub struct Slice {
     /// −μ F ℓ₁ on the pinion rotation and +μ F ℓ₂ on the wheel rotation
     /// (see [`friction_levers`]).
     pub friction_lever: [f64; 2],
+    /// The tip edge (pinion's or wheel's) that can cut this slice's contact
+    /// strip under load; None where the contact lies far from both tips.
+    pub edge: Option<EdgeCut>,
 }
 
 impl Slice {
@@ -90,6 +94,7 @@ impl Slice {
             length: self.length,
             h,
             bodies,
+            edge: self.edge,
         }
     }
 }
@@ -128,6 +133,74 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
+}
+
+/// Profile parameter (of either member) beyond which a slice's contact is
+/// checked for a tip edge that its loaded strip can reach.
+const TIP_ZONE: f64 = 0.7;
+
+/// The tip edge near a slice's contact point at (ξ, η) of the pinion and
+/// `wheel` (ξ, η) of the wheel, measured across the contact line `line`
+/// in the 2D model of [`crate::element::edge_cut`]. A contact point on an
+/// end of its column's active part (`rise` = the lag's rise per unit η
+/// inward) that is a member's tip is cut there, with gap slope
+/// s = λ₂ rise / |∂r/∂η| / sin γ; otherwise the distance to the nearer tip,
+/// (1 − η) |∂r/∂η| sin γ on the pinion, likewise on the wheel, γ the angle
+/// between the pinion's profile direction and the contact line (the
+/// wheel's profile is taken as crossing it at the same angle). None away
+/// from both tips and at other ends (toe, heel, root limits).
+#[allow(clippy::too_many_arguments)]
+fn tip_cut(
+    fp: &FlankPair,
+    xi: f64,
+    eta: f64,
+    wheel: [f64; 2],
+    line: [f64; 3],
+    rise: Option<f64>,
+    dr: Option<[f64; 3]>,
+    lever_wheel: f64,
+) -> Option<EdgeCut> {
+    const STEP: f64 = 1e-3;
+    if eta <= TIP_ZONE && wheel[1] <= TIP_ZONE {
+        return None;
+    }
+    // ∂r/∂η: the column search's where it has one, else by differences.
+    let dr = match dr {
+        Some(dr) => dr,
+        None => {
+            let (lo, hi) = ((eta - STEP).max(0.0), (eta + STEP).min(1.0));
+            sub(fp.pinion.at_unit(xi, hi).ok()?.pos, fp.pinion.at_unit(xi, lo).ok()?.pos)
+                .map(|x| x / (hi - lo))
+        }
+    };
+    let per_eta = norm(dr);
+    let cos = dot(dr, line) / (per_eta * norm(line));
+    // Floor: a contact line almost along the profile is cut over a long
+    // way; its distance across the line is then tiny but not zero.
+    let sin = (1.0 - cos * cos).max(0.0).sqrt().max(0.05);
+    if let Some(rise) = rise {
+        let at_tip = eta >= 1.0 - 1e-9 || wheel[1] >= 1.0 - 1e-3;
+        return at_tip.then(|| EdgeCut {
+            distance_m: 0.0,
+            slope: lever_wheel * rise / per_eta / sin,
+        });
+    }
+    let pinion = (1.0 - eta) * per_eta * sin;
+    let wheel_d = if wheel[1] > TIP_ZONE {
+        let g = crate::element::edge_contact::profile_length_per_eta(
+            &fp.wheel,
+            wheel[0].clamp(0.0, 1.0),
+            wheel[1].clamp(0.0, 1.0),
+        )?;
+        (1.0 - wheel[1]) * g * sin
+    } else {
+        f64::INFINITY
+    };
+    let d = if eta > TIP_ZONE { pinion } else { f64::INFINITY }.min(wheel_d);
+    Some(EdgeCut {
+        distance_m: d,
+        slope: 0.0,
+    })
 }
 
 /// A tooth pair's slices and its unloaded (UTCA) contact lag.
@@ -175,13 +248,18 @@ pub fn pair_slices(
             continue;
         };
         if let Some(c) = col.minimum(start) {
-            raw.push((band, xi, c));
+            // Only a minimum without interior curvature can sit on an end.
+            let rise = match c.curvature {
+                Some(_) => None,
+                None => col.inward_rise(c.eta, c.lag),
+            };
+            raw.push((band, xi, c, rise));
         }
     }
     let m = raw.len();
     let slices = (0..m)
         .map(|i| {
-            let (band, xi, ref c) = raw[i];
+            let (band, xi, ref c, rise) = raw[i];
             let p = c.point;
             // Contact-line tangent from the neighbouring contact points.
             let (a, b) = match m {
@@ -216,6 +294,8 @@ pub fn pair_slices(
             let (xw, ew) = fp.wheel.bounds.to_unit(lw, dw);
             let wheel_radius = fp.wheel.gen.frame.radius_at(lw, dw);
             let friction_lever = friction_levers(fp, p.pos, p.normal, target);
+            let dr = c.curvature.map(|(_, dr)| dr);
+            let edge = tip_cut(fp, xi, c.eta, [xw, ew], dp, rise, dr, lever_wheel);
             Slice {
                 pair,
                 band,
@@ -232,6 +312,7 @@ pub fn pair_slices(
                 length,
                 rho: 1.0 / kappa.max(1.0 / RHO_MAX),
                 friction_lever,
+                edge,
             }
         })
         .collect();

@@ -71,3 +71,65 @@ fn column_minimum_does_not_depend_on_the_newton_start() {
         worst.1
     );
 }
+
+/// Tip edges of the white-paper pair's slices over one mesh cycle: a slice
+/// whose contact point is the pinion's tip (η = 1, the end of its column)
+/// is cut there (distance 0, gap slope ≥ 0); a slice near a tip is cut at
+/// a distance no larger than its distance along the profile to the
+/// pinion's tip, (1 − η) |∂r/∂η| (the component across the contact line is
+/// smaller); a slice far from both tips has no cut.
+#[test]
+fn slices_on_or_near_a_tip_edge_carry_their_cut() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../reference/white_paper_20x43.toml"
+    );
+    let g = PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap();
+    let fp = g.side(Side::Drive);
+    let rs = RollSurface::new(
+        fp,
+        LineGrid {
+            n_face: 41,
+            n_profile: 41,
+        },
+    )
+    .unwrap();
+    let tau = g.data.mesh_cycle();
+    let (mut on_tip, mut near, mut far) = (0, 0, 0);
+    for ip in 0..12 {
+        let phi = fp.roll_range[0] + ip as f64 * tau / 12.0;
+        for pair in -1..=1 {
+            let Some(ps) = pair_slices(fp, &rs, phi, tau, pair, 30) else {
+                continue;
+            };
+            for s in &ps.slices {
+                let [_, ew] = s.wheel_xi_eta;
+                match s.edge {
+                    Some(c) if s.eta >= 1.0 - 1e-9 => {
+                        assert_eq!(c.distance_m, 0.0, "{s:?}");
+                        assert!(c.slope >= 0.0, "{s:?}");
+                        on_tip += 1;
+                    }
+                    Some(c) if s.eta > TIP_ZONE && ew <= TIP_ZONE => {
+                        let per_eta = crate::element::edge_contact::profile_length_per_eta(
+                            &fp.pinion, s.xi, s.eta,
+                        )
+                        .unwrap();
+                        assert!(
+                            c.distance_m <= (1.0 - s.eta) * per_eta * (1.0 + 1e-3),
+                            "{c:?} {s:?}"
+                        );
+                        assert!(c.distance_m > 0.0);
+                        near += 1;
+                    }
+                    Some(_) => {}
+                    None => {
+                        assert!(s.eta <= TIP_ZONE && ew <= TIP_ZONE, "{s:?}");
+                        far += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(on_tip > 0 && near > 0 && far > 0, "{on_tip} {near} {far}");
+}

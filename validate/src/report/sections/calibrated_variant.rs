@@ -524,6 +524,7 @@ mod tests {
             dir: PathBuf::new(),
             coast: None,
             bearings: None,
+            ablation: Vec::new(),
         };
         let l = edge_line("calibrated", std::slice::from_ref(&b)).unwrap();
         assert!(

@@ -2,6 +2,7 @@
 //! stage or study it reports: the sections after the loaded TE and the
 //! unloaded TCA, in the order the report shows them.
 
+pub mod ablation;
 pub mod calibrated_variant;
 pub mod compliant_bearings;
 pub mod contact_laws;
