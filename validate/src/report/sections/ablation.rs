@@ -95,11 +95,11 @@ pub fn judge(rows: &[AblationRow]) -> Option<Effect> {
 /// and the mean |difference| before and after.
 fn quantity_sentence(what: &str, closer: usize, rows: usize, before: f64, after: f64) -> String {
     let where_ = if closer == rows {
-        format!("closer to the reference at every one of the {rows} rows")
+        format!("comes closer to the reference at every one of the {rows} rows")
     } else if closer == 0 {
-        format!("further from the reference at every one of the {rows} rows")
+        format!("moves further from the reference at every one of the {rows} rows")
     } else {
-        format!("closer to the reference at {closer} of the {rows} rows and further at the others")
+        format!("comes closer to the reference at {closer} of the {rows} rows and moves further at the others")
     };
     let overall = if after < before {
         "smaller"
@@ -185,7 +185,7 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
     let _ = writeln!(s, "### Ablation: what each modelling change of the element does\n");
     let _ = writeln!(
         s,
-        "The reduced model's quasi-static LTCA (not the multibody run of the table above; they differ by a few hundredths of a µrad) with the element as it is and with one modelling change switched off, against the {level}-level reference FE; differences (model − reference) / reference in %, CPU per position and torque from the same `solver ltca` run. Verdicts from {FROM_LOAD_NM} N·m on.\n"
+        "The reduced model's quasi-static LTCA (not the multibody run of the table above; they differ by a few hundredths of a µrad) with the element as it is and with one modelling change switched off, against the reference FE on its finest mesh level that ran (`{level}`); differences (model − reference) / reference in %, CPU per position and torque from the same `solver ltca` run. Verdicts from {FROM_LOAD_NM} N·m on.\n"
     );
     for (name, change) in &variants {
         let r = rows_of(&ltca, rows, name);
@@ -252,7 +252,7 @@ mod tests {
         assert_eq!(e.closer, [2, 2]);
         assert!((e.cost_ratio - 1.1).abs() < 1e-12);
         let s = sentence("edge cut", &e);
-        assert!(s.contains("mean TE closer to the reference at every one of the 2 rows"));
+        assert!(s.contains("mean TE comes closer to the reference at every one of the 2 rows"));
         assert!(s.contains("is smaller, 1.00 % without the change and 0.35 % with it"));
         assert!(s.contains("×1.10"), "{s}");
     }
@@ -263,7 +263,7 @@ mod tests {
         let e = judge(&r).unwrap();
         assert_eq!(e.closer, [0, 0]);
         let s = sentence("edge cut", &e);
-        assert!(s.contains("further from the reference at every one of the 1 rows"));
+        assert!(s.contains("moves further from the reference at every one of the 1 rows"));
         assert!(s.contains("is larger"), "{s}");
     }
 
@@ -278,7 +278,7 @@ mod tests {
         assert_eq!(e.rows, 2);
         assert_eq!(e.closer, [1, 1]);
         let s = sentence("edge cut", &e);
-        assert!(s.contains("closer to the reference at 1 of the 2 rows and further at the others"));
+        assert!(s.contains("closer to the reference at 1 of the 2 rows and moves further at the others"));
         assert!(judge(&r[..1]).is_none());
     }
 }
