@@ -107,6 +107,26 @@ pub struct BlankSummary {
     /// before the study existed).
     #[serde(default)]
     pub ablation: Vec<AblationVariant>,
+    /// The loaded-pair rule over the sweep (None in files written before it).
+    #[serde(default)]
+    pub loaded_pair_rule: Option<LoadedPairRule>,
+}
+
+/// The loaded-pair rule over a sweep: tooth pairs beyond the active roll
+/// range whose unloaded closest point lies below a position's largest
+/// loaded TE (rigidly they would penetrate), and whether they close under
+/// the bodies' coupled deflection.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LoadedPairRule {
+    pub positions: usize,
+    /// Positions with such a pair.
+    pub with_candidates: usize,
+    /// Positions where one closes (it is then part of the contact problem).
+    pub closing: usize,
+    /// Positions with a candidate whose teeth the stiffness files do not
+    /// hold (not checked), and those pairs.
+    pub unchecked: usize,
+    pub unchecked_pairs: Vec<i32>,
 }
 
 /// One variant of the ablation study: the element with one modelling

@@ -45,6 +45,58 @@ pub fn geometry(fp: &FlankPair, rs: &RollSurface, phi: f64, tau: f64, n_slices: 
     }
 }
 
+/// The slices of the pairs `pairs` at `phi` added to `g` (pairs without an
+/// active point add nothing).
+pub fn add_pairs(
+    g: &mut Geometry,
+    fp: &FlankPair,
+    rs: &RollSurface,
+    tau: f64,
+    n_slices: usize,
+    pairs: &[i32],
+) {
+    for &j in pairs {
+        if let Some(ps) = pair_slices(fp, rs, g.phi, tau, j, n_slices) {
+            g.utca_te = g.utca_te.min(ps.utca_lag);
+            g.slices.extend(ps.slices);
+        }
+    }
+    g.slices.sort_by_key(|s| s.pair);
+}
+
+/// The loaded-pair rule's candidates: the tooth pairs beyond those of `g`
+/// (outward from its first and last while they qualify, at most three on
+/// either side) whose unloaded closest point
+/// lies below the wheel lag `limit` (rad), so that they close before the
+/// wheel lags that far.
+pub fn loaded_neighbours(
+    g: &Geometry,
+    fp: &FlankPair,
+    rs: &RollSurface,
+    tau: f64,
+    limit: f64,
+) -> Vec<i32> {
+    let ls = geometry::utca::LineSearch::new(fp, rs);
+    let (Some(lo), Some(hi)) = (
+        g.slices.iter().map(|s| s.pair).min(),
+        g.slices.iter().map(|s| s.pair).max(),
+    ) else {
+        return Vec::new();
+    };
+    let mut extra = Vec::new();
+    for (first, step) in [(lo - 1, -1), (hi + 1, 1)] {
+        let mut j = first;
+        while let Some((lag, _)) = ls.min_contact(g.phi + j as f64 * tau) {
+            if lag >= limit || (j - first).abs() > 2 {
+                break;
+            }
+            extra.push(j);
+            j += step;
+        }
+    }
+    extra
+}
+
 /// Compliance and line contacts of a position's slices.
 #[derive(Debug, Clone)]
 pub struct Assembled {
@@ -246,6 +298,112 @@ pub struct PositionResult {
     pub assembly_s: f64,
     /// One entry per torque.
     pub loads: Vec<PositionLoad>,
+    /// The loaded-pair rule at this position ([`loaded_pair_rule`]).
+    pub neighbours: Neighbours,
+}
+
+/// The tooth pairs beyond the active roll range's that the loaded-pair
+/// rule examined at one position.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Neighbours {
+    /// Pairs whose unloaded closest point lies below the largest loaded TE.
+    pub pairs: Vec<i32>,
+    /// Of those, the pairs whose teeth the stiffness files do not hold
+    /// (not checked).
+    pub unchecked: Vec<i32>,
+    /// Whether one of them closes under a torque (then they are part of
+    /// the position's contact problem and its results).
+    pub closing: bool,
+}
+
+/// The loads of every torque on one position's assembled problem, with
+/// the contact solutions.
+fn solve_torques(
+    fp: &FlankPair,
+    g: &Geometry,
+    a: &Assembled,
+    torques: &[f64],
+) -> Result<(Vec<PositionLoad>, Vec<ContactSolution>), SolverError> {
+    let mut loads = Vec::with_capacity(torques.len());
+    let mut sols: Vec<ContactSolution> = Vec::with_capacity(torques.len());
+    for &torque in torques {
+        let warm = sols.last().map(|s| s.active.as_slice());
+        let (s, dt) = timed(|| solve(a, torque, warm));
+        let s = s?;
+        loads.push(position_load(fp, g, a, &s, torque, dt));
+        sols.push(s);
+    }
+    Ok((loads, sols))
+}
+
+/// The loaded-pair rule: a tooth pair beyond the active roll range enters
+/// a position's problem when it closes under the load. Candidates are the
+/// pairs whose unloaded closest point lies below the largest loaded TE of
+/// the position ([`loaded_neighbours`]: rigidly, they would penetrate);
+/// with them added, the gap of each of their slices under the forces found
+/// without them, λ₂(lag − θ) + Σ C F (the loaded teeth's deflection moves
+/// their neighbours too: the lightweight web turns them all), decides.
+/// Candidates whose teeth the stiffness files do not hold cannot be checked
+/// and are listed as such. Returns what was found and, where a candidate
+/// closes, the geometry and problem with the candidates (None: the forces
+/// found stand).
+#[allow(clippy::too_many_arguments)]
+fn loaded_pair_rule(
+    fp: &FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    sweep: &Sweep,
+    tau: f64,
+    g: &Geometry,
+    sols: &[ContactSolution],
+    variant: Variant,
+) -> Result<(Neighbours, Option<(Geometry, Assembled)>), SolverError> {
+    let tmax = sols
+        .iter()
+        .map(|s| s.theta)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let candidates = loaded_neighbours(g, fp, rs, tau, tmax);
+    // Only pairs whose teeth the stiffness files hold can be checked.
+    let (extra, unchecked): (Vec<i32>, Vec<i32>) = candidates.iter().partition(|&&j| {
+        pc.pinion.solved_index(j as i64).is_ok() && pc.wheel.solved_index(-(j as i64)).is_ok()
+    });
+    if extra.is_empty() {
+        return Ok((
+            Neighbours {
+                pairs: candidates,
+                unchecked,
+                closing: false,
+            },
+            None,
+        ));
+    }
+    let mut wide = g.clone();
+    add_pairs(&mut wide, fp, rs, tau, sweep.slices, &extra);
+    let mut a = assemble(&wide, pc, sweep.friction)?;
+    variant.apply(&mut a);
+    let n = wide.slices.len();
+    // Slices of g keep their order in `wide` (a stable sort by pair).
+    let old: Vec<usize> = (0..n)
+        .filter(|&k| !extra.contains(&wide.slices[k].pair))
+        .collect();
+    let closing = sols.iter().any(|s| {
+        (0..n)
+            .filter(|k| extra.contains(&wide.slices[*k].pair))
+            .any(|k| {
+                let coupled: f64 = old
+                    .iter()
+                    .zip(&s.force)
+                    .map(|(&l, f)| a.compliance[k * n + l] * f)
+                    .sum();
+                a.lever_wheel[k] * (a.lag[k] - s.theta) + coupled < 0.0
+            })
+    });
+    let found = Neighbours {
+        pairs: candidates,
+        unchecked,
+        closing,
+    };
+    Ok((found, closing.then_some((wide, a))))
 }
 
 fn position_load(
@@ -403,14 +561,15 @@ pub fn run_variant(
             let (a, assembly_s) = timed(|| assemble(&g, pc, sweep.friction));
             let mut a = a?;
             variant.apply(&mut a);
-            let mut loads = Vec::with_capacity(torques.len());
-            let mut warm: Option<Vec<bool>> = None;
-            for &torque in torques {
-                let (s, dt) = timed(|| solve(&a, torque, warm.as_deref()));
-                let s = s?;
-                loads.push(position_load(fp, &g, &a, &s, torque, dt));
-                warm = Some(s.active);
-            }
+            let (mut loads, sols) = solve_torques(fp, &g, &a, torques)?;
+            let (neighbours, wider) = loaded_pair_rule(fp, rs, pc, sweep, tau, &g, &sols, variant)?;
+            let g = match wider {
+                Some((g2, a2)) => {
+                    loads = solve_torques(fp, &g2, &a2, torques)?.0;
+                    g2
+                }
+                None => g,
+            };
             Ok(PositionResult {
                 rotation,
                 utca_te: g.utca_te,
@@ -418,6 +577,7 @@ pub fn run_variant(
                 geometry_s,
                 assembly_s,
                 loads,
+                neighbours,
             })
         })
         .collect()

@@ -130,6 +130,7 @@ fn ltca() -> BlankSummary {
         dir: "synthetic".into(),
         coast: None,
         ablation: Vec::new(),
+        loaded_pair_rule: None,
         bearings: Some(vec![BearingLoadSummary {
             torque_nm: 300.0,
             te_mean_urad: 671.25,

@@ -116,14 +116,7 @@ pub fn pressure(x: f64, a: f64, s: f64, rho: f64, e_star: f64) -> f64 {
 /// depth `h` below it, under the cut strip carrying line load `q` (N/m).
 /// `cut` places the contact point and the edge; the strip's length and
 /// pressure follow from `q`, `rho` and `e_star` (module doc).
-pub fn body_approach(
-    q: f64,
-    cut: EdgeCut,
-    rho: f64,
-    e_star: f64,
-    h: f64,
-    m: Material,
-) -> f64 {
+pub fn body_approach(q: f64, cut: EdgeCut, rho: f64, e_star: f64, h: f64, m: Material) -> f64 {
     if q <= 0.0 {
         return 0.0;
     }
@@ -214,7 +207,8 @@ mod tests {
         }
         smooth *= 0.5 * a * PI / n as f64;
         let l1 = PI * (ca * (-1.0 - LN_2) + cb * (-1.25 - 0.5 * LN_2));
-        let w_fine = plane_strain_compliance(STEEL) / PI * (smooth - 2.0 * q * (0.5 * a).ln() - a * l1);
+        let w_fine =
+            plane_strain_compliance(STEEL) / PI * (smooth - 2.0 * q * (0.5 * a).ln() - a * l1);
         assert!((w8 / w_fine - 1.0).abs() < 1e-10, "{w8} {w_fine}");
     }
 

@@ -200,7 +200,10 @@ mod tests {
         let e_star = contact_modulus(STEEL, STEEL);
         let f0 = edge_cut::threshold_line_load(d, uncut.rho, e_star) * uncut.length;
         assert_eq!(cut.approach(0.9 * f0), uncut.approach(0.9 * f0));
-        let (below, above) = (cut.approach(f0 * (1.0 - 1e-9)), cut.approach(f0 * (1.0 + 1e-9)));
+        let (below, above) = (
+            cut.approach(f0 * (1.0 - 1e-9)),
+            cut.approach(f0 * (1.0 + 1e-9)),
+        );
         assert!((above / below - 1.0).abs() < 1e-6, "{below} {above}");
         assert!(cut.approach(2.0 * f0) > uncut.approach(2.0 * f0));
     }

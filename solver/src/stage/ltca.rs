@@ -29,7 +29,7 @@ use std::path::Path;
 use std::time::Instant;
 
 pub use formats::summaries::{
-    AblationVariant, BlankSummary, CoastSummary, Edge, EdgeContact, LoadSummary,
+    AblationVariant, BlankSummary, CoastSummary, Edge, EdgeContact, LoadSummary, LoadedPairRule,
 };
 
 /// Runs the LTCA of the scene.
@@ -157,9 +157,33 @@ fn blank_pair(
         bearings,
         ablation: ablation(ctx.fp(), rs, pc, &sweep, &sc.pinion_torque_nm)
             .with_context(|| format!("scene {}: LTCA ablation, {wb:?} wheel blank", sc.name))?,
+        loaded_pair_rule: Some(loaded_pair_rule(&res)),
     };
     write_json(&odir.join("summary.json"), &summary)?;
     Ok(summary)
+}
+
+/// The loaded-pair rule's findings over a sweep.
+pub fn loaded_pair_rule(res: &[PositionResult]) -> LoadedPairRule {
+    let mut unchecked_pairs: Vec<i32> = res
+        .iter()
+        .flat_map(|p| p.neighbours.unchecked.iter().copied())
+        .collect();
+    unchecked_pairs.sort_unstable();
+    unchecked_pairs.dedup();
+    LoadedPairRule {
+        positions: res.len(),
+        with_candidates: res
+            .iter()
+            .filter(|p| !p.neighbours.pairs.is_empty())
+            .count(),
+        closing: res.iter().filter(|p| p.neighbours.closing).count(),
+        unchecked: res
+            .iter()
+            .filter(|p| !p.neighbours.unchecked.is_empty())
+            .count(),
+        unchecked_pairs,
+    }
 }
 
 /// The ablation study: the same sweep once per [`Variant::ABLATED`], each
@@ -195,6 +219,22 @@ fn print_summary(scene: &str, summary: &BlankSummary) {
             scene,
             &format!("{pb:?}/{wb:?} blanks, coast flanks"),
             &c.loads,
+        );
+    }
+    if let Some(r) = &summary.loaded_pair_rule {
+        eprintln!(
+            "  loaded-pair rule: a pair beyond the active roll range lies below the largest loaded TE at {} of {} positions; it closes at {}{}",
+            r.with_candidates,
+            r.positions,
+            r.closing,
+            if r.unchecked > 0 {
+                format!(
+                    "; {} positions not checked (pairs {:?}: teeth not in the stiffness files)",
+                    r.unchecked, r.unchecked_pairs
+                )
+            } else {
+                String::new()
+            }
         );
     }
     for l in &summary.loads {

@@ -169,8 +169,11 @@ fn tip_cut(
         Some(dr) => dr,
         None => {
             let (lo, hi) = ((eta - STEP).max(0.0), (eta + STEP).min(1.0));
-            sub(fp.pinion.at_unit(xi, hi).ok()?.pos, fp.pinion.at_unit(xi, lo).ok()?.pos)
-                .map(|x| x / (hi - lo))
+            sub(
+                fp.pinion.at_unit(xi, hi).ok()?.pos,
+                fp.pinion.at_unit(xi, lo).ok()?.pos,
+            )
+            .map(|x| x / (hi - lo))
         }
     };
     let per_eta = norm(dr);
@@ -196,7 +199,12 @@ fn tip_cut(
     } else {
         f64::INFINITY
     };
-    let d = if eta > TIP_ZONE { pinion } else { f64::INFINITY }.min(wheel_d);
+    let d = if eta > TIP_ZONE {
+        pinion
+    } else {
+        f64::INFINITY
+    }
+    .min(wheel_d);
     Some(EdgeCut {
         distance_m: d,
         slope: 0.0,

@@ -6,6 +6,8 @@
 //! load (the loaded-TE table's rows), with the CPU per position of both in
 //! the same run.
 //!
+//! The loaded-pair rule's findings follow ([`loaded_pair_sentence`]).
+//!
 //! The verdict on a change ([`judge`]) counts the rows where switching it
 //! on brings the reduced model's difference to the reference closer to
 //! zero, separately for the mean and the peak-to-peak, from
@@ -13,7 +15,7 @@
 
 use crate::report::comparison::{read, ComparisonError};
 use crate::report::comparison_row::Row;
-use formats::summaries::{BlankSummary, LoadSummary};
+use formats::summaries::{BlankSummary, LoadSummary, LoadedPairRule};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -64,7 +66,10 @@ pub struct Effect {
 /// The effect of a change over the rows from [`FROM_LOAD_NM`] on; None
 /// when no row is that heavy.
 pub fn judge(rows: &[AblationRow]) -> Option<Effect> {
-    let r: Vec<&AblationRow> = rows.iter().filter(|r| r.torque_nm >= FROM_LOAD_NM).collect();
+    let r: Vec<&AblationRow> = rows
+        .iter()
+        .filter(|r| r.torque_nm >= FROM_LOAD_NM)
+        .collect();
     if r.is_empty() {
         return None;
     }
@@ -115,7 +120,13 @@ fn quantity_sentence(what: &str, closer: usize, rows: usize, before: f64, after:
 pub fn sentence(change: &str, e: &Effect) -> String {
     format!(
         "- Switching on the {change}: {}; {}. CPU per position and torque ×{:.2} (same run).",
-        quantity_sentence("mean TE", e.closer[0], e.rows, e.mean_abs[0][0], e.mean_abs[1][0]),
+        quantity_sentence(
+            "mean TE",
+            e.closer[0],
+            e.rows,
+            e.mean_abs[0][0],
+            e.mean_abs[1][0]
+        ),
         quantity_sentence(
             "peak-to-peak TE",
             e.closer[1],
@@ -144,7 +155,10 @@ pub fn rows_of(ltca: &[BlankSummary], rows: &[Row], variant: &str) -> Vec<Ablati
             continue;
         };
         let (pb, wb) = (blank_key(b.pinion_blank), blank_key(b.wheel_blank));
-        for r in rows.iter().filter(|r| r.pinion_blank == pb && r.wheel_blank == wb) {
+        for r in rows
+            .iter()
+            .filter(|r| r.pinion_blank == pb && r.wheel_blank == wb)
+        {
             let (Some(w), Some(wo)) = (find(&b.loads, r.torque_nm), find(&v.loads, r.torque_nm))
             else {
                 continue;
@@ -160,6 +174,36 @@ pub fn rows_of(ltca: &[BlankSummary], rows: &[Row], variant: &str) -> Vec<Ablati
         }
     }
     out
+}
+
+/// The loaded-pair rule's line for one blank pair.
+pub fn loaded_pair_sentence(blanks: &str, r: &LoadedPairRule) -> String {
+    let closes = match r.closing {
+        0 => "it closes at none of them, so every loaded TE is that of the roll range's pairs"
+            .to_string(),
+        n if n == r.with_candidates => {
+            format!("it closes at all {n} of them and is part of their contact problem")
+        }
+        n => format!("it closes at {n} of them and is part of their contact problem"),
+    };
+    let unchecked = if r.unchecked > 0 {
+        format!(
+            " At {} positions the candidate pairs {:?} could not be checked: the stiffness files do not hold their teeth.",
+            r.unchecked, r.unchecked_pairs
+        )
+    } else {
+        String::new()
+    };
+    if r.with_candidates == 0 {
+        return format!(
+            "- Loaded-pair rule ({blanks}): at none of the {} positions does a tooth pair beyond the active roll range lie below the largest loaded TE.{unchecked}",
+            r.positions
+        );
+    }
+    format!(
+        "- Loaded-pair rule ({blanks}): at {} of {} positions a tooth pair beyond the active roll range lies below the largest loaded TE (it would penetrate a rigid mate); with the deflection of the loaded teeth, which moves their neighbours too, {closes}.{unchecked}",
+        r.with_candidates, r.positions
+    )
 }
 
 /// The section's markdown from `<out>/<scene>/ltca/summary.json` and the
@@ -182,7 +226,10 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
     }
     let level = rows[0].reference_level.clone();
     let mut s = String::new();
-    let _ = writeln!(s, "### Ablation: what each modelling change of the element does\n");
+    let _ = writeln!(
+        s,
+        "### Ablation: what each modelling change of the element does\n"
+    );
     let _ = writeln!(
         s,
         "The reduced model's quasi-static LTCA (not the multibody run of the table above; they differ by a few hundredths of a µrad) with the element as it is and with one modelling change switched off, against the reference FE on its finest mesh level that ran (`{level}`); differences (model − reference) / reference in %, CPU per position and torque from the same `solver ltca` run. Verdicts from {FROM_LOAD_NM} N·m on.\n"
@@ -224,6 +271,17 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
             let _ = writeln!(s, "{}\n", sentence(change, &e));
         }
     }
+    for b in &ltca {
+        if let Some(r) = &b.loaded_pair_rule {
+            let blanks = format!(
+                "{} / {}",
+                blank_key(b.pinion_blank),
+                blank_key(b.wheel_blank)
+            );
+            let _ = writeln!(s, "{}", loaded_pair_sentence(&blanks, r));
+        }
+    }
+    s.push('\n');
     Ok(s)
 }
 
@@ -257,6 +315,29 @@ mod tests {
         assert!(s.contains("×1.10"), "{s}");
     }
 
+    fn rule(with: usize, closing: usize, unchecked: Vec<i32>) -> LoadedPairRule {
+        LoadedPairRule {
+            positions: 73,
+            with_candidates: with,
+            closing,
+            unchecked: usize::from(!unchecked.is_empty()) * 3,
+            unchecked_pairs: unchecked,
+        }
+    }
+
+    #[test]
+    fn loaded_pair_rule_sentence_follows_its_counts() {
+        let none = loaded_pair_sentence("standard / standard", &rule(0, 0, vec![]));
+        assert!(none.contains("at none of the 73 positions"), "{none}");
+        let open = loaded_pair_sentence("standard / standard", &rule(10, 0, vec![]));
+        assert!(open.contains("at 10 of 73 positions") && open.contains("closes at none of them"));
+        let some = loaded_pair_sentence("standard / lightweight", &rule(10, 4, vec![3]));
+        assert!(some.contains("closes at 4 of them"), "{some}");
+        assert!(some.contains("At 3 positions the candidate pairs [3] could not be checked"));
+        let all = loaded_pair_sentence("x", &rule(4, 4, vec![]));
+        assert!(all.contains("closes at all 4 of them"));
+    }
+
     #[test]
     fn a_change_that_moves_every_row_away_is_said_to() {
         let r = [row(300.0, [102.0, 12.0], [101.0, 11.0])];
@@ -278,7 +359,9 @@ mod tests {
         assert_eq!(e.rows, 2);
         assert_eq!(e.closer, [1, 1]);
         let s = sentence("edge cut", &e);
-        assert!(s.contains("closer to the reference at 1 of the 2 rows and moves further at the others"));
+        assert!(s.contains(
+            "closer to the reference at 1 of the 2 rows and moves further at the others"
+        ));
         assert!(judge(&r[..1]).is_none());
     }
 }

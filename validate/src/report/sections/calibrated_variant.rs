@@ -525,6 +525,7 @@ mod tests {
             coast: None,
             bearings: None,
             ablation: Vec::new(),
+            loaded_pair_rule: None,
         };
         let l = edge_line("calibrated", std::slice::from_ref(&b)).unwrap();
         assert!(
