@@ -98,6 +98,15 @@ BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
 # 2026-11-27). CALIBRATED=0 leaves it out.
 CALIBRATED       ?= 1
 CALIBRATED_SCENE := reference/scenes/white_paper_calibrated.toml
+# The reduced model at its grid limit: the default design's standard blanks
+# at the contact grids 18 x 30 and 24 x 40 (reduced meshes refined to the
+# grid, stiffness files), then `validate grid-convergence` runs the LTCA on
+# them and the scene's own files and extrapolates each load's TE to the
+# grid's limit, for the report's section "The reduced model at its grid
+# limit". Measured cold on 2 cores, 2026-11-28: meshes 68 + 58 s, stiffness
+# files 69 + about 150 s, the study 1 s. GRIDS=0 leaves it out.
+GRIDS                   ?= 1
+GRID_CONVERGENCE_SCENES := reference/scenes/grids/grid18x30.toml reference/scenes/grids/grid24x40.toml
 
 # The lightweight wheel over its whole revolution:
 # reference/scenes/white_paper_lightweight_runup.toml meshes and solves
@@ -185,6 +194,13 @@ validate: solve
 	  $(BIN)/preprocess stiffness $$f --meshes meshes && \
 	  $(BIN)/solver ltca $$f --meshes meshes --out $(OUT) && \
 	  $(BIN)/solver dynamic $$f --meshes meshes --out $(OUT) || exit 1; fi
+	@if [ "$(GRIDS)" = 1 ]; then \
+	  for f in $(GRID_CONVERGENCE_SCENES); do \
+	    $(BIN)/preprocess mesh $$f --level reduced --out meshes && \
+	    $(BIN)/preprocess stiffness $$f --meshes meshes || exit 1; \
+	  done; \
+	  $(BIN)/validate grid-convergence $(SCENE) --meshes meshes --out $(OUT) \
+	    $(addprefix --grid-scene ,$(GRID_CONVERGENCE_SCENES)) || exit 1; fi
 	@if [ "$(CALIBRATED)" = 1 ] && [ -f $(CALIBRATED_SCENE) ]; then f=$(CALIBRATED_SCENE); \
 	  $(BIN)/preprocess mesh $$f --level reduced --out meshes && \
 	  $(BIN)/preprocess stiffness $$f --meshes meshes && \

@@ -2,7 +2,7 @@
 
 use clap::{Parser, Subcommand};
 use cli::args::{
-    CalibrateArgs, ConvergenceArgs, LineLoadArgs, MeshStiffnessArgs, ReferenceArgs, ReportArgs,
+    CalibrateArgs, ConvergenceArgs, GridConvergenceArgs, LineLoadArgs, MeshStiffnessArgs, ReferenceArgs, ReportArgs,
     StageTradeoffsArgs, StressArgs, TradeoffArgs, UtcaArgs,
 };
 use cli::commands;
@@ -44,6 +44,11 @@ enum Cmd {
     /// stiffness fields, LTCA, multibody, reference), as Pareto charts:
     /// `<out>/<scene>/tradeoff/` (summary.json, <stage>.json, <stage>.svg).
     StageTradeoffs(StageTradeoffsArgs),
+    /// The reduced model against its own discretization limit: the LTCA on
+    /// the scene's stiffness files and those of finer contact grids
+    /// (`--grid-scene`), extrapolated per load;
+    /// `<out>/<scene>/grid_convergence/summary.json`.
+    GridConvergence(GridConvergenceArgs),
     /// Mesh convergence of the reference LTCA: TE at one position and torque
     /// on three mesh levels (standard blanks), observed order, extrapolation.
     Convergence(ConvergenceArgs),
@@ -70,6 +75,7 @@ fn main() -> anyhow::Result<()> {
         Cmd::Reference(a) => commands::reference(a)?,
         Cmd::Stress(a) => commands::stress(a)?,
         Cmd::StageTradeoffs(a) => commands::stage_tradeoffs(a)?,
+        Cmd::GridConvergence(a) => commands::grid_convergence(a)?,
         Cmd::Tradeoff(a) => commands::tradeoff(a)?,
         Cmd::Convergence(a) => commands::convergence(a)?,
         Cmd::MeshStiffness(a) => commands::mesh_stiffness(a)?,

@@ -141,6 +141,20 @@ pub struct StageTradeoffsArgs {
 }
 
 #[derive(clap::Args)]
+pub struct GridConvergenceArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Scenes of the same design at finer contact grids (their stiffness
+    /// files in `meshes/` beside each, or in `--meshes`); at least two.
+    #[arg(long)]
+    pub grid_scene: Vec<PathBuf>,
+}
+
+#[derive(clap::Args)]
 pub struct ConvergenceArgs {
     #[command(flatten)]
     pub study: LevelStudyArgs,

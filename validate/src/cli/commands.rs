@@ -180,6 +180,39 @@ pub fn stage_tradeoffs(
     Ok(())
 }
 
+pub fn grid_convergence(
+    GridConvergenceArgs {
+        scene,
+        meshes,
+        out,
+        grid_scene,
+    }: GridConvergenceArgs,
+) -> anyhow::Result<()> {
+    if grid_scene.len() < 2 {
+        anyhow::bail!(
+            "--grid-scene: {} given; the extrapolation needs at least two finer grids beside the scene's own",
+            grid_scene.len()
+        );
+    }
+    let sc = geometry::scene::Scene::load(&scene)?;
+    let r = validate::studies::grid_convergence::run(&sc, &meshes, &out, &grid_scene)?;
+    for run in &r.runs {
+        let loads: Vec<String> = run
+            .loads
+            .iter()
+            .map(|(t, m, p)| format!("{t} N·m {m:.2} / {p:.2}"))
+            .collect();
+        println!(
+            "{:>3} x {:<3} mean / ptp µrad: {}; {:.2} ms/position",
+            run.grid[0],
+            run.grid[1],
+            loads.join(", "),
+            run.cpu_s_per_position * 1e3
+        );
+    }
+    Ok(())
+}
+
 pub fn tradeoff(
     TradeoffArgs {
         scene,

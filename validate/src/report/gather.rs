@@ -28,6 +28,8 @@ pub struct ReportFigures {
     /// The ablation study of the element's modelling changes (markdown, no
     /// figures).
     pub ablation: String,
+    /// The reduced model at its stiffness grid's limit (markdown).
+    pub grid_convergence: String,
     /// The calibrated variant of the design (no figures).
     pub calibrated_variant: crate::report::sections::calibrated_variant::CalibratedSection,
     /// The "Contact laws" section with its load-run charts (seeds 001/002).

@@ -135,6 +135,7 @@ pub fn markdown(
     }
     s.push_str(&figs.reference_uncertainty.markdown);
     s.push_str(&figs.ablation);
+    s.push_str(&figs.grid_convergence);
     if let Some(l) = loaded {
         s.push_str(&published_comparison::paragraph(&l.rows));
     }

@@ -75,6 +75,8 @@ pub fn run(i: &ReportInputs) -> anyhow::Result<Made> {
         figures.reference_uncertainty =
             crate::report::sections::reference_uncertainty::build(o, &sc.scene, &l.rows)?;
         figures.ablation = crate::report::sections::ablation::build(o, &sc.scene.name, &l.rows)?;
+        figures.grid_convergence =
+            crate::report::sections::grid_convergence::build(o, &sc.scene.name, &l.rows)?;
     }
     if let (Some(o), Some(sc)) = (i.out, sc.as_ref()) {
         figures.calibrated_variant = crate::report::sections::calibrated_variant::build(

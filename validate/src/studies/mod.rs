@@ -13,6 +13,7 @@
 pub mod asperity_resolution;
 pub mod calibration;
 pub mod convergence;
+pub mod grid_convergence;
 pub mod grid_scenes;
 pub mod line_load;
 pub mod mesh_stiffness;

@@ -5,6 +5,7 @@
 pub mod ablation;
 pub mod calibrated_variant;
 pub mod compliant_bearings;
+pub mod grid_convergence;
 pub mod contact_laws;
 pub mod contact_laws_load_run;
 pub mod lightweight_revolution;
