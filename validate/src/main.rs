@@ -2,8 +2,8 @@
 
 use clap::{Parser, Subcommand};
 use cli::args::{
-    CalibrateArgs, ConvergenceArgs, GridConvergenceArgs, LineLoadArgs, MeshStiffnessArgs, ReferenceArgs, ReportArgs,
-    StageTradeoffsArgs, StressArgs, TradeoffArgs, UtcaArgs,
+    CalibrateArgs, ConvergenceArgs, GridConvergenceArgs, LineLoadArgs, MeshStiffnessArgs,
+    ReferenceArgs, ReportArgs, StageTradeoffsArgs, StressArgs, TradeoffArgs, UtcaArgs,
 };
 use cli::commands;
 

@@ -44,7 +44,10 @@ pub fn limit(h: &[f64], f: &[f64]) -> Option<Limit> {
     if n < 3 || f.len() != n {
         return None;
     }
-    let (h3, f3) = ([h[n - 3], h[n - 2], h[n - 1]], [f[n - 3], f[n - 2], f[n - 1]]);
+    let (h3, f3) = (
+        [h[n - 3], h[n - 2], h[n - 1]],
+        [f[n - 3], f[n - 2], f[n - 1]],
+    );
     Some(match richardson(h3, f3) {
         Some((order, value)) if order >= 0.5 => Limit::Extrapolated { order, value },
         _ => Limit::Finest {
@@ -77,7 +80,10 @@ fn limit_cell(l: &Option<Limit>) -> String {
 /// The section's markdown from `<out>/<scene>/grid_convergence/summary.json`
 /// and the loaded-TE rows (standard blanks); empty when the study has not run.
 pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, ComparisonError> {
-    let path = out.join(scene).join("grid_convergence").join("summary.json");
+    let path = out
+        .join(scene)
+        .join("grid_convergence")
+        .join("summary.json");
     let Some(gc) = read::<GridConvergence>(&path)? else {
         return Ok(String::new());
     };
@@ -126,16 +132,27 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
         let mean: Vec<f64> = gc.runs.iter().map(|g| g.loads[i].1).collect();
         let ptp: Vec<f64> = gc.runs.iter().map(|g| g.loads[i].2).collect();
         let (lm, lp) = (limit(&h, &mean), limit(&h, &ptp));
-        let dm = lm.map(|l| 100.0 * (l.value() - r.reference_te_mean_urad) / r.reference_te_mean_urad);
-        let dp = lp.map(|l| 100.0 * (l.value() - r.reference_te_ptp_urad) / r.reference_te_ptp_urad);
-        let fmt = |v: &[f64]| v.iter().map(|x| format!("{x:.2}")).collect::<Vec<_>>().join(" / ");
+        let dm =
+            lm.map(|l| 100.0 * (l.value() - r.reference_te_mean_urad) / r.reference_te_mean_urad);
+        let dp =
+            lp.map(|l| 100.0 * (l.value() - r.reference_te_ptp_urad) / r.reference_te_ptp_urad);
+        let fmt = |v: &[f64]| {
+            v.iter()
+                .map(|x| format!("{x:.2}"))
+                .collect::<Vec<_>>()
+                .join(" / ")
+        };
         let pct = |d: Option<f64>| d.map_or("–".into(), |d| format!("{d:+.2}"));
         let v = match (dm, dp) {
             (Some(a), Some(b)) => {
                 if t >= 100.0 {
                     judged.push((t, a, b));
                 }
-                format!("{} / {}", verdict(a, MEAN_TARGET_PCT), verdict(b, PTP_TARGET_PCT))
+                format!(
+                    "{} / {}",
+                    verdict(a, MEAN_TARGET_PCT),
+                    verdict(b, PTP_TARGET_PCT)
+                )
             }
             _ => "–".into(),
         };
@@ -163,8 +180,14 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
 /// limit against the reference.
 pub fn summary_sentence(judged: &[(f64, f64, f64)]) -> String {
     let n = judged.len();
-    let mean_in = judged.iter().filter(|j| j.1.abs() <= MEAN_TARGET_PCT).count();
-    let ptp_in = judged.iter().filter(|j| j.2.abs() <= PTP_TARGET_PCT).count();
+    let mean_in = judged
+        .iter()
+        .filter(|j| j.1.abs() <= MEAN_TARGET_PCT)
+        .count();
+    let ptp_in = judged
+        .iter()
+        .filter(|j| j.2.abs() <= PTP_TARGET_PCT)
+        .count();
     let worst_m = judged.iter().map(|j| j.1.abs()).fold(0.0, f64::max);
     let worst_p = judged.iter().map(|j| j.2.abs()).fold(0.0, f64::max);
     let how = |k: usize| {
@@ -217,10 +240,19 @@ mod tests {
         assert_eq!(verdict(0.9, 1.0), "within the target");
         assert_eq!(verdict(-3.5, 3.0), "outside the target");
         let all = summary_sentence(&[(300.0, 0.1, 0.9), (700.0, -0.1, -2.4)]);
-        assert!(all.contains("within 1 % of the reference at all 2 loads (at most 0.10 %)"), "{all}");
-        assert!(all.contains("within 3 % at all 2 loads (at most 2.40 %)"), "{all}");
+        assert!(
+            all.contains("within 1 % of the reference at all 2 loads (at most 0.10 %)"),
+            "{all}"
+        );
+        assert!(
+            all.contains("within 3 % at all 2 loads (at most 2.40 %)"),
+            "{all}"
+        );
         let some = summary_sentence(&[(300.0, 1.5, 0.9), (700.0, -0.1, -4.0)]);
-        assert!(some.contains("at 1 of the 2 loads (at most 1.50 %)"), "{some}");
+        assert!(
+            some.contains("at 1 of the 2 loads (at most 1.50 %)"),
+            "{some}"
+        );
         let none = summary_sentence(&[(300.0, 1.5, 5.0)]);
         assert!(none.contains("at none of the 1 loads"), "{none}");
     }

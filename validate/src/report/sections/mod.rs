@@ -5,9 +5,9 @@
 pub mod ablation;
 pub mod calibrated_variant;
 pub mod compliant_bearings;
-pub mod grid_convergence;
 pub mod contact_laws;
 pub mod contact_laws_load_run;
+pub mod grid_convergence;
 pub mod lightweight_revolution;
 pub mod loaded_contact;
 pub mod lumped;
