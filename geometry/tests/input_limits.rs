@@ -411,8 +411,8 @@ fn mesh_level_beyond_the_element_bound_is_refused() {
 fn stiffness_grid_beyond_the_point_bound_is_refused() {
     refused(
         scene_with(
-            "[analyses]",
-            "[stiffness]\ngrid_profile = 200\ngrid_face = 200\n[analyses]",
+            "grid_profile = 12\ngrid_face = 40",
+            "grid_profile = 200\ngrid_face = 200",
         ),
         "scene.toml",
         &[
@@ -449,8 +449,8 @@ fn nan_in_scene_numbers_is_refused_by_field() {
             "multibody.damping_ratio",
         ),
         (
-            "[analyses]",
-            "[stiffness]\nload_radius_factor = inf\n[analyses]",
+            "[stiffness]\n",
+            "[stiffness]\nload_radius_factor = inf\n",
             "stiffness.load_radius_factor",
         ),
     ] {

@@ -1,9 +1,9 @@
 //! `validate grid-convergence <scene>`: the reduced model against its own
 //! discretization limit. The scene's quasi-static LTCA (standard blanks,
 //! its sweep and loads) is run on its own stiffness files and on those of
-//! scenes of the same design at finer contact grids (each with its
-//! reduced-order mesh refined to the same grid), and its mean and
-//! peak-to-peak TE per load are extrapolated to the grid's limit
+//! a family of scenes of the same design at refined contact grids (each
+//! with its reduced-order mesh refined to the same grid), and the family's
+//! mean and peak-to-peak TE per load are extrapolated to the grid's limit
 //! (Richardson over three grids, element size h = 1/√(profile · face)).
 //! The report sets that limit beside the reference FE: the part of the
 //! reduced model's difference that its own grid makes, and the part that
@@ -34,7 +34,8 @@ pub struct GridRun {
     /// Contact grid (profile × face) and its element size 1/√(profile · face).
     pub grid: [u32; 2],
     pub h: f64,
-    /// Whether this is the scene's own grid.
+    /// Whether this is the scene's own stiffness files (else a member of
+    /// the refined family).
     pub is_scene: bool,
     /// Mean and peak-to-peak TE per load, µrad: (torque N·m, mean, ptp).
     pub loads: Vec<(f64, f64, f64)>,
@@ -115,15 +116,16 @@ pub fn run(
     let fp = g.side(sc.loaded_flank);
     let rs = roll_surface(fp, &sc.utca)?;
     let torques = &sc.pinion_torque_nm;
+    // The scene's stiffness grid: its `[stiffness]` grid, else its mesh's.
     let o = sc.mesh.reduced_order;
+    let st = &sc.stiffness;
+    let own_grid = if st.grid_profile > 0 && st.grid_face > 0 {
+        [st.grid_profile as u32, st.grid_face as u32]
+    } else {
+        [o.profile, o.face]
+    };
     let mut runs = vec![grid_run(
-        fp,
-        &rs,
-        &own.pc,
-        &own.sweep,
-        torques,
-        [o.profile, o.face],
-        true,
+        fp, &rs, &own.pc, &own.sweep, torques, own_grid, true,
     )?];
     for gs in &others {
         let label = format!("grid {}", gs.label());

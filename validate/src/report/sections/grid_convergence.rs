@@ -1,8 +1,8 @@
 //! The report's "reduced model at its grid limit" section: the LTCA of the
-//! standard blanks on the scene's stiffness grid and on finer ones
-//! (`validate grid-convergence`), each load's mean and peak-to-peak TE
-//! extrapolated to the grid's limit, against the finest reference FE
-//! sweep. It separates the part of the reduced model's difference that its
+//! standard blanks on a family of equally refined contact grids and on the
+//! scene's own stiffness files (`validate grid-convergence`), the family's
+//! mean and peak-to-peak TE per load extrapolated to the grid's limit,
+//! against the finest reference FE sweep. It separates the part of the reduced model's difference that its
 //! own discretization makes from the part that stays.
 //!
 //! The limit is Richardson's over the three finest grids where their
@@ -15,7 +15,7 @@ use crate::report::comparison::{read, ComparisonError};
 use crate::report::comparison_row::Row;
 use crate::report::sections::reference_uncertainty::{MEAN_TARGET_PCT, PTP_TARGET_PCT};
 use crate::studies::convergence::richardson;
-use crate::studies::grid_convergence::GridConvergence;
+use crate::studies::grid_convergence::{GridConvergence, GridRun};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -87,41 +87,38 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
     let Some(gc) = read::<GridConvergence>(&path)? else {
         return Ok(String::new());
     };
-    if gc.runs.len() < 3 {
+    let family: Vec<&GridRun> = gc.runs.iter().filter(|r| !r.is_scene).collect();
+    let Some(own) = gc.runs.iter().find(|r| r.is_scene) else {
+        return Ok(String::new());
+    };
+    if family.len() < 3 {
         return Ok(String::new());
     }
-    let h: Vec<f64> = gc.runs.iter().map(|r| r.h).collect();
-    let grids: Vec<String> = gc
-        .runs
-        .iter()
-        .map(|r| {
-            format!(
-                "{} × {}{}",
-                r.grid[0],
-                r.grid[1],
-                if r.is_scene { " (the scene's)" } else { "" }
-            )
-        })
-        .collect();
+    let h: Vec<f64> = family.iter().map(|r| r.h).collect();
+    let label = |r: &GridRun| format!("{} × {}", r.grid[0], r.grid[1]);
+    let per_torque_ms = |r: &GridRun| r.cpu_s_per_position * 1e3 / r.loads.len().max(1) as f64;
     let mut s = String::new();
     let _ = writeln!(s, "### The reduced model at its grid limit\n");
     let _ = writeln!(
         s,
-        "The reduced model's quasi-static LTCA (standard blanks) on the scene's stiffness grid and on finer ones, each with its reduced-order mesh refined to the grid ({}), extrapolated per load to the grid's limit (element size h = 1/√(profile · face); Richardson over the three finest grids where monotone), against the finest reference FE. The scene's own grid is what every other result of this report uses; the limit shows what its discretization costs. CPU per position and torque: {}.\n",
-        grids.join(", "),
-        gc.runs
+        "The reduced model's quasi-static LTCA (standard blanks) on a family of contact grids refined equally in both directions, each with its reduced-order mesh refined to the grid ({}), extrapolated per load to the grid's limit (element size h = 1/√(profile · face); Richardson over the three finest where monotone), against the finest reference FE; beside it the scene's own stiffness files ({} grid), which every other result of this report uses. CPU per position and torque: {} (family), {:.2} ms (the scene's).\n",
+        family.iter().map(|r| label(r)).collect::<Vec<_>>().join(", "),
+        label(own),
+        family
             .iter()
-            .map(|r| format!("{:.2} ms", r.cpu_s_per_position * 1e3 / r.loads.len().max(1) as f64))
+            .map(|r| format!("{:.2} ms", per_torque_ms(r)))
             .collect::<Vec<_>>()
-            .join(" / ")
+            .join(" / "),
+        per_torque_ms(own)
     );
     let _ = writeln!(
         s,
-        "| N·m | mean TE per grid, µrad | limit | reference | limit vs reference % | ptp TE per grid, µrad | limit | reference | limit vs reference % | verdict mean / ptp |"
+        "| N·m | mean TE per grid of the family, µrad | limit | scene's grid | reference | limit / scene's grid vs reference % | ptp TE per grid of the family, µrad | limit | scene's grid | reference | limit / scene's grid vs reference % | verdict on the limit, mean / ptp |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     let mut judged = Vec::new();
-    for (i, &(t, _, _)) in gc.runs[0].loads.iter().enumerate() {
+    let mut judged_own = Vec::new();
+    for (i, &(t, own_mean, own_ptp)) in own.loads.iter().enumerate() {
         let Some(r) = rows.iter().find(|r| {
             r.pinion_blank == "standard"
                 && r.wheel_blank == "standard"
@@ -129,13 +126,12 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
         }) else {
             continue;
         };
-        let mean: Vec<f64> = gc.runs.iter().map(|g| g.loads[i].1).collect();
-        let ptp: Vec<f64> = gc.runs.iter().map(|g| g.loads[i].2).collect();
+        let mean: Vec<f64> = family.iter().map(|g| g.loads[i].1).collect();
+        let ptp: Vec<f64> = family.iter().map(|g| g.loads[i].2).collect();
         let (lm, lp) = (limit(&h, &mean), limit(&h, &ptp));
-        let dm =
-            lm.map(|l| 100.0 * (l.value() - r.reference_te_mean_urad) / r.reference_te_mean_urad);
-        let dp =
-            lp.map(|l| 100.0 * (l.value() - r.reference_te_ptp_urad) / r.reference_te_ptp_urad);
+        let rel = |v: f64, reference: f64| 100.0 * (v - reference) / reference;
+        let dm = lm.map(|l| rel(l.value(), r.reference_te_mean_urad));
+        let dp = lp.map(|l| rel(l.value(), r.reference_te_ptp_urad));
         let fmt = |v: &[f64]| {
             v.iter()
                 .map(|x| format!("{x:.2}"))
@@ -147,6 +143,11 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
             (Some(a), Some(b)) => {
                 if t >= 100.0 {
                     judged.push((t, a, b));
+                    judged_own.push((
+                        t,
+                        rel(own_mean, r.reference_te_mean_urad),
+                        rel(own_ptp, r.reference_te_ptp_urad),
+                    ));
                 }
                 format!(
                     "{} / {}",
@@ -158,27 +159,37 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
         };
         let _ = writeln!(
             s,
-            "| {t} | {} | {} | {:.2} | {} | {} | {} | {:.2} | {} | {v} |",
+            "| {t} | {} | {} | {own_mean:.2} | {:.2} | {} / {:+.2} | {} | {} | {own_ptp:.2} | {:.2} | {} / {:+.2} | {v} |",
             fmt(&mean),
             limit_cell(&lm),
             r.reference_te_mean_urad,
             pct(dm),
+            rel(own_mean, r.reference_te_mean_urad),
             fmt(&ptp),
             limit_cell(&lp),
             r.reference_te_ptp_urad,
-            pct(dp)
+            pct(dp),
+            rel(own_ptp, r.reference_te_ptp_urad)
         );
     }
     s.push('\n');
     if !judged.is_empty() {
-        let _ = writeln!(s, "{}\n", summary_sentence(&judged));
+        let _ = writeln!(
+            s,
+            "{}\n{}\n",
+            summary_sentence("At its grid limit the reduced model's", &judged),
+            summary_sentence(
+                &format!("On the scene's own {} grid the reduced model's", label(own)),
+                &judged_own
+            )
+        );
     }
     Ok(s)
 }
 
-/// The summary over the loads from 100 N·m: (torque, mean %, ptp %) of the
-/// limit against the reference.
-pub fn summary_sentence(judged: &[(f64, f64, f64)]) -> String {
+/// The summary over the loads from 100 N·m: (torque, mean %, ptp %)
+/// against the reference, of the model `subject` names.
+pub fn summary_sentence(subject: &str, judged: &[(f64, f64, f64)]) -> String {
     let n = judged.len();
     let mean_in = judged
         .iter()
@@ -200,7 +211,7 @@ pub fn summary_sentence(judged: &[(f64, f64, f64)]) -> String {
         }
     };
     format!(
-        "- At its grid limit the reduced model's mean TE lies within {MEAN_TARGET_PCT} % of the reference {} (at most {worst_m:.2} %), its peak-to-peak TE within {PTP_TARGET_PCT} % {} (at most {worst_p:.2} %), loads from 100 N·m on.",
+        "- {subject} mean TE lies within {MEAN_TARGET_PCT} % of the reference {} (at most {worst_m:.2} %), its peak-to-peak TE within {PTP_TARGET_PCT} % {} (at most {worst_p:.2} %), loads from 100 N·m on.",
         how(mean_in),
         how(ptp_in)
     )
@@ -239,7 +250,10 @@ mod tests {
     fn verdicts_and_summary_follow_the_numbers() {
         assert_eq!(verdict(0.9, 1.0), "within the target");
         assert_eq!(verdict(-3.5, 3.0), "outside the target");
-        let all = summary_sentence(&[(300.0, 0.1, 0.9), (700.0, -0.1, -2.4)]);
+        let all = summary_sentence(
+            "At its grid limit the reduced model's",
+            &[(300.0, 0.1, 0.9), (700.0, -0.1, -2.4)],
+        );
         assert!(
             all.contains("within 1 % of the reference at all 2 loads (at most 0.10 %)"),
             "{all}"
@@ -248,12 +262,12 @@ mod tests {
             all.contains("within 3 % at all 2 loads (at most 2.40 %)"),
             "{all}"
         );
-        let some = summary_sentence(&[(300.0, 1.5, 0.9), (700.0, -0.1, -4.0)]);
+        let some = summary_sentence("x", &[(300.0, 1.5, 0.9), (700.0, -0.1, -4.0)]);
         assert!(
             some.contains("at 1 of the 2 loads (at most 1.50 %)"),
             "{some}"
         );
-        let none = summary_sentence(&[(300.0, 1.5, 5.0)]);
+        let none = summary_sentence("x", &[(300.0, 1.5, 5.0)]);
         assert!(none.contains("at none of the 1 loads"), "{none}");
     }
 }
