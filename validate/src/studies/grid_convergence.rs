@@ -24,8 +24,9 @@ use geometry::scene::{Blank, LoadedScene};
 use geometry::utca::roll_surface;
 use serde::{Deserialize, Serialize};
 use solver::element::compliance::PairCompliance;
-use solver::ltca::{mean_ptp, run as run_sweep, Sweep};
+use solver::ltca::{run as run_sweep, Sweep};
 use solver::stage::context::{record_stiffness_inputs, LoadedPair};
+use solver::stage::ltca::load_summaries;
 use std::path::Path;
 
 /// One grid's LTCA.
@@ -61,14 +62,9 @@ fn grid_run(
     is_scene: bool,
 ) -> anyhow::Result<GridRun> {
     let res = run_sweep(fp, rs, pc, sweep, torques)?;
-    let loads = torques
+    let loads = load_summaries(&res, torques)
         .iter()
-        .enumerate()
-        .map(|(i, &t)| {
-            let te: Vec<f64> = res.iter().map(|p| p.loads[i].te * 1e6).collect();
-            let (m, p) = mean_ptp(&te);
-            (t, m, p)
-        })
+        .map(|l| (l.torque_nm, l.te_mean_urad, l.te_ptp_urad))
         .collect();
     let cpu: f64 = res
         .iter()

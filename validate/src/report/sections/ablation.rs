@@ -138,10 +138,6 @@ pub fn sentence(change: &str, e: &Effect) -> String {
     )
 }
 
-fn blank_key(b: geometry::scene::Blank) -> String {
-    format!("{b:?}").to_lowercase()
-}
-
 fn find(loads: &[LoadSummary], t: f64) -> Option<&LoadSummary> {
     loads.iter().find(|l| (l.torque_nm - t).abs() < 1e-9)
 }
@@ -154,7 +150,7 @@ pub fn rows_of(ltca: &[BlankSummary], rows: &[Row], variant: &str) -> Vec<Ablati
         let Some(v) = b.ablation.iter().find(|v| v.variant == variant) else {
             continue;
         };
-        let (pb, wb) = (blank_key(b.pinion_blank), blank_key(b.wheel_blank));
+        let (pb, wb) = (b.pinion_blank.name(), b.wheel_blank.name());
         for r in rows
             .iter()
             .filter(|r| r.pinion_blank == pb && r.wheel_blank == wb)
@@ -273,11 +269,7 @@ pub fn build(out: &Path, scene: &str, rows: &[Row]) -> Result<String, Comparison
     }
     for b in &ltca {
         if let Some(r) = &b.loaded_pair_rule {
-            let blanks = format!(
-                "{} / {}",
-                blank_key(b.pinion_blank),
-                blank_key(b.wheel_blank)
-            );
+            let blanks = format!("{} / {}", b.pinion_blank.name(), b.wheel_blank.name());
             let _ = writeln!(s, "{}", loaded_pair_sentence(&blanks, r));
         }
     }

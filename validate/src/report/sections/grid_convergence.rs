@@ -6,15 +6,16 @@
 //! own discretization makes from the part that stays.
 //!
 //! The limit is Richardson's over the three finest grids where their
-//! values change monotonically ([`richardson`]), else the finest grid's
+//! values change monotonically (the reference's rule, [`uncertainty`]), else the finest grid's
 //! value with the two finest grids' difference as its uncertainty
 //! ([`limit`]); the verdicts ([`verdict`]) judge the limit's difference to
 //! the reference against the targets.
 
 use crate::report::comparison::{read, ComparisonError};
 use crate::report::comparison_row::Row;
-use crate::report::sections::reference_uncertainty::{MEAN_TARGET_PCT, PTP_TARGET_PCT};
-use crate::studies::convergence::richardson;
+use crate::report::sections::reference_uncertainty::{
+    uncertainty, Estimate, MEAN_TARGET_PCT, PTP_TARGET_PCT,
+};
 use crate::studies::grid_convergence::{GridConvergence, GridRun};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -38,21 +39,22 @@ impl Limit {
 }
 
 /// The limit of values `f` on element sizes `h` (coarse to fine, at least
-/// three): Richardson over the three finest where it applies.
+/// three), by the reference's own rule ([`uncertainty`]): Richardson over
+/// the three finest where it applies, else the finest with the two finest
+/// grids' difference.
 pub fn limit(h: &[f64], f: &[f64]) -> Option<Limit> {
-    let n = h.len();
-    if n < 3 || f.len() != n {
+    let n = f.len();
+    if n < 3 {
         return None;
     }
-    let (h3, f3) = (
-        [h[n - 3], h[n - 2], h[n - 1]],
-        [f[n - 3], f[n - 2], f[n - 1]],
-    );
-    Some(match richardson(h3, f3) {
-        Some((order, value)) if order >= 0.5 => Limit::Extrapolated { order, value },
-        _ => Limit::Finest {
-            value: f3[2],
-            spread: (f3[2] - f3[1]).abs(),
+    Some(match uncertainty(h, f)?.estimate {
+        Estimate::Richardson { order, limit } => Limit::Extrapolated {
+            order,
+            value: limit,
+        },
+        Estimate::Spread => Limit::Finest {
+            value: f[n - 1],
+            spread: (f[n - 1] - f[n - 2]).abs(),
         },
     })
 }
