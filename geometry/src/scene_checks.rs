@@ -147,6 +147,27 @@ impl Scene {
                 ));
             }
         }
+        // Each torque names a column of the TE tables and a result file
+        // (`pattern_<T>nm`), and the reference FE and the LTCA warm-start
+        // each load from the one before: the list is a strictly increasing
+        // set of loads.
+        if let Some(i) = (1..self.pinion_torque_nm.len())
+            .find(|&i| self.pinion_torque_nm[i] <= self.pinion_torque_nm[i - 1])
+        {
+            let (a, b) = (self.pinion_torque_nm[i - 1], self.pinion_torque_nm[i]);
+            return Err(ck.fail(
+                &format!("pinion_torque_nm[{i}]"),
+                b.to_string(),
+                &if a == b {
+                    format!("repeats pinion_torque_nm[{}] = {a}: each load once", i - 1)
+                } else {
+                    format!(
+                        "must exceed pinion_torque_nm[{}] = {a}: list the loads in increasing order",
+                        i - 1
+                    )
+                },
+            ));
+        }
         Ok(())
     }
 
@@ -386,6 +407,22 @@ impl Scene {
                 "[]".into(),
                 "each member needs at least one blank",
             ));
+        }
+        for (field, list) in [
+            ("blanks.pinion", &self.blanks.pinion),
+            ("blanks.wheel", &self.blanks.wheel),
+            (
+                "multibody.runup_wheel_blanks",
+                &self.multibody.runup_wheel_blanks,
+            ),
+        ] {
+            if let Some(i) = (1..list.len()).find(|&i| list[..i].contains(&list[i])) {
+                return Err(ck.fail(
+                    &format!("{field}[{i}]"),
+                    format!("\"{}\"", list[i].name()),
+                    "names a blank listed before it: each blank once (its runs and files are named after it)",
+                ));
+            }
         }
         Ok(())
     }

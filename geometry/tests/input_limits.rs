@@ -383,6 +383,42 @@ fn torque_that_is_not_finite_and_positive_is_refused() {
 }
 
 #[test]
+fn repeated_torque_is_refused_naming_both_entries() {
+    refused(
+        scene_with(
+            "pinion_torque_nm = [1.0, 100.0, 300.0, 500.0, 700.0]",
+            "pinion_torque_nm = [300.0, 300.0]",
+        ),
+        "scene.toml",
+        &["pinion_torque_nm[1]", "repeats pinion_torque_nm[0] = 300"],
+    );
+}
+
+#[test]
+fn torques_out_of_order_are_refused_asking_for_increasing_loads() {
+    refused(
+        scene_with(
+            "pinion_torque_nm = [1.0, 100.0, 300.0, 500.0, 700.0]",
+            "pinion_torque_nm = [1.0, 700.0, 300.0]",
+        ),
+        "scene.toml",
+        &["pinion_torque_nm[2]", "300", "increasing order"],
+    );
+}
+
+#[test]
+fn repeated_blank_is_refused_by_its_index() {
+    refused(
+        scene_with(
+            "wheel = [\"standard\", \"lightweight\"]",
+            "wheel = [\"lightweight\", \"lightweight\"]",
+        ),
+        "scene.toml",
+        &["blanks.wheel[1]", "\"lightweight\"", "each blank once"],
+    );
+}
+
+#[test]
 fn mesh_level_beyond_the_element_bound_is_refused() {
     refused(
         scene_with(

@@ -84,3 +84,69 @@ fn main() -> anyhow::Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod command_line_ranges {
+    //! Counts on the command line: within their documented range they
+    //! parse, outside it clap refuses them before any work, naming the
+    //! option.
+
+    use super::Cli;
+    use clap::Parser;
+    use proptest::prelude::*;
+
+    fn parse(args: &[&str]) -> Result<(), String> {
+        Cli::try_parse_from(args)
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn reference_stride_zero_is_refused_naming_the_option() {
+        let e = parse(&["validate", "reference", "s.toml", "--stride", "0"]).unwrap_err();
+        assert!(
+            e.contains("--stride") && e.contains("'0'") && e.contains(">= 1"),
+            "{e}"
+        );
+        let e = parse(&[
+            "validate",
+            "reference",
+            "s.toml",
+            "--stride-lightweight",
+            "0",
+        ])
+        .unwrap_err();
+        assert!(e.contains("--stride-lightweight"), "{e}");
+    }
+
+    #[test]
+    fn utca_positions_zero_is_refused_naming_the_option() {
+        let e = parse(&["validate", "utca", "s.toml", "--positions", "0"]).unwrap_err();
+        assert!(e.contains("--positions") && e.contains("[1, 3600]"), "{e}");
+    }
+
+    proptest! {
+        #[test]
+        fn stride_parses_exactly_when_at_least_one(n in 0u64..1_000_000) {
+            let r = parse(&["validate", "reference", "s.toml", "--stride", &n.to_string()]);
+            prop_assert_eq!(r.is_ok(), n >= 1, "{:?}", r);
+        }
+
+        #[test]
+        fn positions_parse_exactly_within_their_range(n in 0u64..10_000) {
+            for cmd in ["utca", "report"] {
+                let mut args = vec!["validate", cmd, "s.toml", "--positions"];
+                let v = n.to_string();
+                args.push(&v);
+                if cmd == "report" {
+                    args.extend(["--flanks", "f"]);
+                }
+                let r = parse(&args);
+                prop_assert_eq!(r.is_ok(), (1..=3600).contains(&n), "{} {:?}", cmd, r);
+                if let Err(e) = r {
+                    prop_assert!(e.contains("--positions"), "{}", e);
+                }
+            }
+        }
+    }
+}

@@ -13,8 +13,8 @@ pub struct ReportArgs {
     /// Report directory.
     #[arg(long, default_value = "reports")]
     pub reports: PathBuf,
-    /// Positions per mesh cycle for the direct search.
-    #[arg(long, default_value_t = 12)]
+    /// Positions per mesh cycle for the direct search, 1 to 3600.
+    #[arg(long, default_value_t = 12, value_parser = positions_per_cycle)]
     pub positions: usize,
     /// Output root of the solver and `validate reference`: when given, the
     /// report also compares their loaded TE (Tables 3-5).
@@ -34,8 +34,8 @@ pub struct ReportArgs {
 pub struct UtcaArgs {
     /// Scene or design file.
     pub scene: PathBuf,
-    /// Positions per mesh cycle for the direct search.
-    #[arg(long, default_value_t = 12)]
+    /// Positions per mesh cycle for the direct search, 1 to 3600.
+    #[arg(long, default_value_t = 12, value_parser = positions_per_cycle)]
     pub positions: usize,
     /// Writes the comparison as one result set in this folder
     /// (`utca_check.json` and its `run.json`).
@@ -70,11 +70,11 @@ pub struct ReferenceArgs {
     /// solve when they penetrate, um.
     #[arg(long, default_value_t = 60.0)]
     pub search_gap_um: f64,
-    /// Solve every n-th position of the scene's sweep.
-    #[arg(long, default_value_t = 1)]
+    /// Solve every n-th position of the scene's sweep (n >= 1).
+    #[arg(long, default_value_t = 1, value_parser = at_least_one)]
     pub stride: usize,
     /// Stride for the lightweight wheel blank (default: --stride).
-    #[arg(long)]
+    #[arg(long, value_parser = at_least_one)]
     pub stride_lightweight: Option<usize>,
     /// Right-hand sides per forward-solve block.
     #[arg(long, default_value_t = 96)]
@@ -250,6 +250,24 @@ impl LevelStudyArgs {
             penalty_settings(self.penalty, self.penalty_check, 2.0, 60.0)?,
             check_block(self.block)?,
         ))
+    }
+}
+
+/// A count of at least one (`--stride`): clap refuses anything else
+/// before any work, naming the option and the value.
+pub fn at_least_one(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("must be a whole number >= 1".into()),
+    }
+}
+
+/// Positions per mesh cycle of the direct UTCA search (`--positions`):
+/// 1 to 3600 (a bound on the run time, each position a direct search).
+pub fn positions_per_cycle(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=3600).contains(&n) => Ok(n),
+        _ => Err("must be a whole number in [1, 3600]".into()),
     }
 }
 

@@ -256,6 +256,18 @@ pub fn convergence(
     if let Some(t) = torques_nm.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
         anyhow::bail!("--torque-nm {t}: must be a positive number");
     }
+    if let Some(w) = torques_nm.windows(2).find(|w| w[1] <= w[0]) {
+        anyhow::bail!(
+            "--torque-nm {}: each load once, in increasing order ({} follows {})",
+            torques_nm
+                .iter()
+                .map(|t| t.to_string())
+                .collect::<Vec<_>>()
+                .join(","),
+            w[1],
+            w[0]
+        );
+    }
     let study = validate::studies::convergence::Study {
         levels: args.levels.clone(),
         position,

@@ -187,8 +187,19 @@ impl StudyPosition {
         let fp = g.side(side);
         let direction = pinion_direction(&g.data, side);
         let step = sc.rotation.step_deg.to_radians();
-        let phi = fp.roll_range[0] + direction * step * index as f64;
         let cycles = sc.rotation.mesh_cycles(Blank::Standard);
+        // The sweep's positions, as `validate reference` counts them.
+        let n_pos = (cycles * g.data.mesh_cycle() / step).round() as usize + 1;
+        if index >= n_pos {
+            anyhow::bail!(
+                "--position {index}: scene {}'s sweep (standard blanks) has {n_pos} positions, 0 to {} ({} mesh cycles every {}°)",
+                sc.name,
+                n_pos - 1,
+                cycles,
+                sc.rotation.step_deg
+            );
+        }
+        let phi = fp.roll_range[0] + direction * step * index as f64;
         let (pinion_teeth, wheel_teeth) = teeth_in_contact(&g, side, cycles, step);
         let utca_te_urad =
             crate::reference::reference_options::utca_at(scene, fp, phi, step, 1, direction)?.te[0]
