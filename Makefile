@@ -213,10 +213,11 @@ validate: solve
 # NLFEA rows at 1 and 100 N·m (`validate calibrate`); rewrites
 # reference/white_paper_20x43_calibrated.toml, the calibrated scene and
 # reference/white_paper_20x43_calibration.json, which are committed.
-# Measured 2026-11-27 on 2 cores shared with another worktree's builds:
-# 16 min 49 s wall, 1,047 s CPU in the process (43 LTCA runs of the
-# ease-off fit, about 25 s in all; then 4 web trials, each meshing the
-# lightweight wheel and solving its stiffness files, 3-4 min each).
+# Measured 2026-11-28 with the scene's 12 x 40 stiffness grid, on 2 cores
+# shared with short reference-FE runs and builds: 18 min 10 s wall,
+# 1,355 s CPU in the process, 2.5 GB peak (32 LTCA runs of the ease-off
+# fit; then 4 web trials, each meshing the lightweight wheel and solving
+# its stiffness files, 3-5 min each).
 calibrate: solve
 	$(BIN)/validate calibrate $(SCENE) --meshes meshes --out $(OUT)
 
