@@ -48,8 +48,13 @@ fn check_pinion(scene: &LoadedScene, meshes: &Path) -> Result<(), CheckError> {
 
 /// Overwrites element `k` of the loaded tooth's total compliance with `f(value)`.
 fn tamper(h5: &Path, k: usize, f: impl Fn(f64) -> f64) {
+    tamper_in(h5, "compliance/total", k, f)
+}
+
+/// Overwrites element `k` of dataset `name` with `f(value)`.
+fn tamper_in(h5: &Path, name: &str, k: usize, f: impl Fn(f64) -> f64) {
     let file = formats::stiffness_file::h5().append(h5).unwrap();
-    let ds = file.dataset("compliance/total").unwrap();
+    let ds = file.dataset(name).unwrap();
     let mut v: Vec<f64> = ds.read_raw().unwrap();
     v[k] = f(v[k]);
     ds.write_raw(&v).unwrap();
@@ -122,6 +127,38 @@ fn nan_and_broken_reciprocity_are_refused_by_sense() {
     relist(&meshes, &h5);
     let e = check_pinion(&scene, &meshes).unwrap_err().to_string();
     assert!(e.contains("not finite"), "{e}");
+}
+
+#[test]
+fn sign_flipped_global_value_is_refused_by_sense_naming_the_split() {
+    // The block the contact element interpolates: global = total - local on
+    // the loaded tooth, total on its neighbours. A value flipped there (the
+    // manifest relisted, so the checksum passes) changes no total or local
+    // number, so only the split check can catch it: on the loaded tooth's
+    // block and on a neighbour's.
+    let tmp = tempfile::tempdir().unwrap();
+    let (scene, meshes) = fixture(tmp.path(), None);
+    let h5 = meshes
+        .join(SCENE)
+        .join("pinion_standard_reduced.stiffness.h5");
+    let d = formats::stiffness_file::read(&h5, None).unwrap();
+    let (np, o0) = (d.points(), d.offsets.iter().position(|&o| o == 0).unwrap());
+    let neighbour = (o0 + 1) % d.offsets.len();
+    for k in [o0 * np * np + np + 2, neighbour * np * np + 3] {
+        let fresh = tempfile::tempdir().unwrap();
+        let (scene, meshes) = fixture(fresh.path(), None);
+        let h5 = meshes
+            .join(SCENE)
+            .join("pinion_standard_reduced.stiffness.h5");
+        tamper_in(&h5, "compliance/global", k, |c| -c);
+        relist(&meshes, &h5);
+        let e = check_pinion(&scene, &meshes).unwrap_err().to_string();
+        assert!(
+            e.contains("compliance/global") && e.contains("total - local"),
+            "{e}"
+        );
+    }
+    check_pinion(&scene, &meshes).unwrap();
 }
 
 #[test]
