@@ -365,3 +365,83 @@ fn a_committed_file_changed_or_removed_afterwards_is_named_by_the_reader_check()
     assert!(e.contains("removed"), "{e}");
     assert_eq!(verify_files(&tmp.path().join("never")).unwrap(), None);
 }
+
+#[test]
+fn a_set_whose_stamp_was_deleted_is_refused_by_the_reader_check() {
+    use formats::result_set::verify_files;
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    commit_set(&dir, "te");
+    // Without its stamp nothing vouches for the files: a replaced one
+    // would go through unnoticed, so the set is refused, naming it.
+    std::fs::remove_file(dir.join(RUN_FILE)).unwrap();
+    std::fs::write(dir.join("a/one.csv"), "replaced").unwrap();
+    let e = verify_files(&dir).unwrap_err();
+    assert!(matches!(e, ResultSetError::Unstamped { .. }), "{e}");
+    let e = e.to_string();
+    assert!(e.contains("run.json") && e.contains("out"), "{e}");
+    // An empty folder holds no results to vouch for.
+    let empty = tmp.path().join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    assert_eq!(verify_files(&empty).unwrap(), None);
+}
+
+#[test]
+fn one_file_is_checked_against_the_nearest_stamped_folder_above_it() {
+    use formats::result_set::verify_file;
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    let info = commit_set(&dir, "te");
+    let file = dir.join("a/one.csv");
+    assert_eq!(verify_file(&file).unwrap(), Some(info.clone()));
+    // Added in place later: not the run's file, passes with the set's stamp.
+    std::fs::write(dir.join("a/later.svg"), "<svg/>").unwrap();
+    assert_eq!(verify_file(&dir.join("a/later.svg")).unwrap(), Some(info));
+    // Missing: nothing to vouch for.
+    assert_eq!(verify_file(&dir.join("a/none.csv")).unwrap(), None);
+    std::fs::write(&file, "tf").unwrap();
+    let e = verify_file(&file).unwrap_err().to_string();
+    assert!(e.contains("one.csv") && e.contains("changed"), "{e}");
+    std::fs::remove_file(dir.join(RUN_FILE)).unwrap();
+    let e = verify_file(&file).unwrap_err();
+    assert!(matches!(e, ResultSetError::Unstamped { .. }), "{e}");
+}
+
+#[test]
+fn a_commit_that_fails_keeps_the_new_results_where_its_message_says() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("reference");
+    commit_set(&dir, "first");
+    // A carried-over entry that cannot move into the new set: its parent
+    // in the staging directory is a file.
+    std::fs::create_dir_all(dir.join("cache")).unwrap();
+    std::fs::write(dir.join("cache/x.json"), "{}").unwrap();
+    let mut set = ResultSet::begin(&dir, "second").unwrap();
+    std::fs::write(set.path().join("cache"), "not a folder").unwrap();
+    std::fs::create_dir_all(set.path().join("a")).unwrap();
+    std::fs::write(set.path().join("a/one.csv"), "second").unwrap();
+    set.carry_over(Path::new("cache/x.json"));
+    let e = set.commit().unwrap_err();
+    let ResultSetError::Commit { staging, .. } = &e else {
+        panic!("expected a commit error, got {e}")
+    };
+    assert!(
+        e.to_string().contains(&staging.display().to_string()),
+        "{e}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(staging.join("a/one.csv")).unwrap(),
+        "second",
+        "the new results are where the message says"
+    );
+    // The previous set and its cache are untouched.
+    assert_eq!(
+        std::fs::read_to_string(dir.join("a/one.csv")).unwrap(),
+        "first"
+    );
+    assert!(dir.join("cache/x.json").exists());
+    // The next run on the folder clears the leftover staging directory
+    // of this (finished) run only once its process is gone; ours is alive,
+    // so here it is still there.
+    assert!(staging.exists());
+}

@@ -32,7 +32,7 @@ mod tests;
 
 pub use lock::{holder_alive, RunLock};
 pub use staging::ResultSet;
-pub use stamp::{check_same_inputs, read_run_info, verify_files, AddedStamp};
+pub use stamp::{check_same_inputs, read_run_info, verify_file, verify_files, AddedStamp};
 
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -117,7 +117,7 @@ pub enum ResultSetError {
     Unwritable { path: PathBuf, message: String },
     #[error("cannot read the run stamp {}: {message}", .path.display())]
     UnreadableStamp { path: PathBuf, message: String },
-    #[error("cannot put the results of this run in place at {}: {message} (they are left in {})", .dir.display(), .staging.display())]
+    #[error("cannot put the results of this run in place at {}: {message} (they are left in {}, which the next run on that folder removes; the previous results are untouched)", .dir.display(), .staging.display())]
     Commit {
         dir: PathBuf,
         staging: PathBuf,
@@ -132,6 +132,8 @@ pub enum ResultSetError {
     },
     #[error(transparent)]
     MixedInputs(Box<MixedInputs>),
+    #[error("{} holds results without their stamp run.json: which run wrote them, and whether a file was replaced since, cannot be checked; run the stage that writes {} again (or remove the folder)", .dir.display(), .dir.display())]
+    Unstamped { dir: PathBuf },
     #[error("{}: {why} since run {run} wrote it; run the stage that writes {} again", .file.display(), .dir.display())]
     Tampered {
         dir: PathBuf,

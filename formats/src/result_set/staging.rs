@@ -145,6 +145,9 @@ impl ResultSet {
                     .and_then(|()| std::fs::rename(&from, &to));
                 if let Err(e) = r {
                     move_back(&moved);
+                    // The run's results stay in the staging directory (the
+                    // message names it); the next run on `dir` clears it.
+                    self.done = true;
                     return Err(err(
                         &self.staging,
                         format!("cannot move {} into the set: {e}", from.display()),
@@ -169,6 +172,7 @@ impl ResultSet {
         })();
         if let Err(e) = swap {
             move_back(&moved);
+            self.done = true;
             return Err(err(&self.staging, e.to_string()));
         }
         self.done = true;

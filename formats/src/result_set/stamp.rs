@@ -89,9 +89,19 @@ pub(super) fn file_hashes(root: &Path) -> std::io::Result<BTreeMap<String, Strin
 
 /// Checks that every file the committed set in `dir` lists is there with
 /// the bytes its run wrote; returns the set's stamp (`None` when `dir`
-/// holds no committed set).
+/// does not exist). A folder with files but no stamp is refused
+/// ([`ResultSetError::Unstamped`]): every stage commits its set with one,
+/// so a missing stamp means the set cannot be vouched for.
 pub fn verify_files(dir: &Path) -> Result<Option<RunInfo>, ResultSetError> {
     let Some(info) = read_run_info(dir)? else {
+        let holds_files = std::fs::read_dir(dir)
+            .map(|mut r| r.next().is_some())
+            .unwrap_or(false);
+        if holds_files {
+            return Err(ResultSetError::Unstamped {
+                dir: dir.to_path_buf(),
+            });
+        }
         return Ok(None);
     };
     for (rel, sha) in &info.files {
@@ -112,6 +122,50 @@ pub fn verify_files(dir: &Path) -> Result<Option<RunInfo>, ResultSetError> {
         }
     }
     Ok(Some(info))
+}
+
+/// Checks one file before a reader uses it alone (a figure copied into a
+/// report): the nearest enclosing folder with a stamp is its set; a file
+/// that set lists must have the bytes its run wrote. A file the set does
+/// not list (added in place later, see [`AddedStamp`]) passes with the
+/// set's stamp; a missing file passes with `None` (the reader says what is
+/// missing); a file with no stamped folder above it is refused
+/// ([`ResultSetError::Unstamped`], naming its folder).
+pub fn verify_file(path: &Path) -> Result<Option<RunInfo>, ResultSetError> {
+    if !path.is_file() {
+        return Ok(None);
+    }
+    for dir in path.ancestors().skip(1) {
+        let Some(info) = read_run_info(dir)? else {
+            continue;
+        };
+        let rel = path
+            .strip_prefix(dir)
+            .unwrap_or(path)
+            .components()
+            .map(|c| c.as_os_str().to_string_lossy())
+            .collect::<Vec<_>>()
+            .join("/");
+        if let Some(sha) = info.files.get(&rel) {
+            let why = match crate::manifest::sha256_file(path) {
+                Err(e) => Some(format!("unreadable ({e})")),
+                Ok(now) if &now != sha => Some("changed".to_string()),
+                Ok(_) => None,
+            };
+            if let Some(why) = why {
+                return Err(ResultSetError::Tampered {
+                    dir: dir.to_path_buf(),
+                    file: path.to_path_buf(),
+                    run: info.run_id.clone(),
+                    why,
+                });
+            }
+        }
+        return Ok(Some(info));
+    }
+    Err(ResultSetError::Unstamped {
+        dir: path.parent().unwrap_or(path).to_path_buf(),
+    })
 }
 
 /// The stamp of a file that a later run adds in place to a committed set

@@ -70,9 +70,43 @@ pub fn figures_before_table(md: &str, figs: &[Figure]) -> String {
     )
 }
 
+/// Figures refused while a report was made, by report folder: the figure,
+/// its source and why ([`left_out_section`] says so in the report).
+static LEFT_OUT: std::sync::Mutex<Vec<(std::path::PathBuf, String)>> =
+    std::sync::Mutex::new(Vec::new());
+
+/// The report's closing section on the figures of `reports` that were left
+/// out because their result set could not vouch for them (empty when none
+/// was); drains them.
+pub fn left_out_section(reports: &Path) -> String {
+    let mut all = LEFT_OUT.lock().unwrap_or_else(|e| e.into_inner());
+    let (mine, rest): (Vec<_>, Vec<_>) = all.drain(..).partition(|(d, _)| d == reports);
+    *all = rest;
+    if mine.is_empty() {
+        return String::new();
+    }
+    let mut s = String::from(
+        "\n## Figures left out\n\nThese figures were not copied into the report: the result set they come from cannot vouch for them.\n\n",
+    );
+    for (_, note) in mine {
+        let _ = writeln!(s, "- {note}");
+    }
+    s
+}
+
 /// A figure from an SVG file `from`, copied to `reports/<file>`; None when
-/// `from` cannot be read or the copy cannot be written.
+/// `from` cannot be read or the copy cannot be written. A file whose result
+/// set does not vouch for it (changed since its run wrote it, or in a
+/// folder without a stamp) is not copied, and the report's closing
+/// section names it with the reason.
 pub fn copied(title: &str, from: &Path, reports: &Path, file: &str) -> Option<Figure> {
+    if let Err(e) = formats::result_set::verify_file(from) {
+        LEFT_OUT
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push((reports.to_path_buf(), format!("{title}: {e}")));
+        return None;
+    }
     let svg = std::fs::read_to_string(from).ok()?;
     formats::output::write_atomic(&reports.join(file), svg.as_bytes()).ok()?;
     Some(Figure {
@@ -80,4 +114,59 @@ pub fn copied(title: &str, from: &Path, reports: &Path, file: &str) -> Option<Fi
         file: file.into(),
         svg,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use formats::result_set::{ResultSet, RUN_FILE};
+
+    /// A committed set in `dir` holding `plot.svg`.
+    fn set_with_figure(dir: &Path) -> std::path::PathBuf {
+        let set = ResultSet::begin(dir, "test run").unwrap();
+        std::fs::write(set.path().join("plot.svg"), "<svg>run</svg>").unwrap();
+        set.commit().unwrap();
+        dir.join("plot.svg")
+    }
+
+    #[test]
+    fn figure_its_set_vouches_for_is_copied_and_nothing_is_left_out() {
+        let tmp = tempfile::tempdir().unwrap();
+        let (from, reports) = (
+            set_with_figure(&tmp.path().join("out")),
+            tmp.path().join("r"),
+        );
+        std::fs::create_dir_all(&reports).unwrap();
+        let f = copied("A plot", &from, &reports, "a.svg").unwrap();
+        assert_eq!(f.svg, "<svg>run</svg>");
+        assert_eq!(left_out_section(&reports), "");
+    }
+
+    #[test]
+    fn replaced_figure_is_left_out_and_named_with_the_reason() {
+        let tmp = tempfile::tempdir().unwrap();
+        let reports = tmp.path().join("r");
+        std::fs::create_dir_all(&reports).unwrap();
+        // Changed after its run wrote it.
+        let changed = set_with_figure(&tmp.path().join("changed"));
+        std::fs::write(&changed, "<svg>other</svg>").unwrap();
+        assert!(copied("Changed plot", &changed, &reports, "c.svg").is_none());
+        // Its set's stamp deleted: nothing can vouch for it.
+        let unstamped = set_with_figure(&tmp.path().join("unstamped"));
+        std::fs::remove_file(tmp.path().join("unstamped").join(RUN_FILE)).unwrap();
+        assert!(copied("Unstamped plot", &unstamped, &reports, "u.svg").is_none());
+        assert!(!reports.join("c.svg").exists() && !reports.join("u.svg").exists());
+        let s = left_out_section(&reports);
+        assert!(s.contains("## Figures left out"), "{s}");
+        assert!(
+            s.contains("Changed plot") && s.contains("changed since run"),
+            "{s}"
+        );
+        assert!(
+            s.contains("Unstamped plot") && s.contains("run.json"),
+            "{s}"
+        );
+        // Drained: a second report of the same folder starts clean.
+        assert_eq!(left_out_section(&reports), "");
+    }
 }

@@ -213,7 +213,8 @@ pub fn write(
     figures: &ReportFigures,
     readme: &Path,
 ) -> Result<Written, WriteError> {
-    let md = markdown(c, published, loaded, figures);
+    let md =
+        markdown(c, published, loaded, figures) + &crate::report::figures::left_out_section(dir);
     write_atomic(&dir.join("report.md"), md.as_bytes())?;
     let inline = |file: &str| -> Option<String> {
         figures
