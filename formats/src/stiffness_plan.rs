@@ -108,6 +108,22 @@ pub fn plan(
     })
 }
 
+/// Which stage's output a [`CheckError`] is about, and so what a user runs
+/// (or checks) to mend it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Remedy {
+    /// The design file itself (unreadable or not a design).
+    Design,
+    /// The mesh folder: not readable as one (a file, no permission).
+    Folder,
+    /// The meshes (no manifest, an old schema, a mesh made from other
+    /// inputs or changed since): `preprocess mesh`, then `preprocess
+    /// stiffness`.
+    Mesh,
+    /// The stiffness file: `preprocess stiffness`.
+    Stiffness,
+}
+
 /// Why a stiffness file cannot serve a scene.
 #[derive(Debug, thiserror::Error)]
 pub enum CheckError {
@@ -139,6 +155,30 @@ pub enum CheckError {
     },
     #[error("{}: {problem}; the file is damaged: delete it and run `preprocess stiffness` again", .path.display())]
     Nonsense { path: PathBuf, problem: String },
+}
+
+impl CheckError {
+    /// What mends this error: the stage to run again, or the design or
+    /// the mesh folder to look at.
+    pub fn remedy(&self) -> Remedy {
+        match self {
+            CheckError::Geometry(_) | CheckError::Design { .. } => Remedy::Design,
+            CheckError::Manifest(ManifestError::Unreadable { .. } | ManifestError::Write(_)) => {
+                Remedy::Folder
+            }
+            CheckError::Manifest(ManifestError::NoEntry { stage, .. }) if *stage != "mesh" => {
+                Remedy::Stiffness
+            }
+            CheckError::Manifest(_)
+            | CheckError::StaleMesh { .. }
+            | CheckError::MeshChanged { .. } => Remedy::Mesh,
+            CheckError::NoStiffness { .. }
+            | CheckError::StaleStiffness { .. }
+            | CheckError::File(_)
+            | CheckError::Changed { .. }
+            | CheckError::Nonsense { .. } => Remedy::Stiffness,
+        }
+    }
 }
 
 /// The manifest entry of the body mesh `stem` in `dir`, checked to be made

@@ -158,6 +158,11 @@ pub struct BearingLoadSummary {
     pub wheel_bearing_force_n: Vec<f64>,
     /// Most iterations a position needed.
     pub max_iterations: usize,
+    /// Largest last change of a member's displacement between iterations
+    /// over the positions, nm (at most the tolerance, or ten times it where
+    /// the iteration settled at the contact search's noise).
+    #[serde(default)]
+    pub max_change_nm: f64,
 }
 
 /// The coast flanks under the scene's loads: the pinion driving the other

@@ -314,6 +314,35 @@ fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
                 ));
             }
         }
+        // Addendum and dedendum shrink towards the toe (face and root cones
+        // inclined to the pitch cone); at the toe the tip must still stand
+        // above the pitch cone and the root below it, else the flank has no
+        // addendum (or dedendum) part there.
+        let half_face = 0.5 * p.face_width_mm;
+        let toe_addendum =
+            m.mean_addendum_mm - half_face * (m.face_angle_deg - g).to_radians().tan();
+        if toe_addendum <= 0.0 {
+            return Err(c.fail(
+                &f("mean_addendum_mm"),
+                m.mean_addendum_mm,
+                format!(
+                    "must exceed (pair.face_width_mm / 2) tan({name}.face_angle_deg - {name}.pitch_angle_deg) = {:.4} mm: the addendum at the toe is {toe_addendum:.4} mm, the tip dips below the pitch cone there",
+                    m.mean_addendum_mm - toe_addendum
+                ),
+            ));
+        }
+        let toe_dedendum =
+            m.mean_dedendum_mm - half_face * (g - m.root_angle_deg).to_radians().tan();
+        if toe_dedendum <= 0.0 {
+            return Err(c.fail(
+                &f("mean_dedendum_mm"),
+                m.mean_dedendum_mm,
+                format!(
+                    "must exceed (pair.face_width_mm / 2) tan({name}.pitch_angle_deg - {name}.root_angle_deg) = {:.4} mm: the dedendum at the toe is {toe_dedendum:.4} mm, the root rises above the pitch cone there",
+                    m.mean_dedendum_mm - toe_dedendum
+                ),
+            ));
+        }
         c.positive(&f("point_width_mm"), m.point_width_mm)?;
         c.range(
             &f("material.youngs_modulus_gpa"),

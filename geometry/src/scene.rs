@@ -48,9 +48,12 @@ pub struct Scene {
     /// zero when absent. Meshes and stiffness files do not depend on them.
     #[serde(default)]
     pub misalignment: crate::misalignment::Misalignment,
-    /// Ranges of `solver sensitivity`; defaults when absent.
+    /// Ranges of `solver sensitivity` as the scene writes them; absent:
+    /// the defaults ([`Scene::sensitivity_settings`]), checked only when
+    /// the study runs (a scene at a misalignment limit has no room for
+    /// them, and need not run the study).
     #[serde(default)]
-    pub sensitivity: crate::scene_sensitivity::SensitivitySettings,
+    pub sensitivity: Option<crate::scene_sensitivity::SensitivitySettings>,
     /// Each member's shaft on compliant bearings (`[bearings]`): the LTCA
     /// then also solves every position with the bearings' deflection.
     #[serde(default)]
@@ -146,6 +149,14 @@ impl Default for MultibodySettings {
             impact: ImpactSettings::default(),
             load_run: None,
         }
+    }
+}
+
+impl Scene {
+    /// The ranges of `solver sensitivity`: the scene's `[sensitivity]`
+    /// table, or the defaults when it has none.
+    pub fn sensitivity_settings(&self) -> crate::scene_sensitivity::SensitivitySettings {
+        self.sensitivity.unwrap_or_default()
     }
 }
 

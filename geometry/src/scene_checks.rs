@@ -437,7 +437,11 @@ impl Scene {
             limit,
         };
         self.misalignment.check(path, "misalignment", pair)?;
-        self.sensitivity.check(path, &self.misalignment, pair)?;
+        // A written [sensitivity] table is checked here; the defaults only
+        // when the study runs (`solver sensitivity`).
+        if let Some(s) = &self.sensitivity {
+            s.check(path, &self.misalignment, pair)?;
+        }
         let cycle_deg = pair.mesh_cycle().to_degrees();
         let positions = |cycles: f64, step_deg: f64| cycles * cycle_deg / step_deg + 1.0;
         let r = &self.rotation;

@@ -276,6 +276,38 @@ fn addendum_far_beyond_the_module_is_refused() {
 }
 
 #[test]
+fn addendum_that_leaves_the_tip_below_the_pitch_cone_at_the_toe_is_refused() {
+    // Positive at the mean point, but the face cone is inclined to the
+    // pitch cone: 20.5 mm towards the toe the addendum is gone.
+    refused(
+        design_with("mean_addendum_mm = 5.871", "mean_addendum_mm = 1e-9"),
+        "bad_design.toml",
+        &[
+            "pinion.mean_addendum_mm",
+            "at the toe",
+            "below the pitch cone",
+        ],
+    );
+    // Just above the limit it loads.
+    design_with("mean_addendum_mm = 5.871", "mean_addendum_mm = 1.3").unwrap();
+}
+
+#[test]
+fn dedendum_that_lifts_the_root_above_the_pitch_cone_at_the_toe_is_refused() {
+    // A root angle far below the pitch angle: the mean dedendum no longer
+    // reaches the toe.
+    refused(
+        design_with("root_angle_deg = 61.817", "root_angle_deg = 40.0"),
+        "bad_design.toml",
+        &[
+            "wheel.mean_dedendum_mm",
+            "at the toe",
+            "above the pitch cone",
+        ],
+    );
+}
+
+#[test]
 fn tooth_number_beyond_the_bound_is_refused() {
     refused(
         design_with("teeth = 43", "teeth = 4000000000"),

@@ -338,3 +338,24 @@ fn bearing_damping_and_member_masses_are_read_and_out_of_range_rejected_naming_t
     .unwrap_err();
     assert!(e.contains("transverse_inertia_kgm2"), "{e}");
 }
+
+#[test]
+fn misalignment_at_its_limit_loads_without_a_sensitivity_table() {
+    // |E| just under 0.2 m_n = 0.865 mm and |ΔΣ| = 0.5°: valid. The
+    // default sensitivity ranges have no room left there, but the scene
+    // never wrote them: they are checked only when the study runs.
+    let s = scene_with("[misalignment]\noffset_mm = 0.8649\nshaft_angle_deg = 0.5").unwrap();
+    assert!(s.scene.sensitivity.is_none());
+    let study = s.scene.sensitivity_settings();
+    let e = study
+        .check(&s.path, &s.scene.misalignment, &s.pair)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("sensitivity.offset_mm"), "{e}");
+    // A [sensitivity] table the scene writes is checked on loading.
+    let e = scene_with(
+        "[misalignment]\noffset_mm = 0.8649\nshaft_angle_deg = 0.5\n[sensitivity]\noffset_mm = 0.05",
+    )
+    .unwrap_err();
+    assert!(e.contains("sensitivity.offset_mm"), "{e}");
+}

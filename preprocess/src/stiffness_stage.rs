@@ -160,13 +160,29 @@ pub fn planned(
     let msh = paths::msh(dir, &plan.mesh_stem);
     let inputs = dir.join(format!("{}.inputs.json", plan.mesh_stem));
     if !msh.exists() {
+        if !sc.analyses.needs_mesh(level) {
+            // `preprocess mesh --level <level>` skips this level for this
+            // scene: pointing the user there would send them in a circle.
+            anyhow::bail!(
+                "scene {}: no mesh {} for the {} ({} blank): `preprocess mesh` makes {} meshes only for a scene whose [analyses] has reference = true, and this scene's has not; set it (the stiffness files of that level serve the influence-field convergence study) or use the reduced level",
+                sc.name,
+                msh.display(),
+                member.name(),
+                blank.name(),
+                level.name()
+            );
+        }
         anyhow::bail!(
-            "scene {}: no mesh {} for the {} ({} blank); run `preprocess mesh {}` first",
+            "scene {}: no mesh {} for the {} ({} blank); run `preprocess mesh {}{}` first",
             sc.name,
             msh.display(),
             member.name(),
             blank.name(),
-            scene.path.display()
+            scene.path.display(),
+            match level {
+                MeshLevel::Reduced => String::new(),
+                l => format!(" --level {}", l.name()),
+            }
         );
     }
     let mesh_inputs: serde_json::Value = serde_json::from_str(

@@ -43,6 +43,13 @@ pub enum SolverError {
     NotConverged { what: String, iterations: usize },
     #[error("multibody mesh table: {0}")]
     Table(String),
+    #[error("at {torque_nm} N·m the compliant bearings move the members apart until no tooth pair can touch (after {iterations} iteration(s) of the bearing deflection the pinion has moved {pinion_um:.1} µm and the wheel {wheel_um:.1} µm): the bearings are too soft for this load; stiffen `[bearings]` or lower the torque")]
+    BearingsSeparate {
+        torque_nm: f64,
+        iterations: usize,
+        pinion_um: f64,
+        wheel_um: f64,
+    },
     #[error("{member} tooth {tooth} is loaded but the stiffness file holds only teeth {solved:?}: the run turns the gears past the rotation the meshes and stiffness files were planned for (the scene's [rotation] mesh cycles of this blank, and the multibody run-up or rattle); lengthen `rotation.mesh_cycles_<blank>`, then run `preprocess mesh` and `preprocess stiffness` again")]
     ToothNotSolved {
         member: String,

@@ -95,3 +95,55 @@ fn te_added_by_soft_bearings_scales_with_their_compliance() {
         "ΔTE ratio {ratio} (soft {d_soft}, stiffer {d_stiff})"
     );
 }
+
+#[test]
+fn soft_bearings_of_1e8_n_per_m_converge_and_keep_the_compliance_scaling() {
+    // Soft but realistic bearings: the plain iteration overshoots there
+    // (the fixed half step it once used did not converge at all). The TE
+    // they add is twice that of 2e8 N/m bearings, as at 2e8 and 4e8.
+    let soft = solve_with(1e8);
+    let stiffer = solve_with(2e8);
+    assert!(soft.iterations < 60, "{} iterations", soft.iterations);
+    let ratio = (soft.te - soft.te_rigid_bearings) / (stiffer.te - stiffer.te_rigid_bearings);
+    eprintln!(
+        "k 1e8: {} iterations, +{:.3} µrad; k 2e8: {} iterations; ratio {ratio:.3}",
+        soft.iterations,
+        (soft.te - soft.te_rigid_bearings) * 1e6,
+        stiffer.iterations
+    );
+    assert!((ratio - 2.0).abs() < 0.25, "ΔTE ratio {ratio}");
+}
+
+#[test]
+fn bearings_too_soft_for_the_load_are_named_not_a_missing_contact() {
+    // 1 N/m: the first deflection moves the members metres apart. The
+    // error must say that the bearings did it, with the torque and how far
+    // they moved the members, not that no pair can touch.
+    let mut f = Fixture::example_02();
+    let phi = f.sweep.start + f.sweep.direction * 3.0 * f.sweep.step;
+    let sup = supports(&f.g, 1.0);
+    let e = deflected_position(
+        &mut f.g,
+        f.scene.scene.loaded_flank,
+        &f.scene.scene.utca,
+        &f.pc,
+        &sup,
+        None,
+        phi,
+        TORQUE_NM,
+        DeflectionSettings {
+            slices: f.scene.scene.ltca.slices,
+            tolerance_m: 1e-9,
+            max_iterations: 60,
+        },
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, solver::SolverError::BearingsSeparate { .. }),
+        "{e}"
+    );
+    let msg = e.to_string();
+    for w in ["bearings are too soft", "300 N·m", "stiffen `[bearings]`"] {
+        assert!(msg.contains(w), "'{w}' not in: {msg}");
+    }
+}

@@ -215,3 +215,23 @@ fn lumped_undamped_energy_is_kept_within_1e_6_over_10_mesh_cycles() {
     let el = energy(&md, K_MEAN, &hd.q[last], &hd.qd[last]);
     assert!(el < 0.99 * e0, "damped energy {el} of {e0}");
 }
+
+#[test]
+fn lumped_run_at_a_crawl_is_refused_before_integrating_with_its_step_estimate() {
+    // At 1e-6 of the case's mesh frequency the 10 mesh cycles span 4,400 s,
+    // while the bearing and mesh modes (a few kHz) hold the step near
+    // 4e-5 s: over 1e8 steps, beyond the 5e7-step budget. Refused up front
+    // as an input, not after minutes of integration.
+    let m = model();
+    let exc = constant_excitation();
+    let slow = 1e-6 * MESH_HZ;
+    let e = solver::lumped::run::simulate(&m, &exc, slow, 10.0, 32, 1e-6).unwrap_err();
+    assert!(matches!(e, solver::lumped::LumpedError::Input(_)), "{e}");
+    let msg = e.to_string();
+    for w in ["budget", "raise the pinion speed", "mesh cycles"] {
+        assert!(msg.contains(w), "'{w}' not in: {msg}");
+    }
+    // At the case's own speed the same run passes the check.
+    let s = solver::lumped::run::settings(&m, &exc, MESH_HZ, 10.0, 32, 1e-6);
+    solver::lumped::run::check_step_budget(&s, MESH_HZ, 10.0).unwrap();
+}

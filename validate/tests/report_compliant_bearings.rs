@@ -142,6 +142,7 @@ fn ltca() -> BlankSummary {
             pinion_bearing_force_n: vec![1.0, 2.0],
             wheel_bearing_force_n: vec![3.0, 4.0],
             max_iterations: 10,
+            max_change_nm: 0.5,
         }]),
     }
 }

@@ -106,11 +106,26 @@ pub fn simulate(
     rtol: f64,
 ) -> Result<History, LumpedError> {
     model.check()?;
+    let s = settings(model, exc, mesh_hz, mesh_cycles, samples, rtol);
+    check_step_budget(&s, mesh_hz, mesh_cycles)?;
     let y0 = static_start(model, exc)?;
     let eq = Equations::new(model, exc);
-    integrate(
-        &eq,
-        y0,
-        &settings(model, exc, mesh_hz, mesh_cycles, samples, rtol),
-    )
+    integrate(&eq, y0, &s)
+}
+
+/// Refuses, before integrating, a run that cannot finish within its step
+/// budget: the span over the largest step (set by the mesh period, the
+/// impact pulse and the highest natural frequency) is a lower bound on the
+/// steps. A very low speed stretches the span while the stiff bearing and
+/// mesh modes keep the step small.
+pub fn check_step_budget(s: &Settings, mesh_hz: f64, mesh_cycles: f64) -> Result<(), LumpedError> {
+    let span = s.t_span_s[1] - s.t_span_s[0];
+    let fewest = span / s.max_step_s;
+    if fewest > s.max_steps as f64 {
+        return Err(LumpedError::Input(format!(
+            "{mesh_cycles} mesh cycles at {mesh_hz:.4} Hz span {span:.4e} s, and the largest step is {:.3e} s (the highest natural frequency, mesh period and impact pulse allow no more): at least {fewest:.3e} steps, beyond the budget of {:e}; raise the pinion speed or integrate fewer mesh cycles",
+            s.max_step_s, s.max_steps as f64
+        )));
+    }
+    Ok(())
 }

@@ -10,7 +10,6 @@
 
 use crate::element::compliance::{MemberCompliance, PairCompliance};
 use crate::ltca::Sweep;
-use anyhow::Context;
 use formats::manifest::Manifest;
 use formats::paths::MeshLevel;
 use formats::result_set::ResultSet;
@@ -230,18 +229,33 @@ pub fn member_compliance_at(
     level: MeshLevel,
 ) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
     let p = stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
-    let data = stiffness_plan::check(scene, g, dir, &p, member, blank, level).with_context(|| {
-        format!(
-            "scene {}: stiffness file of the {} ({blank:?} blank, {} flank) is missing or stale; run `preprocess stiffness {}{}`",
+    let data = stiffness_plan::check(scene, g, dir, &p, member, blank, level).map_err(|e| {
+        let level_flag = match level {
+            MeshLevel::Reduced => String::new(),
+            l => format!(" --level {}", l.name()),
+        };
+        let sc = scene.path.display();
+        let what = format!(
+            "scene {}: the stiffness file of the {} ({} blank, {} flank) cannot be used",
             scene.scene.name,
             member.name(),
+            blank.name(),
             side.flank_name(member),
-            scene.path.display(),
-            match level {
-                MeshLevel::Reduced => String::new(),
-                l => format!(" --level {}", l.name()),
+        );
+        let mend = match e.remedy() {
+            stiffness_plan::Remedy::Design => format!("; check the design file {}", scene.design_path.display()),
+            stiffness_plan::Remedy::Folder => {
+                format!("; check the mesh folder {} (`--meshes`)", dir.display())
             }
-        )
+            stiffness_plan::Remedy::Mesh => format!(
+                "; run `preprocess mesh {sc} --level {}`, then `preprocess stiffness {sc}{level_flag}`",
+                level.name()
+            ),
+            stiffness_plan::Remedy::Stiffness => {
+                format!("; run `preprocess stiffness {sc}{level_flag}`")
+            }
+        };
+        anyhow::Error::new(e).context(what + &mend)
     })?;
     Ok((
         MemberCompliance::new(data, g.data.member(member).material()),

@@ -293,8 +293,8 @@ fn bearing_loads(
     let summaries = bearing_summaries(&rows, &sc.pinion_torque_nm);
     for l in &summaries {
         eprintln!(
-            "  {:6.1} N·m on compliant bearings: TE mean {:8.2} µrad (rigid {:8.2}), ptp {:7.2} µrad (rigid {:7.2}), pinion apex moved up to {:.2} µm, {} iterations at most",
-            l.torque_nm, l.te_mean_urad, l.rigid_te_mean_urad, l.te_ptp_urad, l.rigid_te_ptp_urad, l.pinion_apex_displacement_um, l.max_iterations
+            "  {:6.1} N·m on compliant bearings: TE mean {:8.2} µrad (rigid {:8.2}), ptp {:7.2} µrad (rigid {:7.2}), pinion apex moved up to {:.2} µm, {} iterations at most, settled to {:.2} nm at most",
+            l.torque_nm, l.te_mean_urad, l.rigid_te_mean_urad, l.te_ptp_urad, l.rigid_te_ptp_urad, l.pinion_apex_displacement_um, l.max_iterations, l.max_change_nm
         );
     }
     eprintln!("  bearing deflection: {:.1} s", t.elapsed().as_secs_f64());

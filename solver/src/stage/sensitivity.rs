@@ -93,6 +93,16 @@ pub fn load_statistics(
 pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<SensitivitySummary> {
     let t0 = Instant::now();
     let sc = &scene.scene;
+    let ranges = sc.sensitivity_settings();
+    if let Err(e) = ranges.check(&scene.path, &sc.misalignment, &scene.pair) {
+        if sc.sensitivity.is_none() {
+            anyhow::bail!(
+                "scene {}: the study's default ranges do not fit: {e}; the scene has no [sensitivity] table, so write one with smaller ranges",
+                sc.name
+            );
+        }
+        return Err(e.into());
+    }
     let mut set = ResultSet::begin(
         &out.join(&sc.name).join("sensitivity"),
         &format!("solver sensitivity {}", scene.path.display()),
@@ -113,7 +123,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Sen
     let mut curves = Vec::new();
     for c in Component::ALL {
         let mut points = Vec::new();
-        for value in sc.sensitivity.sweep(c) {
+        for value in ranges.sweep(c) {
             let m = sc.misalignment.with(c, sc.misalignment.get(c) + value);
             g.misalign(&m);
             let fp = g.side(sc.loaded_flank);
@@ -141,14 +151,14 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Sen
             "sensitivity {}: {} values over ±{} {}",
             c.symbol(),
             points.len(),
-            sc.sensitivity.range(c),
+            ranges.range(c),
             c.unit()
         );
         curves.push(SensitivityCurve {
             component: c,
             symbol: c.symbol().into(),
             unit: c.unit().into(),
-            range: sc.sensitivity.range(c),
+            range: ranges.range(c),
             points,
         });
     }

@@ -77,7 +77,7 @@ pub fn member_fields(
     let side = scene.scene.loaded_flank;
     let p = stiffness_plan::plan(scene, g, dir, member, Blank::Standard, level, side)?;
     let data = stiffness_plan::check(scene, g, dir, &p, member, Blank::Standard, level)
-        .with_context(|| format!("stiffness file {} missing or stale", p.path.display()))?;
+        .with_context(|| format!("stiffness file {} cannot be used", p.path.display()))?;
     let report = p.path.with_extension("json");
     let total_s = std::fs::read_to_string(&report)
         .ok()
