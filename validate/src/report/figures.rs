@@ -70,14 +70,15 @@ pub fn figures_before_table(md: &str, figs: &[Figure]) -> String {
     )
 }
 
-/// Figures refused while a report was made, by report folder: the figure,
-/// its source and why ([`left_out_section`] says so in the report).
+/// Figures left out or shown unvouched while a report was made, by report
+/// folder: the figure and why ([`left_out_section`] says so in the report).
 static LEFT_OUT: std::sync::Mutex<Vec<(std::path::PathBuf, String)>> =
     std::sync::Mutex::new(Vec::new());
 
-/// The report's closing section on the figures of `reports` that were left
-/// out because their result set could not vouch for them (empty when none
-/// was); drains them.
+/// The report's closing section on the figures of `reports` that their
+/// result set could not vouch for: left out when changed since their run,
+/// shown and named when their folder has no stamp (empty when none); drains
+/// them.
 pub fn left_out_section(reports: &Path) -> String {
     let mut all = LEFT_OUT.lock().unwrap_or_else(|e| e.into_inner());
     let (mine, rest): (Vec<_>, Vec<_>) = all.drain(..).partition(|(d, _)| d == reports);
@@ -86,7 +87,7 @@ pub fn left_out_section(reports: &Path) -> String {
         return String::new();
     }
     let mut s = String::from(
-        "\n## Figures left out\n\nThese figures were not copied into the report: the result set they come from cannot vouch for them.\n\n",
+        "\n## Figures their result sets do not vouch for\n\nA figure whose file changed since its run wrote it is left out; one from a folder without a stamp is shown, and named here.\n\n",
     );
     for (_, note) in mine {
         let _ = writeln!(s, "- {note}");
@@ -95,17 +96,28 @@ pub fn left_out_section(reports: &Path) -> String {
 }
 
 /// A figure from an SVG file `from`, copied to `reports/<file>`; None when
-/// `from` cannot be read or the copy cannot be written. A file whose result
-/// set does not vouch for it (changed since its run wrote it, or in a
-/// folder without a stamp) is not copied, and the report's closing
-/// section names it with the reason.
+/// `from` cannot be read or the copy cannot be written, or when its result
+/// set says it changed since its run wrote it. Left out, or copied from a
+/// folder without a stamp, it is named with the reason in the report's
+/// closing section.
 pub fn copied(title: &str, from: &Path, reports: &Path, file: &str) -> Option<Figure> {
-    if let Err(e) = formats::result_set::verify_file(from) {
+    let note = |n: String| {
         LEFT_OUT
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .push((reports.to_path_buf(), format!("{title}: {e}")));
-        return None;
+            .push((reports.to_path_buf(), n));
+    };
+    match formats::result_set::verify_file(from) {
+        // No stamp above it: shown, and said so.
+        Err(formats::result_set::ResultSetError::Unstamped { dir }) => note(format!(
+            "{title}: shown, but not vouched for: {} has no run.json, so whether the figure was replaced since its run cannot be checked",
+            dir.display()
+        )),
+        Err(e) => {
+            note(format!("{title}: left out: {e}"));
+            return None;
+        }
+        Ok(_) => {}
     }
     let svg = std::fs::read_to_string(from).ok()?;
     formats::output::write_atomic(&reports.join(file), svg.as_bytes()).ok()?;
@@ -143,7 +155,7 @@ mod tests {
     }
 
     #[test]
-    fn replaced_figure_is_left_out_and_named_with_the_reason() {
+    fn replaced_figure_is_left_out_and_unstamped_one_shown_both_named_with_the_reason() {
         let tmp = tempfile::tempdir().unwrap();
         let reports = tmp.path().join("r");
         std::fs::create_dir_all(&reports).unwrap();
@@ -151,19 +163,23 @@ mod tests {
         let changed = set_with_figure(&tmp.path().join("changed"));
         std::fs::write(&changed, "<svg>other</svg>").unwrap();
         assert!(copied("Changed plot", &changed, &reports, "c.svg").is_none());
-        // Its set's stamp deleted: nothing can vouch for it.
+        // Its set's stamp deleted: nothing can vouch for it; shown, and
+        // said so.
         let unstamped = set_with_figure(&tmp.path().join("unstamped"));
         std::fs::remove_file(tmp.path().join("unstamped").join(RUN_FILE)).unwrap();
-        assert!(copied("Unstamped plot", &unstamped, &reports, "u.svg").is_none());
-        assert!(!reports.join("c.svg").exists() && !reports.join("u.svg").exists());
+        assert!(copied("Unstamped plot", &unstamped, &reports, "u.svg").is_some());
+        assert!(!reports.join("c.svg").exists() && reports.join("u.svg").exists());
         let s = left_out_section(&reports);
-        assert!(s.contains("## Figures left out"), "{s}");
         assert!(
-            s.contains("Changed plot") && s.contains("changed since run"),
+            s.contains("## Figures their result sets do not vouch for"),
             "{s}"
         );
         assert!(
-            s.contains("Unstamped plot") && s.contains("run.json"),
+            s.contains("Changed plot: left out") && s.contains("changed since run"),
+            "{s}"
+        );
+        assert!(
+            s.contains("Unstamped plot: shown, but not vouched for") && s.contains("run.json"),
             "{s}"
         );
         // Drained: a second report of the same folder starts clean.

@@ -172,11 +172,15 @@ mod read_tests {
                 .unwrap()
                 .is_none()
         );
+        // A committed set (stamped, as the solver writes it) whose summary
+        // has a renamed field.
+        let set = formats::result_set::ResultSet::begin(&mb, "test run").unwrap();
         std::fs::write(
-            mb.join("summary.json"),
+            set.path().join("summary.json"),
             r#"[{"pinion_blank": "standard", "wheel_blank": "standard", "quasi_static_renamed": []}]"#,
         )
         .unwrap();
+        set.commit().unwrap();
         let err = compare(dir.path(), "s", &PublishedDesign::default(), dir.path())
             .unwrap_err()
             .to_string();

@@ -382,8 +382,9 @@ mod tests {
         let (out, reports) = (dir.path().join("out"), dir.path().join("reports"));
         assert!(section(&out, "x", &reports).markdown.is_none());
         let sdir = out.join("x").join("stress");
-        std::fs::create_dir_all(&sdir).unwrap();
         std::fs::create_dir_all(&reports).unwrap();
+        // Written as the study writes it: one committed set.
+        let set = formats::result_set::ResultSet::begin(&sdir, "validate stress x").unwrap();
         let s = StressSummary {
             scene: "x".into(),
             designs: Vec::new(),
@@ -391,11 +392,12 @@ mod tests {
             wall_s: 1.0,
         };
         std::fs::write(
-            sdir.join("summary.json"),
+            set.path().join("summary.json"),
             serde_json::to_string(&s).unwrap(),
         )
         .unwrap();
-        std::fs::write(sdir.join("outcomes.svg"), "<svg/>").unwrap();
+        std::fs::write(set.path().join("outcomes.svg"), "<svg/>").unwrap();
+        set.commit().unwrap();
         let sec = section(&out, "x", &reports);
         let m = sec.markdown.unwrap();
         assert!(
