@@ -319,29 +319,35 @@ fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
         // above the pitch cone and the root below it, else the flank has no
         // addendum (or dedendum) part there.
         let half_face = 0.5 * p.face_width_mm;
-        let toe_addendum =
-            m.mean_addendum_mm - half_face * (m.face_angle_deg - g).to_radians().tan();
-        if toe_addendum <= 0.0 {
-            return Err(c.fail(
-                &f("mean_addendum_mm"),
+        for (part, field, mean, angle, cone_angles, what) in [
+            (
+                "addendum",
+                "mean_addendum_mm",
                 m.mean_addendum_mm,
-                format!(
-                    "must exceed (pair.face_width_mm / 2) tan({name}.face_angle_deg - {name}.pitch_angle_deg) = {:.4} mm: the addendum at the toe is {toe_addendum:.4} mm, the tip dips below the pitch cone there",
-                    m.mean_addendum_mm - toe_addendum
-                ),
-            ));
-        }
-        let toe_dedendum =
-            m.mean_dedendum_mm - half_face * (g - m.root_angle_deg).to_radians().tan();
-        if toe_dedendum <= 0.0 {
-            return Err(c.fail(
-                &f("mean_dedendum_mm"),
+                m.face_angle_deg - g,
+                format!("{name}.face_angle_deg - {name}.pitch_angle_deg"),
+                "the tip dips below the pitch cone there",
+            ),
+            (
+                "dedendum",
+                "mean_dedendum_mm",
                 m.mean_dedendum_mm,
-                format!(
-                    "must exceed (pair.face_width_mm / 2) tan({name}.pitch_angle_deg - {name}.root_angle_deg) = {:.4} mm: the dedendum at the toe is {toe_dedendum:.4} mm, the root rises above the pitch cone there",
-                    m.mean_dedendum_mm - toe_dedendum
-                ),
-            ));
+                g - m.root_angle_deg,
+                format!("{name}.pitch_angle_deg - {name}.root_angle_deg"),
+                "the root rises above the pitch cone there",
+            ),
+        ] {
+            let loss = half_face * angle.to_radians().tan();
+            if mean - loss <= 0.0 {
+                return Err(c.fail(
+                    &f(field),
+                    mean,
+                    format!(
+                        "must exceed (pair.face_width_mm / 2) tan({cone_angles}) = {loss:.4} mm: the {part} at the toe is {:.4} mm, {what}",
+                        mean - loss
+                    ),
+                ));
+            }
         }
         c.positive(&f("point_width_mm"), m.point_width_mm)?;
         c.range(

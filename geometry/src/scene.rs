@@ -158,9 +158,7 @@ impl Scene {
     pub fn sensitivity_settings(&self) -> crate::scene_sensitivity::SensitivitySettings {
         self.sensitivity.unwrap_or_default()
     }
-}
 
-impl Scene {
     /// Mesh cycles through which the scene's analyses turn a wheel blank:
     /// the loaded sweep, or for a lightweight blank that runs up, the run-up
     /// where it is longer (1 cycle margin). A standard blank's stiffness

@@ -15,6 +15,11 @@ use solver::bearings::system_deflection::{
 const TORQUE_NM: f64 = 300.0;
 
 fn solve_with(k: f64) -> DeflectedPosition {
+    deflect(k).unwrap()
+}
+
+/// The fixture's position 3 at [`TORQUE_NM`] on bearings of stiffness `k`.
+fn deflect(k: f64) -> Result<DeflectedPosition, solver::SolverError> {
     let mut f = Fixture::example_02();
     let phi = f.sweep.start + f.sweep.direction * 3.0 * f.sweep.step;
     let sup = supports(&f.g, k);
@@ -33,7 +38,6 @@ fn solve_with(k: f64) -> DeflectedPosition {
             max_iterations: 60,
         },
     )
-    .unwrap()
 }
 
 #[test]
@@ -119,25 +123,7 @@ fn bearings_too_soft_for_the_load_are_named_not_a_missing_contact() {
     // 1 N/m: the first deflection moves the members metres apart. The
     // error must say that the bearings did it, with the torque and how far
     // they moved the members, not that no pair can touch.
-    let mut f = Fixture::example_02();
-    let phi = f.sweep.start + f.sweep.direction * 3.0 * f.sweep.step;
-    let sup = supports(&f.g, 1.0);
-    let e = deflected_position(
-        &mut f.g,
-        f.scene.scene.loaded_flank,
-        &f.scene.scene.utca,
-        &f.pc,
-        &sup,
-        None,
-        phi,
-        TORQUE_NM,
-        DeflectionSettings {
-            slices: f.scene.scene.ltca.slices,
-            tolerance_m: 1e-9,
-            max_iterations: 60,
-        },
-    )
-    .unwrap_err();
+    let e = deflect(1.0).unwrap_err();
     assert!(
         matches!(e, solver::SolverError::BearingsSeparate { .. }),
         "{e}"

@@ -46,6 +46,22 @@ fn check_pinion(scene: &LoadedScene, meshes: &Path) -> Result<(), CheckError> {
     check(scene, &g, &dir, &p, m, b, l).map(|_| ())
 }
 
+/// The fixture's pinion stiffness file under `meshes`.
+fn pinion_h5(meshes: &Path) -> PathBuf {
+    meshes
+        .join(SCENE)
+        .join("pinion_standard_reduced.stiffness.h5")
+}
+
+/// Grid points, the loaded tooth's offset index and the offset count of
+/// the file `h5`: element `o0 · np²` starts the first solved tooth's own
+/// block.
+fn own_block(h5: &Path) -> (usize, usize, usize) {
+    let d = formats::stiffness_file::read(h5, None).unwrap();
+    let o0 = d.offsets.iter().position(|&o| o == 0).unwrap();
+    (d.points(), o0, d.offsets.len())
+}
+
 /// Overwrites element `k` of the loaded tooth's total compliance with `f(value)`.
 fn tamper(h5: &Path, k: usize, f: impl Fn(f64) -> f64) {
     tamper_in(h5, "compliance/total", k, f)
@@ -92,12 +108,9 @@ fn untouched_fixture_passes_every_check() {
 fn flipped_compliance_value_is_refused_by_checksum_then_by_sense() {
     let tmp = tempfile::tempdir().unwrap();
     let (scene, meshes) = fixture(tmp.path(), None);
-    let h5 = meshes
-        .join(SCENE)
-        .join("pinion_standard_reduced.stiffness.h5");
+    let h5 = pinion_h5(&meshes);
     // The first diagonal entry of the first solved tooth's own block.
-    let d = formats::stiffness_file::read(&h5, None).unwrap();
-    let (np, o0) = (d.points(), d.offsets.iter().position(|&o| o == 0).unwrap());
+    let (np, o0, _) = own_block(&h5);
     tamper(&h5, o0 * np * np, |c| -c);
     let e = check_pinion(&scene, &meshes).unwrap_err();
     assert!(matches!(e, CheckError::Changed { .. }), "{e}");
@@ -113,11 +126,8 @@ fn flipped_compliance_value_is_refused_by_checksum_then_by_sense() {
 fn nan_and_broken_reciprocity_are_refused_by_sense() {
     let tmp = tempfile::tempdir().unwrap();
     let (scene, meshes) = fixture(tmp.path(), None);
-    let h5 = meshes
-        .join(SCENE)
-        .join("pinion_standard_reduced.stiffness.h5");
-    let d = formats::stiffness_file::read(&h5, None).unwrap();
-    let (np, o0) = (d.points(), d.offsets.iter().position(|&o| o == 0).unwrap());
+    let h5 = pinion_h5(&meshes);
+    let (np, o0, _) = own_block(&h5);
     // C_01 halved: no longer equal to C_10.
     tamper(&h5, o0 * np * np + 1, |c| 0.5 * c);
     relist(&meshes, &h5);
@@ -138,18 +148,13 @@ fn sign_flipped_global_value_is_refused_by_sense_naming_the_split() {
     // block and on a neighbour's.
     let tmp = tempfile::tempdir().unwrap();
     let (scene, meshes) = fixture(tmp.path(), None);
-    let h5 = meshes
-        .join(SCENE)
-        .join("pinion_standard_reduced.stiffness.h5");
-    let d = formats::stiffness_file::read(&h5, None).unwrap();
-    let (np, o0) = (d.points(), d.offsets.iter().position(|&o| o == 0).unwrap());
-    let neighbour = (o0 + 1) % d.offsets.len();
+    let h5 = pinion_h5(&meshes);
+    let (np, o0, offsets) = own_block(&h5);
+    let neighbour = (o0 + 1) % offsets;
     for k in [o0 * np * np + np + 2, neighbour * np * np + 3] {
         let fresh = tempfile::tempdir().unwrap();
         let (scene, meshes) = fixture(fresh.path(), None);
-        let h5 = meshes
-            .join(SCENE)
-            .join("pinion_standard_reduced.stiffness.h5");
+        let h5 = pinion_h5(&meshes);
         tamper_in(&h5, "compliance/global", k, |c| -c);
         relist(&meshes, &h5);
         let e = check_pinion(&scene, &meshes).unwrap_err().to_string();

@@ -74,17 +74,39 @@ pub(super) fn file_hashes(root: &Path) -> std::io::Result<BTreeMap<String, Strin
             if p.is_dir() {
                 stack.push(p);
             } else if p != root.join(RUN_FILE) {
-                let rel = p.strip_prefix(root).unwrap_or(&p);
-                let key = rel
-                    .components()
-                    .map(|c| c.as_os_str().to_string_lossy())
-                    .collect::<Vec<_>>()
-                    .join("/");
-                out.insert(key, crate::manifest::sha256_file(&p)?);
+                out.insert(set_key(root, &p), crate::manifest::sha256_file(&p)?);
             }
         }
     }
     Ok(out)
+}
+
+/// The key of `path` in the `files` of the set at `root`: its path relative
+/// to it, `/`-separated.
+fn set_key(root: &Path, path: &Path) -> String {
+    path.strip_prefix(root)
+        .unwrap_or(path)
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy())
+        .collect::<Vec<_>>()
+        .join("/")
+}
+
+/// `file` of the set in `dir` (stamped `info`) has the bytes `sha` its run
+/// wrote, else why not.
+fn check_listed(dir: &Path, file: &Path, sha: &str, info: &RunInfo) -> Result<(), ResultSetError> {
+    let why = match crate::manifest::sha256_file(file) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => "removed".to_string(),
+        Err(e) => format!("unreadable ({e})"),
+        Ok(now) if now != sha => "changed".to_string(),
+        Ok(_) => return Ok(()),
+    };
+    Err(ResultSetError::Tampered {
+        dir: dir.to_path_buf(),
+        file: file.to_path_buf(),
+        run: info.run_id.clone(),
+        why,
+    })
 }
 
 /// Checks that every file the committed set in `dir` lists is there with
@@ -105,21 +127,7 @@ pub fn verify_files(dir: &Path) -> Result<Option<RunInfo>, ResultSetError> {
         return Ok(None);
     };
     for (rel, sha) in &info.files {
-        let file = dir.join(rel);
-        let why = match crate::manifest::sha256_file(&file) {
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Some("removed".to_string()),
-            Err(e) => Some(format!("unreadable ({e})")),
-            Ok(now) if &now != sha => Some("changed".to_string()),
-            Ok(_) => None,
-        };
-        if let Some(why) = why {
-            return Err(ResultSetError::Tampered {
-                dir: dir.to_path_buf(),
-                file,
-                run: info.run_id.clone(),
-                why,
-            });
-        }
+        check_listed(dir, &dir.join(rel), sha, &info)?;
     }
     Ok(Some(info))
 }
@@ -139,27 +147,8 @@ pub fn verify_file(path: &Path) -> Result<Option<RunInfo>, ResultSetError> {
         let Some(info) = read_run_info(dir)? else {
             continue;
         };
-        let rel = path
-            .strip_prefix(dir)
-            .unwrap_or(path)
-            .components()
-            .map(|c| c.as_os_str().to_string_lossy())
-            .collect::<Vec<_>>()
-            .join("/");
-        if let Some(sha) = info.files.get(&rel) {
-            let why = match crate::manifest::sha256_file(path) {
-                Err(e) => Some(format!("unreadable ({e})")),
-                Ok(now) if &now != sha => Some("changed".to_string()),
-                Ok(_) => None,
-            };
-            if let Some(why) = why {
-                return Err(ResultSetError::Tampered {
-                    dir: dir.to_path_buf(),
-                    file: path.to_path_buf(),
-                    run: info.run_id.clone(),
-                    why,
-                });
-            }
+        if let Some(sha) = info.files.get(&set_key(dir, path)) {
+            check_listed(dir, path, sha, &info)?;
         }
         return Ok(Some(info));
     }

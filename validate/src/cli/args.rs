@@ -256,18 +256,20 @@ impl LevelStudyArgs {
 /// A count of at least one (`--stride`): clap refuses anything else
 /// before any work, naming the option and the value.
 pub fn at_least_one(s: &str) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(n) if n >= 1 => Ok(n),
-        _ => Err("must be a whole number >= 1".into()),
-    }
+    count_in(s, 1, usize::MAX).map_err(|_| "must be a whole number >= 1".into())
 }
 
 /// Positions per mesh cycle of the direct UTCA search (`--positions`):
 /// 1 to 3600 (a bound on the run time, each position a direct search).
 pub fn positions_per_cycle(s: &str) -> Result<usize, String> {
+    count_in(s, 1, 3600)
+}
+
+/// A whole number in [lo, hi], else the range in words.
+fn count_in(s: &str, lo: usize, hi: usize) -> Result<usize, String> {
     match s.trim().parse::<usize>() {
-        Ok(n) if (1..=3600).contains(&n) => Ok(n),
-        _ => Err("must be a whole number in [1, 3600]".into()),
+        Ok(n) if (lo..=hi).contains(&n) => Ok(n),
+        _ => Err(format!("must be a whole number in [{lo}, {hi}]")),
     }
 }
 
