@@ -125,6 +125,24 @@ mod command_line_ranges {
         assert!(e.contains("--positions") && e.contains("[1, 3600]"), "{e}");
     }
 
+    #[test]
+    fn line_load_column_ranges_parse_as_a_dash_b_in_order() {
+        let ok = |extra: &[&str]| {
+            let mut args = vec!["validate", "line-load", "s.toml"];
+            args.extend_from_slice(extra);
+            parse(&args)
+        };
+        assert!(ok(&["--columns", "34-39"]).is_ok());
+        assert!(ok(&["--columns", "7-7", "--member", "wheel", "--blank", "lightweight"]).is_ok());
+        assert!(ok(&["--response-tooth", "-1"]).is_ok());
+        for bad in ["39", "a-3", "9-3", "-"] {
+            let e = ok(&["--columns", bad]).unwrap_err();
+            assert!(e.contains("--columns"), "{bad}: {e}");
+        }
+        let e = ok(&["--member", "gear"]).unwrap_err();
+        assert!(e.contains("--member") && e.contains("wheel"), "{e}");
+    }
+
     proptest! {
         #[test]
         fn stride_parses_exactly_when_at_least_one(n in 0u64..1_000_000) {

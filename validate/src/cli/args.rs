@@ -207,6 +207,21 @@ pub struct LineLoadArgs {
     /// Grid columns at the toe and at the heel left out of the statistics.
     #[arg(long, default_value_t = 2)]
     pub end_columns: usize,
+    /// Load only grid columns A to B (A-B, inclusive): a line load over part
+    /// of the face width, compared on those columns (default: the whole
+    /// line, compared inside --end-columns).
+    #[arg(long, value_parser = column_range)]
+    pub columns: Option<(usize, usize)>,
+    /// Compare the approach on this tooth relative to the loaded one (0: the
+    /// loaded tooth; ±1: its neighbours, the coupling between teeth).
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
+    pub response_tooth: i32,
+    /// The loaded member: pinion or wheel.
+    #[arg(long, default_value = "pinion", value_parser = ["pinion", "wheel"])]
+    pub member: String,
+    /// Its blank: standard or lightweight.
+    #[arg(long, default_value = "standard", value_parser = ["standard", "lightweight"])]
+    pub blank: String,
 }
 
 /// What the studies on one position over mesh levels share.
@@ -351,4 +366,21 @@ pub struct CalibrateArgs {
     /// The calibration record to write (read by the report).
     #[arg(long, default_value = "reference/white_paper_20x43_calibration.json")]
     pub record_out: PathBuf,
+}
+
+/// `A-B`: a range of grid columns.
+fn column_range(s: &str) -> Result<(usize, usize), String> {
+    let (a, b) = s
+        .split_once('-')
+        .ok_or_else(|| format!("{s}: expected A-B (grid columns, e.g. 34-39)"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<usize>()
+            .map_err(|_| format!("{s}: {v} is not a column number"))
+    };
+    let (a, b) = (parse(a)?, parse(b)?);
+    if a > b {
+        return Err(format!("{s}: the first column must not follow the last"));
+    }
+    Ok((a, b))
 }

@@ -364,6 +364,10 @@ pub fn line_load(
         line_load_n_per_mm,
         row,
         end_columns,
+        columns,
+        response_tooth,
+        member,
+        blank,
     }: LineLoadArgs,
 ) -> anyhow::Result<()> {
     if let Some(b) = half_width_mm.iter().find(|b| !(b.is_finite() && **b > 0.0)) {
@@ -374,11 +378,23 @@ pub fn line_load(
     }
     let sc = geometry::scene::Scene::load(&scene)?;
     let study = validate::studies::line_load::LineLoadStudy {
+        member: if member == "wheel" {
+            geometry::design::Member::Wheel
+        } else {
+            geometry::design::Member::Pinion
+        },
+        blank: if blank == "lightweight" {
+            geometry::scene::Blank::Lightweight
+        } else {
+            geometry::scene::Blank::Standard
+        },
         levels,
         half_widths: half_width_mm.iter().map(|b| b * 1e-3).collect(),
         q: line_load_n_per_mm * 1e3,
         row,
         end_columns,
+        loaded_columns: columns,
+        response_offset: response_tooth,
     };
     let r = validate::studies::line_load::run(&sc, &meshes, &out, &study)?;
     for l in &r.levels {

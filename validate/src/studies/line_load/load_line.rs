@@ -16,6 +16,19 @@ pub struct LoadLine {
     pub across: Vec<[f64; 3]>,
 }
 
+impl LoadLine {
+    /// The part of a line sampled at `per_column` points per grid column
+    /// that covers columns `first..=last`.
+    pub fn columns(&self, first: usize, last: usize, per_column: usize) -> LoadLine {
+        let range = first * per_column..=((last + 1) * per_column).min(self.points.len() - 1);
+        LoadLine {
+            points: self.points[range.clone()].to_vec(),
+            normals: self.normals[range.clone()].to_vec(),
+            across: self.across[range].to_vec(),
+        }
+    }
+}
+
 fn unit(a: [f64; 3]) -> [f64; 3] {
     let n = norm(a);
     [a[0] / n, a[1] / n, a[2] / n]

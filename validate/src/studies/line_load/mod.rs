@@ -1,6 +1,8 @@
 //! The line-load check of the reduced model's compliance split: a
-//! Hertzian line load on one pinion tooth, solved on a fine FE mesh, against
-//! the reduced-order prediction global FE + Weber–Banaschek.
+//! Hertzian line load on one tooth of a member (the standard pinion by
+//! default; the wheel and the lightweight blank as chosen), solved on a fine
+//! FE mesh, against the reduced-order prediction global FE +
+//! Weber–Banaschek.
 //!
 //! The load runs along the loaded flank of tooth 0 at a fixed profile
 //! parameter η₀ (a profile row of the contact grid) over the whole active
@@ -81,6 +83,10 @@ pub fn reduced_prediction(
 /// What `validate line-load` solves.
 #[derive(Debug, Clone)]
 pub struct LineLoadStudy {
+    /// The loaded member and its blank (the stiffness file and the fine
+    /// meshes of that body; its tooth 0 must be solved and refined).
+    pub member: geometry::design::Member,
+    pub blank: geometry::scene::Blank,
     /// Fine mesh levels (medium, reference).
     pub levels: Vec<String>,
     /// Hertz half-widths, m.
@@ -92,6 +98,14 @@ pub struct LineLoadStudy {
     pub row: Option<usize>,
     /// Grid columns left out at each end (toe and heel) in the statistics.
     pub end_columns: usize,
+    /// Load only the grid columns first..=last (a line load over part of
+    /// the face width: a concentrated contact), compared on them; None:
+    /// the whole line, compared inside the end columns.
+    pub loaded_columns: Option<(usize, usize)>,
+    /// Where the approach is compared: on the loaded tooth (0) or on a
+    /// neighbour (±1, …: the coupling between teeth, without the local
+    /// term).
+    pub response_offset: i32,
 }
 
 /// One fine mesh level's comparison.
@@ -110,10 +124,19 @@ pub struct LineLoadLevel {
     pub cases: Vec<LineLoadCase>,
 }
 
-/// The study's result (`out/<scene>/reference/line_load.json`).
+/// The study's result (`out/<scene>/reference/line_load.json` for the
+/// standard pinion, `line_load_<member>_<blank>.json` for another body).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct LineLoad {
-    pub member: String,
+    pub member: geometry::design::Member,
+    /// (Results written before the blank was recorded are the standard
+    /// pinion's.)
+    #[serde(default = "standard_blank")]
+    pub blank: geometry::scene::Blank,
+    /// The tooth (relative to the loaded tooth 0) whose approach is
+    /// compared.
+    #[serde(default)]
+    pub response_offset: i32,
     pub flank: String,
     pub stiffness_file: String,
     /// SHA-256 of the stiffness file's mesh (the reduced level's).
@@ -128,16 +151,41 @@ pub struct LineLoad {
     pub levels: Vec<LineLoadLevel>,
 }
 
+fn standard_blank() -> geometry::scene::Blank {
+    geometry::scene::Blank::Standard
+}
+
+/// The file a study of `member` with `blank` writes beside the reference
+/// sweep: `line_load.json` for the standard pinion (the report's),
+/// `line_load_<member>_<blank>.json` otherwise.
+/// A comparison on a neighbouring tooth adds `_tooth<offset>`.
+pub fn file_name(
+    member: geometry::design::Member,
+    blank: geometry::scene::Blank,
+    response_offset: i32,
+) -> String {
+    let standard_pinion = (member, blank)
+        == (
+            geometry::design::Member::Pinion,
+            geometry::scene::Blank::Standard,
+        );
+    match (standard_pinion, response_offset) {
+        (true, 0) => "line_load.json".into(),
+        (_, 0) => format!("line_load_{}_{}.json", member.name(), blank.name()),
+        (_, o) => format!(
+            "line_load_{}_{}_tooth{o:+}.json",
+            member.name(),
+            blank.name()
+        ),
+    }
+}
+
 impl LineLoad {
     /// Whether the meshes under `scene_meshes` are still the ones the study
     /// ran on.
     pub fn current(&self, scene_meshes: &std::path::Path) -> bool {
         let same = |level: &str, hash: &str| {
-            let stem = formats::paths::stem_named(
-                geometry::design::Member::Pinion,
-                geometry::scene::Blank::Standard,
-                level,
-            );
+            let stem = formats::paths::stem_named(self.member, self.blank, level);
             preprocess::stiffness_stage::sha256_file(&formats::paths::msh(scene_meshes, &stem))
                 .is_ok_and(|h| h == hash)
         };
@@ -153,9 +201,11 @@ impl LineLoad {
         );
         let _ = writeln!(
             s,
-            "A Hertzian line load (q = {:.0} N/mm, half-width b) along the {} flank of pinion tooth 0 at profile row {} (η = {:.3}) over the whole face width ({:.1} mm), bore clamped (`validate line-load`). Fine-mesh FE: the normal approach of the line's surface points at the grid columns. Reduced model: the stiffness file's global field (total − local, reduced level) under the column forces q·L plus the Weber–Banaschek approach to the stored depth h. Compared on columns {}..={} (the end columns, where the plane-strain WB term does not hold, left out). The project's bound is 3 %.\n",
+            "A Hertzian line load (q = {:.0} N/mm, half-width b) along the {} flank of {} tooth 0 ({} blank) at profile row {} (η = {:.3}) over the whole face width ({:.1} mm), bore clamped (`validate line-load`). Fine-mesh FE: the normal approach of the line's surface points at the grid columns. Reduced model: the stiffness file's global field (total − local, reduced level) under the column forces q·L plus the Weber–Banaschek approach to the stored depth h. Compared on columns {}..={} (the end columns, where the plane-strain WB term does not hold, left out). The project's bound is 3 %.\n",
             self.line_load_n_per_m * 1e-3,
             self.flank,
+            self.member.name(),
+            self.blank.name(),
             self.profile_row,
             self.eta,
             self.line_length_mm,

@@ -1,4 +1,4 @@
-//! `validate line-load`: the study's steps, from the standard pinion's
+//! `validate line-load`: the study's steps, from the member's
 //! stiffness file and the load line to the comparison on every fine mesh
 //! level and half-width, written beside the reference sweep.
 
@@ -22,9 +22,10 @@ struct Setup<'a> {
     flank_name: &'a str,
     material: geometry::Material,
     data: &'a StiffnessData,
-    /// The grid's profile row of the line, and the loaded tooth's offset
-    /// index in the stiffness file.
+    /// The grid's profile row of the line, the solved index of tooth 0
+    /// and the loaded tooth's offset index in the stiffness file.
     row: usize,
+    s0: usize,
     o0: usize,
     line: &'a LoadLine,
     /// Compared columns, each column's point and inward normal, and the
@@ -42,13 +43,14 @@ struct FineMesh<'a> {
     elements: geometry::scene::FlankElements,
     body: &'a preprocess::body_mesh::BodyMesh,
     faces: &'a [[usize; 6]],
+    /// The responding tooth's flank.
     surface: &'a MasterSurface,
     dofs: &'a fem::Dofs,
     factor: &'a fem::Factor,
 }
 
-/// Runs the study on the scene's standard pinion: its reduced-level
-/// stiffness file against its fine meshes.
+/// Runs the study on the scene's `study.member` with `study.blank`: its
+/// reduced-level stiffness file against its fine meshes.
 pub fn run(
     scene: &geometry::scene::LoadedScene,
     meshes: &std::path::Path,
@@ -58,26 +60,68 @@ pub fn run(
     let sc = &scene.scene;
     let g = geometry::pair::PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
     let side = sc.loaded_flank;
-    let flank = g.flank(Member::Pinion, side);
-    let flank_name = side.flank_name(Member::Pinion);
-    let material = g.data.member(Member::Pinion).material();
+    let (member, blank) = (study.member, study.blank);
+    let flank = g.flank(member, side);
+    let flank_name = side.flank_name(member);
+    let material = g.data.member(member).material();
     let dir = meshes.join(&sc.name);
-    let (plan, data) = pinion_stiffness(scene, &g, &dir)?;
+    let (plan, data) = member_stiffness(scene, &g, &dir, member, blank)?;
     let (np, nf) = (data.grid_profile, data.grid_face);
     let row = compared_row(study, np, nf)?;
     let o0 = data
         .offsets
         .iter()
-        .position(|&o| o == 0)
-        .context("stiffness file has no response on the loaded tooth")?;
+        .position(|&o| o == study.response_offset)
+        .with_context(|| {
+            format!(
+                "the stiffness file holds no response on tooth offset {} (it holds {:?})",
+                study.response_offset, data.offsets
+            )
+        })?;
+    // On an axisymmetric body the solved tooth's data serve every tooth;
+    // else tooth 0 must be among the solved ones.
+    let s0 = match data.axisymmetric {
+        true => Some(0),
+        false => data.solved_teeth.iter().position(|&t| t == 0),
+    };
+    let s0 = s0.with_context(|| {
+        format!(
+            "the {} stiffness file ({} blank) does not solve tooth 0 (it solves {:?})",
+            member.name(),
+            blank.name(),
+            data.solved_teeth
+        )
+    })?;
     let eta0 = data.eta[row];
-    let (line, col_len) = load_line(flank, nf, eta0)?;
+    let (line, mut col_len) = load_line(flank, nf, eta0)?;
     let profile_len = profile_length(flank)?;
-    let cols: Vec<usize> = (study.end_columns..nf - study.end_columns).collect();
+    let (line, cols) = match study.loaded_columns {
+        None => (line, (study.end_columns..nf - study.end_columns).collect()),
+        Some((a, b)) => {
+            for (j, l) in col_len.iter_mut().enumerate() {
+                if j < a || j > b {
+                    *l = 0.0;
+                }
+            }
+            (
+                line.columns(a, b, LINE_POINTS_PER_COLUMN),
+                (a..=b).collect::<Vec<usize>>(),
+            )
+        }
+    };
+    // The compared points on the responding tooth: tooth 0's turned by
+    // its offset's pitches about the member axis.
+    let turn = geometry::generation::rot_z(
+        study.response_offset as f64 * std::f64::consts::TAU / data.teeth as f64,
+    );
+    let turned = |v: [f64; 3]| {
+        let w = turn * nalgebra::Vector3::new(v[0], v[1], v[2]);
+        [w[0], w[1], w[2]]
+    };
     let col_points: Vec<([f64; 3], [f64; 3])> = (0..nf)
         .map(|j| {
             let p = flank.at_unit(data.xi[j], eta0)?;
-            Ok((p.pos, p.normal.map(|c| -c)))
+            Ok((turned(p.pos), turned(p.normal.map(|c| -c))))
         })
         .collect::<Result<_, geometry::error::GeometryError>>()?;
     let forces: Vec<f64> = col_len.iter().map(|l| study.q * l).collect();
@@ -89,6 +133,7 @@ pub fn run(
         material,
         data: &data,
         row,
+        s0,
         o0,
         line: &line,
         cols: &cols,
@@ -101,7 +146,9 @@ pub fn run(
         levels.push(level_comparison(&setup, level)?);
     }
     let result = LineLoad {
-        member: "pinion".into(),
+        member,
+        blank,
+        response_offset: study.response_offset,
         flank: flank_name.into(),
         stiffness_file: plan.path.display().to_string(),
         stiffness_mesh_sha256: preprocess::stiffness_stage::sha256_file(&formats::paths::msh(
@@ -119,29 +166,28 @@ pub fn run(
     Ok(result)
 }
 
-/// The standard pinion's reduced-level stiffness file, checked against the
-/// scene as the solver checks it (manifest, config, hash).
-fn pinion_stiffness(
+/// The member's reduced-level stiffness file, checked against the scene as
+/// the solver checks it (manifest, config, hash).
+fn member_stiffness(
     scene: &LoadedScene,
     g: &geometry::pair::PairGeometry,
     dir: &std::path::Path,
+    member: Member,
+    blank: geometry::scene::Blank,
 ) -> anyhow::Result<(StiffnessPlan, StiffnessData)> {
     let sc = &scene.scene;
     let side = sc.loaded_flank;
-    let (blank, level) = (
-        geometry::scene::Blank::Standard,
-        formats::paths::MeshLevel::Reduced,
-    );
-    let plan = formats::stiffness_plan::plan(scene, g, dir, Member::Pinion, blank, level, side)?;
-    let data = formats::stiffness_plan::check(scene, g, dir, &plan, Member::Pinion, blank, level)
+    let level = formats::paths::MeshLevel::Reduced;
+    let plan = formats::stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
+    let data = formats::stiffness_plan::check(scene, g, dir, &plan, member, blank, level)
         .with_context(|| {
-        format!(
-            "scene {}: stiffness file {}; run `preprocess stiffness {}`",
-            sc.name,
-            plan.path.display(),
-            scene.path.display()
-        )
-    })?;
+            format!(
+                "scene {}: stiffness file {}; run `preprocess stiffness {}`",
+                sc.name,
+                plan.path.display(),
+                scene.path.display()
+            )
+        })?;
     Ok((plan, data))
 }
 
@@ -156,7 +202,14 @@ fn compared_row(study: &LineLoadStudy, np: usize, nf: usize) -> anyhow::Result<u
             np - 1
         );
     }
-    if 2 * study.end_columns >= nf {
+    if let Some((a, b)) = study.loaded_columns {
+        if b >= nf {
+            anyhow::bail!(
+                "--columns {a}-{b}: the grid has {nf} columns (0..{})",
+                nf - 1
+            );
+        }
+    } else if 2 * study.end_columns >= nf {
         anyhow::bail!(
             "--end-columns {}: leaves no column of the {nf} to compare",
             study.end_columns
@@ -165,11 +218,14 @@ fn compared_row(study: &LineLoadStudy, np: usize, nf: usize) -> anyhow::Result<u
     Ok(row)
 }
 
+/// Line points per grid column.
+const LINE_POINTS_PER_COLUMN: usize = 10;
+
 /// The load line at profile parameter `eta0`, sampled at the `nf` column
 /// boundaries and ten points per column, and each column's length of it.
 fn load_line(flank: &Flank, nf: usize, eta0: f64) -> anyhow::Result<(LoadLine, Vec<f64>)> {
     // The line, sampled at column boundaries and between them.
-    let per_col = 10;
+    let per_col = LINE_POINTS_PER_COLUMN;
     let m = per_col * nf;
     let mut pts = Vec::with_capacity(m + 1);
     let mut nrm = Vec::with_capacity(m + 1);
@@ -221,7 +277,7 @@ fn level_comparison(s: &Setup, level: &str) -> anyhow::Result<LineLoadLevel> {
     };
     let path = formats::paths::msh(
         dir,
-        &formats::paths::stem_named(Member::Pinion, geometry::scene::Blank::Standard, level),
+        &formats::paths::stem_named(s.study.member, s.study.blank, level),
     );
     if !path.exists() {
         anyhow::bail!(
@@ -254,6 +310,15 @@ fn level_comparison(s: &Setup, level: &str) -> anyhow::Result<LineLoadLevel> {
         .iter()
         .map(|&p| surface.project(p, ON_FACE_REACH).is_some())
         .collect();
+    let responding = (study.response_offset).rem_euclid(s.data.teeth as i32);
+    let response_faces = body.group(&format!("tooth{responding}_{flank_name}"));
+    if response_faces.is_empty() {
+        anyhow::bail!(
+            "{}: no face group tooth{responding}_{flank_name} (the responding tooth is not refined at this level)",
+            path.display()
+        );
+    }
+    let response = MasterSurface::new(body.mesh.nodes.clone(), response_faces.to_vec());
     let line_on_mesh: f64 = pts
         .windows(2)
         .zip(on_mesh.windows(2))
@@ -265,7 +330,7 @@ fn level_comparison(s: &Setup, level: &str) -> anyhow::Result<LineLoadLevel> {
         elements,
         body: &body,
         faces,
-        surface: &surface,
+        surface: &response,
         dofs: &dofs,
         factor: &factor,
     };
@@ -290,7 +355,7 @@ fn level_comparison(s: &Setup, level: &str) -> anyhow::Result<LineLoadLevel> {
 fn half_width_case(s: &Setup, fine: &FineMesh, b: f64) -> anyhow::Result<LineLoadCase> {
     let (study, data, material) = (s.study, s.data, s.material);
     let (line, cols, col_points, forces) = (s.line, s.cols, s.col_points, s.forces);
-    let (o0, profile_len) = (s.o0, s.profile_len);
+    let (s0, o0, profile_len) = (s.s0, s.o0, s.profile_len);
     let (np, nf, row) = (data.grid_profile, data.grid_face, s.row);
     let idx = |j: usize| j * np + row;
     let (body, faces, surface) = (fine.body, fine.faces, fine.surface);
@@ -311,6 +376,9 @@ fn half_width_case(s: &Setup, fine: &FineMesh, b: f64) -> anyhow::Result<LineLoa
         .collect::<anyhow::Result<_>>()?;
     let wb: Vec<f64> = (0..nf)
         .map(|j| {
+            if forces[j] == 0.0 || study.response_offset != 0 {
+                return 0.0;
+            }
             solver::element::weber_banaschek::body_approach(
                 study.q,
                 b,
@@ -319,7 +387,8 @@ fn half_width_case(s: &Setup, fine: &FineMesh, b: f64) -> anyhow::Result<LineLoa
             )
         })
         .collect();
-    let (glob, red) = reduced_prediction(|k, j| data.global_at(0, o0, idx(k), idx(j)), forces, &wb);
+    let (glob, red) =
+        reduced_prediction(|k, j| data.global_at(s0, o0, idx(k), idx(j)), forces, &wb);
     let diff: Vec<f64> = cols
         .iter()
         .zip(&fe)
@@ -361,7 +430,7 @@ fn add_beside_reference(
         formats::result_set::RunLock::shared(&target, &format!("validate line-load {name}"))?;
     formats::added_files::add_json(
         &lock,
-        "line_load.json",
+        &super::file_name(result.member, result.blank, result.response_offset),
         result,
         formats::added_files::Dependence::Beside,
     )?;

@@ -71,3 +71,47 @@ fn reduced_prediction_adds_global_response_and_weber_banaschek() {
     assert_eq!(glob, vec![1.0 + 1.0, 0.5 + 2.0]);
     assert_eq!(tot, vec![2.5, 2.75]);
 }
+
+/// The standard pinion's study keeps the file the report reads; another
+/// body's goes beside it under its own name, so neither replaces the other.
+#[test]
+fn each_body_writes_its_own_file_and_the_standard_pinion_the_reports() {
+    use geometry::design::Member;
+    use geometry::scene::Blank;
+    assert_eq!(
+        file_name(Member::Pinion, Blank::Standard, 0),
+        "line_load.json"
+    );
+    assert_eq!(
+        file_name(Member::Wheel, Blank::Lightweight, 0),
+        "line_load_wheel_lightweight.json"
+    );
+    assert_eq!(
+        file_name(Member::Wheel, Blank::Standard, 0),
+        "line_load_wheel_standard.json"
+    );
+    assert_eq!(
+        file_name(Member::Pinion, Blank::Standard, -1),
+        "line_load_pinion_standard_tooth-1.json"
+    );
+    assert_eq!(
+        file_name(Member::Wheel, Blank::Lightweight, 1),
+        "line_load_wheel_lightweight_tooth+1.json"
+    );
+}
+
+/// A result written before the study named its blank was the standard
+/// pinion's, and reads as such.
+#[test]
+fn a_result_without_a_blank_reads_as_the_standard_pinions() {
+    let json = r#"{"member": "pinion", "flank": "concave", "stiffness_file": "f",
+        "stiffness_mesh_sha256": "x", "line_load_n_per_m": 1e5, "profile_row": 6,
+        "eta": 0.5, "line_length_mm": 30.0, "compared_columns": [2], "levels": []}"#;
+    let r: LineLoad = serde_json::from_str(json).unwrap();
+    assert_eq!(r.member, geometry::design::Member::Pinion);
+    assert_eq!(r.blank, geometry::scene::Blank::Standard);
+    assert_eq!(r.response_offset, 0);
+    let mut s = String::new();
+    r.markdown(&mut s);
+    assert!(s.contains("pinion tooth 0 (standard blank)"), "{s}");
+}
