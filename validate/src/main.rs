@@ -133,7 +133,15 @@ mod command_line_ranges {
             parse(&args)
         };
         assert!(ok(&["--columns", "34-39"]).is_ok());
-        assert!(ok(&["--columns", "7-7", "--member", "wheel", "--blank", "lightweight"]).is_ok());
+        assert!(ok(&[
+            "--columns",
+            "7-7",
+            "--member",
+            "wheel",
+            "--blank",
+            "lightweight"
+        ])
+        .is_ok());
         assert!(ok(&["--response-tooth", "-1"]).is_ok());
         for bad in ["39", "a-3", "9-3", "-"] {
             let e = ok(&["--columns", bad]).unwrap_err();
