@@ -137,6 +137,10 @@ pub struct LineLoad {
     /// compared.
     #[serde(default)]
     pub response_offset: i32,
+    /// The grid columns loaded, where the line covered only part of the
+    /// face width.
+    #[serde(default)]
+    pub loaded_columns: Option<(usize, usize)>,
     pub flank: String,
     pub stiffness_file: String,
     /// SHA-256 of the stiffness file's mesh (the reduced level's).
@@ -201,16 +205,31 @@ impl LineLoad {
         );
         let _ = writeln!(
             s,
-            "A Hertzian line load (q = {:.0} N/mm, half-width b) along the {} flank of {} tooth 0 ({} blank) at profile row {} (η = {:.3}) over the whole face width ({:.1} mm), bore clamped (`validate line-load`). Fine-mesh FE: the normal approach of the line's surface points at the grid columns. Reduced model: the stiffness file's global field (total − local, reduced level) under the column forces q·L plus the Weber–Banaschek approach to the stored depth h. Compared on columns {}..={} (the end columns, where the plane-strain WB term does not hold, left out). The project's bound is 3 %.\n",
+            "A Hertzian line load (q = {:.0} N/mm, half-width b) along the {} flank of {} tooth 0 ({} blank) at profile row {} (η = {:.3}) {}, bore clamped (`validate line-load`). Fine-mesh FE: the normal approach {} at the grid columns. Reduced model: the stiffness file's global field (total − local, reduced level) under the column forces q·L{}. Compared on columns {}..={}{}. The project's bound is 3 %.\n",
             self.line_load_n_per_m * 1e-3,
             self.flank,
             self.member.name(),
             self.blank.name(),
             self.profile_row,
             self.eta,
-            self.line_length_mm,
+            match self.loaded_columns {
+                None => format!("over the whole face width ({:.1} mm)", self.line_length_mm),
+                Some((a, b)) => format!("over grid columns {a}..={b} only ({:.1} mm)", self.line_length_mm),
+            },
+            match self.response_offset {
+                0 => "of the line's surface points".to_string(),
+                o => format!("of the flank of tooth {o:+}, the loaded tooth's neighbour,"),
+            },
+            match self.response_offset {
+                0 => " plus the Weber–Banaschek approach to the stored depth h",
+                _ => " (no local term on another tooth)",
+            },
             self.compared_columns.first().unwrap_or(&0),
             self.compared_columns.last().unwrap_or(&0),
+            match self.loaded_columns {
+                None => " (the end columns, where the plane-strain WB term does not hold, left out)",
+                Some(_) => "",
+            },
         );
         let _ = writeln!(s, "| FE mesh | dofs | flank element, mm | b, mm | elements across 2b | FE approach, µm (mid column) | global + WB, µm | of which WB | mean \\|diff\\| % | max \\|diff\\| % |");
         let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");

@@ -149,6 +149,7 @@ pub fn run(
         member,
         blank,
         response_offset: study.response_offset,
+        loaded_columns: study.loaded_columns,
         flank: flank_name.into(),
         stiffness_file: plan.path.display().to_string(),
         stiffness_mesh_sha256: preprocess::stiffness_stage::sha256_file(&formats::paths::msh(

@@ -114,4 +114,19 @@ fn a_result_without_a_blank_reads_as_the_standard_pinions() {
     let mut s = String::new();
     r.markdown(&mut s);
     assert!(s.contains("pinion tooth 0 (standard blank)"), "{s}");
+    assert!(s.contains("over the whole face width") && s.contains("Weber–Banaschek approach"));
+    // A partial line on the wheel, compared on the neighbouring tooth, says so.
+    let r = LineLoad {
+        member: geometry::design::Member::Wheel,
+        blank: geometry::scene::Blank::Lightweight,
+        response_offset: 1,
+        loaded_columns: Some((33, 39)),
+        ..r
+    };
+    let mut s = String::new();
+    r.markdown(&mut s);
+    assert!(s.contains("wheel tooth 0 (lightweight blank)"), "{s}");
+    assert!(s.contains("over grid columns 33..=39 only"), "{s}");
+    assert!(s.contains("tooth +1") && s.contains("no local term"), "{s}");
+    assert!(!s.contains("whole face width"), "{s}");
 }
