@@ -157,6 +157,25 @@ pub enum CheckError {
     Nonsense { path: PathBuf, problem: String },
 }
 
+impl Remedy {
+    /// What a user does about it, as the tail of an error message
+    /// (`; run ...` or `; check ...`), for the scene file `scene`, its
+    /// design file `design` and the mesh folder `dir` at `level`.
+    pub fn advice(self, scene: &Path, design: &Path, dir: &Path, level: MeshLevel) -> String {
+        let sc = scene.display();
+        match self {
+            Remedy::Design => format!("; check the design file {}", design.display()),
+            Remedy::Folder => format!("; check the mesh folder {} (`--meshes`)", dir.display()),
+            Remedy::Mesh => format!(
+                "; run `preprocess mesh {sc} --level {}`, then `preprocess stiffness {sc}{}`",
+                level.name(),
+                level.option()
+            ),
+            Remedy::Stiffness => format!("; run `preprocess stiffness {sc}{}`", level.option()),
+        }
+    }
+}
+
 impl CheckError {
     /// What mends this error: the stage to run again, or the design or
     /// the mesh folder to look at.

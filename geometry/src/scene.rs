@@ -347,6 +347,16 @@ impl MeshLevel {
         }
     }
 
+    /// The command-line option that selects the level in `preprocess mesh`
+    /// and `preprocess stiffness` (` --level <name>`), empty for the
+    /// default (reduced) level.
+    pub fn option(self) -> String {
+        match self {
+            MeshLevel::Reduced => String::new(),
+            l => format!(" --level {}", l.name()),
+        }
+    }
+
     /// The level of a name ([`MeshLevel::name`]); `None` for any other text.
     pub fn from_name(name: &str) -> Option<MeshLevel> {
         Self::FINEST_FIRST.into_iter().find(|l| l.name() == name)

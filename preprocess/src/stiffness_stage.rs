@@ -179,10 +179,7 @@ pub fn planned(
             member.name(),
             blank.name(),
             scene.path.display(),
-            match level {
-                MeshLevel::Reduced => String::new(),
-                l => format!(" --level {}", l.name()),
-            }
+            level.option()
         );
     }
     let mesh_inputs: serde_json::Value = serde_json::from_str(

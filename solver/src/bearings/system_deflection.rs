@@ -474,9 +474,10 @@ mod tests {
     use super::*;
 
     /// x ↦ g(x) = a x + b on every component with a = −1.8: the plain
-    /// iteration diverges (|a| > 1), a fixed half step too (|1 − ω + ωa| =
-    /// 1.4 > 1), Aitken's factor is exact for a linear map and lands on the
-    /// fixed point b / (1 − a) at its first relaxed step.
+    /// iteration diverges (|a| > 1), a fixed half step contracts only by
+    /// |1 − ω + ωa| = 0.4 per step, Aitken's factor is exact for a linear
+    /// map and lands on the fixed point b / (1 − a) at its first relaxed
+    /// step.
     #[test]
     fn aitken_relaxation_solves_a_diverging_linear_fixed_point() {
         let (a, b) = (-1.8, 2e-6);

@@ -230,11 +230,6 @@ pub fn member_compliance_at(
 ) -> anyhow::Result<(MemberCompliance, StiffnessPlan)> {
     let p = stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
     let data = stiffness_plan::check(scene, g, dir, &p, member, blank, level).map_err(|e| {
-        let level_flag = match level {
-            MeshLevel::Reduced => String::new(),
-            l => format!(" --level {}", l.name()),
-        };
-        let sc = scene.path.display();
         let what = format!(
             "scene {}: the stiffness file of the {} ({} blank, {} flank) cannot be used",
             scene.scene.name,
@@ -242,19 +237,9 @@ pub fn member_compliance_at(
             blank.name(),
             side.flank_name(member),
         );
-        let mend = match e.remedy() {
-            stiffness_plan::Remedy::Design => format!("; check the design file {}", scene.design_path.display()),
-            stiffness_plan::Remedy::Folder => {
-                format!("; check the mesh folder {} (`--meshes`)", dir.display())
-            }
-            stiffness_plan::Remedy::Mesh => format!(
-                "; run `preprocess mesh {sc} --level {}`, then `preprocess stiffness {sc}{level_flag}`",
-                level.name()
-            ),
-            stiffness_plan::Remedy::Stiffness => {
-                format!("; run `preprocess stiffness {sc}{level_flag}`")
-            }
-        };
+        let mend = e
+            .remedy()
+            .advice(&scene.path, &scene.design_path, dir, level);
         anyhow::Error::new(e).context(what + &mend)
     })?;
     Ok((

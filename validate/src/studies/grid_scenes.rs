@@ -76,8 +76,16 @@ pub fn member_fields(
 ) -> anyhow::Result<(StiffnessData, Option<f64>)> {
     let side = scene.scene.loaded_flank;
     let p = stiffness_plan::plan(scene, g, dir, member, Blank::Standard, level, side)?;
-    let data = stiffness_plan::check(scene, g, dir, &p, member, Blank::Standard, level)
-        .with_context(|| format!("stiffness file {} cannot be used", p.path.display()))?;
+    let data =
+        stiffness_plan::check(scene, g, dir, &p, member, Blank::Standard, level).map_err(|e| {
+            let mend = e
+                .remedy()
+                .advice(&scene.path, &scene.design_path, dir, level);
+            anyhow::Error::new(e).context(format!(
+                "stiffness file {} cannot be used{mend}",
+                p.path.display()
+            ))
+        })?;
     let report = p.path.with_extension("json");
     let total_s = std::fs::read_to_string(&report)
         .ok()

@@ -180,15 +180,18 @@ fn member_stiffness(
     let side = sc.loaded_flank;
     let level = formats::paths::MeshLevel::Reduced;
     let plan = formats::stiffness_plan::plan(scene, g, dir, member, blank, level, side)?;
-    let data = formats::stiffness_plan::check(scene, g, dir, &plan, member, blank, level)
-        .with_context(|| {
-            format!(
-                "scene {}: stiffness file {}; run `preprocess stiffness {}`",
+    let data = formats::stiffness_plan::check(scene, g, dir, &plan, member, blank, level).map_err(
+        |e| {
+            let mend = e
+                .remedy()
+                .advice(&scene.path, &scene.design_path, dir, level);
+            anyhow::Error::new(e).context(format!(
+                "scene {}: stiffness file {} cannot be used{mend}",
                 sc.name,
-                plan.path.display(),
-                scene.path.display()
-            )
-        })?;
+                plan.path.display()
+            ))
+        },
+    )?;
     Ok((plan, data))
 }
 
