@@ -4,7 +4,11 @@
 //! second run that reuses the files. Meshes come from `meshes/default/` (made
 //! by `make preprocess`; built here into a temporary directory if missing).
 //! Targets: all three members ≤ 10 min with peak memory ≤ 12 GB;
-//! a second run with nothing changed ≤ 10 s. Results in `bench/stiffness.json`.
+//! a second run with nothing changed ≤ 10 s. Then each member × blank's
+//! influence fields again by pruned forward solves with Gram products (the
+//! stage's path) and by full solves on the same body: time of each, their
+//! ratio in the same run, and the largest relative difference of the
+//! fields. Results in `bench/stiffness.json`.
 
 use formats::output::peak_memory_gb;
 use geometry::scene::Scene;
@@ -33,6 +37,11 @@ fn main() {
             }
         }
     }
+    // The manifest lists the meshes with their checksums (the stiffness
+    // stage reads it); entries of meshes not copied are not used.
+    if copied == 6 {
+        std::fs::copy(src.join("manifest.json"), dir.join("manifest.json")).unwrap();
+    }
     if copied < 6 {
         eprintln!("meshes/default incomplete: meshing into a temporary directory first");
         preprocess::mesh_stage::run(&scene, tmp.path(), preprocess::mesh_stage::Level::Reduced)
@@ -51,7 +60,7 @@ fn main() {
         std::thread::available_parallelism().map_or(0, |n| n.get())
     );
     println!(
-        "{:<8} {:<12} {:>8} {:>9} {:>9} {:>10} {:>6} {:>12} {:>9} {:>9}",
+        "{:<8} {:<12} {:>8} {:>9} {:>9} {:>10} {:>6} {:>12} {:>9} {:>9} {:>9}",
         "member",
         "blank",
         "dofs",
@@ -60,6 +69,7 @@ fn main() {
         "L [M val]",
         "loads",
         "ms per load",
+        "gram [s]",
         "local [s]",
         "total [s]"
     );
@@ -68,7 +78,7 @@ fn main() {
         let s = r.stats.as_ref().expect("computed");
         let per = 1e3 * s.solve_s / s.right_hand_sides.max(1) as f64;
         println!(
-            "{:<8} {:<12} {:>8} {:>9.1} {:>9.1} {:>10.0} {:>6} {:>12.1} {:>9.1} {:>9.1}",
+            "{:<8} {:<12} {:>8} {:>9.1} {:>9.1} {:>10.0} {:>6} {:>12.1} {:>9.1} {:>9.1} {:>9.1}",
             r.member,
             r.blank,
             s.dofs,
@@ -77,12 +87,14 @@ fn main() {
             s.factor_nnz as f64 / 1e6,
             s.right_hand_sides,
             per,
+            s.gram_s,
             s.local_s,
             r.total_s
         );
         rows.push(json!({"member": r.member, "blank": r.blank, "dofs": s.dofs, "assemble_s": s.assemble_s, "factor_s": s.factor_s,
-            "factor_values": s.factor_nnz, "right_hand_sides": s.right_hand_sides, "ms_per_right_hand_side": per,
-            "local_s": s.local_s, "total_s": r.total_s, "reciprocity_error": r.reciprocity_error}));
+            "factor_values": s.factor_nnz, "right_hand_sides": s.right_hand_sides, "ms_per_right_hand_side": per, "gram_s": s.gram_s,
+            "path_vectors_gb": s.path_vectors_gb, "backward_check": s.backward_check,
+            "local_s": s.local_s, "total_s": r.total_s}));
     }
     println!("\nall members {cold:.1} s (target 600 s), peak memory {peak:.2} GB (target 12 GB); second run reusing the files {warm:.2} s (target 10 s)");
     // A standard blank's tooth k carries tooth 0's compliance within 0.5 %.
@@ -123,11 +135,52 @@ fn main() {
         );
         symmetry.push(t);
     }
+    println!("\nsolve paths on the same body: pruned forward solves + Gram products (the stage's) against full solves per unit load");
+    println!(
+        "{:<8} {:<12} {:>16} {:>14} {:>9} {:>16} {:>16}",
+        "member", "blank", "pruned [s]", "full [s]", "ratio", "total max rel", "global max rel"
+    );
+    let mut paths = Vec::new();
+    for (member, blank) in [
+        (
+            geometry::design::Member::Pinion,
+            geometry::scene::Blank::Standard,
+        ),
+        (
+            geometry::design::Member::Wheel,
+            geometry::scene::Blank::Standard,
+        ),
+        (
+            geometry::design::Member::Wheel,
+            geometry::scene::Blank::Lightweight,
+        ),
+    ] {
+        let c = preprocess::solve_paths::compare(
+            &scene,
+            tmp.path(),
+            member,
+            blank,
+            formats::paths::MeshLevel::Reduced,
+        )
+        .expect("solve paths");
+        let (tp, tf) = (c.pruned.solve_s + c.pruned.gram_s, c.full.solve_s);
+        println!(
+            "{:<8} {:<12} {:>16.2} {:>14.2} {:>9.1} {:>16.1e} {:>16.1e}",
+            c.member,
+            c.blank,
+            tp,
+            tf,
+            tf / tp,
+            c.total_max_rel,
+            c.global_max_rel
+        );
+        paths.push(c);
+    }
     let out = root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
     formats::output::write_json(
         &out.join("stiffness.json"),
-        &json!({"results": rows, "tooth_to_tooth": symmetry, "all_members_s": cold, "peak_memory_gb": peak, "reuse_s": warm,
+        &json!({"results": rows, "tooth_to_tooth": symmetry, "solve_paths": paths, "all_members_s": cold, "peak_memory_gb": peak, "reuse_s": warm,
                 "targets": {"all_members_s": 600.0, "peak_memory_gb": 12.0, "reuse_s": 10.0, "tooth_to_tooth_max": 0.005}}),
     )
     .unwrap();

@@ -13,4 +13,5 @@ pub mod mesh;
 pub mod mesh_stage;
 pub mod periodic_sectors;
 pub mod sibling_reuse;
+pub mod solve_paths;
 pub mod stiffness_stage;

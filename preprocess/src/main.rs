@@ -124,7 +124,7 @@ fn main() -> anyhow::Result<()> {
                 match (&r.stats, r.reused) {
                     (_, true) => println!("{} {} {}: reused {}", r.member, r.blank, r.level, r.path.display()),
                     (Some(st), false) => println!(
-                        "{} {} {}: {} dofs, assemble {:.1} s, factor {:.1} s (L {:.0} M values), {} unit loads {:.1} ms each, local fields {:.1} s, reciprocity {:.1e}, total {:.1} s -> {}",
+                        "{} {} {}: {} dofs, assemble {:.1} s, factor {:.1} s (L {:.0} M values), {} unit loads {:.1} ms each, Gram products {:.1} s, local fields {:.1} s, backward check {:.1e}, total {:.1} s -> {}",
                         r.member,
                         r.blank,
                         r.level,
@@ -134,8 +134,9 @@ fn main() -> anyhow::Result<()> {
                         st.factor_nnz as f64 / 1e6,
                         st.right_hand_sides,
                         1e3 * st.solve_s / st.right_hand_sides.max(1) as f64,
+                        st.gram_s,
                         st.local_s,
-                        r.reciprocity_error.unwrap_or(f64::NAN),
+                        st.backward_check.unwrap_or(f64::NAN),
                         r.total_s,
                         r.path.display()
                     ),

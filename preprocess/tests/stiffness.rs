@@ -16,7 +16,8 @@ use geometry::scene::{Blank, FlankElements};
 use geometry::teeth::periodic_teeth;
 use preprocess::body_mesh::{self, BodyMesh};
 use preprocess::influence::{
-    compute, half_tooth, local_supports, rotate_z, FlankGrid, GridSize, Influence, InfluenceRequest,
+    compute, half_tooth, local_supports, rotate_z, FlankGrid, GridSize, Influence,
+    InfluenceRequest, Solves,
 };
 use preprocess::mesh::{mesh_member, MeshRequest};
 use std::sync::OnceLock;
@@ -149,9 +150,10 @@ fn geometry() -> &'static PairGeometry {
 }
 
 /// The coarse pinion body, its refined teeth, and influence fields of two
-/// neighbouring refined teeth with responses on ±1 teeth.
-fn fields() -> &'static (BodyMesh, Vec<usize>, Influence) {
-    static F: OnceLock<(BodyMesh, Vec<usize>, Influence)> = OnceLock::new();
+/// neighbouring refined teeth with responses on ±1 teeth, by the pruned
+/// solves the stiffness stage uses and by full solves.
+fn fields_both() -> &'static (BodyMesh, Vec<usize>, Influence, Influence) {
+    static F: OnceLock<(BodyMesh, Vec<usize>, Influence, Influence)> = OnceLock::new();
     F.get_or_init(|| {
         let g = geometry();
         let dims = BlankDimensions::resolve(&BlankDimensionsMm::default(), &g.data);
@@ -186,25 +188,80 @@ fn fields() -> &'static (BodyMesh, Vec<usize>, Influence) {
             .expect("four neighbouring refined teeth");
         let solved = vec![a, (a + 1) % z];
         let md = g.data.member(Member::Pinion);
-        let inf = compute(
-            &InfluenceRequest {
-                body: &body,
-                material: preprocess::influence::fe_material(md.material()),
-                teeth: md.teeth as usize,
-                loaded: "concave",
-                opposite: "convex",
-                grid: &grid,
-                solved_teeth: solved,
-                offsets: vec![-1, 0, 1],
-                load_radius: 0.75 * sf.max(sp),
-                fillet_rise: preprocess::influence::FILLET_RISE,
-                block: 8,
-            },
-            &["bore"],
-        )
-        .unwrap();
-        (body, pt, inf)
+        let run = |solves: Solves| {
+            compute(
+                &InfluenceRequest {
+                    body: &body,
+                    material: preprocess::influence::fe_material(md.material()),
+                    teeth: md.teeth as usize,
+                    loaded: "concave",
+                    opposite: "convex",
+                    grid: &grid,
+                    solved_teeth: solved.clone(),
+                    offsets: vec![-1, 0, 1],
+                    load_radius: 0.75 * sf.max(sp),
+                    fillet_rise: preprocess::influence::FILLET_RISE,
+                    block: 8,
+                    solves,
+                },
+                &["bore"],
+            )
+            .unwrap()
+        };
+        let (pruned, full) = (run(Solves::Pruned), run(Solves::Full));
+        (body, pt, pruned, full)
     })
+}
+
+/// The stiffness stage's fields (pruned solves).
+fn fields() -> (&'static BodyMesh, &'static Vec<usize>, &'static Influence) {
+    let (b, pt, pruned, _) = fields_both();
+    (b, pt, pruned)
+}
+
+/// Forward solves along the elimination-tree paths with Gram products give
+/// the fields of full forward and backward solves on the same body: every
+/// block of the total (loaded tooth and both neighbours) and the global
+/// field within 1e-12 of the block's largest value (rounding only), and the
+/// stage's own check (one row against a backward solve) as small. The
+/// pruned path solved each responding tooth once: 4 teeth × 60 loads
+/// against 2 × 60 full solves.
+#[test]
+fn pruned_solves_give_the_fields_of_full_solves() {
+    let (_, _, pruned, full) = fields_both();
+    let np = GRID.profile * GRID.face;
+    let worst = |a: &[f64], b: &[f64]| {
+        a.chunks(np * np)
+            .zip(b.chunks(np * np))
+            .map(|(x, y)| {
+                let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                x.iter()
+                    .zip(y)
+                    .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()))
+                    / scale
+            })
+            .fold(0.0f64, f64::max)
+    };
+    let (t, gl) = (
+        worst(&pruned.total, &full.total),
+        worst(&pruned.global, &full.global),
+    );
+    println!(
+        "pruned against full solves: total {t:.1e}, global {gl:.1e}; backward check {:?}; {} forward vectors, {} full solves",
+        pruned.stats.backward_check, pruned.stats.right_hand_sides, full.stats.right_hand_sides
+    );
+    assert!(t < 1e-12 && gl < 1e-12, "total {t:e}, global {gl:e}");
+    assert_eq!(pruned.local, full.local);
+    let check = pruned
+        .stats
+        .backward_check
+        .expect("pruned solves check themselves");
+    assert!(check < 1e-12, "backward check {check:e}");
+    assert_eq!(full.stats.backward_check, None);
+    assert_eq!(
+        (pruned.stats.right_hand_sides, full.stats.right_hand_sides),
+        (4 * np, 2 * np)
+    );
 }
 
 /// The local half-tooth model is held where its sides join the rest of the
@@ -239,6 +296,7 @@ fn local_field_does_not_depend_on_how_far_the_half_tooth_reaches_into_the_fillet
             load_radius: 0.75 * sf.max(sp),
             fillet_rise: rise,
             block: 8,
+            solves: Solves::default(),
         };
         let place = half_tooth(&req, k, &inf.depth[0]);
         let supports = local_supports(&body.mesh, &place);
@@ -295,9 +353,11 @@ fn block(inf: &Influence, field: &[f64], s: usize, o: usize) -> Vec<f64> {
     field[(s * no + o) * np * np..(s * no + o + 1) * np * np].to_vec()
 }
 
+/// On the full solves' fields: the pruned solves' Gram products are
+/// symmetric by construction, full forward and backward solves are not.
 #[test]
 fn influence_fields_are_reciprocal_within_and_across_teeth() {
-    let (_, _, inf) = fields();
+    let (_, _, _, inf) = fields_both();
     let np = GRID.profile * GRID.face;
     for field in [&inf.total, &inf.global] {
         for s in 0..2 {
@@ -455,6 +515,7 @@ fn lightweight_wheel_compliance_varies_with_order_three_around_the_wheel() {
             load_radius: 1.5 * g.data.normal_module,
             fillet_rise: preprocess::influence::FILLET_RISE,
             block: 16,
+            solves: Solves::default(),
         },
         &["bore"],
     )

@@ -120,40 +120,67 @@ impl PathFactor {
         groups: &[[Option<usize>; K]],
         block: usize,
     ) -> Result<Vec<PathVec>, FemError> {
-        self.check(groups.iter().flatten().flatten().copied())?;
+        let cols: Vec<Vec<(usize, f64)>> = groups
+            .iter()
+            .flatten()
+            .map(|d| d.iter().map(|&d| (d, 1.0)).collect())
+            .collect();
+        self.forward(K, &cols, block)
+    }
+
+    /// y = L⁻¹ P f for sparse loads f given as (free dof, value) pairs (a
+    /// dof may repeat; its values add): one single-column [`PathVec`] per
+    /// load, on the union of its dofs' paths. Solved `block` loads at a
+    /// time like [`PathFactor::forward_units`]; loads are best given in
+    /// the order of their supernodes.
+    pub fn forward_sparse(
+        &self,
+        loads: &[Vec<(usize, f64)>],
+        block: usize,
+    ) -> Result<Vec<PathVec>, FemError> {
+        self.forward(1, loads, block)
+    }
+
+    /// Forward solves of `cols`, `k` consecutive columns per group.
+    fn forward(
+        &self,
+        k: usize,
+        cols: &[Vec<(usize, f64)>],
+        block: usize,
+    ) -> Result<Vec<PathVec>, FemError> {
+        self.check(cols.iter().flatten().map(|&(d, _)| d))?;
         let (tree, sym) = (&self.tree, self.sym());
-        let out: Vec<Vec<PathVec>> = groups
-            .par_chunks(block.max(1))
-            .map(|chunk| self.forward_block(sym, tree, chunk))
+        let out: Vec<Vec<PathVec>> = cols
+            .par_chunks(k * block.max(1))
+            .map(|chunk| self.forward_block(sym, tree, k, chunk))
             .collect();
         Ok(out.into_iter().flatten().collect())
     }
 
-    fn forward_block<const K: usize>(
+    fn forward_block(
         &self,
         sym: &SymbolicSupernodalCholesky<usize>,
         tree: &Tree,
-        groups: &[[Option<usize>; K]],
+        kk: usize,
+        cols: &[Vec<(usize, f64)>],
     ) -> Vec<PathVec> {
         let begin = sym.supernode_begin();
-        let paths: Vec<Vec<u32>> = groups
-            .iter()
-            .map(|g| tree.paths(&g.iter().flatten().copied().collect::<Vec<_>>()))
+        let paths: Vec<Vec<u32>> = cols
+            .chunks(kk)
+            .map(|g| tree.paths(&g.iter().flatten().map(|&(d, _)| d).collect::<Vec<_>>()))
             .collect();
         let mut all: Vec<u32> = paths.iter().flatten().copied().collect();
         all.sort_unstable();
         all.dedup();
         let cmp = Compact::new(sym, &all);
-        let k = K * groups.len();
+        let k = cols.len();
         let rows = cmp.rows;
         // Column-major rows × k.
         let mut x = vec![0.0; rows * k];
-        for (g, dofs) in groups.iter().enumerate() {
-            for (c, d) in dofs.iter().enumerate() {
-                if let Some(d) = d {
-                    let r = cmp.at(&tree.sn_of, begin, tree.inv[*d]);
-                    x[(K * g + c) * rows + r] = 1.0;
-                }
+        for (c, col) in cols.iter().enumerate() {
+            for &(d, v) in col {
+                let r = cmp.at(&tree.sn_of, begin, tree.inv[d]);
+                x[c * rows + r] += v;
             }
         }
         // Groups whose path passes through each supernode of `all`.
@@ -174,24 +201,24 @@ impl PathFactor {
             let sn = self.supernode_values(sym, s as usize);
             let w = sn.ncols();
             let pattern = sym.supernode(s as usize).pattern();
-            let kc = K * gs.len();
+            let kc = kk * gs.len();
             let o = cmp.off[s as usize] as usize;
             // Gather the carried columns, solve with the diagonal block.
             tmp.clear();
             tmp.resize(w * kc, 0.0);
             for (c, &g) in gs.iter().enumerate() {
-                for q in 0..K {
-                    let col = (K * g as usize + q) * rows + o;
-                    tmp[(K * c + q) * w..(K * c + q + 1) * w].copy_from_slice(&x[col..col + w]);
+                for q in 0..kk {
+                    let col = (kk * g as usize + q) * rows + o;
+                    tmp[(kk * c + q) * w..(kk * c + q + 1) * w].copy_from_slice(&x[col..col + w]);
                 }
             }
             let (top, bot) = sn.split_at_row(w);
             let mut t = faer::MatMut::from_column_major_slice_mut(&mut tmp, w, kc);
             solve_lower_triangular_in_place(top, t.as_mut(), Par::Seq);
             for (c, &g) in gs.iter().enumerate() {
-                for q in 0..K {
-                    let col = (K * g as usize + q) * rows + o;
-                    x[col..col + w].copy_from_slice(&tmp[(K * c + q) * w..(K * c + q + 1) * w]);
+                for q in 0..kk {
+                    let col = (kk * g as usize + q) * rows + o;
+                    x[col..col + w].copy_from_slice(&tmp[(kk * c + q) * w..(kk * c + q + 1) * w]);
                 }
             }
             let p = pattern.len();
@@ -208,9 +235,9 @@ impl PathFactor {
                 .map(|&r| cmp.at(&tree.sn_of, begin, r))
                 .collect();
             for (c, &g) in gs.iter().enumerate() {
-                for q in 0..K {
-                    let col = (K * g as usize + q) * rows;
-                    let src = &upd[(K * c + q) * p..(K * c + q + 1) * p];
+                for q in 0..kk {
+                    let col = (kk * g as usize + q) * rows;
+                    let src = &upd[(kk * c + q) * p..(kk * c + q + 1) * p];
                     for (&r, v) in dst.iter().zip(src) {
                         x[col + r] -= v;
                     }
@@ -228,8 +255,8 @@ impl PathFactor {
                     let (b, e) = (begin[s as usize], sym.supernode_end()[s as usize]);
                     let o = cmp.off[s as usize] as usize;
                     for r in 0..e - b {
-                        for q in 0..K {
-                            val.push(x[(K * g + q) * rows + o + r]);
+                        for q in 0..kk {
+                            val.push(x[(kk * g + q) * rows + o + r]);
                         }
                     }
                     ptr.push(ptr.last().copied().unwrap_or(0) + e - b);
@@ -237,7 +264,7 @@ impl PathFactor {
                 PathVec {
                     sn,
                     ptr,
-                    ncols: K,
+                    ncols: kk,
                     val,
                 }
             })

@@ -145,3 +145,36 @@ fn factor_kept_on_a_few_paths_solves_those_alike_and_refuses_others() {
     assert!(kept.forward_units(&[[Some(off)]], 1).is_err());
     assert!(kept.backward_at(&[&yb[0]], &[off]).is_err());
 }
+
+/// Compliances between spread loads (a bump over a few dofs, as a contact
+/// grid point's patch weights are) from pruned forward solves equal
+/// w_aᵀ K⁻¹ w_b from full solves; a dof given twice adds its values.
+#[test]
+fn pruned_solves_of_spread_loads_give_their_mutual_compliance() {
+    let (f, pf, dofs) = body();
+    let n = dofs.n_free();
+    let loads: Vec<Vec<(usize, f64)>> = (0..n)
+        .step_by(13)
+        .map(|d| vec![(d, 0.5), ((d + 3) % n, 0.3), ((d + 17) % n, -0.2), (d, 0.1)])
+        .collect();
+    let y = pf.forward_sparse(&loads, 4).unwrap();
+    let refs: Vec<&PathVec> = y.iter().collect();
+    let g = gram(&refs, &refs);
+    let dense = |l: &[(usize, f64)]| {
+        let mut b = vec![0.0; n];
+        for &(d, v) in l {
+            b[d] += v;
+        }
+        b
+    };
+    let (mut worst, mut scale) = (0.0_f64, 0.0_f64);
+    for (a, la) in loads.iter().enumerate() {
+        let x = f.solve(&dense(la));
+        for (b, lb) in loads.iter().enumerate() {
+            let c: f64 = dense(lb).iter().zip(&x).map(|(p, q)| p * q).sum();
+            worst = worst.max((g[a * loads.len() + b] - c).abs());
+            scale = scale.max(c.abs());
+        }
+    }
+    assert!(worst <= 1e-12 * scale, "worst {worst:e}, scale {scale:e}");
+}

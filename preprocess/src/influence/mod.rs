@@ -15,12 +15,14 @@
 
 mod local;
 mod patch;
+mod solves;
 
 pub use local::{half_tooth, local_model, local_supports, HalfTooth, FILLET_RISE, NITSCHE_GAMMA};
 pub use patch::{mid_surface_depth, patch_weights};
+pub use solves::Solves;
 
 use crate::body_mesh::BodyMesh;
-use fem::{clamp_nodes, ClampedBody, Dofs, Factorization, Material};
+use fem::{clamp_nodes, ClampedBody, Material};
 pub use geometry::contact_grid::{rotate_z, FlankGrid, GridSize};
 use local::local_field;
 use rayon::prelude::*;
@@ -83,8 +85,11 @@ pub struct InfluenceRequest<'a> {
     /// How far above the flank's tangent plane the local half-tooth model
     /// reaches, as a share of h ([`FILLET_RISE`] in the stiffness files).
     pub fillet_rise: f64,
-    /// Right-hand sides per sequential solve block.
+    /// Right-hand sides per sequential solve block (full solves), or loads
+    /// per forward block (pruned solves).
     pub block: usize,
+    /// How the unit-load fields are solved.
+    pub solves: Solves,
 }
 
 /// Influence fields: `total[s][o][i][j]` is the normal approach (m/N) at
@@ -110,8 +115,19 @@ pub struct InfluenceStats {
     pub factor_nnz: usize,
     pub assemble_s: f64,
     pub factor_s: f64,
+    /// Full solves, or the pruned forward solves, s.
     pub solve_s: f64,
+    /// Gram products of the pruned forward vectors, s (0 with full solves).
+    pub gram_s: f64,
+    /// Unit loads solved (pruned: one per grid point of every loaded or
+    /// responding tooth; full: one per grid point of every loaded tooth).
     pub right_hand_sides: usize,
+    /// Largest memory the pruned forward vectors held at once, GB.
+    pub path_vectors_gb: f64,
+    /// Pruned solves: the largest relative difference, over the loaded
+    /// teeth, between the middle grid point's influence row from the Gram
+    /// products and from a backward solve (None with full solves).
+    pub backward_check: Option<f64>,
     pub local_s: f64,
     pub local_elements_mean: f64,
 }
@@ -193,7 +209,7 @@ fn tooth_depths(req: &InfluenceRequest, k: usize) -> Result<Vec<f64>, InfluenceE
     Ok(out)
 }
 
-fn gather(w: &Weights, dofs: &Dofs, u: &[f64]) -> f64 {
+fn gather(w: &Weights, dofs: &fem::Dofs, u: &[f64]) -> f64 {
     w.iter()
         .filter_map(|&(d, c)| dofs.free_index(d).map(|i| c * u[i]))
         .sum()
@@ -213,56 +229,30 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
         factor,
         assemble_s,
         factor_s,
-    } = ClampedBody::new(mesh, &req.material, &fixed, Factorization::Auto)?;
+    } = ClampedBody::new(mesh, &req.material, &fixed, req.solves.factorization())?;
     stats.assemble_s = assemble_s;
     stats.dofs = dofs.n_free();
     stats.factor_s = factor_s;
     stats.factor_nnz = factor.factor_nnz();
 
-    let z = req.teeth as i64;
     let np = req.grid.len();
     let no = req.offsets.len();
     let ns = req.solved_teeth.len();
-    let mut total = vec![0.0; ns * no * np * np];
     let mut local = vec![0.0; ns * np * np];
     let mut depth = Vec::new();
     let mut weights: std::collections::BTreeMap<usize, Vec<Weights>> = Default::default();
-    let n = dofs.n_free();
-    let batch = (2 * req.block).max(1);
-    let t = Instant::now();
-    for (s, &k) in req.solved_teeth.iter().enumerate() {
+    for &k in &req.solved_teeth {
         for &o in &req.offsets {
-            let j = (k as i64 + o as i64).rem_euclid(z) as usize;
+            let j = solves::tooth_of(req, k, o);
             if let std::collections::btree_map::Entry::Vacant(e) = weights.entry(j) {
                 e.insert(tooth_weights(req, j)?);
             }
         }
-        let wk = &weights[&k];
-        for start in (0..np).step_by(batch) {
-            let cols: Vec<usize> = (start..(start + batch).min(np)).collect();
-            let mut rhs = vec![0.0; n * cols.len()];
-            for (c, &i) in cols.iter().enumerate() {
-                for &(d, v) in &wk[i] {
-                    if let Some(f) = dofs.free_index(d) {
-                        rhs[c * n + f] += v;
-                    }
-                }
-            }
-            factor.solve_many(&mut rhs, req.block);
-            stats.right_hand_sides += cols.len();
-            for (c, &i) in cols.iter().enumerate() {
-                let u = &rhs[c * n..(c + 1) * n];
-                for (oi, &o) in req.offsets.iter().enumerate() {
-                    let j = (k as i64 + o as i64).rem_euclid(z) as usize;
-                    let row = ((s * no + oi) * np + i) * np;
-                    for (q, w) in weights[&j].iter().enumerate() {
-                        total[row + q] = gather(w, &dofs, u);
-                    }
-                }
-            }
-        }
     }
-    stats.solve_s = t.elapsed().as_secs_f64();
+    let total = match req.solves {
+        Solves::Full => solves::full(req, &dofs, &factor, &weights, &mut stats),
+        Solves::Pruned => solves::pruned(req, &dofs, factor, &weights, &mut stats)?,
+    };
 
     let t = Instant::now();
     let mut elements = 0usize;

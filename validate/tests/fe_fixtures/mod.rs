@@ -13,7 +13,7 @@ use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, FlankElements};
 use geometry::teeth::periodic_teeth;
 use preprocess::body_mesh;
-use preprocess::influence::{compute, FlankGrid, GridSize, InfluenceRequest};
+use preprocess::influence::{compute, FlankGrid, GridSize, InfluenceRequest, Solves};
 use preprocess::mesh::{mesh_member, MeshRequest};
 use solver::element::compliance::MemberCompliance;
 
@@ -94,6 +94,7 @@ pub fn compliance(
             load_radius: 0.75 * sf.max(sp),
             fillet_rise: preprocess::influence::FILLET_RISE,
             block: 8,
+            solves: Solves::default(),
         },
         &["bore"],
     )
