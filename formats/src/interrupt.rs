@@ -13,6 +13,19 @@
 //!
 //! A result set's commit (renames) holds [`critical`] so that the handler
 //! waits until the set is either wholly in place or not at all.
+//!
+//! The signals are taken by a thread of their own (`sigwait`), not by an
+//! asynchronous handler: [`install`] blocks SIGINT, SIGTERM and SIGHUP in
+//! the calling thread, so every thread started after it (rayon's, faer's)
+//! inherits the block, and the signal waits, pending, until the signal
+//! thread takes it. A library that sets its own handler meanwhile cannot
+//! intercept it: METIS (GKlib) installs one for SIGTERM around every
+//! ordering and long-jumps out of the ordering when it fires, which made a
+//! SIGTERM during `METIS_NodeND` a false "ordering failed" error (or an
+//! exit 143 with the lock and staging folder left behind). Threads that
+//! already ran before [`install`] (a test harness's) keep the signals
+//! unblocked; for them a handler forwards the signal to the signal thread.
+//! Child processes get the signals unblocked again ([`child`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -115,27 +128,108 @@ pub fn undo_all() -> Vec<PathBuf> {
     removed
 }
 
-/// Installs the termination handler (once per process; later calls do
-/// nothing). A second signal while cleaning up is ignored.
+/// SIGINT, SIGTERM and SIGHUP.
+fn termination_set() -> libc::sigset_t {
+    // SAFETY: sigemptyset and sigaddset initialise and fill a local set.
+    unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+            libc::sigaddset(&mut set, sig);
+        }
+        set
+    }
+}
+
+/// The signal thread (0: none yet).
+static SIGNAL_THREAD: AtomicU64 = AtomicU64::new(0);
+
+/// Handler of threads that run with the signals unblocked: hands the
+/// signal to the signal thread, which has it blocked and waits for it.
+extern "C" fn forward(sig: libc::c_int) {
+    let t = SIGNAL_THREAD.load(Ordering::SeqCst);
+    if t != 0 {
+        // SAFETY: pthread_kill is async-signal-safe; `t` is a live thread
+        // (the signal thread never returns).
+        unsafe {
+            libc::pthread_kill(t as libc::pthread_t, sig);
+        }
+    }
+}
+
+/// Removes what is registered, says so, exits 130.
+fn stop() -> ! {
+    let removed = undo_all();
+    if removed.is_empty() {
+        eprintln!("interrupted");
+    } else {
+        eprintln!("interrupted: removed the unfinished output of this run:");
+        for p in &removed {
+            eprintln!("  {}", p.display());
+        }
+        eprintln!("the previous results, if any, are as they were");
+    }
+    std::process::exit(130);
+}
+
+/// Installs the termination handling (once per process; later calls do
+/// nothing): call it first in `main`, before any thread is started, so
+/// that every thread inherits the blocked signals (see the module doc). A
+/// second signal while cleaning up is ignored.
 pub fn install() {
     INSTALL.call_once(|| {
-        let r = ctrlc::set_handler(|| {
-            let removed = undo_all();
-            if removed.is_empty() {
-                eprintln!("interrupted");
-            } else {
-                eprintln!("interrupted: removed the unfinished output of this run:");
-                for p in &removed {
-                    eprintln!("  {}", p.display());
-                }
-                eprintln!("the previous results, if any, are as they were");
-            }
-            std::process::exit(130);
-        });
-        if let Err(e) = r {
+        let set = termination_set();
+        // SAFETY: changes this thread's signal mask only.
+        let rc = unsafe { libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) };
+        if rc != 0 {
             eprintln!(
-                "warning: no cleanup on Ctrl-C ({e}); the next run clears what this one leaves"
+                "warning: no cleanup on Ctrl-C (signal mask: error {rc}); the next run clears what this one leaves"
             );
+            return;
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        let spawned = std::thread::Builder::new()
+            .name("signals".into())
+            .spawn(move || {
+                // SAFETY: pthread_self has no preconditions.
+                let _ = tx.send(unsafe { libc::pthread_self() } as u64);
+                loop {
+                    let mut sig: libc::c_int = 0;
+                    // SAFETY: `set` is blocked in this thread (inherited).
+                    if unsafe { libc::sigwait(&set, &mut sig) } == 0 {
+                        stop();
+                    }
+                }
+            });
+        let Ok(t) = spawned.map_err(|e| e.to_string()).and_then(|_| rx.recv().map_err(|e| e.to_string())) else {
+            eprintln!("warning: no cleanup on Ctrl-C (no signal thread); the next run clears what this one leaves");
+            return;
+        };
+        SIGNAL_THREAD.store(t, Ordering::SeqCst);
+        for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+            // SAFETY: installs `forward`, which only calls pthread_kill.
+            unsafe {
+                let mut act: libc::sigaction = std::mem::zeroed();
+                act.sa_sigaction = forward as *const () as usize;
+                act.sa_flags = libc::SA_RESTART;
+                libc::sigemptyset(&mut act.sa_mask);
+                libc::sigaction(sig, &act, std::ptr::null_mut());
+            }
         }
     });
+}
+
+/// Lets a child process receive SIGINT, SIGTERM and SIGHUP again (a
+/// child inherits the blocked mask of the thread that starts it).
+pub fn child(cmd: &mut std::process::Command) -> &mut std::process::Command {
+    use std::os::unix::process::CommandExt;
+    // SAFETY: between fork and exec only pthread_sigmask (async-signal-safe)
+    // runs, on a set built before the fork.
+    let set = termination_set();
+    unsafe {
+        cmd.pre_exec(move || {
+            libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
+            Ok(())
+        })
+    }
 }

@@ -70,7 +70,7 @@ pub fn meshio_command() -> (PathBuf, PathBuf) {
 pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> anyhow::Result<()> {
     let (py, script) = meshio_command();
     formats::output::write_via(vtu, |tmp| {
-        let out = std::process::Command::new(&py)
+        let out = formats::interrupt::child(&mut std::process::Command::new(&py))
             .arg(&script)
             .arg(msh)
             .arg(tmp)

@@ -56,7 +56,7 @@ pub fn utc_date(secs: u64) -> String {
 /// `git rev-parse --short HEAD` in the working directory; "unknown" when
 /// git is not there or this is not a repository.
 pub fn git_commit() -> String {
-    std::process::Command::new("git")
+    formats::interrupt::child(&mut std::process::Command::new("git"))
         .args(["rev-parse", "--short", "HEAD"])
         .output()
         .ok()
