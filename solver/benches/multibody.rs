@@ -37,14 +37,16 @@ fn main() {
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
     println!("\nMultibody benchmark (default scene, standard blanks, {cores} cores)\n");
     println!(
-        "{:>9} {:>5} {:>9} {:>8} {:>18} {:>18} {:>18}",
+        "{:>9} {:>5} {:>9} {:>8} {:>18} {:>18} {:>18} {:>14} {:>14}",
         "step[deg]",
         "lags",
         "table[s]",
         "us/step",
         "100 N·m err %ptp",
         "300 N·m err %ptp",
-        "700 N·m err %ptp"
+        "700 N·m err %ptp",
+        "state [us]",
+        "V quad [us]"
     );
     let mut rows = Vec::new();
     for (step_deg, lags) in [(0.5, 48), (0.25, 64), (0.125, 96), (0.0625, 128)] {
@@ -112,13 +114,15 @@ fn main() {
             errs.push(100.0 * worst / ptp);
         }
         let us = cpu / steps as f64 * 1e6;
+        let (moments_us, quadrature_us) = path_integral_costs(&table, ratio);
         println!(
-            "{:>9} {:>5} {:>9.2} {:>8.1} {:>18.3} {:>18.3} {:>18.3}",
-            step_deg, lags, build, us, errs[0], errs[1], errs[2]
+            "{:>9} {:>5} {:>9.2} {:>8.1} {:>18.3} {:>18.3} {:>18.3} {:>14.2} {:>14.2}",
+            step_deg, lags, build, us, errs[0], errs[1], errs[2], moments_us, quadrature_us
         );
         rows.push(
             json!({"table_step_deg": step_deg, "lag_nodes": lags, "table_build_s": build,
             "table_cpu_s_per_position": table.cpu_s_per_position, "us_per_step": us,
+            "evaluation_us": {"state_with_prefix_moments": moments_us, "path_integrals_by_quadrature": quadrature_us},
             "te_error_percent_of_ltca_ptp": {"100": errs[0], "300": errs[1], "700": errs[2]}}),
         );
     }
@@ -134,6 +138,35 @@ fn main() {
     )
     .unwrap();
     println!("written to bench/multibody.json");
+}
+
+/// Wall time per evaluation at one (q₁, q₂), µs, over the same 2,000
+/// points (lags up to the middle lag node), same run: the element's whole
+/// state (potential, gradient, Hessian, force; its path integrals by the
+/// table's prefix moments) and the path integrals alone by quadrature over
+/// every crossed cell (the method the moments replaced).
+fn path_integral_costs(table: &MeshTable, ratio: f64) -> (f64, f64) {
+    let points: Vec<(f64, f64)> = (0..2000)
+        .map(|k| {
+            let q1 = table.span() * (k as f64 * 0.618_033_988_7).fract();
+            let theta = table.theta_lo()
+                + (table.lags[table.lags.len() / 2] - table.theta_lo())
+                    * ((k * 7 + 3) as f64 * 0.381_966).fract();
+            (q1, ratio * q1 - theta)
+        })
+        .collect();
+    let time = |f: &dyn Fn(f64, f64) -> f64| {
+        let t = Instant::now();
+        let mut sum = 0.0;
+        for &(q1, q2) in &points {
+            sum += f(q1, q2);
+        }
+        std::hint::black_box(sum);
+        t.elapsed().as_secs_f64() / points.len() as f64 * 1e6
+    };
+    let moments = time(&|q1, q2| table.state(q1, q2).unwrap().potential);
+    let quadrature = time(&|q1, q2| table.path_integrals_by_quadrature(q1, q2).unwrap()[0]);
+    (moments, quadrature)
 }
 
 /// The load run with each force law: table build and CPU time per step.

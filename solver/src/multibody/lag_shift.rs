@@ -182,6 +182,7 @@ mod tests {
             friction: vec![],
             cpu_s_per_position: 0.0,
             impact: None,
+            moments: Default::default(),
         }
     }
 

@@ -3,7 +3,26 @@
 //! impact-law states.
 
 use super::interpolation::{catmull_rom, gauss4, hermite_weights, stencil};
+use super::path_moments::cell_integral;
 use super::{ImpactState, MeshState, MeshTable};
+
+/// The real table nodes (with their weights) that make stencil entry `k`
+/// of a row of `n` nodes, as [`stencil`] continues it: the node itself,
+/// its periodic image, or the linear continuation past an end.
+fn node_combo(n: usize, periodic: bool, k: i64) -> [(usize, f64); 2] {
+    let n_i = n as i64;
+    if periodic {
+        [(k.rem_euclid(n_i) as usize, 1.0), (0, 0.0)]
+    } else if k < 0 {
+        let m = (-k) as f64;
+        [(0, 1.0 + m), (1, -m)]
+    } else if k >= n_i {
+        let m = (k - n_i + 1) as f64;
+        [(n - 1, 1.0 + m), (n - 2, -m)]
+    } else {
+        [(k as usize, 1.0), (0, 0.0)]
+    }
+}
 use crate::SolverError;
 
 impl MeshTable {
@@ -198,21 +217,70 @@ impl MeshTable {
         Ok(Some(out))
     }
 
-    /// Potential, gradient, Hessian and force at (q₁, q₂).
-    pub fn state(&self, q1: f64, q2: f64) -> Result<MeshState, SolverError> {
+    /// Lag cell of θ on the lag grid (as [`MeshTable::field`] picks it).
+    fn lag_cell(&self, theta: f64) -> usize {
+        let nu = self.spec.lag_nodes as i64;
+        (self.lags.partition_point(|&x| x <= theta) as i64 - 1).clamp(0, nu - 2) as usize
+    }
+
+    /// The potential's path integrals at (q₁, q₂): V = ∫ T₁ ds and
+    /// ∫ ∂T₁/∂θ ds, ∫ ∂²T₁/∂θ² ds along s ↦ (s, r s − q₂) from θ = θ_lo
+    /// to q₁, by the prefix moments ([`super::path_moments`]): one term per
+    /// q₁ cell the path crosses.
+    pub(super) fn path_integrals(&self, q1: f64, q2: f64) -> Result<[f64; 3], SolverError> {
+        const W3: [f64; 4] = [-3.0, 9.0, -9.0, 3.0];
+        let (r, h, nu) = (self.ratio, self.spec.step, self.spec.lag_nodes);
+        let th_lo = self.theta_lo();
+        let theta = r * q1 - q2;
+        let s_lo = q1 - (theta - th_lo) / r;
+        let mut cuts = vec![s_lo];
+        let mut i = (s_lo / h).floor() + 1.0;
+        while i * h < q1 {
+            cuts.push(i * h);
+            i += 1.0;
+        }
+        cuts.push(q1);
+        let (big, rh, n) = (theta - th_lo, r * h, self.nodes());
+        let mut out = [0.0; 3];
+        for w in cuts.windows(2) {
+            let (sa, sb) = (w[0], w[1]);
+            if sb <= sa {
+                continue;
+            }
+            let mid = 0.5 * (sa + sb);
+            let (ic, t_mid) = self.cell(mid)?;
+            let cr = catmull_rom(t_mid + (q1 - mid) / h);
+            let ends = [(r * sa - q2).max(th_lo), (r * sb - q2).max(th_lo)];
+            let cells = ends.map(|x| self.lag_cell(x));
+            for a in 0..4 {
+                let wk = [cr[0][a], cr[1][a], cr[2][a], W3[a]];
+                for (p, coef) in node_combo(n, self.spec.periodic, ic - 1 + a as i64) {
+                    if coef == 0.0 {
+                        continue;
+                    }
+                    let col = &self.torque[p * nu..(p + 1) * nu];
+                    let mb = self.moments.at(&self.lags, col, p, cells[1], ends[1]);
+                    let ma = self.moments.at(&self.lags, col, p, cells[0], ends[0]);
+                    let dm = std::array::from_fn(|f| std::array::from_fn(|j| mb[f][j] - ma[f][j]));
+                    let v = cell_integral(&dm, wk, big, rh);
+                    for (o, x) in out.iter_mut().zip(v) {
+                        *o += coef * x;
+                    }
+                }
+            }
+        }
+        Ok(out.map(|x| x / r))
+    }
+
+    /// [`MeshTable::path_integrals`] by 4-point Gauss–Legendre between
+    /// every crossing of the path with the grid lines (q₁ nodes and lag
+    /// nodes): the same exact integrals, one bicubic evaluation per Gauss
+    /// point (the method before the prefix moments; kept as their check).
+    pub fn path_integrals_by_quadrature(&self, q1: f64, q2: f64) -> Result<[f64; 3], SolverError> {
         let r = self.ratio;
         let theta = r * q1 - q2;
-        let u = theta - self.unloaded(q1)?[0];
-        if theta <= self.theta_lo() {
-            return Ok(MeshState {
-                theta,
-                u,
-                ..Default::default()
-            });
-        }
         let nu = self.spec.lag_nodes;
         let torque = |q: f64, th: f64| self.field(|p, m| self.torque[p * nu + m], q, th);
-        let [t, tq, tt, ..] = torque(q1, theta)?;
         // The path s ↦ (s, r s − q₂) from θ = θ_lo to q₁, cut where it
         // crosses the grid lines q₁ = i·step and θ = θ_m.
         let s_lo = q1 - (theta - self.theta_lo()) / r;
@@ -245,6 +313,28 @@ impl MeshTable {
                 vtt += g * len * f[5];
             }
         }
+        Ok([v, vt, vtt])
+    }
+
+    /// Potential, gradient, Hessian and force at (q₁, q₂).
+    pub fn state(&self, q1: f64, q2: f64) -> Result<MeshState, SolverError> {
+        let r = self.ratio;
+        let theta = r * q1 - q2;
+        let u = theta - self.unloaded(q1)?[0];
+        if theta <= self.theta_lo() {
+            return Ok(MeshState {
+                theta,
+                u,
+                ..Default::default()
+            });
+        }
+        let nu = self.spec.lag_nodes;
+        let [t, tq, tt, ..] = self.field(|p, m| self.torque[p * nu + m], q1, theta)?;
+        let [v, vt, vtt] = if self.moments.is_empty() {
+            self.path_integrals_by_quadrature(q1, q2)?
+        } else {
+            self.path_integrals(q1, q2)?
+        };
         let mut force = [0.0; 3];
         if u > 0.0 {
             for (c, f) in force.iter_mut().enumerate() {

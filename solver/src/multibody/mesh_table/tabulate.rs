@@ -1,7 +1,9 @@
 //! Computing the table: per position the slices and compliance, then the
 //! lag-controlled contact problem at every lag node, laid out position-major.
 
-use super::{check_spec, columns_and_lags, Column, ImpactFields, MeshTable, TableSpec};
+use super::{
+    check_spec, columns_and_lags, Column, ImpactFields, MeshTable, PathMoments, TableSpec,
+};
 use crate::element::compliance::PairCompliance;
 use crate::element::contact_problem::ContactProblem;
 use crate::ltca::{assemble, geometry, Assembled, Geometry};
@@ -42,13 +44,16 @@ impl MeshTable {
         cols: &[&Column],
         impact: Option<ImpactFields>,
     ) -> MeshTable {
+        let torque: Vec<f64> = cols.iter().flat_map(|c| c.torque.iter().copied()).collect();
+        let moments = PathMoments::new(&lags, &torque);
         MeshTable {
             spec,
             lead,
             ratio,
             lags,
             te0: cols.iter().map(|c| c.te0).collect(),
-            torque: cols.iter().flat_map(|c| c.torque.iter().copied()).collect(),
+            torque,
+            moments,
             force: cols.iter().flat_map(|c| c.force.iter().copied()).collect(),
             wrench: cols.iter().flat_map(|c| c.wrench.iter().copied()).collect(),
             friction: cols
