@@ -48,7 +48,7 @@ use crate::bearings::relative_twist::TwistMap;
 use crate::bearings::support::Support;
 use crate::multibody::lag_shift::LagShift;
 use crate::multibody::model::Model;
-use crate::multibody::time_step::{lag_resolution_at, StepControl};
+use crate::multibody::time_step::{lag_resolution_at, StepControl, StepHistory};
 use crate::SolverError;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3, Vector6};
 
@@ -510,6 +510,7 @@ pub struct CompliantIntegrator {
     pub h: f64,
     pub rejected: usize,
     pub newton_iterations: usize,
+    pub history: StepHistory,
 }
 
 impl CompliantIntegrator {
@@ -520,6 +521,7 @@ impl CompliantIntegrator {
             h: control.max_step,
             rejected: 0,
             newton_iterations: 0,
+            history: StepHistory::default(),
         }
     }
 
@@ -544,10 +546,13 @@ impl CompliantIntegrator {
                 let floor = lag_resolution_at(r, next.x[0].abs().max(next.x[1].abs()));
                 ((next, mid), err / self.control.tolerance.max(floor))
             });
-            if let Some(accepted) =
-                self.control
-                    .judge(&mut self.h, &mut self.rejected, h, judged)?
-            {
+            if let Some(accepted) = self.control.judge(
+                &mut self.h,
+                &mut self.rejected,
+                &mut self.history,
+                h,
+                judged,
+            )? {
                 return Ok(accepted);
             }
         }
