@@ -19,6 +19,7 @@ pub mod material;
 pub mod mesh;
 pub mod ordering;
 pub mod path_solve;
+pub mod stress;
 pub mod structured;
 pub mod tet10;
 pub mod tri6;
