@@ -5,6 +5,7 @@
 use super::interpolation::{catmull_rom, gauss4, hermite_weights, stencil};
 use super::path_moments::cell_integral;
 use super::{ImpactState, MeshState, MeshTable};
+use crate::SolverError;
 
 /// The real table nodes (with their weights) that make stencil entry `k`
 /// of a row of `n` nodes, as [`stencil`] continues it: the node itself,
@@ -23,7 +24,6 @@ fn node_combo(n: usize, periodic: bool, k: i64) -> [(usize, f64); 2] {
         [(k as usize, 1.0), (0, 0.0)]
     }
 }
-use crate::SolverError;
 
 impl MeshTable {
     /// First lag node θ_lo (below every unloaded TE), rad.
