@@ -5,10 +5,9 @@
 
 use crate::body_mesh;
 use crate::influence::{compute, Influence, InfluenceStats, Solves};
-use crate::stiffness_stage::{planned, request};
+use crate::stiffness_stage::{clamped_groups, planned_under, request};
 use formats::paths::MeshLevel;
 use geometry::design::Member;
-use geometry::pair::PairGeometry;
 use geometry::scene::{Blank, LoadedScene};
 use serde::Serialize;
 use std::path::Path;
@@ -55,12 +54,10 @@ pub fn compare(
     level: MeshLevel,
 ) -> anyhow::Result<SolvePaths> {
     let sc = &scene.scene;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
-    let dir = root.join(&sc.name);
     let side = sc.loaded_flank;
-    let p = planned(scene, &g, &dir, member, blank, level, side)?;
+    let (g, p) = planned_under(scene, root, member, blank, level)?;
     let body = body_mesh::read(&p.msh).map_err(anyhow::Error::msg)?;
-    let groups: Vec<&str> = p.config.clamped_groups.iter().map(String::as_str).collect();
+    let groups = clamped_groups(&p.config);
     let run = |solves: Solves| -> anyhow::Result<Influence> {
         let req = request(
             &p.config,

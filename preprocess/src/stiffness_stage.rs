@@ -115,7 +115,7 @@ pub struct Planned {
 }
 
 /// The groups a stiffness file's `config` clamps, as [`compute`] takes them.
-fn clamped_groups(config: &StiffnessConfig) -> Vec<&str> {
+pub(crate) fn clamped_groups(config: &StiffnessConfig) -> Vec<&str> {
     config.clamped_groups.iter().map(String::as_str).collect()
 }
 
@@ -502,6 +502,29 @@ pub struct ToothToTooth {
     pub global_worst: [usize; 3],
 }
 
+/// The pair's geometry and the stiffness file of `member` × `blank` for
+/// the scene's loaded flank on the meshes of `level` under `root/<scene>/`.
+pub(crate) fn planned_under(
+    scene: &LoadedScene,
+    root: &Path,
+    member: Member,
+    blank: Blank,
+    level: MeshLevel,
+) -> anyhow::Result<(PairGeometry, Planned)> {
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let dir = root.join(&scene.scene.name);
+    let p = planned(
+        scene,
+        &g,
+        &dir,
+        member,
+        blank,
+        level,
+        scene.scene.loaded_flank,
+    )?;
+    Ok((g, p))
+}
+
 /// [`ToothToTooth`] of `member`'s standard blank on the meshes of `level`
 /// under `root/<scene>/`.
 pub fn tooth_to_tooth(
@@ -511,10 +534,8 @@ pub fn tooth_to_tooth(
     level: MeshLevel,
 ) -> anyhow::Result<ToothToTooth> {
     let sc = &scene.scene;
-    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
-    let dir = root.join(&sc.name);
     let side = sc.loaded_flank;
-    let p = planned(scene, &g, &dir, member, Blank::Standard, level, side)?;
+    let (g, p) = planned_under(scene, root, member, Blank::Standard, level)?;
     let refined = geometry::teeth::refined_teeth_on(&g, sc, member, Blank::Standard, side);
     let opposite = geometry::teeth::opposite_refined_teeth(&g, sc, member, Blank::Standard);
     let a = p.config.solved_teeth[0];

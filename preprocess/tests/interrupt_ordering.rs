@@ -13,10 +13,14 @@
 
 use fem::structured::mapped_block;
 use fem::{assemble, Dofs, Material};
-use formats::result_set::{lock_path, ResultSet, RUN_FILE};
+use formats::result_set::ResultSet;
+use signalled_child::stop_child_and_check;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
+
+#[path = "../../formats/tests/support/signalled_child.rs"]
+mod signalled_child;
 
 /// Child mode (`ORDERING_CHILD=<dir>`): begins a result set in
 /// `<dir>/out`, then orders a 12 × 12 × 12 block's stiffness by METIS in a
@@ -44,53 +48,19 @@ fn child_orders_until_stopped(dir: PathBuf) {
     panic!("not stopped within 60 s");
 }
 
-fn entries(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
-
 fn stopped_while_ordering(signal: &str) {
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path();
-    let previous = ResultSet::begin(&dir.join("out"), "previous run").unwrap();
-    std::fs::write(previous.path().join("te.csv"), "previous").unwrap();
-    previous.commit().unwrap();
-    let mut child = Command::new(std::env::current_exe().unwrap())
-        .env("ORDERING_CHILD", dir)
-        .spawn()
-        .unwrap();
-    let t0 = Instant::now();
-    while !dir.join("ready").exists() {
-        assert!(
-            t0.elapsed() < Duration::from_secs(60),
-            "child never got ready"
-        );
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    // Into the next orderings.
-    std::thread::sleep(Duration::from_millis(150));
-    assert!(lock_path(&dir.join("out")).exists());
-    let status = Command::new("kill")
-        .args([signal, &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let code = child.wait().unwrap().code();
-    assert_eq!(
-        code,
-        Some(130),
-        "exit status after {signal} during the ordering"
+    let child = |dir: &Path| {
+        let mut c = Command::new(std::env::current_exe().unwrap());
+        c.env("ORDERING_CHILD", dir);
+        c
+    };
+    // 150 ms into the next orderings.
+    stop_child_and_check(
+        child,
+        signal,
+        Duration::from_secs(60),
+        Duration::from_millis(150),
     );
-    assert_eq!(entries(dir), ["out", "ready"]);
-    assert_eq!(
-        std::fs::read_to_string(dir.join("out/te.csv")).unwrap(),
-        "previous"
-    );
-    assert!(dir.join("out").join(RUN_FILE).exists());
 }
 
 fn main() {

@@ -96,11 +96,9 @@ pub(super) fn full(
 /// their supernodes (neighbouring loads share most of their paths).
 fn forward_tooth(
     pf: &PathFactor,
-    dofs: &Dofs,
-    w: &[Weights],
+    loads: &[Vec<(usize, f64)>],
     block: usize,
 ) -> Result<Vec<PathVec>, InfluenceError> {
-    let loads: Vec<Vec<(usize, f64)>> = w.iter().map(|w| free(w, dofs)).collect();
     let mut order: Vec<usize> = (0..loads.len()).collect();
     let key = |l: &[(usize, f64)]| l.iter().map(|&(d, _)| pf.tree().supernode_of(d)).min();
     order.sort_by_key(|&i| key(&loads[i]));
@@ -124,11 +122,16 @@ pub(super) fn pruned(
     stats: &mut InfluenceStats,
 ) -> Result<Vec<f64>, InfluenceError> {
     let (np, no, ns) = (req.grid.len(), req.offsets.len(), req.solved_teeth.len());
-    let mut keep: Vec<usize> = weights
+    // Every tooth's loads on the free dofs, once.
+    let loads: BTreeMap<usize, Vec<Vec<(usize, f64)>>> = weights
+        .iter()
+        .map(|(&j, w)| (j, w.iter().map(|w| free(w, dofs)).collect()))
+        .collect();
+    let mut keep: Vec<usize> = loads
         .values()
         .flatten()
-        .flat_map(|w| free(w, dofs))
-        .map(|(f, _)| f)
+        .flatten()
+        .map(|&(f, _)| f)
         .collect();
     keep.sort_unstable();
     keep.dedup();
@@ -147,7 +150,7 @@ pub(super) fn pruned(
         for &o in &req.offsets {
             let j = tooth_of(req, k, o);
             if let std::collections::btree_map::Entry::Vacant(e) = held.entry(j) {
-                e.insert(forward_tooth(&pf, dofs, &weights[&j], req.block)?);
+                e.insert(forward_tooth(&pf, &loads[&j], req.block)?);
                 stats.right_hand_sides += np;
             }
         }
@@ -163,7 +166,7 @@ pub(super) fn pruned(
             total[at..at + np * np].copy_from_slice(&g);
         }
         gram_s += t.elapsed().as_secs_f64();
-        check = check.max(backward_check(req, &pf, dofs, weights, &held, s, &total)?);
+        check = check.max(backward_check(req, &pf, &loads, &held, s, &total)?);
         for &o in &req.offsets {
             let j = tooth_of(req, k, o);
             let left = uses.get_mut(&j).expect("counted above");
@@ -186,8 +189,7 @@ pub(super) fn pruned(
 fn backward_check(
     req: &InfluenceRequest,
     pf: &PathFactor,
-    dofs: &Dofs,
-    weights: &BTreeMap<usize, Vec<Weights>>,
+    loads: &BTreeMap<usize, Vec<Vec<(usize, f64)>>>,
     held: &BTreeMap<usize, Vec<PathVec>>,
     s: usize,
     total: &[f64],
@@ -198,22 +200,19 @@ fn backward_check(
     let mut at: Vec<usize> = req
         .offsets
         .iter()
-        .flat_map(|&o| weights[&tooth_of(req, k, o)].iter())
-        .flat_map(|w| free(w, dofs))
-        .map(|(f, _)| f)
+        .flat_map(|&o| loads[&tooth_of(req, k, o)].iter().flatten())
+        .map(|&(f, _)| f)
         .collect();
     at.sort_unstable();
     at.dedup();
-    let u_at = pf.backward_at(&[&held[&k][i]], &at)?.remove(0);
-    let mut u = vec![0.0; dofs.n_free()];
-    for (&d, &v) in at.iter().zip(&u_at) {
-        u[d] = v;
-    }
+    let u = pf.backward_at(&[&held[&k][i]], &at)?.remove(0);
+    let value = |d: usize| at.binary_search(&d).map_or(0.0, |p| u[p]);
     let (mut worst, mut scale) = (0.0f64, 0.0f64);
     for (oi, &o) in req.offsets.iter().enumerate() {
         let row = &total[((s * no + oi) * np + i) * np..((s * no + oi) * np + i + 1) * np];
-        for (q, w) in weights[&tooth_of(req, k, o)].iter().enumerate() {
-            worst = worst.max((gather(w, dofs, &u) - row[q]).abs());
+        for (q, w) in loads[&tooth_of(req, k, o)].iter().enumerate() {
+            let approach: f64 = w.iter().map(|&(d, c)| c * value(d)).sum();
+            worst = worst.max((approach - row[q]).abs());
             scale = scale.max(row[q].abs());
         }
     }

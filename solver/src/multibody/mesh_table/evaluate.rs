@@ -3,7 +3,7 @@
 //! impact-law states.
 
 use super::interpolation::{catmull_rom, gauss4, hermite_weights, stencil};
-use super::path_moments::cell_integral;
+use super::path_moments::{cell_integral, PartialRule};
 use super::{ImpactState, MeshState, MeshTable};
 use crate::SolverError;
 
@@ -251,7 +251,7 @@ impl MeshTable {
             let (ic, t_mid) = self.cell(mid)?;
             let cr = catmull_rom(t_mid + (q1 - mid) / h);
             let ends = [(r * sa - q2).max(th_lo), (r * sb - q2).max(th_lo)];
-            let cells = ends.map(|x| self.lag_cell(x));
+            let rules = ends.map(|x| PartialRule::new(&self.lags, self.lag_cell(x), x));
             for a in 0..4 {
                 let wk = [cr[0][a], cr[1][a], cr[2][a], W3[a]];
                 for (p, coef) in node_combo(n, self.spec.periodic, ic - 1 + a as i64) {
@@ -259,8 +259,8 @@ impl MeshTable {
                         continue;
                     }
                     let col = &self.torque[p * nu..(p + 1) * nu];
-                    let mb = self.moments.at(&self.lags, col, p, cells[1], ends[1]);
-                    let ma = self.moments.at(&self.lags, col, p, cells[0], ends[0]);
+                    let mb = self.moments.at(&rules[1], col, p);
+                    let ma = self.moments.at(&rules[0], col, p);
                     let dm = std::array::from_fn(|f| std::array::from_fn(|j| mb[f][j] - ma[f][j]));
                     let v = cell_integral(&dm, wk, big, rh);
                     for (o, x) in out.iter_mut().zip(v) {

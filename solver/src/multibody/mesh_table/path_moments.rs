@@ -52,28 +52,45 @@ fn lag_value(col: &[f64], k: i64) -> f64 {
     }
 }
 
-/// ∫_{x_m}^{x} (θ' − θ₀)^j ∂^f t(θ') dθ' over part of lag cell m of the
-/// column `col` (Gauss–Legendre, exact).
-pub(super) fn partial(lags: &[f64], col: &[f64], m: usize, x: f64) -> Moments {
-    let mut out = [[0.0; 4]; 3];
-    let (x0, len) = (lags[m], x - lags[m]);
-    if len == 0.0 {
-        return out;
+/// The Gauss rule of ∫_{x_m}^{x} (θ' − θ₀)^j ∂^f t(θ') dθ' over part of
+/// lag cell m, for any column: per Gauss point the Hermite weights of the
+/// cell's four lag nodes (rows f = 0..2) and the weighted powers
+/// w_g · (x − x_m) · (θ' − θ₀)^j. Exact for these integrands (degree ≤ 6).
+pub(super) struct PartialRule {
+    m: usize,
+    points: [([[f64; 4]; 3], [f64; 4]); 4],
+}
+
+impl PartialRule {
+    pub(super) fn new(lags: &[f64], m: usize, x: f64) -> PartialRule {
+        let (x0, len) = (lags[m], x - lags[m]);
+        let points = gauss4().map(|(g, wg)| {
+            let th = x0 + len * g;
+            let rel = th - lags[0];
+            let s = wg * len;
+            (
+                hermite_weights(lags, m, th),
+                [s, s * rel, s * rel * rel, s * rel * rel * rel],
+            )
+        });
+        PartialRule { m, points }
     }
-    let d: [f64; 4] = std::array::from_fn(|b| lag_value(col, m as i64 - 1 + b as i64));
-    for (g, wg) in gauss4() {
-        let th = x0 + len * g;
-        let w = hermite_weights(lags, m, th);
-        let rel = th - lags[0];
-        let pw = [1.0, rel, rel * rel, rel * rel * rel];
-        for (f, row) in out.iter_mut().enumerate() {
-            let v: f64 = (0..4).map(|b| w[f][b] * d[b]).sum();
-            for (j, o) in row.iter_mut().enumerate() {
-                *o += wg * len * pw[j] * v;
+
+    /// The integrals for the column `col` (zero below the grid, continued
+    /// linearly above it, as [`super::MeshTable`]'s fields).
+    pub(super) fn apply(&self, col: &[f64]) -> Moments {
+        let d: [f64; 4] = std::array::from_fn(|b| lag_value(col, self.m as i64 - 1 + b as i64));
+        let mut out = [[0.0; 4]; 3];
+        for (w, pw) in &self.points {
+            for (f, row) in out.iter_mut().enumerate() {
+                let v: f64 = (0..4).map(|b| w[f][b] * d[b]).sum();
+                for (o, p) in row.iter_mut().zip(pw) {
+                    *o += p * v;
+                }
             }
         }
+        out
     }
-    out
 }
 
 impl PathMoments {
@@ -82,11 +99,14 @@ impl PathMoments {
     pub(super) fn new(lags: &[f64], data: &[f64]) -> PathMoments {
         let nu = lags.len();
         let mut prefix = Vec::with_capacity(data.len());
+        let cells: Vec<PartialRule> = (0..nu - 1)
+            .map(|m| PartialRule::new(lags, m, lags[m + 1]))
+            .collect();
         for col in data.chunks_exact(nu) {
             let mut acc = [[0.0; 4]; 3];
             prefix.push(acc);
-            for m in 0..nu - 1 {
-                let cell = partial(lags, col, m, lags[m + 1]);
+            for rule in &cells {
+                let cell = rule.apply(col);
                 for f in 0..3 {
                     for j in 0..4 {
                         acc[f][j] += cell[f][j];
@@ -103,10 +123,11 @@ impl PathMoments {
         self.prefix.is_empty()
     }
 
-    /// M(p, θ) for θ in lag cell m of node p's column `col`.
-    pub(super) fn at(&self, lags: &[f64], col: &[f64], p: usize, m: usize, theta: f64) -> Moments {
-        let base = self.prefix[p * self.nu + m];
-        let part = partial(lags, col, m, theta);
+    /// M(p, θ) for node p's column `col`, θ in the cell of `rule` (made
+    /// for that θ).
+    pub(super) fn at(&self, rule: &PartialRule, col: &[f64], p: usize) -> Moments {
+        let base = self.prefix[p * self.nu + rule.m];
+        let part = rule.apply(col);
         std::array::from_fn(|f| std::array::from_fn(|j| base[f][j] + part[f][j]))
     }
 }
