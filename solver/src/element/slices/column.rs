@@ -108,7 +108,7 @@ impl Column<'_> {
         Some((lag + correction.map_or(0.0, |c| c.lag), p))
     }
 
-    fn value(&self, eta: f64) -> f64 {
+    pub(super) fn value(&self, eta: f64) -> f64 {
         self.eval(eta).map_or(f64::INFINITY, |v| v.0)
     }
 
@@ -122,20 +122,15 @@ impl Column<'_> {
     /// |∂r/∂η| there.
     pub(super) fn minimum(&self, start: f64) -> Option<ColumnMin> {
         let ((lo, lo_out), (hi, hi_out)) = self.active_interval()?;
-        // One node spacing in from either end: the wheel's bounds can cut
-        // the cell between the last active nodes of the two node columns.
-        let cell = 1.0 / (self.rs.n_profile - 1) as f64;
-        self.trusted.set((lo + cell, hi - cell));
+        self.trusted.set(self.trusted_interval());
         let mut best = match self.descend(start, lo, hi) {
             Some(b) => b,
-            // Misaligned: the node flags hold at each node's own roll, and
-            // where the wheel point touched at this roll lies past the
-            // wheel's edge the start cannot be evaluated; start from the
+            // The start cannot be evaluated: misaligned, the node flags hold
+            // at each node's own roll, and the wheel point touched at this
+            // roll can lie past the wheel's edge; aligned, a row with one
+            // active node can start beyond the wheel's edge. Start from the
             // best point of the column that can.
-            None if self.fp.pose.is_some() => {
-                self.descend(self.evaluable_start(lo, hi)?, lo, hi)?
-            }
-            None => return None,
+            None => self.descend(self.evaluable_start(lo, hi)?, lo, hi)?,
         };
         let beyond = |end: f64, out: Option<f64>, towards: f64| {
             let out = out?;
@@ -260,13 +255,16 @@ impl Column<'_> {
     }
 
     /// The active part of the column from the surface of roll angles'
-    /// activity flags: (last active node, first inactive node) at each end;
-    /// the outer bound is None where the column is active to its end.
+    /// activity flags, a row counting where either neighbouring node column
+    /// is active (next to the wheel's edge one of them can lie beyond it
+    /// while the column itself does not): (last active node, first inactive
+    /// node) at each end; the outer bound is None where the column is active
+    /// to its end.
     fn active_interval(&self) -> Option<(End, End)> {
         let rs = self.rs;
         let np = rs.n_profile;
         let (i, _) = rs.face_cell(self.xi);
-        let on = |k: usize| rs.active[i * np + k] && rs.active[(i + 1) * np + k];
+        let on = |k: usize| rs.active[i * np + k] || rs.active[(i + 1) * np + k];
         let eta = |k: usize| k as f64 / (np - 1) as f64;
         let first = (0..np).find(|&k| on(k))?;
         let last = (0..np).rev().find(|&k| on(k))?;
@@ -274,6 +272,22 @@ impl Column<'_> {
             (eta(first), first.checked_sub(1).map(eta)),
             (eta(last), (last + 1 < np).then(|| eta(last + 1))),
         ))
+    }
+
+    /// The η interval where both neighbouring node columns are active, one
+    /// node spacing in from either end: there the wheel's bounds need no
+    /// check (the mate of a point between active nodes lies on the wheel
+    /// flank). Empty where no row has both nodes active.
+    fn trusted_interval(&self) -> (f64, f64) {
+        let rs = self.rs;
+        let np = rs.n_profile;
+        let (i, _) = rs.face_cell(self.xi);
+        let both = |k: usize| rs.active[i * np + k] && rs.active[(i + 1) * np + k];
+        let cell = 1.0 / (np - 1) as f64;
+        match ((0..np).find(|&k| both(k)), (0..np).rev().find(|&k| both(k))) {
+            (Some(a), Some(b)) => (a as f64 * cell + cell, b as f64 * cell - cell),
+            _ => (f64::INFINITY, f64::NEG_INFINITY),
+        }
     }
 
     /// Signed distance (m) of the conjugate wheel point at η inside the
@@ -374,12 +388,18 @@ pub(super) struct ColumnMin {
 /// parabola through it and its neighbours. None without active nodes.
 pub(super) fn tabulated_minimum(rs: &RollSurface, xi: f64, target: f64) -> Option<f64> {
     let np = rs.n_profile;
-    let (i, w) = rs.face_cell(xi);
-    let lerp = |f: &[f64], k: usize| (1.0 - w) * f[i * np + k] + w * f[(i + 1) * np + k];
+    let (i, w_cell) = rs.face_cell(xi);
     let lag = |k: usize| -> Option<f64> {
-        if !(rs.active[i * np + k] && rs.active[(i + 1) * np + k]) {
-            return None;
-        }
+        // A row with one active node (the other's mate beyond the wheel's
+        // edge) starts from that node's values: the column search checks the
+        // wheel's bounds exactly there.
+        let w = match (rs.active[i * np + k], rs.active[(i + 1) * np + k]) {
+            (true, true) => w_cell,
+            (true, false) => 0.0,
+            (false, true) => 1.0,
+            (false, false) => return None,
+        };
+        let lerp = |f: &[f64], k: usize| (1.0 - w) * f[i * np + k] + w * f[(i + 1) * np + k];
         let d = target - lerp(&rs.roll, k);
         let aligned =
             (lerp(&rs.ease_off, k) + 0.5 * lerp(&rs.k_sep, k) * d * d) / lerp(&rs.lever, k);
