@@ -22,6 +22,17 @@ REF_STRIDE_LW ?= $(REF_STRIDE)
 FINE           ?= 1
 FINE_STRIDE    ?= 1
 FINE_STRIDE_LW ?= $(FINE_STRIDE)
+# The contact formulation's share of the reference's uncertainty: the fine
+# reference once more with only the pinion's nodes against the wheel's faces
+# (`--contact pinion-slave`, into out/<scene>/reference_reference_pinion_slave),
+# every FORMULATION_STRIDE-th position; the report's uncertainty table
+# compares it with the two-pass sweep at the same positions. Cached like the
+# two-pass sweep; measured cold 2026-11-28 at stride 4 on 2 cores with
+# nothing else heavy running: see the README's cost table. FORMULATION=0
+# leaves it out (FINE=0 does too).
+FORMULATION        ?= 1
+FORMULATION_STRIDE ?= 4
+
 # The medium mesh level's sweep (the geometric mean of the reduced and the
 # reference level's elements, 20 x 39 on the default scene), so that the
 # report gives the reference's own uncertainty from three levels
@@ -171,7 +182,10 @@ validate: solve
 	@if [ "$(FINE)" = 1 ]; then \
 	  $(BIN)/preprocess mesh $(SCENE) --level reference --out meshes && \
 	  $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) --level reference \
-	    --stride $(FINE_STRIDE) --stride-lightweight $(FINE_STRIDE_LW); fi
+	    --stride $(FINE_STRIDE) --stride-lightweight $(FINE_STRIDE_LW) && \
+	  if [ "$(FORMULATION)" = 1 ]; then \
+	    $(BIN)/validate reference $(SCENE) --meshes meshes --out $(OUT) --level reference \
+	      --contact pinion-slave --stride $(FORMULATION_STRIDE); fi; fi
 	@if [ "$(CONTACT_LAWS)" = 1 ]; then \
 	  for s in $(CONTACT_LAW_SCENES); do \
 	    f=reference/scenes/$$s.toml; \

@@ -176,6 +176,7 @@ fn consecutive_positions(b: &Bench) -> Vec<serde_json::Value> {
         penalty_factor_check: 200.0,
         start_band_m: 2e-6,
         search_gap_m: 60e-6,
+        passes: Default::default(),
     };
     let mut levels = vec![("reduced", 12usize)];
     if std::env::var("BENCH_FINE").is_ok_and(|v| v == "1") {

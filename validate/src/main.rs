@@ -120,6 +120,25 @@ mod command_line_ranges {
     }
 
     #[test]
+    fn reference_contact_takes_its_two_passes_and_refuses_others() {
+        for c in ["two-pass", "pinion-slave"] {
+            assert!(parse(&["validate", "reference", "s.toml", "--contact", c]).is_ok());
+        }
+        let e = parse(&[
+            "validate",
+            "reference",
+            "s.toml",
+            "--contact",
+            "wheel-slave",
+        ])
+        .unwrap_err();
+        assert!(
+            e.contains("--contact") && e.contains("wheel-slave") && e.contains("pinion-slave"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn utca_positions_zero_is_refused_naming_the_option() {
         let e = parse(&["validate", "utca", "s.toml", "--positions", "0"]).unwrap_err();
         assert!(e.contains("--positions") && e.contains("[1, 3600]"), "{e}");

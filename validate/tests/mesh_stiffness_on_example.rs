@@ -65,6 +65,7 @@ fn fe_tangent_mesh_stiffness_matches_the_ltca_on_the_same_coarse_meshes() {
             penalty_factor_check: 200.0,
             start_band_m: 2e-6,
             search_gap_m: 60e-6,
+            passes: Default::default(),
         },
         block: 96,
         memory_bytes: None,

@@ -71,6 +71,7 @@ fn reference_te(scene: &LoadedScene, out: &Path) -> Vec<(f64, f64)> {
             penalty_factor_check: 200.0,
             start_band_m: 2e-6,
             search_gap_m: 60e-6,
+            passes: Default::default(),
         },
         stride: 10_000,
         stride_lightweight: None,

@@ -93,6 +93,23 @@ pub struct ReferenceArgs {
     /// factors estimated from the meshes need more.
     #[arg(long)]
     pub memory_gb: Option<f64>,
+    /// Contact passes: two-pass (pinion nodes against the wheel's faces
+    /// and wheel nodes against the pinion's), or pinion-slave (the first
+    /// only; results in `reference_<level>_pinion_slave/`, the contact
+    /// formulation's share of the reference's uncertainty).
+    #[arg(long, default_value = "two-pass", value_parser = ["two-pass", "pinion-slave"])]
+    pub contact: String,
+}
+
+/// `--contact`: two-pass or pinion-slave.
+pub fn contact_passes(
+    s: &str,
+) -> anyhow::Result<validate::reference::reference_ltca::ContactPasses> {
+    use validate::reference::reference_ltca::ContactPasses;
+    [ContactPasses::TwoPass, ContactPasses::PinionSlave]
+        .into_iter()
+        .find(|p| p.name() == s)
+        .ok_or_else(|| anyhow::anyhow!("--contact {s}: must be two-pass or pinion-slave"))
 }
 
 #[derive(clap::Args)]
@@ -328,6 +345,7 @@ pub fn penalty_settings(
         penalty_factor_check: penalty_check,
         start_band_m: start_band_um * 1e-6,
         search_gap_m: search_gap_um * 1e-6,
+        passes: Default::default(),
     })
 }
 

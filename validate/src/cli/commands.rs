@@ -90,6 +90,7 @@ pub fn reference(
         compare_cache,
         shard,
         memory_gb,
+        contact,
     }: ReferenceArgs,
 ) -> anyhow::Result<()> {
     if !["reduced", "medium", "reference"].contains(&level.as_str()) {
@@ -98,7 +99,8 @@ pub fn reference(
     check_block(block)?;
     let shard = shard.map(|s| parse_shard(&s)).transpose()?;
     let memory_bytes = memory_bytes(memory_gb)?;
-    let settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
+    let mut settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
+    settings.passes = contact_passes(&contact)?;
     let sc = geometry::scene::Scene::load(&scene)?;
     let opt = validate::reference::reference_options::StageOptions {
         level,

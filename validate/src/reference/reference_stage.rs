@@ -5,6 +5,10 @@
 //! the largest torque) and `summary.json`. A run whose inputs (mesh files,
 //! settings, positions, torques) hash to an existing summary reuses it.
 //!
+//! With `--contact pinion-slave` (only the pinion's nodes against the
+//! wheel's faces) the results go to `<out>/<scene>/reference_<level>_
+//! pinion_slave/` instead ([`reference_dir_with`]), with their own cache.
+//!
 //! Each blank's solved positions are cached in `<blank>/positions/<key>/`,
 //! shared by the runs of one sweep (shards write into it side by side, a
 //! killed run resumes from it). The results of a run are one set
@@ -25,7 +29,7 @@
 
 pub use super::reference_outputs::pattern_vtu;
 pub use super::reference_summary::{BlankSummary, CacheComparison, LoadSummary, UnloadedCheck};
-use crate::reference::reference_ltca::Member;
+use crate::reference::reference_ltca::{ContactPasses, Member};
 use formats::output::write_json;
 use formats::result_set::{ResultSet, RunLock};
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
@@ -41,6 +45,24 @@ pub fn reference_dir(out: &Path, scene: &str, level: &str) -> std::path::PathBuf
     match level {
         "reduced" => out.join(scene).join("reference"),
         l => out.join(scene).join(format!("reference_{l}")),
+    }
+}
+
+/// Where the reference of mesh level `level` with the contact passes
+/// `passes` writes its results: [`reference_dir`] for the two-pass
+/// contact, `<out>/<scene>/reference_<level>_pinion_slave/` for the
+/// pinion-slave one.
+pub fn reference_dir_with(
+    out: &Path,
+    scene: &str,
+    level: &str,
+    passes: ContactPasses,
+) -> std::path::PathBuf {
+    match passes {
+        ContactPasses::TwoPass => reference_dir(out, scene, level),
+        ContactPasses::PinionSlave => out
+            .join(scene)
+            .join(format!("reference_{level}_pinion_slave")),
     }
 }
 
@@ -74,11 +96,15 @@ pub fn run(
     let sc = &scene.scene;
     // Taken before any work (see the module documentation): the set of a
     // full run, or the lock of a cache comparison or of a shard.
-    let ref_dir = reference_dir(out, &sc.name, &opt.level);
+    let ref_dir = reference_dir_with(out, &sc.name, &opt.level, opt.settings.passes);
     let what = format!(
-        "validate reference {} --level {}",
+        "validate reference {} --level {}{}",
         scene.path.display(),
-        opt.level
+        opt.level,
+        match opt.settings.passes {
+            ContactPasses::TwoPass => String::new(),
+            p => format!(" --contact {}", p.name()),
+        }
     );
     let (mut set, lock) = match opt.shard {
         Some((k, n)) => (

@@ -13,6 +13,7 @@ pub fn options(stride: usize, shard: Option<(usize, usize)>) -> StageOptions {
             penalty_factor_check: 200.0,
             start_band_m: 2e-6,
             search_gap_m: 60e-6,
+            passes: Default::default(),
         },
         stride,
         stride_lightweight: None,

@@ -160,6 +160,44 @@ pub enum ReferenceError {
     Contact(#[from] ContactError),
 }
 
+/// Which node-to-surface passes the reference contact enforces.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContactPasses {
+    /// Pinion nodes against the wheel's flank faces and wheel nodes
+    /// against the pinion's (the reference's contact).
+    #[default]
+    TwoPass,
+    /// Pinion nodes against the wheel's flank faces only: at a pinion tip
+    /// edge the force then acts along the wheel's normal alone. The two
+    /// differ where the contact runs onto an edge (the spread is the
+    /// contact formulation's share of the reference's uncertainty).
+    PinionSlave,
+}
+
+impl ContactPasses {
+    /// Whether a constraint whose slave point lies on body `slave_body`
+    /// (0 pinion, 1 wheel) is enforced.
+    pub fn keeps(self, slave_body: usize) -> bool {
+        match self {
+            ContactPasses::TwoPass => true,
+            ContactPasses::PinionSlave => slave_body == 0,
+        }
+    }
+
+    /// The variant's name in folder names and options.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactPasses::TwoPass => "two-pass",
+            ContactPasses::PinionSlave => "pinion-slave",
+        }
+    }
+
+    fn is_two_pass(&self) -> bool {
+        *self == ContactPasses::TwoPass
+    }
+}
+
 /// Settings of the reference contact.
 #[derive(Debug, Clone, Copy, Serialize, Deserialize)]
 pub struct ReferenceSettings {
@@ -173,6 +211,10 @@ pub struct ReferenceSettings {
     /// Constraints are searched up to this initial gap; those outside the
     /// solve are checked after it and added when they penetrate, m.
     pub search_gap_m: f64,
+    /// The passes enforced. Left out of the serialized settings (and so of
+    /// the position cache's key) when two-pass, the default.
+    #[serde(default, skip_serializing_if = "ContactPasses::is_two_pass")]
+    pub passes: ContactPasses,
 }
 
 /// The result of one position at one torque.

@@ -72,7 +72,7 @@ impl ReferencePair<'_> {
         };
         let (cs, at): (Vec<Constraint>, Vec<V3>) = two_pass(&body_p, &body_w, &set)
             .into_iter()
-            .filter(|(c, _)| c.rigid < 0.0)
+            .filter(|(c, o)| c.rigid < 0.0 && self.settings.passes.keeps(o.slave_body))
             .map(|(k, o)| (k, rot(&pr, [0, 1, 2].map(|i| o.at[i] - c[i]))))
             .unzip();
         if cs.is_empty() {

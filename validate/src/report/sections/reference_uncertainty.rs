@@ -4,15 +4,22 @@
 //! peak-to-peak TE per blank pair and load, how far the finest level is
 //! from its mesh limit (Richardson over three levels where the differences
 //! are monotone, else the difference of the two finest levels) and from
-//! its rigid-contact limit (the two penalty factors), and the reduced
-//! model's difference to the finest level beside that uncertainty.
+//! its rigid-contact limit (the two penalty factors), how far it moves with
+//! the contact formulation (a pinion-slave sweep, `reference_<level>_
+//! pinion_slave/`, against the two-pass one at the positions both solved),
+//! and the reduced model's difference to the finest level beside that
+//! uncertainty.
 //!
 //! A verdict in the section is a function of the numbers it judges
 //! ([`judge`], [`pressure_trend`]), each with tests of its outcomes.
 
-use crate::reference::reference_stage::{reference_dir, BlankSummary, LEVELS_FINEST_FIRST};
+use crate::reference::reference_ltca::ContactPasses;
+use crate::reference::reference_stage::{
+    reference_dir, reference_dir_with, BlankSummary, LEVELS_FINEST_FIRST,
+};
 use crate::report::comparison::{read, ComparisonError};
 use crate::report::comparison_row::Row;
+use crate::report::figures::{column, read_csv, Csv};
 use crate::studies::convergence::richardson;
 use geometry::scene::{FlankElements, Scene};
 use serde::Serialize;
@@ -97,6 +104,87 @@ pub fn uncertainty(h: &[f64], f: &[f64]) -> Option<Uncertainty> {
     })
 }
 
+/// The contact formulation's share at one load: the pinion-slave sweep
+/// against the two-pass sweep of the same mesh level, over the positions
+/// both solved.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FormulationShare {
+    pub level: String,
+    pub positions: usize,
+    pub two_pass_mean_urad: f64,
+    pub pinion_slave_mean_urad: f64,
+    pub two_pass_ptp_urad: f64,
+    pub pinion_slave_ptp_urad: f64,
+    /// (pinion-slave − two-pass) / two-pass, %.
+    pub mean_pct: f64,
+    pub ptp_pct: f64,
+}
+
+/// Rotations of two sweeps that agree within this, deg.
+const SAME_ROTATION_DEG: f64 = 1e-6;
+
+/// The share from the two sweeps' TE tables (`te.csv`) at torque `t`:
+/// mean and peak-to-peak over the rotations both hold. None with fewer
+/// than two common rotations or without the load's column.
+pub fn formulation_share(
+    two_pass: &Csv,
+    pinion_slave: &Csv,
+    t: f64,
+    level: &str,
+) -> Option<FormulationShare> {
+    let col = format!("te_{t}nm_urad");
+    let (r2, v2) = (
+        column(two_pass, "pinion_rotation_deg")?,
+        column(two_pass, &col)?,
+    );
+    let (r1, v1) = (
+        column(pinion_slave, "pinion_rotation_deg")?,
+        column(pinion_slave, &col)?,
+    );
+    let pairs: Vec<(f64, f64)> = r1
+        .iter()
+        .zip(v1)
+        .filter_map(|(r, &b)| {
+            let k = r2.iter().position(|x| (x - r).abs() <= SAME_ROTATION_DEG)?;
+            Some((v2[k], b))
+        })
+        .collect();
+    if pairs.len() < 2 {
+        return None;
+    }
+    let stats = |f: &dyn Fn(&(f64, f64)) -> f64| {
+        let v: Vec<f64> = pairs.iter().map(f).collect();
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        (mean, hi - lo)
+    };
+    let (m2, p2) = stats(&|p| p.0);
+    let (m1, p1) = stats(&|p| p.1);
+    Some(FormulationShare {
+        level: level.to_string(),
+        positions: pairs.len(),
+        two_pass_mean_urad: m2,
+        pinion_slave_mean_urad: m1,
+        two_pass_ptp_urad: p2,
+        pinion_slave_ptp_urad: p1,
+        mean_pct: (m1 - m2) / m2 * 100.0,
+        ptp_pct: (p1 - p2) / p2 * 100.0,
+    })
+}
+
+/// The reference's uncertainty that a verdict weighs, %: the larger of the
+/// mesh's and the contact formulation's, whichever are known.
+pub fn reference_pct(mesh: Option<Uncertainty>, formulation_pct: Option<f64>) -> Option<f64> {
+    match (mesh.map(|u| u.pct), formulation_pct.map(f64::abs)) {
+        (Some(a), Some(b)) => Some(a.max(b)),
+        (a, b) => a.or(b),
+    }
+}
+
 /// What the reduced model's difference `diff_pct` to the finest reference
 /// amounts to, with the target `target_pct` and the reference's own
 /// uncertainty `reference_pct` (%).
@@ -137,6 +225,9 @@ pub struct LoadRow {
     /// comparison), when it judges against that level.
     pub reduced_mean_difference_pct: Option<f64>,
     pub reduced_ptp_difference_pct: Option<f64>,
+    /// The contact formulation's share at the finest level that has a
+    /// pinion-slave sweep.
+    pub formulation: Option<FormulationShare>,
 }
 
 /// The section's numbers and markdown.
@@ -225,7 +316,21 @@ pub fn build(
                     && (r.torque_nm - t).abs() < 1e-9
                     && fine.is_some_and(|f| f.level == r.reference_level)
             });
+            let formulation = LEVELS_FINEST_FIRST.iter().find_map(|&level| {
+                let one = read_csv(
+                    &reference_dir_with(out, &scene.name, level, ContactPasses::PinionSlave)
+                        .join(blank)
+                        .join("te.csv"),
+                )?;
+                let two = read_csv(
+                    &reference_dir(out, &scene.name, level)
+                        .join(blank)
+                        .join("te.csv"),
+                )?;
+                formulation_share(&two, &one, t, level)
+            });
             out_rows.push(LoadRow {
+                formulation,
                 blank: blank.clone(),
                 torque_nm: t,
                 mean: uncertainty(&h, &mean),
@@ -280,17 +385,17 @@ pub fn markdown(rows: &[LoadRow]) -> String {
     }
     let _ = writeln!(
         s,
-        "### The reference's own uncertainty: mesh levels and penalty\n"
+        "### The reference's own uncertainty: mesh levels, penalty and contact formulation\n"
     );
     let _ = writeln!(
         s,
-        "The reference FE sweep on every mesh level that ran, the same positions and loads. The finest level's uncertainty is its distance from the mesh limit: Richardson's extrapolation over three levels where the three values change monotonically (observed order and limit), else the difference of the two finest levels. The penalty's share is the finest level's distance from its rigid-contact limit (TE at the two penalty factors, TE(p) = TE∞ + c/p per position). The reduced model's difference to the finest level (the loaded-TE table's) stands beside them, judged against the {MEAN_TARGET_PCT} % (mean) and {PTP_TARGET_PCT} % (peak-to-peak) targets and the reference's uncertainty.\n"
+        "The reference FE sweep on every mesh level that ran, the same positions and loads. The finest level's uncertainty is its distance from the mesh limit: Richardson's extrapolation over three levels where the three values change monotonically (observed order and limit), else the difference of the two finest levels. The penalty's share is the finest level's distance from its rigid-contact limit (TE at the two penalty factors, TE(p) = TE∞ + c/p per position). The contact formulation's share is how far a sweep that enforces only the pinion's nodes against the wheel's faces (pinion-slave) lies from the two-pass reference at the positions both solved: the two differ where the contact runs onto a flank edge, and neither is known to be the better there (an independent code would tell). The reduced model's difference to the finest level (the loaded-TE table's) stands beside them, judged against the {MEAN_TARGET_PCT} % (mean) and {PTP_TARGET_PCT} % (peak-to-peak) targets and the reference's uncertainty, the larger of the mesh's and the formulation's.\n"
     );
     let _ = writeln!(
         s,
-        "| blanks | N·m | levels (profile × face) | mean TE per level, µrad | mesh limit of the mean (order); uncertainty | ptp TE per level, µrad | mesh limit of the ptp (order); uncertainty | penalty share mean / ptp | reduced model mean / ptp against the finest | verdict mean / ptp |"
+        "| blanks | N·m | levels (profile × face) | mean TE per level, µrad | mesh limit of the mean (order); uncertainty | ptp TE per level, µrad | mesh limit of the ptp (order); uncertainty | penalty share mean / ptp | contact formulation: pinion-slave against two-pass mean / ptp (level, positions) | reduced model mean / ptp against the finest | verdict mean / ptp |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
     for r in rows {
         let join = |f: &dyn Fn(&LevelValue) -> String| {
             r.levels.iter().map(f).collect::<Vec<_>>().join(" / ")
@@ -298,14 +403,28 @@ pub fn markdown(rows: &[LoadRow]) -> String {
         let verdict = match (r.reduced_mean_difference_pct, r.reduced_ptp_difference_pct) {
             (Some(m), Some(p)) => format!(
                 "{} / {}",
-                judge(m, MEAN_TARGET_PCT, r.mean.map(|u| u.pct)),
-                judge(p, PTP_TARGET_PCT, r.ptp.map(|u| u.pct))
+                judge(
+                    m,
+                    MEAN_TARGET_PCT,
+                    reference_pct(r.mean, r.formulation.as_ref().map(|f| f.mean_pct))
+                ),
+                judge(
+                    p,
+                    PTP_TARGET_PCT,
+                    reference_pct(r.ptp, r.formulation.as_ref().map(|f| f.ptp_pct))
+                )
             ),
             _ => "–".into(),
         };
+        let formulation = r.formulation.as_ref().map_or("–".into(), |f| {
+            format!(
+                "{:+.2} % / {:+.1} % ({}, {})",
+                f.mean_pct, f.ptp_pct, f.level, f.positions
+            )
+        });
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} / {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} / {} | {} | {} / {} | {} |",
             r.blank.replace('_', " / "),
             r.torque_nm,
             join(&|l| format!("{} × {}", l.elements[0], l.elements[1])),
@@ -315,6 +434,7 @@ pub fn markdown(rows: &[LoadRow]) -> String {
             estimate_text(r.ptp),
             opt_pct(r.penalty_mean_pct),
             opt_pct(r.penalty_ptp_pct),
+            formulation,
             opt_pct(r.reduced_mean_difference_pct),
             opt_pct(r.reduced_ptp_difference_pct),
             verdict
@@ -432,6 +552,61 @@ mod tests {
             "{}",
             estimate_text(rich)
         );
+    }
+
+    fn table(rot: &[f64], te: &[f64]) -> Csv {
+        (
+            vec!["pinion_rotation_deg".into(), "te_700nm_urad".into()],
+            vec![rot.to_vec(), te.to_vec()],
+        )
+    }
+
+    /// The share is taken over the rotations both sweeps solved: the
+    /// two-pass sweep's other rotations (here its largest value) are left
+    /// out of its mean and peak-to-peak.
+    #[test]
+    fn formulation_share_compares_the_common_positions_only() {
+        let two = table(
+            &[0.0, 0.5, 1.0, 1.5, 2.0],
+            &[100.0, 999.0, 104.0, 999.0, 102.0],
+        );
+        let one = table(&[0.0, 1.0, 2.0], &[103.0, 106.0, 104.0]);
+        let f = formulation_share(&two, &one, 700.0, "reference").unwrap();
+        assert_eq!(f.positions, 3);
+        assert!((f.two_pass_mean_urad - 102.0).abs() < 1e-12, "{f:?}");
+        assert!(
+            (f.pinion_slave_mean_urad - 313.0 / 3.0).abs() < 1e-12,
+            "{f:?}"
+        );
+        assert!(
+            (f.two_pass_ptp_urad - 4.0).abs() < 1e-12
+                && (f.pinion_slave_ptp_urad - 3.0).abs() < 1e-12
+        );
+        assert!((f.mean_pct - (313.0 / 3.0 - 102.0) / 102.0 * 100.0).abs() < 1e-9);
+        assert!((f.ptp_pct + 25.0).abs() < 1e-9);
+        // One common rotation, or another load, gives no share.
+        assert!(formulation_share(&two, &table(&[0.0], &[1.0]), 700.0, "reference").is_none());
+        assert!(formulation_share(&two, &one, 300.0, "reference").is_none());
+    }
+
+    /// The verdict weighs the larger of the mesh's and the formulation's
+    /// uncertainty, either alone where only one is known.
+    #[test]
+    fn the_reference_uncertainty_is_the_larger_of_mesh_and_formulation() {
+        let mesh = uncertainty(&[0.1, 0.05], &[17.0, 16.0]);
+        let m = mesh.unwrap().pct;
+        assert_eq!(reference_pct(mesh, Some(-20.0)), Some(20.0));
+        assert_eq!(reference_pct(mesh, Some(0.1)), Some(m));
+        assert_eq!(reference_pct(mesh, None), Some(m));
+        assert_eq!(reference_pct(None, Some(-2.4)), Some(2.4));
+        assert_eq!(reference_pct(None, None), None);
+        // A 2.5 % difference: outside the 1 % target, within a 2.6 %
+        // formulation share, outside a 0.2 % mesh uncertainty alone.
+        assert_eq!(
+            judge(2.5, 1.0, reference_pct(None, Some(2.6))),
+            "within the reference's uncertainty"
+        );
+        assert_eq!(judge(2.5, 1.0, Some(0.2)), "outside both");
     }
 
     /// A level's summary that is there but unreadable stops the section
