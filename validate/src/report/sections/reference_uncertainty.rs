@@ -31,6 +31,9 @@ use std::path::Path;
 pub const PTP_TARGET_PCT: f64 = 3.0;
 /// The accuracy asked of the reduced model's mean TE, %.
 pub const MEAN_TARGET_PCT: f64 = 1.0;
+/// Loads from which the sentences judge (below it the TE is mostly the
+/// unloaded geometry's and the light-load contact is another question).
+pub const VERDICT_FROM_NM: f64 = 100.0;
 
 /// One mesh level's sweep at one load.
 #[derive(Debug, Clone, Serialize)]
@@ -118,6 +121,13 @@ pub struct FormulationShare {
     /// (pinion-slave − two-pass) / two-pass, %.
     pub mean_pct: f64,
     pub ptp_pct: f64,
+    /// The rotations both solved, deg.
+    #[serde(skip)]
+    pub rotations_deg: Vec<f64>,
+    /// The reduced model (the multibody run at 10 rpm, sampled at the same
+    /// rotations) against the pinion-slave sweep: (reduced − pinion-slave)
+    /// / pinion-slave, % (mean, ptp).
+    pub reduced_pct: Option<[f64; 2]>,
 }
 
 /// Rotations of two sweeps that agree within this, deg.
@@ -141,14 +151,14 @@ pub fn formulation_share(
         column(pinion_slave, "pinion_rotation_deg")?,
         column(pinion_slave, &col)?,
     );
-    let pairs: Vec<(f64, f64)> = r1
+    let (rotations_deg, pairs): (Vec<f64>, Vec<(f64, f64)>) = r1
         .iter()
         .zip(v1)
-        .filter_map(|(r, &b)| {
+        .filter_map(|(&r, &b)| {
             let k = r2.iter().position(|x| (x - r).abs() <= SAME_ROTATION_DEG)?;
-            Some((v2[k], b))
+            Some((r, (v2[k], b)))
         })
-        .collect();
+        .unzip();
     if pairs.len() < 2 {
         return None;
     }
@@ -173,7 +183,62 @@ pub fn formulation_share(
         pinion_slave_ptp_urad: p1,
         mean_pct: (m1 - m2) / m2 * 100.0,
         ptp_pct: (p1 - p2) / p2 * 100.0,
+        rotations_deg,
+        reduced_pct: None,
     })
+}
+
+/// `share` with the reduced model's TE `te` (µrad) at pinion rotations
+/// `rotation_deg` (increasing) compared at the share's rotations, linear
+/// between samples; unchanged where a rotation lies outside the samples.
+pub fn with_reduced(
+    mut share: FormulationShare,
+    rotation_deg: &[f64],
+    te: &[f64],
+) -> FormulationShare {
+    use crate::report::comparison::interpolate;
+    let v: Option<Vec<f64>> = share
+        .rotations_deg
+        .iter()
+        .map(|&a| interpolate(rotation_deg, te, a))
+        .collect();
+    if let Some(v) = v.filter(|v| !v.is_empty()) {
+        let (m, p) = solver::ltca::mean_ptp(&v);
+        share.reduced_pct = Some([
+            (m - share.pinion_slave_mean_urad) / share.pinion_slave_mean_urad * 100.0,
+            (p - share.pinion_slave_ptp_urad) / share.pinion_slave_ptp_urad * 100.0,
+        ]);
+    }
+    share
+}
+
+/// One sentence per blank pair: the reduced model against the pinion-slave
+/// sweep over the loads from `from_nm` on, judged against the targets.
+pub fn pinion_slave_sentence(blank: &str, rows: &[&LoadRow], from_nm: f64) -> Option<String> {
+    let d: Vec<[f64; 2]> = rows
+        .iter()
+        .filter(|r| r.torque_nm >= from_nm)
+        .filter_map(|r| r.formulation.as_ref()?.reduced_pct)
+        .collect();
+    if d.is_empty() {
+        return None;
+    }
+    let part = |k: usize, target: f64, what: &str| {
+        let within = d.iter().filter(|x| x[k].abs() <= target).count();
+        let worst = d.iter().map(|x| x[k].abs()).fold(0.0, f64::max);
+        let verdict = if within == d.len() {
+            format!("within {target} % at all {} loads", d.len())
+        } else {
+            format!("within {target} % at {within} of the {} loads", d.len())
+        };
+        format!("its {what} {verdict} (at most {worst:.2} %)")
+    };
+    Some(format!(
+        "- Against the pinion-slave sweep at its own positions ({}, loads from {from_nm} N·m on), the reduced model's multibody run has {}, {}.",
+        blank.replace('_', " / "),
+        part(0, MEAN_TARGET_PCT, "mean TE"),
+        part(1, PTP_TARGET_PCT, "peak-to-peak TE")
+    ))
 }
 
 /// The reference's uncertainty that a verdict weighs, %: the larger of the
@@ -327,7 +392,22 @@ pub fn build(
                         .join(blank)
                         .join("te.csv"),
                 )?;
-                formulation_share(&two, &one, t, level)
+                let share = formulation_share(&two, &one, t, level)?;
+                let mb = read_csv(
+                    &out.join(&scene.name)
+                        .join("multibody")
+                        .join(blank)
+                        .join(format!("quasi_static_{t}nm.csv")),
+                );
+                use formats::columns::{PINION_ROTATION_DEG, TE_URAD};
+                Some(
+                    match mb.as_ref().and_then(|mb| {
+                        Some((column(mb, PINION_ROTATION_DEG)?, column(mb, TE_URAD)?))
+                    }) {
+                        Some((x, y)) => with_reduced(share, x, y),
+                        None => share,
+                    },
+                )
             });
             out_rows.push(LoadRow {
                 formulation,
@@ -439,6 +519,15 @@ pub fn markdown(rows: &[LoadRow]) -> String {
             opt_pct(r.reduced_ptp_difference_pct),
             verdict
         );
+    }
+    s.push('\n');
+    let mut pairs: Vec<&str> = rows.iter().map(|r| r.blank.as_str()).collect();
+    pairs.dedup();
+    for b in &pairs {
+        let of: Vec<&LoadRow> = rows.iter().filter(|r| r.blank == *b).collect();
+        if let Some(line) = pinion_slave_sentence(b, &of, VERDICT_FROM_NM) {
+            let _ = writeln!(s, "{line}");
+        }
     }
     s.push('\n');
     // The peak pressure per level at the largest load of each blank pair.
@@ -587,6 +676,76 @@ mod tests {
         // One common rotation, or another load, gives no share.
         assert!(formulation_share(&two, &table(&[0.0], &[1.0]), 700.0, "reference").is_none());
         assert!(formulation_share(&two, &one, 300.0, "reference").is_none());
+    }
+
+    /// The reduced model is sampled at the share's rotations (linear
+    /// between its samples) and compared with the pinion-slave values; a
+    /// rotation outside its samples leaves the comparison out.
+    #[test]
+    fn the_reduced_model_is_compared_with_the_pinion_slave_sweep_at_its_positions() {
+        let two = table(&[0.0, 1.0, 2.0], &[100.0, 104.0, 102.0]);
+        let one = table(&[0.0, 2.0], &[110.0, 106.0]);
+        let share = formulation_share(&two, &one, 700.0, "reference").unwrap();
+        // Reduced model: 111 at 0°, 107.1 at 2° (between samples at 1.5°
+        // and 2.5°): mean 109.05 against 108, ptp 3.9 against 4.
+        let s = with_reduced(share.clone(), &[0.0, 1.5, 2.5], &[111.0, 107.0, 107.2]);
+        let [m, p] = s.reduced_pct.unwrap();
+        assert!((m - (109.05 - 108.0) / 108.0 * 100.0).abs() < 1e-9, "{m}");
+        assert!((p - (3.9 - 4.0) / 4.0 * 100.0).abs() < 1e-9, "{p}");
+        assert!(with_reduced(share, &[0.5, 2.5], &[1.0, 2.0])
+            .reduced_pct
+            .is_none());
+    }
+
+    fn row(t: f64, reduced: Option<[f64; 2]>) -> LoadRow {
+        LoadRow {
+            blank: "standard_lightweight".into(),
+            torque_nm: t,
+            levels: Vec::new(),
+            mean: None,
+            ptp: None,
+            penalty_mean_pct: None,
+            penalty_ptp_pct: None,
+            reduced_mean_difference_pct: None,
+            reduced_ptp_difference_pct: None,
+            formulation: Some(FormulationShare {
+                level: "reference".into(),
+                positions: 2,
+                two_pass_mean_urad: 1.0,
+                pinion_slave_mean_urad: 1.0,
+                two_pass_ptp_urad: 1.0,
+                pinion_slave_ptp_urad: 1.0,
+                mean_pct: 0.0,
+                ptp_pct: 0.0,
+                rotations_deg: Vec::new(),
+                reduced_pct: reduced,
+            }),
+        }
+    }
+
+    /// The sentence counts the loads within each target from 100 N·m on
+    /// and names the largest difference; without any comparison there is
+    /// no sentence.
+    #[test]
+    fn pinion_slave_sentence_counts_the_loads_within_each_target() {
+        let rows = [
+            row(1.0, Some([5.0, 9.0])),
+            row(100.0, Some([0.5, 2.0])),
+            row(700.0, Some([-0.2, -3.5])),
+        ];
+        let refs: Vec<&LoadRow> = rows.iter().collect();
+        let s = pinion_slave_sentence("standard_lightweight", &refs, 100.0).unwrap();
+        assert!(
+            s.contains("mean TE within 1 % at all 2 loads (at most 0.50 %)"),
+            "{s}"
+        );
+        assert!(
+            s.contains("peak-to-peak TE within 3 % at 1 of the 2 loads (at most 3.50 %)"),
+            "{s}"
+        );
+        let none = [row(300.0, None)];
+        let refs: Vec<&LoadRow> = none.iter().collect();
+        assert!(pinion_slave_sentence("standard_lightweight", &refs, 100.0).is_none());
     }
 
     /// The verdict weighs the larger of the mesh's and the formulation's
