@@ -15,10 +15,10 @@ mod golden;
 
 use geometry::scene::Scene;
 use golden::Quantity;
+#[path = "support/reference_options.rs"]
+mod reference_options;
 #[path = "support/shared_meshes.rs"]
 mod shared_meshes;
-use validate::reference::reference_ltca::ReferenceSettings;
-use validate::reference::reference_options::StageOptions;
 use validate::reference::reference_stage::run;
 
 const REL: f64 = 1e-9;
@@ -34,22 +34,7 @@ fn example_03_reference_position_matches_its_golden_output() {
 
     // The settings of `validate reference` (its command-line defaults); a
     // stride beyond the sweep leaves its first position only.
-    let opt = StageOptions {
-        level: "reduced".into(),
-        settings: ReferenceSettings {
-            penalty_factor: 100.0,
-            penalty_factor_check: 200.0,
-            start_band_m: 2e-6,
-            search_gap_m: 60e-6,
-            passes: Default::default(),
-        },
-        stride: 10_000,
-        stride_lightweight: None,
-        block: 96,
-        compare_cache: false,
-        shard: None,
-        memory_bytes: None,
-    };
+    let opt = reference_options::options(10_000, None);
     let out = tmp.path().join("out");
     let res = run(&scene, &meshes, &out, &opt).unwrap();
     eprintln!(
@@ -147,21 +132,10 @@ fn pinion_slave_contact_writes_its_own_folder_and_carries_the_torque() {
     let tmp = tempfile::tempdir().unwrap();
     let meshes = shared_meshes::reduced_meshes(&scene);
     let out = tmp.path().join("out");
-    let opt = |passes| StageOptions {
-        level: "reduced".into(),
-        settings: ReferenceSettings {
-            penalty_factor: 100.0,
-            penalty_factor_check: 200.0,
-            start_band_m: 2e-6,
-            search_gap_m: 60e-6,
-            passes,
-        },
-        stride: 10_000,
-        stride_lightweight: None,
-        block: 96,
-        compare_cache: false,
-        shard: None,
-        memory_bytes: None,
+    let opt = |passes| {
+        let mut o = reference_options::options(10_000, None);
+        o.settings.passes = passes;
+        o
     };
     let two = run(&scene, &meshes, &out, &opt(ContactPasses::TwoPass)).unwrap();
     let name = &scene.scene.name;

@@ -4,6 +4,15 @@ use geometry::generation::Side;
 use geometry::pair::PairGeometry;
 use geometry::utca::LineGrid;
 
+/// The white-paper pair as designed (`reference/white_paper_20x43.toml`).
+fn white_paper() -> PairGeometry {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../reference/white_paper_20x43.toml"
+    );
+    PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap()
+}
+
 /// The column search is a local method started from the tabulated
 /// surface of roll angles. Started instead from η = 0, 0.1, …, 1 on the
 /// same column, it must never find a smaller lag than from its own start
@@ -14,11 +23,7 @@ use geometry::utca::LineGrid;
 /// inside the wheel's tip edge by up to 6 µrad.
 #[test]
 fn column_minimum_does_not_depend_on_the_newton_start() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../reference/white_paper_20x43.toml"
-    );
-    let g = PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap();
+    let g = white_paper();
     let fp = g.side(Side::Drive);
     let grid = LineGrid {
         n_face: 41,
@@ -80,11 +85,7 @@ fn column_minimum_does_not_depend_on_the_newton_start() {
 /// smaller); a slice far from both tips has no cut.
 #[test]
 fn slices_on_or_near_a_tip_edge_carry_their_cut() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../reference/white_paper_20x43.toml"
-    );
-    let g = PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap();
+    let g = white_paper();
     let fp = g.side(Side::Drive);
     let rs = RollSurface::new(
         fp,
@@ -154,11 +155,7 @@ fn slices_on_or_near_a_tip_edge_carry_their_cut() {
 /// all: the contact line ended one node spacing short of the heel.
 #[test]
 fn every_slice_touches_at_its_columns_least_lag() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../reference/white_paper_20x43.toml"
-    );
-    let g = PairGeometry::new(&load_pair(std::path::Path::new(path)).unwrap()).unwrap();
+    let g = white_paper();
     let fp = g.side(Side::Drive);
     let rs = RollSurface::new(fp, LineGrid::default()).unwrap();
     let tau = g.data.mesh_cycle();

@@ -162,18 +162,9 @@ pub fn formulation_share(
     if pairs.len() < 2 {
         return None;
     }
-    let stats = |f: &dyn Fn(&(f64, f64)) -> f64| {
-        let v: Vec<f64> = pairs.iter().map(f).collect();
-        let mean = v.iter().sum::<f64>() / v.len() as f64;
-        let (lo, hi) = v
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                (a.min(x), b.max(x))
-            });
-        (mean, hi - lo)
-    };
-    let (m2, p2) = stats(&|p| p.0);
-    let (m1, p1) = stats(&|p| p.1);
+    let (two, one): (Vec<f64>, Vec<f64>) = pairs.iter().copied().unzip();
+    let (m2, p2) = solver::ltca::mean_ptp(&two);
+    let (m1, p1) = solver::ltca::mean_ptp(&one);
     Some(FormulationShare {
         level: level.to_string(),
         positions: pairs.len(),
@@ -350,6 +341,24 @@ pub fn build(
         let Some(first) = of_blank.first() else {
             continue;
         };
+        // The two-pass and pinion-slave TE tables of each level that has
+        // both (finest first), read once for all loads.
+        let sweeps: Vec<(&str, Csv, Csv)> = LEVELS_FINEST_FIRST
+            .iter()
+            .filter_map(|&level| {
+                let te = |dir: std::path::PathBuf| read_csv(&dir.join(blank).join("te.csv"));
+                Some((
+                    level,
+                    te(reference_dir(out, &scene.name, level))?,
+                    te(reference_dir_with(
+                        out,
+                        &scene.name,
+                        level,
+                        ContactPasses::PinionSlave,
+                    ))?,
+                ))
+            })
+            .collect();
         for load in &first.2.loads {
             let t = load.torque_nm;
             let mut levels: Vec<LevelValue> = of_blank
@@ -381,18 +390,8 @@ pub fn build(
                     && (r.torque_nm - t).abs() < 1e-9
                     && fine.is_some_and(|f| f.level == r.reference_level)
             });
-            let formulation = LEVELS_FINEST_FIRST.iter().find_map(|&level| {
-                let one = read_csv(
-                    &reference_dir_with(out, &scene.name, level, ContactPasses::PinionSlave)
-                        .join(blank)
-                        .join("te.csv"),
-                )?;
-                let two = read_csv(
-                    &reference_dir(out, &scene.name, level)
-                        .join(blank)
-                        .join("te.csv"),
-                )?;
-                let share = formulation_share(&two, &one, t, level)?;
+            let formulation = sweeps.iter().find_map(|(level, two, one)| {
+                let share = formulation_share(two, one, t, level)?;
                 let mb = read_csv(
                     &out.join(&scene.name)
                         .join("multibody")
