@@ -5,6 +5,13 @@
 
 use crate::FemError;
 use faer::sparse::SparseColMat;
+use std::sync::Mutex;
+
+/// One ordering at a time: METIS's support library (GKlib) traps SIGTERM
+/// and SIGABRT around each ordering and puts back the handlers it found;
+/// two orderings at once on two threads would each put back what the
+/// other had installed, leaving GKlib's handler in place after both.
+static ORDERING: Mutex<()> = Mutex::new(());
 
 /// Forward permutation (new position → free dof) for the lower-triangle
 /// matrix `k`; `node_of[i]` is the node of free dof i, nondecreasing in i.
@@ -50,6 +57,7 @@ pub fn nested_dissection(
     let mut nv = ng as i32;
     let mut perm = vec![0i32; ng];
     let mut iperm = vec![0i32; ng];
+    let one_at_a_time = ORDERING.lock().unwrap_or_else(|e| e.into_inner());
     // SAFETY: xadj/adjncy form a valid CSR graph of `ng` vertices; perm and
     // iperm have `ng` entries; null weights and options select METIS defaults.
     let status = unsafe {
@@ -63,6 +71,7 @@ pub fn nested_dissection(
             iperm.as_mut_ptr(),
         )
     };
+    drop(one_at_a_time);
     if status != metis_sys::rstatus_et_METIS_OK {
         return Err(FemError::Ordering(format!(
             "METIS_NodeND returned {status}"

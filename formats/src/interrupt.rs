@@ -25,7 +25,14 @@
 //! exit 143 with the lock and staging folder left behind). Threads that
 //! already ran before [`install`] (a test harness's) keep the signals
 //! unblocked; for them a handler forwards the signal to the signal thread.
-//! Child processes get the signals unblocked again ([`child`]).
+//! gmsh starts such a thread from its library constructor, before `main`,
+//! and its initialization replaces the forwarding handlers (leaving SIGTERM
+//! and SIGHUP at their defaults, which killed the process outright): the
+//! `gmsh` crate's session puts every disposition back. Child processes get
+//! the signals unblocked again ([`child`]).
+//!
+//! The signal tests stop real binaries at named phases
+//! ([`crate::stop_point`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -89,7 +96,19 @@ pub fn pending_lock(path: &Path, token: &str) -> Pending {
 }
 
 /// Holds the handler off while it lives ([`critical`]).
-pub struct Critical(#[allow(dead_code)] MutexGuard<'static, BTreeMap<u64, Undo>>);
+pub struct Critical(MutexGuard<'static, BTreeMap<u64, Undo>>);
+
+impl Critical {
+    /// Registers a directory to remove if the run is stopped once the guard
+    /// is gone: for what a critical section leaves to be removed after it
+    /// (a replaced set's old copy), so that a signal arriving right after
+    /// the section cannot leave it behind.
+    pub fn pending_dir(&mut self, path: &Path) -> Pending {
+        let id = NEXT.fetch_add(1, Ordering::Relaxed);
+        self.0.insert(id, Undo::Dir(path.to_path_buf()));
+        Pending(id)
+    }
+}
 
 /// Holds the handler off while the guard lives: for a sequence of renames
 /// that must complete or not start. No [`Pending`] may be made or dropped

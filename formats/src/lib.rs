@@ -19,7 +19,8 @@
 //! - [`added_files`]: files a later command adds in place to a committed
 //!   set (the studies beside the reference sweep), with their checksums;
 //! - [`interrupt`]: Ctrl-C and SIGTERM remove what the run began and did
-//!   not finish (staging directories, locks, temporary files).
+//!   not finish (staging directories, locks, temporary files);
+//! - [`stop_point`]: the named phases of a run where the signal tests stop it.
 
 pub mod added_files;
 pub mod columns;
@@ -34,4 +35,5 @@ pub mod sensitivity_summary;
 pub mod stiffness_file;
 pub mod stiffness_plan;
 pub mod stiffness_sense;
+pub mod stop_point;
 pub mod summaries;

@@ -29,6 +29,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
     std::fs::create_dir_all(dir)
         .map_err(|e| write_err(path, format!("cannot create {}: {e}", dir.display())))?;
     let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| write_err(path, e))?;
+    // Removed by the termination handler if the run is stopped (a signal
+    // ends the process without running the temporary file's destructor).
+    let _on_interrupt = crate::interrupt::pending_file(tmp.path());
     tmp.write_all(bytes).map_err(|e| write_err(path, e))?;
     tmp.as_file().sync_all().map_err(|e| write_err(path, e))?;
     #[cfg(unix)]
@@ -37,6 +40,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
         let perm = std::fs::Permissions::from_mode(0o644);
         std::fs::set_permissions(tmp.path(), perm).map_err(|e| write_err(path, e))?;
     }
+    crate::stop_point::at("writing");
     tmp.persist(path).map_err(|e| write_err(path, e.error))?;
     Ok(())
 }
@@ -60,6 +64,7 @@ pub fn write_via<E: From<WriteError>>(
     ));
     let on_interrupt = crate::interrupt::pending_file(&tmp);
     let r = write(&tmp).and_then(|()| {
+        crate::stop_point::at("writing");
         std::fs::rename(&tmp, path).map_err(|e| {
             E::from(write_err(
                 path,

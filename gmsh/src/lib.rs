@@ -12,6 +12,9 @@
 //! deadlocking. A `Session` is neither `Send` nor `Sync`: use it on the thread
 //! that created it.
 //!
+//! A session leaves the process's signal dispositions as it found them
+//! (gmsh installs and resets handlers of its own; see `signals.rs`).
+//!
 //! Terminal output of gmsh is switched off (`General.Terminal = 0`) unless the
 //! environment variable `GMSH_VERBOSE` is set.
 //!
@@ -65,6 +68,7 @@ mod mesh;
 mod model;
 mod occ;
 mod session;
+mod signals;
 
 pub use error::GmshError;
 pub use session::Session;

@@ -9,6 +9,7 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 use gmsh_sys as sys;
 
 use crate::ffi::{check, cpath, cstr, OutStr};
+use crate::signals::KeptDispositions;
 use crate::{GmshError, Result};
 
 /// gmsh is process-global: at most one initialized session at a time.
@@ -27,6 +28,9 @@ thread_local! {
 /// must be released on the thread that took it.
 pub struct Session {
     _guard: MutexGuard<'static, ()>,
+    /// The signal dispositions before `gmshInitialize`, put back after it
+    /// and after `gmshFinalize`.
+    dispositions: KeptDispositions,
     _not_send_sync: PhantomData<*const ()>,
 }
 
@@ -53,16 +57,20 @@ impl Session {
         // session's Drop has finalized gmsh by then: the state is clean.
         let guard = GMSH_LOCK.lock().unwrap_or_else(PoisonError::into_inner);
 
+        let dispositions = KeptDispositions::now();
         let mut argv: [*mut c_char; 1] = [std::ptr::null_mut()];
-        check("gmshInitialize", |ierr| {
+        let initialized = check("gmshInitialize", |ierr| {
             // SAFETY: argc = 0 with a NULL-terminated argv; no config files,
             // no GUI/batch run.
             unsafe { sys::gmshInitialize(0, argv.as_mut_ptr(), 0, 0, ierr) }
-        })?;
+        });
+        dispositions.restore();
+        initialized?;
         HOLDS_SESSION.with(|h| h.set(true));
         // From here on, Drop finalizes gmsh (also on the error returns below).
         let session = Session {
             _guard: guard,
+            dispositions,
             _not_send_sync: PhantomData,
         };
 
@@ -159,11 +167,13 @@ impl Session {
 }
 
 impl Drop for Session {
-    /// Calls `gmshFinalize`, then releases the process-wide lock.
+    /// Calls `gmshFinalize`, puts the signal dispositions back, then
+    /// releases the process-wide lock.
     fn drop(&mut self) {
         let mut ierr: c_int = 0;
         // SAFETY: gmsh was initialized by `Session::new`; nothing else uses it.
         unsafe { sys::gmshFinalize(&mut ierr) };
+        self.dispositions.restore();
         HOLDS_SESSION.with(|h| h.set(false));
         // `_guard` is dropped after this, releasing GMSH_LOCK.
     }

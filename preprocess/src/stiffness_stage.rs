@@ -366,6 +366,7 @@ fn run_one(
     }
     eprintln!("{stem}: reading {}", msh.display());
     let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
+    formats::stop_point::at("reading");
     let req = request(&config, &fg, &body, g, member, side, st.solve_block);
     eprintln!(
         "{stem}: {} nodes, {} tet10; unit loads on {} tooth(s) x {} grid points",

@@ -118,6 +118,7 @@ impl ResultSet {
             files: file_hashes(&self.staging).map_err(|e| unwritable(&self.staging, e))?,
         };
         crate::output::write_json(&self.staging.join(RUN_FILE), &info)?;
+        crate::stop_point::at("committing");
         let err = |staging: &Path, m: String| ResultSetError::Commit {
             dir: dir.clone(),
             staging: staging.to_path_buf(),
@@ -126,7 +127,7 @@ impl ResultSet {
         // From here until the set is in place (or back as it was), a
         // termination signal waits: carried-over entries (shared caches)
         // are inside the staging directory meanwhile.
-        let critical = crate::interrupt::critical();
+        let mut critical = crate::interrupt::critical();
         // Carried-over entries move into the staging directory.
         // A failure part way moves back what was moved, so that dropping
         // the staging directory cannot take a shared cache with it.
@@ -176,7 +177,11 @@ impl ResultSet {
             return Err(err(&self.staging, e.to_string()));
         }
         self.done = true;
+        // The old copy is this run's to remove: a signal from here on
+        // removes it too (the new set is in place).
+        let old_pending = had_old.then(|| critical.pending_dir(&old));
         drop(critical);
+        crate::stop_point::at("committed");
         if had_old {
             if let Err(e) = std::fs::remove_dir_all(&old) {
                 eprintln!(
@@ -186,6 +191,7 @@ impl ResultSet {
                 );
             }
         }
+        drop(old_pending);
         Ok(info)
     }
 }

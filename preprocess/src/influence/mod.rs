@@ -249,6 +249,7 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
             }
         }
     }
+    formats::stop_point::at("solving");
     let total = match req.solves {
         Solves::Full => solves::full(req, &dofs, &factor, &weights, &mut stats),
         Solves::Pruned => solves::pruned(req, &dofs, factor, &weights, &mut stats)?,

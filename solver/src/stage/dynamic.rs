@@ -63,6 +63,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &format!("solver dynamic {}", scene.path.display()),
     )?;
     let ctx = StageContext::new(scene, meshes)?;
+    formats::stop_point::at("reading");
     let side = ctx.side();
     let rs = ctx.roll_surface(side)?;
     let coast_rs = if mb.coast_contact {
@@ -319,6 +320,7 @@ fn blank_pair(
     let [(j1, src1), (j2, src2)] = ctx.inertia(pair)?;
     let inertia = [j1, j2];
     let tables = tables(ctx, pair, rs, coast_rs, impact)?;
+    formats::stop_point::at("solving");
     let (table, coast, runs_up) = (&tables.table, &tables.coast, tables.runs_up);
     let positions = table.spec.positions;
     let name = pair.name();

@@ -81,6 +81,7 @@ impl Run<'_> {
                 direction: self.direction,
                 settings: opt.settings,
             };
+            formats::stop_point::at("solving");
             let r = pair.position(phi, &sc.pinion_torque_nm).with_context(|| {
                 format!(
                     "scene {}: reference LTCA {name} at pinion angle {:.3} deg",
@@ -144,6 +145,7 @@ impl Run<'_> {
             opt.memory_bytes
                 .or_else(fem::cholesky::available_memory_bytes),
         )?;
+        formats::stop_point::at("reading");
         let [pm, wm] = &meshes.paths;
         if pinion.is_none() {
             eprintln!("reference: reading and factoring {}", pm.display());
