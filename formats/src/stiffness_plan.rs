@@ -161,17 +161,36 @@ impl Remedy {
     /// What a user does about it, as the tail of an error message
     /// (`; run ...` or `; check ...`), for the scene file `scene`, its
     /// design file `design` and the mesh folder `dir` at `level`.
+    ///
+    /// The commands name the mesh root (`dir`'s parent) when it is not the
+    /// default `meshes`, so that they write where this run reads; a root
+    /// that does not exist is named as such first.
     pub fn advice(self, scene: &Path, design: &Path, dir: &Path, level: MeshLevel) -> String {
         let sc = scene.display();
+        let root = dir.parent().filter(|r| !r.as_os_str().is_empty());
+        let (out, meshes) = match root.filter(|r| *r != Path::new("meshes")) {
+            Some(r) => (
+                format!(" --out {}", r.display()),
+                format!(" --meshes {}", r.display()),
+            ),
+            None => (String::new(), String::new()),
+        };
+        let missing_root = match root {
+            Some(r) if !r.exists() => format!("; no mesh folder {} (`--meshes`)", r.display()),
+            _ => String::new(),
+        };
         match self {
             Remedy::Design => format!("; check the design file {}", design.display()),
             Remedy::Folder => format!("; check the mesh folder {} (`--meshes`)", dir.display()),
             Remedy::Mesh => format!(
-                "; run `preprocess mesh {sc} --level {}`, then `preprocess stiffness {sc}{}`",
+                "{missing_root}; run `preprocess mesh {sc} --level {}{out}`, then `preprocess stiffness {sc}{}{meshes}`",
                 level.name(),
                 level.option()
             ),
-            Remedy::Stiffness => format!("; run `preprocess stiffness {sc}{}`", level.option()),
+            Remedy::Stiffness => format!(
+                "{missing_root}; run `preprocess stiffness {sc}{}{meshes}`",
+                level.option()
+            ),
         }
     }
 }

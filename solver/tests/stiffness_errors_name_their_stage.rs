@@ -78,3 +78,34 @@ fn stiffness_file_missing_from_the_manifest_points_to_the_stiffness_stage() {
     assert!(e.contains("run `preprocess stiffness"), "{e}");
     assert!(!e.contains("preprocess mesh"), "{e}");
 }
+
+#[test]
+fn commands_the_message_gives_write_where_the_run_reads() {
+    // The copy's root is a scratch folder, not the default `meshes`: the
+    // commands must name it, or they would write into ./meshes.
+    let e = first_line("root", |d| {
+        std::fs::remove_file(d.join("manifest.json")).unwrap();
+        d.to_path_buf()
+    });
+    let r = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("stiffness_errors_root_{}", std::process::id()))
+        .display()
+        .to_string();
+    assert!(
+        e.contains(&format!("--out {r}`")) && e.contains(&format!("--meshes {r}`")),
+        "{e}"
+    );
+    assert!(!e.contains("no mesh folder"), "{e}");
+}
+
+#[test]
+fn a_mesh_root_that_does_not_exist_is_named_as_such() {
+    let e = first_line("no_root", |d| {
+        d.parent().unwrap().join("not_there/ltca_fixture")
+    });
+    assert!(
+        e.contains("no mesh folder") && e.contains("not_there"),
+        "{e}"
+    );
+    assert!(e.contains("run `preprocess mesh"), "{e}");
+}

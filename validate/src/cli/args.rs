@@ -54,7 +54,7 @@ pub struct ReferenceArgs {
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
     /// Mesh level of both bodies: reduced, medium or reference.
-    #[arg(long, default_value = "reduced")]
+    #[arg(long, default_value = "reduced", value_parser = ["reduced", "medium", "reference"])]
     pub level: String,
     /// Penalty ε = factor · E / (local face size).
     #[arg(long, default_value_t = 100.0)]
@@ -210,7 +210,12 @@ pub struct LineLoadArgs {
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
     /// Fine mesh levels.
-    #[arg(long, value_delimiter = ',', default_value = "medium,reference")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "medium,reference",
+        value_parser = ["reduced", "medium", "reference"]
+    )]
     pub levels: Vec<String>,
     /// Hertz half-widths, mm.
     #[arg(long, value_delimiter = ',', default_value = "0.25,0.5,1.0")]
@@ -254,7 +259,8 @@ pub struct LevelStudyArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "reduced,medium,reference"
+        default_value = "reduced,medium,reference",
+        value_parser = ["reduced", "medium", "reference"]
     )]
     pub levels: Vec<String>,
     /// Penalty ε = factor · E / (local face size).
@@ -269,7 +275,8 @@ pub struct LevelStudyArgs {
 }
 
 impl LevelStudyArgs {
-    /// The scene loaded, the penalty settings and `--block`, checked.
+    /// The penalty settings and `--block` checked (before the scene is
+    /// read), and the scene loaded.
     pub fn checked(
         &self,
     ) -> anyhow::Result<(
@@ -277,11 +284,9 @@ impl LevelStudyArgs {
         validate::reference::reference_ltca::ReferenceSettings,
         usize,
     )> {
-        Ok((
-            geometry::scene::Scene::load(&self.scene)?,
-            penalty_settings(self.penalty, self.penalty_check, 2.0, 60.0)?,
-            check_block(self.block)?,
-        ))
+        let settings = penalty_settings(self.penalty, self.penalty_check, 2.0, 60.0)?;
+        let block = check_block(self.block)?;
+        Ok((geometry::scene::Scene::load(&self.scene)?, settings, block))
     }
 }
 

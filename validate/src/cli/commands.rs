@@ -249,19 +249,15 @@ pub fn convergence(
         torque_nm,
     }: ConvergenceArgs,
 ) -> anyhow::Result<()> {
-    let (sc, settings, block) = args.checked()?;
-    let torques_nm = if torque_nm.is_empty() {
-        sc.scene.pinion_torque_nm.clone()
-    } else {
-        torque_nm
-    };
-    if let Some(t) = torques_nm.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
+    // The torques given are checked before the scene is read (the
+    // scene's own loads were checked when it loaded).
+    if let Some(t) = torque_nm.iter().find(|t| !(t.is_finite() && **t > 0.0)) {
         anyhow::bail!("--torque-nm {t}: must be a positive number");
     }
-    if let Some(w) = torques_nm.windows(2).find(|w| w[1] <= w[0]) {
+    if let Some(w) = torque_nm.windows(2).find(|w| w[1] <= w[0]) {
         anyhow::bail!(
             "--torque-nm {}: each load once, in increasing order ({} follows {})",
-            torques_nm
+            torque_nm
                 .iter()
                 .map(|t| t.to_string())
                 .collect::<Vec<_>>()
@@ -270,6 +266,12 @@ pub fn convergence(
             w[0]
         );
     }
+    let (sc, settings, block) = args.checked()?;
+    let torques_nm = if torque_nm.is_empty() {
+        sc.scene.pinion_torque_nm.clone()
+    } else {
+        torque_nm
+    };
     let study = validate::studies::convergence::Study {
         levels: args.levels.clone(),
         position,
@@ -313,8 +315,8 @@ pub fn mesh_stiffness(
         lumped_scene,
     }: MeshStiffnessArgs,
 ) -> anyhow::Result<()> {
-    let (sc, settings, block) = args.checked()?;
     let memory_bytes = memory_bytes(memory_gb)?;
+    let (sc, settings, block) = args.checked()?;
     let study = validate::studies::mesh_stiffness::StiffnessStudy {
         levels: args.levels.clone(),
         position,
