@@ -430,6 +430,17 @@ pub fn teeth_in_contact(
     teeth_over_sweep(g, side, side, 0..=n, step, 0)
 }
 
+/// [`teeth_in_contact`] at the sweep positions k in `ks` (k < 0: before
+/// the sweep's start, as the multibody table's lead-in).
+pub fn teeth_in_contact_at(
+    g: &PairGeometry,
+    side: Side,
+    ks: std::ops::RangeInclusive<i64>,
+    step: f64,
+) -> (Vec<usize>, Vec<usize>) {
+    teeth_over_sweep(g, side, side, ks, step, 0)
+}
+
 /// Pinion and wheel teeth (indices mod z) whose `contact` flank touches at
 /// the pinion angles φ_k = r₀ + d k `step` of the `sweep` side's sweep (r₀
 /// its roll range's start, d its pinion direction), k in `ks`; the wheel's

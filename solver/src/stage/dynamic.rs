@@ -127,13 +127,7 @@ fn tables(
     let periodic = wb == Blank::Standard && pb == Blank::Standard;
     let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
     // The 10 rpm runs go one sweep step past the sweep's end.
-    let mut cycles = sc.rotation.mesh_cycles(wb);
-    if runs_up {
-        cycles = cycles.max(mb.runup_rotation() / tau);
-    }
-    if coast_rs.is_some() && mb.rattle_time_s > 0.0 {
-        cycles = cycles.max(mb.rattle_rotation() / tau);
-    }
+    let cycles = geometry::teeth::table_mesh_cycles(sc, wb, tau);
     let range = cycles * tau + 3.0 * sweep.step;
     let step = tau / per_cycle as f64;
     let positions = if periodic {
@@ -141,14 +135,7 @@ fn tables(
     } else {
         (range / step).ceil() as usize + 3
     };
-    let torque_max = sc
-        .pinion_torque_nm
-        .iter()
-        .copied()
-        .chain(runs_up.then_some(mb.runup_pinion_torque_nm))
-        .chain(mb.load_run.as_ref().map(|r| r.wheel_torque_nm * ratio))
-        .fold(0.0, f64::max)
-        * mb.table_torque_factor;
+    let torque_max = geometry::teeth::table_torque_nm(sc, wb, ratio);
     let t0 = Instant::now();
     eprintln!(
         "multibody {pb:?}/{wb:?}: contact-element table {positions} positions x {} lags",
@@ -177,6 +164,17 @@ fn tables(
         ),
     }
     .with_context(|| format!("scene {}: contact-element table, {wb:?} wheel", sc.name))?;
+    // The stiffness plan solved the teeth of the lead-in it bounds.
+    let lead = table.lead as f64 * table.spec.step;
+    let bound = geometry::teeth::table_span(g, sc, wb, sweep.step)[0];
+    anyhow::ensure!(
+        periodic || lead <= bound,
+        "scene {}: the contact-element table's lead-in before the sweep, {:.3} deg at {torque_max} N m, exceeds the {:.3} deg the stiffness plan covers (the loaded lag is that of a mesh stiffness below {} N/(mm um)); lower multibody.table_torque_factor or the largest torque",
+        sc.name,
+        lead.to_degrees(),
+        bound.to_degrees(),
+        geometry::teeth::MIN_MESH_STIFFNESS_STEEL * 1e-9
+    );
     let coast = match coast_rs {
         Some(crs) => {
             let cfp = g.side(coast_side);
