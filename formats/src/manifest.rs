@@ -187,6 +187,39 @@ impl MeshInputs {
     pub fn differences(&self, scene: &MeshInputs) -> Vec<String> {
         field_differences(self, scene, "in the manifest", "for the scene")
     }
+
+    /// What keeps a mesh made from these inputs from serving a scene that
+    /// asks for `scene` (empty: it serves), each as `field: manifest vs
+    /// scene`: every field equal, except that a mesh refined on more teeth
+    /// (loaded or opposite flanks) serves a scene that asks for fewer; its
+    /// periodic sectors follow from its own refined teeth, and the
+    /// stiffness plan takes its teeth from the mesh
+    /// ([`crate::stiffness_plan::plan`]).
+    pub fn serves(&self, scene: &MeshInputs) -> Vec<String> {
+        let covers = |have: &[usize], want: &[usize]| want.iter().all(|t| have.contains(t));
+        let teeth = MeshInputs {
+            refined_teeth: self.refined_teeth.clone(),
+            opposite_refined_teeth: self.opposite_refined_teeth.clone(),
+            periodic_teeth: self.periodic_teeth.clone(),
+            ..scene.clone()
+        };
+        let mut d = field_differences(self, &teeth, "in the manifest", "for the scene");
+        for (field, have, want) in [
+            ("refined_teeth", &self.refined_teeth, &scene.refined_teeth),
+            (
+                "opposite_refined_teeth",
+                &self.opposite_refined_teeth,
+                &scene.opposite_refined_teeth,
+            ),
+        ] {
+            if !covers(have, want) {
+                d.push(format!(
+                    "{field}: {have:?} in the manifest, {want:?} for the scene (not all of them)"
+                ));
+            }
+        }
+        d
+    }
 }
 
 impl Manifest {
@@ -349,6 +382,25 @@ mod tests {
             "{d:?}"
         );
         assert!(inputs().differences(&inputs()).is_empty());
+    }
+
+    #[test]
+    fn a_mesh_refined_on_more_teeth_serves_a_scene_that_asks_for_fewer() {
+        let mut fewer = inputs();
+        fewer.refined_teeth.pop();
+        fewer.periodic_teeth = vec![];
+        assert!(inputs().serves(&fewer).is_empty(), "{:?}", inputs().serves(&fewer));
+        assert!(inputs().serves(&inputs()).is_empty());
+        // Not the other way round, and not with any other field changed.
+        let d = fewer.serves(&inputs());
+        assert!(d.len() == 1 && d[0].starts_with("refined_teeth"), "{d:?}");
+        let mut more_opposite = inputs();
+        more_opposite.opposite_refined_teeth.push(7);
+        let d = inputs().serves(&more_opposite);
+        assert!(d.len() == 1 && d[0].starts_with("opposite_refined_teeth"), "{d:?}");
+        fewer.flank_elements.face = 99;
+        let d = inputs().serves(&fewer);
+        assert!(d.len() == 1 && d[0].starts_with("flank_elements"), "{d:?}");
     }
 
     #[test]

@@ -62,16 +62,24 @@ pub fn plan(
     };
     let fg = FlankGrid::new(g.flank(member, side), grid)?;
     let (sf, sp) = fg.spacing();
-    let refined = refined_teeth_on(g, sc, member, blank, side);
+    // The teeth of the mesh the file is computed on: the scene's, or those
+    // of a mesh refined on more teeth that serves it.
+    let [loaded, opposite] = match serving_mesh(scene, g, dir, member, blank, level) {
+        Some(e) => [e.inputs.refined_teeth, e.inputs.opposite_refined_teeth],
+        None => [
+            refined_teeth_on(g, sc, member, blank, sc.loaded_flank),
+            opposite_refined_teeth(g, sc, member, blank),
+        ],
+    };
+    let refined = match side == sc.loaded_flank {
+        true => loaded.clone(),
+        false => opposite.clone(),
+    };
     let axisymmetric = blank == Blank::Standard;
     // The mesh's periodic master (refined on both flanks with coast-side
     // contact), where this side is refined on it: the teeth around it are
     // its sector turned, so its loads hold for them by rotation.
-    let periodic = periodic_teeth(
-        blank,
-        &refined_teeth_on(g, sc, member, blank, sc.loaded_flank),
-        &opposite_refined_teeth(g, sc, member, blank),
-    );
+    let periodic = periodic_teeth(blank, &loaded, &opposite);
     let solved_teeth = if axisymmetric {
         match periodic.first() {
             Some(&m) if refined.contains(&m) => vec![m],
@@ -106,6 +114,32 @@ pub fn plan(
         grid: fg,
         config,
     })
+}
+
+/// The manifest entry of the body mesh of `member` × `blank` at `level` in
+/// `dir`, when there is one whose inputs serve the scene
+/// ([`MeshInputs::serves`]): its refined teeth are those the stiffness
+/// file is planned on. `None` when the folder, its manifest or the entry is
+/// missing, or the mesh does not serve (the checks then name why).
+fn serving_mesh(
+    scene: &LoadedScene,
+    g: &PairGeometry,
+    dir: &Path,
+    member: Member,
+    blank: Blank,
+    level: MeshLevel,
+) -> Option<MeshEntry> {
+    let manifest = Manifest::read(dir).ok()?;
+    let entry = manifest
+        .meshes
+        .get(&paths::mesh_stem(member, blank, level))?
+        .clone();
+    let design_text = std::fs::read_to_string(&scene.design_path)
+        .map(|t| geometry::design::geometry_text(&t))
+        .ok()?;
+    let elements = scene.scene.mesh.elements(level);
+    let wanted = MeshInputs::of_scene(scene, g, &design_text, member, blank, elements);
+    entry.inputs.serves(&wanted).is_empty().then_some(entry)
 }
 
 /// Which stage's output a [`CheckError`] is about, and so what a user runs
@@ -221,7 +255,8 @@ impl CheckError {
 
 /// The manifest entry of the body mesh `stem` in `dir`, checked to be made
 /// from the scene's current inputs (design geometry, blank, flank elements
-/// of `level`, refined teeth); each field that differs is named. The
+/// of `level`; refined teeth: the scene's or more,
+/// [`MeshInputs::serves`]); each field that differs is named. The
 /// `.msh` bytes are not read here: a reader that opens the mesh compares
 /// its SHA-256 with the entry's `msh_sha256` ([`CheckError::MeshChanged`]).
 pub fn check_mesh(
@@ -243,7 +278,7 @@ pub fn check_mesh(
     let mesh = manifest.mesh(dir, stem)?;
     let elements = scene.scene.mesh.elements(level);
     let wanted = MeshInputs::of_scene(scene, g, &design_text, member, blank, elements);
-    let fields = mesh.inputs.differences(&wanted);
+    let fields = mesh.inputs.serves(&wanted);
     if !fields.is_empty() {
         return Err(CheckError::StaleMesh {
             stem: stem.to_string(),

@@ -157,9 +157,7 @@ pub fn run(
                     && msh.exists()
                     && vtu.exists()
                     && mesh_intact(&dir, &stem);
-                let cached = std::fs::read_to_string(&report_path)
-                    .ok()
-                    .and_then(|t| serde_json::from_str::<MeshReport>(&t).ok());
+                let cached = cached_report(&report_path);
                 let record = |stem: &str| {
                     let entry_inputs =
                         MeshInputs::of_scene(scene, &g, &design_text, member, blank, lv);
@@ -181,20 +179,68 @@ pub fn run(
                     reports.push(r);
                     continue;
                 }
-                let same_inputs =
-                    |t: &str| serde_json::from_str::<Inputs>(t).is_ok_and(|i| i == inputs);
-                if let Some(from) = crate::sibling_reuse::mesh(root, &dir, &stem, same_inputs) {
-                    let read = std::fs::read_to_string(&report_path)
-                        .ok()
-                        .and_then(|t| serde_json::from_str::<MeshReport>(&t).ok());
-                    if let Some(mut r) = read {
+                // A mesh of this folder refined on more teeth than the
+                // scene asks for serves it as it is (its manifest entry
+                // keeps its own inputs).
+                let wanted = MeshInputs::of_scene(scene, &g, &design_text, member, blank, lv);
+                let serves = |t: &str, e: &MeshEntry| {
+                    serde_json::from_str::<Inputs>(t)
+                        .is_ok_and(|i| i.schema == MESH_SCHEMA && i.hash == e.inputs_hash)
+                        && e.inputs.serves(&wanted).is_empty()
+                };
+                let own_entry = Manifest::read(&dir)
+                    .ok()
+                    .and_then(|m| m.meshes.get(&stem).cloned());
+                let own_serves = own_entry.as_ref().is_some_and(|e| {
+                    std::fs::read_to_string(&inputs_path).is_ok_and(|t| serves(&t, e))
+                }) && msh.exists()
+                    && vtu.exists()
+                    && mesh_intact(&dir, &stem);
+                if let (true, Some(mut r)) = (own_serves, cached_report(&report_path)) {
+                    eprintln!(
+                        "{stem}: refined on more teeth than the scene asks for, reusing {}",
+                        msh.display()
+                    );
+                    r.reused = true;
+                    reports.push(r);
+                    continue;
+                }
+                // A sibling's mesh: the same inputs first, else one
+                // refined on more teeth.
+                let same_inputs = |t: &str, _: &MeshEntry| {
+                    serde_json::from_str::<Inputs>(t).is_ok_and(|i| i == inputs)
+                };
+                let copied = crate::sibling_reuse::mesh(root, &dir, &stem, same_inputs)
+                    .map(|(from, _)| (from, None))
+                    .or_else(|| {
+                        crate::sibling_reuse::mesh(root, &dir, &stem, serves)
+                            .map(|(from, e)| (from, Some(e)))
+                    });
+                if let Some((from, superset)) = copied {
+                    if let Some(mut r) = cached_report(&report_path) {
+                        let how = match superset {
+                            None => "same inputs as",
+                            Some(_) => "refined on more teeth than the scene asks for:",
+                        };
                         eprintln!(
-                            "{stem}: same inputs as {}, copied",
+                            "{stem}: {how} {}, copied",
                             paths::msh(&from, &stem).display()
                         );
                         r.scene = sc.name.clone();
                         write_json(&report_path, &r)?;
-                        record(&stem)?;
+                        match superset {
+                            None => record(&stem)?,
+                            Some(e) => record_mesh(
+                                &dir,
+                                &stem,
+                                member,
+                                blank,
+                                level,
+                                e.inputs,
+                                &e.inputs_hash,
+                                &g,
+                            )?,
+                        }
                         r.reused = true;
                         reports.push(r);
                         continue;
@@ -210,6 +256,13 @@ pub fn run(
         }
     }
     Ok(reports)
+}
+
+/// The mesh report at `path`, if readable.
+fn cached_report(path: &Path) -> Option<MeshReport> {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| serde_json::from_str::<MeshReport>(&t).ok())
 }
 
 /// Writes the manifest entry of the mesh `stem` (its inputs, the hash of

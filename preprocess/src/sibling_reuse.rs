@@ -8,7 +8,7 @@
 //! would make on its own: the inputs hash, and the sibling manifest's
 //! SHA-256 of the file.
 
-use formats::manifest::{sha256_file, Manifest};
+use formats::manifest::{sha256_file, Manifest, MeshEntry};
 use std::path::{Path, PathBuf};
 
 /// Other scene folders of `root` than `own`, sorted (deterministic choice).
@@ -35,28 +35,31 @@ fn copy_all(from: &Path, to: &Path, names: &[String]) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// A sibling folder whose mesh `stem` was made from the same inputs
-/// (`same_inputs` on the text of its `<stem>.inputs.json`) and whose
-/// `.msh` is the one its manifest lists: its `.msh`, `.vtu`,
-/// `.report.json` and `.inputs.json` are copied into `dir`. Returns the
-/// folder copied from.
+/// A sibling folder whose mesh `stem` serves (`accept` on the text of its
+/// `<stem>.inputs.json` and its manifest entry: the same inputs, or a mesh
+/// refined on more teeth) and whose `.msh` is the one its manifest lists:
+/// its `.msh`, `.vtu`, `.report.json` and `.inputs.json` are copied into
+/// `dir`. Returns the folder copied from and its manifest entry.
 pub fn mesh(
     root: &Path,
     dir: &Path,
     stem: &str,
-    same_inputs: impl Fn(&str) -> bool,
-) -> Option<PathBuf> {
+    accept: impl Fn(&str, &MeshEntry) -> bool,
+) -> Option<(PathBuf, MeshEntry)> {
     for other in siblings(root, dir) {
-        let same = std::fs::read_to_string(other.join(format!("{stem}.inputs.json")))
-            .is_ok_and(|t| same_inputs(&t));
-        if !same {
+        let Some(entry) = Manifest::read(&other)
+            .ok()
+            .and_then(|m| m.meshes.get(stem).cloned())
+        else {
+            continue;
+        };
+        let accepted = std::fs::read_to_string(other.join(format!("{stem}.inputs.json")))
+            .is_ok_and(|t| accept(&t, &entry));
+        if !accepted {
             continue;
         }
         let msh = formats::paths::msh(&other, stem);
-        let listed = Manifest::read(&other)
-            .ok()
-            .and_then(|m| m.meshes.get(stem).map(|e| e.msh_sha256.clone()));
-        let intact = listed.is_some_and(|h| sha256_file(&msh).is_ok_and(|x| x == h));
+        let intact = sha256_file(&msh).is_ok_and(|x| x == entry.msh_sha256);
         let names: Vec<String> = ["msh", "vtu", "report.json", "inputs.json"]
             .iter()
             .map(|e| format!("{stem}.{e}"))
@@ -65,7 +68,7 @@ pub fn mesh(
             continue;
         }
         if copy_all(&other, dir, &names).is_ok() {
-            return Some(other);
+            return Some((other, entry));
         }
     }
     None

@@ -219,7 +219,7 @@ pub fn planned(
         blank,
         sc.mesh.elements(level),
     );
-    let changed = entry.inputs.differences(&wanted);
+    let changed = entry.inputs.serves(&wanted);
     if !changed.is_empty() {
         anyhow::bail!(
             "scene {}: the mesh {} was made from other inputs ({}); run `preprocess mesh {}` first",

@@ -80,13 +80,13 @@ fn sibling_mesh_and_stiffness_file_are_copied_only_from_the_same_inputs_and_inta
     let (r, b) = (root.path(), root.path().join("b"));
     sibling(r, "same");
     // Other inputs: nothing copied.
-    assert!(sibling_reuse::mesh(r, &b, STEM, |t| t == "other").is_none());
+    assert!(sibling_reuse::mesh(r, &b, STEM, |t, _| t == "other").is_none());
     assert!(sibling_reuse::stiffness(r, &b, STEM, STEM, "h2").is_none());
     assert!(!b.join(format!("{STEM}.msh")).exists());
     // Same inputs: the four mesh files and the two stiffness files.
     assert_eq!(
-        sibling_reuse::mesh(r, &b, STEM, |t| t == "same").as_deref(),
-        Some(r.join("a").as_path())
+        sibling_reuse::mesh(r, &b, STEM, |t, _| t == "same").map(|(from, _)| from),
+        Some(r.join("a"))
     );
     assert_eq!(
         std::fs::read_to_string(b.join(format!("{STEM}.msh"))).unwrap(),
@@ -102,6 +102,6 @@ fn sibling_mesh_and_stiffness_file_are_copied_only_from_the_same_inputs_and_inta
     let c = root.path().join("c");
     std::fs::write(r.join("a").join(format!("{STEM}.msh")), "changed").unwrap();
     std::fs::write(r.join("a").join(format!("{STEM}.stiffness.h5")), "changed").unwrap();
-    assert!(sibling_reuse::mesh(r, &c, STEM, |t| t == "same").is_none());
+    assert!(sibling_reuse::mesh(r, &c, STEM, |t, _| t == "same").is_none());
     assert!(sibling_reuse::stiffness(r, &c, STEM, STEM, "h1").is_none());
 }
