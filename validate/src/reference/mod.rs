@@ -17,6 +17,7 @@ pub mod contact_pairs;
 pub mod contact_surface;
 pub mod path_compliance;
 pub mod penalty;
+pub mod position_cache;
 pub mod reference_blank_pair;
 pub mod reference_ltca;
 pub mod reference_options;

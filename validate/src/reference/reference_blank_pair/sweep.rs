@@ -3,13 +3,13 @@
 //! report of a cache comparison.
 
 use super::{PairMeshes, Run, Swept};
-use crate::reference::reference_ltca::{Member, PositionResult, ReferencePair};
+use crate::reference::position_cache::{self, Cached};
+use crate::reference::reference_ltca::{Member, ReferencePair};
 use crate::reference::reference_options::COMPARE_TOLERANCE;
 use crate::reference::reference_outputs::report_factor;
 use crate::reference::reference_summary::CacheComparison;
 use anyhow::Context;
 use formats::added_files::{add_json, Dependence};
-use formats::output::write_json;
 use geometry::design::Member as Which;
 use std::path::Path;
 
@@ -54,10 +54,18 @@ impl Run<'_> {
                 "phi_{}udeg.json",
                 (phi.to_degrees() * 1e6).round() as i64
             ));
-            let from_cache = std::fs::read_to_string(&cached)
-                .ok()
-                .and_then(|t| serde_json::from_str::<PositionResult>(&t).ok())
-                .filter(|r| r.loads.len() == sc.pinion_torque_nm.len());
+            let from_cache = match position_cache::read(&cached) {
+                Cached::Valid(r) => Some(*r),
+                Cached::Changed { found, listed } => {
+                    eprintln!(
+                        "reference {name}: {} is not the result its checksum was made of (SHA-256 {found}, listed {listed}); solving the position again",
+                        cached.display()
+                    );
+                    None
+                }
+                Cached::Absent => None,
+            }
+            .filter(|r| r.loads.len() == sc.pinion_torque_nm.len());
             if opt.compare_cache && from_cache.is_none() {
                 comparison.positions_without_cache += 1;
                 bar.inc(1);
@@ -91,7 +99,7 @@ impl Run<'_> {
             })?;
             match &from_cache {
                 Some(old) => comparison.add(&r, old),
-                None => write_json(&cached, &r)?,
+                None => position_cache::write(&cached, &r)?,
             }
             if bar.is_hidden() {
                 eprintln!(
