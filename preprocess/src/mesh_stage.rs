@@ -113,6 +113,17 @@ pub fn run(
             l.name()
         );
     }
+    // An output that cannot hold the meshes is refused before any CAD or
+    // meshing work (a minute at the finer levels).
+    if !levels.is_empty() {
+        std::fs::create_dir_all(&dir).map_err(|e| {
+            anyhow::anyhow!(
+                "scene {}: cannot create the mesh folder {} (`--out`): {e}",
+                sc.name,
+                dir.display()
+            )
+        })?;
+    }
     // The geometry's text: a `[published]` table does not change a mesh.
     let design_text =
         geometry::design::geometry_text(&std::fs::read_to_string(&scene.design_path)?);

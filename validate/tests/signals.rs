@@ -81,10 +81,12 @@ fn reference_stopped_while_solving_leaves_the_previous_set() {
     stopped("solving", "-TERM");
 }
 
+// The two phases beyond the three of the matrix, one signal each (the
+// signal thread treats both alike; every phase takes about 9 s of
+// factoring on these meshes).
 #[test]
 fn reference_stopped_while_writing_a_position_leaves_no_temporary_file() {
     stopped("writing", "-INT");
-    stopped("writing", "-TERM");
 }
 
 #[test]
@@ -95,6 +97,6 @@ fn reference_stopped_while_committing_leaves_the_previous_set() {
 
 #[test]
 fn reference_stopped_right_after_the_commit_leaves_the_new_set_whole() {
-    stopped("committed", "-INT");
+    // SIGTERM: the signal gmsh's handlers had taken over.
     stopped("committed", "-TERM");
 }
