@@ -389,7 +389,11 @@ mod tests {
         let mut fewer = inputs();
         fewer.refined_teeth.pop();
         fewer.periodic_teeth = vec![];
-        assert!(inputs().serves(&fewer).is_empty(), "{:?}", inputs().serves(&fewer));
+        assert!(
+            inputs().serves(&fewer).is_empty(),
+            "{:?}",
+            inputs().serves(&fewer)
+        );
         assert!(inputs().serves(&inputs()).is_empty());
         // Not the other way round, and not with any other field changed.
         let d = fewer.serves(&inputs());
@@ -397,7 +401,10 @@ mod tests {
         let mut more_opposite = inputs();
         more_opposite.opposite_refined_teeth.push(7);
         let d = inputs().serves(&more_opposite);
-        assert!(d.len() == 1 && d[0].starts_with("opposite_refined_teeth"), "{d:?}");
+        assert!(
+            d.len() == 1 && d[0].starts_with("opposite_refined_teeth"),
+            "{d:?}"
+        );
         fewer.flank_elements.face = 99;
         let d = inputs().serves(&fewer);
         assert!(d.len() == 1 && d[0].starts_with("flank_elements"), "{d:?}");
