@@ -64,16 +64,21 @@ pub fn plan(
     let (sf, sp) = fg.spacing();
     // The teeth of the mesh the file is computed on: the scene's, or those
     // of a mesh refined on more teeth that serves it.
-    let [loaded, opposite] = match serving_mesh(scene, g, dir, member, blank, level) {
-        Some(e) => [e.inputs.refined_teeth, e.inputs.opposite_refined_teeth],
+    let serving = serving_mesh(scene, g, dir, member, blank, level);
+    let [loaded, opposite] = match &serving {
+        Some(e) => [
+            e.inputs.refined_teeth.clone(),
+            e.inputs.opposite_refined_teeth.clone(),
+        ],
         None => [
             refined_teeth_on(g, sc, member, blank, sc.loaded_flank),
             opposite_refined_teeth(g, sc, member, blank),
         ],
     };
-    let refined = match side == sc.loaded_flank {
-        true => loaded.clone(),
-        false => opposite.clone(),
+    let refined = match (serving.is_some(), side == sc.loaded_flank) {
+        (_, true) => loaded.clone(),
+        (true, false) => opposite.clone(),
+        (false, false) => refined_teeth_on(g, sc, member, blank, side),
     };
     let axisymmetric = blank == Blank::Standard;
     // The mesh's periodic master (refined on both flanks with coast-side
@@ -201,18 +206,7 @@ impl Remedy {
     /// that does not exist is named as such first.
     pub fn advice(self, scene: &Path, design: &Path, dir: &Path, level: MeshLevel) -> String {
         let sc = scene.display();
-        let root = dir.parent().filter(|r| !r.as_os_str().is_empty());
-        let (out, meshes) = match root.filter(|r| *r != Path::new("meshes")) {
-            Some(r) => (
-                format!(" --out {}", r.display()),
-                format!(" --meshes {}", r.display()),
-            ),
-            None => (String::new(), String::new()),
-        };
-        let missing_root = match root {
-            Some(r) if !r.exists() => format!("; no mesh folder {} (`--meshes`)", r.display()),
-            _ => String::new(),
-        };
+        let [out, meshes, missing_root] = mesh_root_advice(dir);
         match self {
             Remedy::Design => format!("; check the design file {}", design.display()),
             Remedy::Folder => format!("; check the mesh folder {} (`--meshes`)", dir.display()),
@@ -227,6 +221,24 @@ impl Remedy {
             ),
         }
     }
+}
+
+/// For the commands a message gives about the mesh folder `dir`
+/// (`<root>/<scene>`): the options ` --out <root>` (for `preprocess mesh`)
+/// and ` --meshes <root>` (for `preprocess stiffness`), empty when the root
+/// is the default `meshes`, so that the commands write where the run reads;
+/// and `; no mesh folder <root> (`--meshes`)` when the root does not exist.
+pub fn mesh_root_advice(dir: &Path) -> [String; 3] {
+    let root = dir.parent().filter(|r| !r.as_os_str().is_empty());
+    let [out, meshes] = match root.filter(|r| *r != Path::new("meshes")) {
+        Some(r) => ["out", "meshes"].map(|o| format!(" --{o} {}", r.display())),
+        None => [String::new(), String::new()],
+    };
+    let missing = match root {
+        Some(r) if !r.exists() => format!("; no mesh folder {} (`--meshes`)", r.display()),
+        _ => String::new(),
+    };
+    [out, meshes, missing]
 }
 
 impl CheckError {

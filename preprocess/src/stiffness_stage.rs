@@ -177,17 +177,8 @@ pub fn planned(
                 level.name()
             );
         }
-        // The command writes where this run reads: the mesh root named
-        // unless it is the default.
-        let root = dir.parent().filter(|r| !r.as_os_str().is_empty());
-        let out = match root.filter(|r| *r != Path::new("meshes")) {
-            Some(r) => format!(" --out {}", r.display()),
-            None => String::new(),
-        };
-        let missing_root = match root {
-            Some(r) if !r.exists() => format!(" (no mesh folder {}: `--meshes`)", r.display()),
-            _ => String::new(),
-        };
+        // The command writes where this run reads.
+        let [out, _, missing_root] = stiffness_plan::mesh_root_advice(dir);
         anyhow::bail!(
             "scene {}: no mesh {} for the {} ({} blank){missing_root}; run `preprocess mesh {}{}{out}` first",
             sc.name,

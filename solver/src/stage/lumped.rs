@@ -110,7 +110,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let sc = &scene.scene;
     let Some(ls) = &sc.lumped else {
         anyhow::bail!(
-            "scene {}: no [lumped] section; add one (see geometry/src/scene_lumped.rs) to run the lumped model",
+            "scene {}: no [lumped] section; add one to run the lumped model (reference/scenes/seed004_lumped.toml is a complete example; its fields and limits: docs/limits.md)",
             sc.name
         );
     };
