@@ -5,6 +5,9 @@
 //! (a good command line meshes for a minute: the mesh and stiffness tests
 //! run those).
 
+#[path = "support/small_scene.rs"]
+mod small_scene;
+
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -15,14 +18,7 @@ const LEVELS: [&str; 4] = ["reduced", "medium", "reference", "both"];
 /// plain file.
 fn scratch() -> (tempfile::TempDir, PathBuf) {
     let tmp = tempfile::tempdir().unwrap();
-    let reference = Path::new(env!("CARGO_MANIFEST_DIR")).join("../reference");
-    let text = std::fs::read_to_string(reference.join("scenes/small.toml"))
-        .unwrap()
-        .replace(
-            "design = \"../white_paper_20x43.toml\"",
-            &format!("design = {:?}", reference.join("white_paper_20x43.toml")),
-        )
-        .replace("ltca = false", "ltca = true");
+    let text = small_scene::small_scene_text().replace("ltca = false", "ltca = true");
     let scene = tmp.path().join("scene.toml");
     std::fs::write(&scene, text).unwrap();
     std::fs::write(tmp.path().join("a_file"), "").unwrap();

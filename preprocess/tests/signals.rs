@@ -7,6 +7,8 @@
 
 #[path = "../../validate/tests/support/shared_meshes.rs"]
 mod shared_meshes;
+#[path = "support/small_scene.rs"]
+mod small_scene;
 #[path = "../../formats/tests/support/stop_at_phase.rs"]
 mod stop_at_phase;
 
@@ -16,29 +18,20 @@ use std::process::Command;
 use std::sync::OnceLock;
 use stop_at_phase::{check_left, stop_at, tree};
 
-fn reference() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../reference")
-}
-
 /// The small scene's reduced-level meshes (made once, shared with the
 /// other tests that mesh it).
 fn meshes() -> &'static Path {
     static M: OnceLock<PathBuf> = OnceLock::new();
     M.get_or_init(|| {
-        shared_meshes::reduced_meshes(&Scene::load(&reference().join("scenes/small.toml")).unwrap())
+        shared_meshes::reduced_meshes(
+            &Scene::load(&small_scene::reference().join("scenes/small.toml")).unwrap(),
+        )
     })
 }
 
 /// The small scene with the loaded TCA on, written into `dir`.
 fn scene(dir: &Path) -> PathBuf {
-    let text = std::fs::read_to_string(reference().join("scenes/small.toml")).unwrap();
-    let design = reference().join("white_paper_20x43.toml");
-    let text = text
-        .replace(
-            "design = \"../white_paper_20x43.toml\"",
-            &format!("design = {:?}", design.display().to_string()),
-        )
-        .replace("ltca = false", "ltca = true");
+    let text = small_scene::small_scene_text().replace("ltca = false", "ltca = true");
     let path = dir.join("scene.toml");
     std::fs::write(&path, text).unwrap();
     path

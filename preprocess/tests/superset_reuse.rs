@@ -8,6 +8,8 @@
 
 #[path = "../../validate/tests/support/shared_meshes.rs"]
 mod shared_meshes;
+#[path = "support/small_scene.rs"]
+mod small_scene;
 
 use formats::manifest::Manifest;
 use formats::paths::{self, MeshLevel};
@@ -22,14 +24,8 @@ use std::path::Path;
 /// The small scene with `edit` applied to its text, named `name`, written
 /// into `dir`.
 fn variant(dir: &Path, name: &str, edit: impl Fn(String) -> String) -> LoadedScene {
-    let reference = Path::new(env!("CARGO_MANIFEST_DIR")).join("../reference");
-    let text = std::fs::read_to_string(reference.join("scenes/small.toml"))
-        .unwrap()
-        .replace(
-            "design = \"../white_paper_20x43.toml\"",
-            &format!("design = {:?}", reference.join("white_paper_20x43.toml")),
-        )
-        .replace("name = \"small\"", &format!("name = \"{name}\""));
+    let text =
+        small_scene::small_scene_text().replace("name = \"small\"", &format!("name = \"{name}\""));
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, edit(text)).unwrap();
     Scene::load(&path).unwrap()
