@@ -48,6 +48,9 @@ enum Undo {
     File(PathBuf),
     /// A lock file to remove if it still holds `token` (this run's).
     Lock { path: PathBuf, token: String },
+    /// A child process to kill (and reap) before the files are removed,
+    /// so that it cannot write them again.
+    Process(u32),
 }
 
 static PENDING: Mutex<BTreeMap<u64, Undo>> = Mutex::new(BTreeMap::new());
@@ -84,6 +87,13 @@ pub fn pending_dir(path: &Path) -> Pending {
 /// Registers a file to remove if the run is stopped.
 pub fn pending_file(path: &Path) -> Pending {
     register(Undo::File(path.to_path_buf()))
+}
+
+/// Registers a child process to kill if the run is stopped (before the
+/// files registered earlier are removed: a child writing one of them
+/// cannot write it again afterwards).
+pub fn pending_process(pid: u32) -> Pending {
+    register(Undo::Process(pid))
 }
 
 /// Registers a lock file to release if the run is stopped: removed only
@@ -140,6 +150,14 @@ pub fn undo_all() -> Vec<PathBuf> {
                 let ours = std::fs::read_to_string(&path).is_ok_and(|t| t.contains(&token));
                 if ours && std::fs::remove_file(&path).is_ok() {
                     removed.push(path);
+                }
+            }
+            Undo::Process(pid) => {
+                // SAFETY: kill and waitpid on a child of this process; a
+                // child already reaped gives ESRCH / ECHILD, harmlessly.
+                unsafe {
+                    libc::kill(pid as libc::pid_t, libc::SIGKILL);
+                    libc::waitpid(pid as libc::pid_t, std::ptr::null_mut(), 0);
                 }
             }
         }
@@ -236,6 +254,20 @@ pub fn install() {
             }
         }
     });
+}
+
+/// Runs `cmd` to completion as [`std::process::Command::output`] does, as
+/// a child that receives the termination signals ([`child`]) and that a
+/// stopped run kills ([`pending_process`]): for a child that writes this
+/// run's output (a converter writing a temporary file).
+pub fn output(cmd: &mut std::process::Command) -> std::io::Result<std::process::Output> {
+    let spawned = child(cmd)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()?;
+    let _on_interrupt = pending_process(spawned.id());
+    spawned.wait_with_output()
 }
 
 /// Lets a child process receive SIGINT, SIGTERM and SIGHUP again (a

@@ -70,11 +70,14 @@ pub fn meshio_command() -> (PathBuf, PathBuf) {
 pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> anyhow::Result<()> {
     let (py, script) = meshio_command();
     formats::output::write_via(vtu, |tmp| {
-        let out = formats::interrupt::child(&mut std::process::Command::new(&py))
-            .arg(&script)
-            .arg(msh)
-            .arg(tmp)
-            .output()
+        // Killed if the run is stopped, so that it cannot write `tmp`
+        // again once the handler has removed it.
+        let out = formats::interrupt::output(
+            std::process::Command::new(&py)
+                .arg(&script)
+                .arg(msh)
+                .arg(tmp),
+        )
             .map_err(|e| anyhow::anyhow!("cannot run {}: {e}", py.display()))?;
         if !out.status.success() {
             anyhow::bail!(

@@ -27,6 +27,18 @@ pub fn stop_child_and_check(
     ready_within: Duration,
     settle: Duration,
 ) {
+    stop_child_and_check_with(child, signal, ready_within, settle, |_| {});
+}
+
+/// [`stop_child_and_check`], with `before_signal(dir)` run once the child
+/// is ready (to read what it wrote into its readiness marker).
+pub fn stop_child_and_check_with(
+    child: impl Fn(&Path) -> Command,
+    signal: &str,
+    ready_within: Duration,
+    settle: Duration,
+    before_signal: impl Fn(&Path),
+) {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     // A previous committed set with its own results.
@@ -40,6 +52,7 @@ pub fn stop_child_and_check(
         std::thread::sleep(Duration::from_millis(20));
     }
     std::thread::sleep(settle);
+    before_signal(dir);
     assert!(lock_path(&dir.join("out")).exists());
     let status = Command::new("kill")
         .args([signal, &child.id().to_string()])
