@@ -3,11 +3,14 @@
 //! (with the limit in the message), the data consistent with each other
 //! (pitch angles from the tooth numbers before the cone angles that depend
 //! on them), and the derived pair sound (cutter radius, tooth thickness,
-//! spiral angle along the face).
+//! spiral angle along the face). Each limit is an entry of
+//! [`crate::limits::design`], which the checks test values against and
+//! refuse with.
 
 use crate::design::*;
 use crate::error::InputError;
-use std::path::{Path, PathBuf};
+use crate::limits::design as lim;
+use std::path::Path;
 
 impl DesignFile {
     /// Reads and parses a design file (no semantic checks yet).
@@ -80,35 +83,6 @@ pub fn load_pair(path: &Path) -> Result<PairData, InputError> {
     DesignFile::load(path)?.to_pair(path)
 }
 
-struct Checker<'a> {
-    path: &'a Path,
-}
-
-impl Checker<'_> {
-    fn fail(&self, field: &str, value: f64, limit: String) -> InputError {
-        InputError::Invalid {
-            path: PathBuf::from(self.path),
-            field: field.to_string(),
-            value: format!("{value}"),
-            limit,
-        }
-    }
-    fn positive(&self, field: &str, v: f64) -> Result<(), InputError> {
-        if v.is_finite() && v > 0.0 {
-            Ok(())
-        } else {
-            Err(self.fail(field, v, "must be > 0".into()))
-        }
-    }
-    fn range(&self, field: &str, v: f64, lo: f64, hi: f64) -> Result<(), InputError> {
-        if v.is_finite() && v >= lo && v <= hi {
-            Ok(())
-        } else {
-            Err(self.fail(field, v, format!("must lie in [{lo}, {hi}]")))
-        }
-    }
-}
-
 /// Largest mean cone distance, mm (a 10 m pitch diameter).
 pub const MAX_CONE_DISTANCE_MM: f64 = 5000.0;
 /// Largest tooth number of either member.
@@ -158,92 +132,59 @@ pub fn check_plain_name(path: &Path, field: &str, name: &str) -> Result<(), Inpu
 }
 
 fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
-    let c = Checker { path };
-    check_plain_name(path, "name", &d.name)?;
-    check_pair(&c, &d.pair)?;
-    check_teeth_and_hands(&c, d)?;
-    let g1 = check_pitch_angles(&c, d)?;
-    check_members(&c, d)?;
-    check_module_and_clearance(&c, d, g1)?;
-    check_cutter_and_ease_off(&c, d)
+    check_plain_name(path, lim::NAME.field, &d.name)?;
+    check_pair(path, &d.pair)?;
+    check_teeth_and_hands(path, d)?;
+    let g1 = check_pitch_angles(path, d)?;
+    check_members(path, d)?;
+    check_module_and_clearance(path, d, g1)?;
+    check_cutter_and_ease_off(path, d)
 }
 
 /// The `[pair]` table: angles, module, cone distance and face width.
-fn check_pair(c: &Checker, p: &PairDesign) -> Result<(), InputError> {
-    c.range("pair.shaft_angle_deg", p.shaft_angle_deg, 30.0, 150.0)?;
-    c.range(
-        "pair.mean_spiral_angle_deg",
-        p.mean_spiral_angle_deg,
-        0.0,
-        50.0,
-    )?;
-    c.positive("pair.mean_normal_module_mm", p.mean_normal_module_mm)?;
-    if !(p.mean_cone_distance_mm.is_finite()
-        && p.mean_cone_distance_mm > 0.0
-        && p.mean_cone_distance_mm <= MAX_CONE_DISTANCE_MM)
-    {
-        return Err(c.fail(
-            "pair.mean_cone_distance_mm",
-            p.mean_cone_distance_mm,
-            format!("must lie in (0, {MAX_CONE_DISTANCE_MM}]"),
-        ));
-    }
-    c.positive("pair.face_width_mm", p.face_width_mm)?;
-    c.range(
-        "pair.drive_pressure_angle_deg",
-        p.drive_pressure_angle_deg,
-        10.0,
-        35.0,
-    )?;
-    c.range(
-        "pair.coast_pressure_angle_deg",
-        p.coast_pressure_angle_deg,
-        10.0,
-        35.0,
-    )?;
-    // Usual limit: face width at most a third of the outer cone distance.
+fn check_pair(path: &Path, p: &PairDesign) -> Result<(), InputError> {
+    lim::SHAFT_ANGLE.check(path, p.shaft_angle_deg)?;
+    lim::SPIRAL_ANGLE.check(path, p.mean_spiral_angle_deg)?;
+    lim::NORMAL_MODULE.check(path, p.mean_normal_module_mm)?;
+    lim::CONE_DISTANCE.check(path, p.mean_cone_distance_mm)?;
+    lim::FACE_WIDTH.check(path, p.face_width_mm)?;
+    lim::DRIVE_PRESSURE_ANGLE.check(path, p.drive_pressure_angle_deg)?;
+    lim::COAST_PRESSURE_ANGLE.check(path, p.coast_pressure_angle_deg)?;
+    // Usual limit: face width at most a third of the outer cone distance,
+    // b <= (R_m + b/2) / 3, which is b <= 0.4 R_m (the entry's end).
     let re = p.mean_cone_distance_mm + 0.5 * p.face_width_mm;
-    if p.face_width_mm > re / 3.0 {
-        return Err(c.fail(
-            "pair.face_width_mm",
-            p.face_width_mm,
-            format!(
-                "must be <= outer cone distance / 3, i.e. <= mean cone distance / 2.5 = {:.3} mm",
-                p.mean_cone_distance_mm / 2.5
-            ),
-        ));
-    }
-    Ok(())
+    let l = &lim::FACE_WIDTH_OF_CONE;
+    l.check_with(path, l.field, p.face_width_mm, &[re / 3.0], || {
+        format!(
+            "must be <= outer cone distance / 3, i.e. <= mean cone distance / 2.5 = {:.3} mm",
+            p.mean_cone_distance_mm / 2.5
+        )
+    })
 }
 
 /// Both members' tooth numbers (the pinion's at most the wheel's) and
 /// opposite hands.
-fn check_teeth_and_hands(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
+fn check_teeth_and_hands(path: &Path, d: &DesignFile) -> Result<(), InputError> {
     for (name, m) in [("pinion", &d.pinion), ("wheel", &d.wheel)] {
-        let f = |s: &str| format!("{name}.{s}");
-        if !(5..=MAX_TEETH).contains(&m.teeth) {
-            return Err(c.fail(
-                &f("teeth"),
-                m.teeth as f64,
-                format!("must lie in [5, {MAX_TEETH}]"),
-            ));
-        }
-        c.range(&f("pitch_angle_deg"), m.pitch_angle_deg, 1.0, 89.0)?;
+        lim::TEETH.check_at(path, &format!("{name}.teeth"), m.teeth as f64)?;
+        lim::PITCH_ANGLE.check_at(path, &format!("{name}.pitch_angle_deg"), m.pitch_angle_deg)?;
     }
-    if d.pinion.teeth > d.wheel.teeth {
-        return Err(c.fail(
-            "pinion.teeth",
-            d.pinion.teeth as f64,
-            format!("must be <= wheel.teeth = {}", d.wheel.teeth),
-        ));
-    }
+    let l = &lim::PINION_TEETH;
+    l.check_with(
+        path,
+        l.field,
+        d.pinion.teeth as f64,
+        &[d.wheel.teeth as f64],
+        || format!("must be <= wheel.teeth = {}", d.wheel.teeth),
+    )?;
     if d.pinion.hand == d.wheel.hand {
-        return Err(InputError::Invalid {
-            path: c.path.to_path_buf(),
-            field: "wheel.hand".into(),
-            value: format!("{:?}", d.wheel.hand).to_lowercase(),
-            limit: "must be the opposite of pinion.hand".into(),
-        });
+        let l = &lim::HAND;
+        return Err(l.refuse(
+            path,
+            l.field,
+            format!("{:?}", d.wheel.hand).to_lowercase(),
+            "must be the opposite of pinion.hand".into(),
+        ));
     }
     Ok(())
 }
@@ -251,7 +192,7 @@ fn check_teeth_and_hands(c: &Checker, d: &DesignFile) -> Result<(), InputError> 
 /// The pitch angles against the tooth numbers and the shaft angle, before
 /// the root and face angles, whose limits they are; returns the pinion's
 /// pitch angle from the tooth numbers, deg.
-fn check_pitch_angles(c: &Checker, d: &DesignFile) -> Result<f64, InputError> {
+fn check_pitch_angles(path: &Path, d: &DesignFile) -> Result<f64, InputError> {
     let p = &d.pair;
     // Pitch angles from the tooth numbers and the shaft angle, before the
     // root and face angles, whose limits are the pitch angles: an
@@ -261,16 +202,20 @@ fn check_pitch_angles(c: &Checker, d: &DesignFile) -> Result<f64, InputError> {
     let g2 = p.shaft_angle_deg - g1;
     let tol = 0.01;
     if (d.pinion.pitch_angle_deg - g1).abs() > tol {
-        return Err(c.fail(
-            "pinion.pitch_angle_deg",
-            d.pinion.pitch_angle_deg,
+        let l = &lim::PINION_PITCH_ANGLE;
+        return Err(l.refuse(
+            path,
+            l.field,
+            d.pinion.pitch_angle_deg.to_string(),
             format!("must equal {g1:.4} (from the tooth numbers and shaft angle) within {tol}"),
         ));
     }
     if (d.wheel.pitch_angle_deg - g2).abs() > tol {
-        return Err(c.fail(
-            "wheel.pitch_angle_deg",
-            d.wheel.pitch_angle_deg,
+        let l = &lim::WHEEL_PITCH_ANGLE;
+        return Err(l.refuse(
+            path,
+            l.field,
+            d.wheel.pitch_angle_deg.to_string(),
             format!("must equal {g2:.4} (shaft angle minus pinion pitch angle) within {tol}"),
         ));
     }
@@ -279,48 +224,47 @@ fn check_pitch_angles(c: &Checker, d: &DesignFile) -> Result<f64, InputError> {
 
 /// Each member's root and face angles, addendum and dedendum, point width
 /// and material.
-fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
+fn check_members(path: &Path, d: &DesignFile) -> Result<(), InputError> {
     let p = &d.pair;
     for (name, m) in [("pinion", &d.pinion), ("wheel", &d.wheel)] {
         let f = |s: &str| format!("{name}.{s}");
         let g = m.pitch_angle_deg;
-        if !(m.root_angle_deg.is_finite() && m.root_angle_deg >= 0.5 && m.root_angle_deg <= g) {
-            return Err(c.fail(
-                &f("root_angle_deg"),
-                m.root_angle_deg,
-                format!("must lie in [0.5, {g}] (at most {name}.pitch_angle_deg)"),
-            ));
-        }
-        if !(m.face_angle_deg.is_finite() && m.face_angle_deg >= g && m.face_angle_deg <= 89.9) {
-            return Err(c.fail(
-                &f("face_angle_deg"),
-                m.face_angle_deg,
-                format!("must lie in [{g}, 89.9] (at least {name}.pitch_angle_deg)"),
-            ));
-        }
+        lim::ROOT_ANGLE.check_with(path, &f("root_angle_deg"), m.root_angle_deg, &[g], || {
+            format!("must lie in [0.5, {g}] (at most {name}.pitch_angle_deg)")
+        })?;
+        lim::FACE_ANGLE.check_with(path, &f("face_angle_deg"), m.face_angle_deg, &[g], || {
+            format!("must lie in [{g}, 89.9] (at least {name}.pitch_angle_deg)")
+        })?;
         let depth = MAX_DEPTH_MODULES * p.mean_normal_module_mm;
-        for (k, v) in [
-            ("mean_addendum_mm", m.mean_addendum_mm),
-            ("mean_dedendum_mm", m.mean_dedendum_mm),
+        for (positive, deep, k, v) in [
+            (
+                &lim::ADDENDUM,
+                &lim::ADDENDUM_DEPTH,
+                "mean_addendum_mm",
+                m.mean_addendum_mm,
+            ),
+            (
+                &lim::DEDENDUM,
+                &lim::DEDENDUM_DEPTH,
+                "mean_dedendum_mm",
+                m.mean_dedendum_mm,
+            ),
         ] {
-            c.positive(&f(k), v)?;
-            if v > depth {
-                return Err(c.fail(
-                    &f(k),
-                    v,
-                    format!(
-                        "must be <= {MAX_DEPTH_MODULES} m_n = {depth:.4} mm (m_n = pair.mean_normal_module_mm)"
-                    ),
-                ));
-            }
+            positive.check_at(path, &f(k), v)?;
+            deep.check_with(path, &f(k), v, &[depth], || {
+                format!(
+                    "must be <= {MAX_DEPTH_MODULES} m_n = {depth:.4} mm (m_n = pair.mean_normal_module_mm)"
+                )
+            })?;
         }
         // Addendum and dedendum shrink towards the toe (face and root cones
         // inclined to the pitch cone); at the toe the tip must still stand
         // above the pitch cone and the root below it, else the flank has no
         // addendum (or dedendum) part there.
         let half_face = 0.5 * p.face_width_mm;
-        for (part, field, mean, angle, cone_angles, what) in [
+        for (l, part, field, mean, angle, cone_angles, what) in [
             (
+                &lim::ADDENDUM_AT_TOE,
                 "addendum",
                 "mean_addendum_mm",
                 m.mean_addendum_mm,
@@ -329,6 +273,7 @@ fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
                 "the tip dips below the pitch cone there",
             ),
             (
+                &lim::DEDENDUM_AT_TOE,
                 "dedendum",
                 "mean_dedendum_mm",
                 m.mean_dedendum_mm,
@@ -339,9 +284,10 @@ fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
         ] {
             let loss = half_face * angle.to_radians().tan();
             if mean - loss <= 0.0 {
-                return Err(c.fail(
+                return Err(l.refuse(
+                    path,
                     &f(field),
-                    mean,
+                    mean.to_string(),
                     format!(
                         "must exceed (pair.face_width_mm / 2) tan({cone_angles}) = {loss:.4} mm: the {part} at the toe is {:.4} mm, {what}",
                         mean - loss
@@ -349,25 +295,26 @@ fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
                 ));
             }
         }
-        c.positive(&f("point_width_mm"), m.point_width_mm)?;
-        c.range(
-            &f("material.youngs_modulus_gpa"),
-            m.material.youngs_modulus_gpa,
-            1.0,
-            1000.0,
-        )?;
-        c.range(
-            &f("material.poisson_ratio"),
-            m.material.poisson_ratio,
-            0.0,
-            0.49,
-        )?;
-        c.range(
-            &f("material.density_kg_m3"),
-            m.material.density_kg_m3,
-            100.0,
-            30000.0,
-        )?;
+        for (l, k, v) in [
+            (&lim::POINT_WIDTH, "point_width_mm", m.point_width_mm),
+            (
+                &lim::YOUNGS_MODULUS,
+                "material.youngs_modulus_gpa",
+                m.material.youngs_modulus_gpa,
+            ),
+            (
+                &lim::POISSON_RATIO,
+                "material.poisson_ratio",
+                m.material.poisson_ratio,
+            ),
+            (
+                &lim::DENSITY,
+                "material.density_kg_m3",
+                m.material.density_kg_m3,
+            ),
+        ] {
+            l.check_at(path, &f(k), v)?;
+        }
     }
     Ok(())
 }
@@ -375,7 +322,7 @@ fn check_members(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
 /// The mean normal module against the cone distance (`g1` the pinion's
 /// pitch angle from the tooth numbers, deg), and the tip clearance of
 /// both members.
-fn check_module_and_clearance(c: &Checker, d: &DesignFile, g1: f64) -> Result<(), InputError> {
+fn check_module_and_clearance(path: &Path, d: &DesignFile, g1: f64) -> Result<(), InputError> {
     let p = &d.pair;
     // Mean normal module from the cone distance: m_n = 2 R_m sin γ₁ cos β / z₁.
     let mn = 2.0
@@ -384,9 +331,11 @@ fn check_module_and_clearance(c: &Checker, d: &DesignFile, g1: f64) -> Result<()
         * p.mean_spiral_angle_deg.to_radians().cos()
         / d.pinion.teeth as f64;
     if (mn - p.mean_normal_module_mm).abs() > 2e-3 * mn {
-        return Err(c.fail(
-            "pair.mean_normal_module_mm",
-            p.mean_normal_module_mm,
+        let l = &lim::NORMAL_MODULE_FROM_CONE;
+        return Err(l.refuse(
+            path,
+            l.field,
+            p.mean_normal_module_mm.to_string(),
             format!("must equal 2 R_m sin(γ1) cos(β) / z1 = {mn:.4} mm within 0.2%"),
         ));
     }
@@ -397,81 +346,89 @@ fn check_module_and_clearance(c: &Checker, d: &DesignFile, g1: f64) -> Result<()
         } else {
             (&d.wheel, &d.pinion)
         };
-        if ma.mean_addendum_mm >= mb.mean_dedendum_mm {
-            return Err(c.fail(
-                &format!("{a}.mean_addendum_mm"),
-                ma.mean_addendum_mm,
+        lim::CLEARANCE.check_with(
+            path,
+            &format!("{a}.mean_addendum_mm"),
+            ma.mean_addendum_mm,
+            &[mb.mean_dedendum_mm],
+            || {
                 format!(
                     "must be < {b}.mean_dedendum_mm = {} (tip clearance)",
                     mb.mean_dedendum_mm
-                ),
-            ));
-        }
+                )
+            },
+        )?;
     }
     Ok(())
 }
 
 /// The cutter's radius and edge radius, and the ease-off (with its
 /// topography).
-fn check_cutter_and_ease_off(c: &Checker, d: &DesignFile) -> Result<(), InputError> {
+fn check_cutter_and_ease_off(path: &Path, d: &DesignFile) -> Result<(), InputError> {
     let p = &d.pair;
     let (r_min, r_max) = (
         MIN_CUTTER_RADIUS_CONE_DISTANCES * p.mean_cone_distance_mm,
         MAX_CUTTER_RADIUS_CONE_DISTANCES * p.mean_cone_distance_mm,
     );
-    let r = d.cutter.radius_mm;
-    if !(r.is_finite() && r >= r_min && r <= r_max) {
-        return Err(c.fail(
-            "cutter.radius_mm",
-            r,
-            format!(
-                "must lie between the minimum and maximum [{MIN_CUTTER_RADIUS_CONE_DISTANCES}, {MAX_CUTTER_RADIUS_CONE_DISTANCES}] × pair.mean_cone_distance_mm = [{r_min:.1}, {r_max:.1}] mm (usual face-mill cutters: 0.5 to 1.5 R_m; beyond, the flanks cannot be generated)"
-            ),
-        ));
-    }
-    c.range(
-        "cutter.edge_radius_mm",
-        d.cutter.edge_radius_mm,
-        0.0,
-        0.5 * d.pinion.point_width_mm.min(d.wheel.point_width_mm),
-    )?;
+    let l = &lim::CUTTER_RADIUS;
+    l.check_with(path, l.field, d.cutter.radius_mm, &[r_min, r_max], || {
+        format!(
+            "must lie between the minimum and maximum [{MIN_CUTTER_RADIUS_CONE_DISTANCES}, {MAX_CUTTER_RADIUS_CONE_DISTANCES}] × pair.mean_cone_distance_mm = [{r_min:.1}, {r_max:.1}] mm (usual face-mill cutters: 0.5 to 1.5 R_m; beyond, the flanks cannot be generated)"
+        )
+    })?;
+    let hi = 0.5 * d.pinion.point_width_mm.min(d.wheel.point_width_mm);
+    let l = &lim::EDGE_RADIUS;
+    l.check_with(path, l.field, d.cutter.edge_radius_mm, &[hi], || {
+        format!("must lie in [0, {hi}]")
+    })?;
     let e = &d.ease_off;
-    for (f, v) in [
-        ("ease_off.profile_crowning_um", e.profile_crowning_um),
-        ("ease_off.lengthwise_crowning_um", e.lengthwise_crowning_um),
-        ("ease_off.motion_error_urad", e.motion_error_urad),
+    for (l, v) in [
+        (&lim::PROFILE_CROWNING, e.profile_crowning_um),
+        (&lim::LENGTHWISE_CROWNING, e.lengthwise_crowning_um),
+        (&lim::MOTION_ERROR, e.motion_error_urad),
+        (&lim::BIAS, e.bias_um),
     ] {
-        c.range(f, v, 0.0, 500.0)?;
+        l.check(path, v)?;
     }
-    c.range("ease_off.bias_um", e.bias_um, -500.0, 500.0)?;
     if let Some(t) = &e.topography {
-        check_topography(c, t)?;
+        check_topography(path, t)?;
     }
     Ok(())
 }
 
-fn check_topography(c: &Checker, t: &TopographyDesign) -> Result<(), InputError> {
-    for (f, v) in [
-        ("ease_off.topography.profile", &t.profile),
-        ("ease_off.topography.face", &t.face),
+fn check_topography(path: &Path, t: &TopographyDesign) -> Result<(), InputError> {
+    for (nodes, node, order, v) in [
+        (
+            &lim::TOPOGRAPHY_PROFILE_NODES,
+            &lim::TOPOGRAPHY_PROFILE,
+            &lim::TOPOGRAPHY_PROFILE_ORDER,
+            &t.profile,
+        ),
+        (
+            &lim::TOPOGRAPHY_FACE_NODES,
+            &lim::TOPOGRAPHY_FACE,
+            &lim::TOPOGRAPHY_FACE_ORDER,
+            &t.face,
+        ),
     ] {
-        if v.len() < 2 || v.len() > MAX_TOPOGRAPHY_NODES {
-            return Err(c.fail(
+        let f = nodes.field;
+        if !nodes.admits(v.len() as f64, &[]) {
+            return Err(nodes.refuse(
+                path,
                 f,
-                v.len() as f64,
-                format!("needs 2 to {MAX_TOPOGRAPHY_NODES} nodes"),
+                (v.len() as f64).to_string(),
+                nodes.text_of_refusal(),
             ));
         }
         for (i, &x) in v.iter().enumerate() {
-            if !(x.is_finite() && (0.0..=1.0).contains(&x)) {
-                return Err(c.fail(&format!("{f}[{i}]"), x, "must lie in [0, 1]".into()));
-            }
+            node.check_at(path, &format!("{f}[{i}]"), x)?;
         }
         for (i, w) in v.windows(2).enumerate() {
             if w[1] <= w[0] {
-                return Err(c.fail(
+                return Err(order.refuse(
+                    path,
                     &format!("{f}[{}]", i + 1),
-                    w[1],
+                    w[1].to_string(),
                     format!("must be strictly increasing (after {})", w[0]),
                 ));
             }
@@ -480,9 +437,11 @@ fn check_topography(c: &Checker, t: &TopographyDesign) -> Result<(), InputError>
     if t.deviation_um.len() != t.profile.len()
         || t.deviation_um.iter().any(|r| r.len() != t.face.len())
     {
-        return Err(c.fail(
-            "ease_off.topography.deviation_um",
-            t.deviation_um.len() as f64,
+        let l = &lim::TOPOGRAPHY_SHAPE;
+        return Err(l.refuse(
+            path,
+            l.field,
+            (t.deviation_um.len() as f64).to_string(),
             format!(
                 "must have {} rows of {} values",
                 t.profile.len(),
@@ -492,15 +451,11 @@ fn check_topography(c: &Checker, t: &TopographyDesign) -> Result<(), InputError>
     }
     for (i, row) in t.deviation_um.iter().enumerate() {
         for (j, &v) in row.iter().enumerate() {
-            if !(v.is_finite() && v.abs() <= MAX_TOPOGRAPHY_UM) {
-                return Err(c.fail(
-                    &format!("ease_off.topography.deviation_um[{i}][{j}]"),
-                    v,
-                    format!(
-                        "must be finite with |value| <= {MAX_TOPOGRAPHY_UM} µm (a normal deviation from the conjugate flank)"
-                    ),
-                ));
-            }
+            lim::TOPOGRAPHY_DEVIATION.check_at(
+                path,
+                &format!("ease_off.topography.deviation_um[{i}][{j}]"),
+                v,
+            )?;
         }
     }
     Ok(())
@@ -508,14 +463,13 @@ fn check_topography(c: &Checker, t: &TopographyDesign) -> Result<(), InputError>
 
 /// Checks that need derived quantities: tooth thickness and the cutter circle.
 fn check_derived(p: &PairData, path: &Path) -> Result<(), InputError> {
-    let c = Checker { path };
     for m in [Member::Pinion, Member::Wheel] {
         let s = p.normal_thickness(m);
         if s <= 0.0 {
-            let f = format!("{}.point_width_mm", m.name());
-            return Err(c.fail(
-                &f,
-                p.member(m).point_width * 1e3,
+            return Err(lim::TOOTH_LEFT.refuse(
+                path,
+                &format!("{}.point_width_mm", m.name()),
+                (p.member(m).point_width * 1e3).to_string(),
                 "leaves no tooth: point width + dedendum·(tan α_d + tan α_c) must be < π m_n"
                     .into(),
             ));
@@ -523,9 +477,11 @@ fn check_derived(p: &PairData, path: &Path) -> Result<(), InputError> {
     }
     let bl = p.normal_backlash();
     if bl < 0.0 {
-        return Err(c.fail(
-            "wheel.point_width_mm",
-            p.members[1].point_width * 1e3,
+        let l = &lim::BACKLASH;
+        return Err(l.refuse(
+            path,
+            l.field,
+            (p.members[1].point_width * 1e3).to_string(),
             format!(
                 "teeth interfere: normal backlash π m_n − s_n1 − s_n2 = {:.4} mm must be >= 0",
                 bl * 1e3
@@ -536,9 +492,11 @@ fn check_derived(p: &PairData, path: &Path) -> Result<(), InputError> {
     // reach toe and heel with a spiral angle below 90° on both sides of the slot.
     let min_r = min_cutter_radius(p);
     if p.cutter_radius < min_r {
-        return Err(c.fail(
-            "cutter.radius_mm",
-            p.cutter_radius * 1e3,
+        let l = &lim::CUTTER_CURVATURE;
+        return Err(l.refuse(
+            path,
+            l.field,
+            (p.cutter_radius * 1e3).to_string(),
             format!(
                 "too small for the lengthwise curvature: the tooth trace must run from toe to heel with spiral angle in [-85°, 85°]; minimum is {:.2} mm",
                 min_r * 1e3

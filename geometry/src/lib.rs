@@ -15,6 +15,7 @@ pub mod error;
 pub mod flank;
 pub mod gear_body;
 pub mod generation;
+pub mod limits;
 pub mod mate;
 pub mod material;
 pub mod minimize;

@@ -26,6 +26,7 @@
 use crate::design::PairData;
 use crate::error::InputError;
 use crate::generation::{trace_sign, MemberFrame};
+use crate::limits::scene as scene_limits;
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -136,19 +137,22 @@ impl Misalignment {
         for c in Component::ALL {
             let v = self.get(c);
             let lim = Self::limit(c, pair);
-            if !(v.is_finite() && v.abs() <= lim) {
-                return Err(InputError::Invalid {
-                    path: path.to_path_buf(),
-                    field: format!("{table}.{}", c.field()),
-                    value: v.to_string(),
-                    limit: match c {
-                        Component::ShaftAngle => format!("|{}| must be at most {lim} deg", c.symbol()),
-                        _ => format!(
+            let field = format!("{table}.{}", c.field());
+            match c {
+                Component::ShaftAngle => scene_limits::SHAFT_ANGLE.check_at(path, &field, v)?,
+                _ => {
+                    let l = match c {
+                        Component::Offset => &scene_limits::OFFSET,
+                        Component::PinionAxial => &scene_limits::PINION_AXIAL,
+                        _ => &scene_limits::WHEEL_AXIAL,
+                    };
+                    l.check_with(path, &field, v, &[-lim, lim], || {
+                        format!(
                             "|{}| must be at most {lim:.4} mm ({MAX_SHIFT_PER_MODULE} x the mean normal module)",
                             c.symbol()
-                        ),
-                    },
-                });
+                        )
+                    })?
+                }
             }
         }
         Ok(())

@@ -353,7 +353,7 @@ impl PairGeometry {
 
     /// Rejects pointed teeth and undercut flanks.
     pub fn check_teeth(&self, path: &std::path::Path) -> Result<(), GeometryError> {
-        use crate::error::InputError;
+        use crate::limits::design as design_limits;
         let d = &self.data;
         for m in [Member::Pinion, Member::Wheel] {
             for (where_, l) in [
@@ -364,43 +364,47 @@ impl PairGeometry {
                 let tl = top_land(self, m, l)?;
                 if tl <= 0.0 {
                     if let Some(r_min) = self.cutter_radius_for_top_land()? {
-                        return Err(InputError::Invalid {
-                            path: path.to_path_buf(),
-                            field: "cutter.radius_mm".into(),
-                            value: format!("{}", d.cutter_radius * 1e3),
-                            limit: format!(
+                        let entry = &design_limits::POINTED_TEETH_CUTTER;
+                        return Err(entry
+                            .refuse(
+                                path,
+                                entry.field,
+                                format!("{}", d.cutter_radius * 1e3),
+                                format!(
                                 "pointed teeth: the {} top land at the {where_} is {:.3} mm; with this cutter radius the tooth thins along the face toward the {where_}. The smallest cutter radius with a positive top land at toe, mean and heel is {:.1} mm",
                                 m.name(),
                                 tl * 1e3,
                                 r_min * 1e3
                             ),
-                        }
+                            )
+                            .into());
+                    }
+                    return Err(design_limits::POINTED_TEETH_ADDENDUM
+                        .refuse(
+                            path,
+                            &format!("{}.mean_addendum_mm", m.name()),
+                            format!("{}", d.member(m).mean_addendum * 1e3),
+                            format!(
+                                "pointed teeth: the top land at the {where_} is {:.3} mm, it must be > 0 (reduce the addendum or widen the tooth)",
+                                tl * 1e3
+                            ),
+                        )
                         .into());
-                    }
-                    return Err(InputError::Invalid {
-                        path: path.to_path_buf(),
-                        field: format!("{}.mean_addendum_mm", m.name()),
-                        value: format!("{}", d.member(m).mean_addendum * 1e3),
-                        limit: format!(
-                            "pointed teeth: the top land at the {where_} is {:.3} mm, it must be > 0 (reduce the addendum or widen the tooth)",
-                            tl * 1e3
-                        ),
-                    }
-                    .into());
                 }
                 for side in [Side::Drive, Side::Coast] {
                     if let Some(lim) = undercut_limit(self.flank(m, side), l)? {
-                        return Err(InputError::Invalid {
-                            path: path.to_path_buf(),
-                            field: format!("{}.mean_dedendum_mm", m.name()),
-                            value: format!("{}", d.member(m).mean_dedendum * 1e3),
-                            limit: format!(
+                        return Err(design_limits::UNDERCUT
+                            .refuse(
+                                path,
+                                &format!("{}.mean_dedendum_mm", m.name()),
+                                format!("{}", d.member(m).mean_dedendum * 1e3),
+                                format!(
                                 "undercut: the {} flank at the {where_} is generated regularly only down to {:.3} mm below the pitch cone, above the fillet limit {:.3} mm (more teeth, a larger pressure angle or profile shift, or a smaller dedendum)",
                                 side.flank_name(m),
                                 -lim * 1e3,
                                 -self.flank(m, side).bounds.low.at(l, d.mean_cone_distance) * 1e3
                             ),
-                        }
+                        )
                         .into());
                     }
                 }

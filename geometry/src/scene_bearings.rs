@@ -13,6 +13,7 @@
 //! ```
 
 use crate::error::InputError;
+use crate::limits::bearings as lim;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -89,39 +90,37 @@ impl BearingSettings {
     /// radial bearings at different positions) and along its axis (one
     /// axial bearing).
     pub fn check(&self, path: &Path) -> Result<(), InputError> {
-        let fail = |field: String, value: String, limit: &str| InputError::Invalid {
-            path: path.to_path_buf(),
-            field,
-            value,
-            limit: limit.into(),
-        };
         for (member, list) in [("pinion", &self.pinion), ("wheel", &self.wheel)] {
             for (i, b) in list.iter().enumerate() {
                 let f = |name: &str| format!("bearings.{member}[{i}].{name}");
-                if !(b.axial_position_mm.is_finite()
-                    && b.axial_position_mm.abs() <= MAX_BEARING_POSITION_MM)
-                {
-                    return Err(fail(
-                        f("axial_position_mm"),
-                        b.axial_position_mm.to_string(),
-                        "must be finite, within ±10,000 mm of the pitch apex",
-                    ));
-                }
-                for (name, v) in [
-                    ("radial_stiffness_n_per_m", b.radial_stiffness_n_per_m),
-                    ("axial_stiffness_n_per_m", b.axial_stiffness_n_per_m),
+                for (l, name, v) in [
+                    (
+                        &lim::AXIAL_POSITION,
+                        "axial_position_mm",
+                        b.axial_position_mm,
+                    ),
+                    (
+                        &lim::RADIAL_STIFFNESS,
+                        "radial_stiffness_n_per_m",
+                        b.radial_stiffness_n_per_m,
+                    ),
+                    (
+                        &lim::AXIAL_STIFFNESS,
+                        "axial_stiffness_n_per_m",
+                        b.axial_stiffness_n_per_m,
+                    ),
+                    (
+                        &lim::RADIAL_DAMPING,
+                        "radial_damping_n_s_per_m",
+                        b.radial_damping_n_s_per_m,
+                    ),
+                    (
+                        &lim::AXIAL_DAMPING,
+                        "axial_damping_n_s_per_m",
+                        b.axial_damping_n_s_per_m,
+                    ),
                 ] {
-                    if !(v.is_finite() && (0.0..=MAX_BEARING_STIFFNESS_N_PER_M).contains(&v)) {
-                        return Err(fail(f(name), v.to_string(), "must lie in [0, 1e14] N/m"));
-                    }
-                }
-                for (name, v) in [
-                    ("radial_damping_n_s_per_m", b.radial_damping_n_s_per_m),
-                    ("axial_damping_n_s_per_m", b.axial_damping_n_s_per_m),
-                ] {
-                    if !(v.is_finite() && (0.0..=MAX_BEARING_DAMPING_N_S_PER_M).contains(&v)) {
-                        return Err(fail(f(name), v.to_string(), "must lie in [0, 1e9] N·s/m"));
-                    }
+                    l.check_at(path, &f(name), v)?;
                 }
             }
             let radial: Vec<f64> = list
@@ -131,17 +130,19 @@ impl BearingSettings {
                 .collect();
             let distinct = radial.iter().any(|&a| radial.iter().any(|&b| a != b));
             if !distinct {
-                return Err(fail(
-                    format!("bearings.{member}"),
+                return Err(lim::HELD_AGAINST_TILT.refuse(
+                    path,
+                    &format!("bearings.{member}"),
                     format!("{} bearings with radial stiffness", radial.len()),
-                    "needs two bearings with radial stiffness at different axial positions (to hold tilt)",
+                    "needs two bearings with radial stiffness at different axial positions (to hold tilt)".into(),
                 ));
             }
             if list.iter().all(|b| b.axial_stiffness_n_per_m <= 0.0) {
-                return Err(fail(
-                    format!("bearings.{member}"),
+                return Err(lim::HELD_ALONG_AXIS.refuse(
+                    path,
+                    &format!("bearings.{member}"),
                     "no axial stiffness".into(),
-                    "needs one bearing with axial_stiffness_n_per_m > 0 (else the shaft slides along its axis)",
+                    "needs one bearing with axial_stiffness_n_per_m > 0 (else the shaft slides along its axis)".into(),
                 ));
             }
         }
@@ -150,44 +151,19 @@ impl BearingSettings {
             ("wheel_body", &self.wheel_body),
         ] {
             let Some(b) = body else { continue };
-            let f = |name: &str| format!("bearings.{member}.{name}");
-            if !(b.mass_kg.is_finite() && b.mass_kg > 0.0 && b.mass_kg <= 1e5) {
-                return Err(fail(
-                    f("mass_kg"),
-                    b.mass_kg.to_string(),
-                    "must lie in (0, 1e5] kg",
-                ));
-            }
-            if !(b.centroid_mm.is_finite() && b.centroid_mm.abs() <= MAX_BEARING_POSITION_MM) {
-                return Err(fail(
-                    f("centroid_mm"),
-                    b.centroid_mm.to_string(),
-                    "must be finite, within ±10,000 mm of the pitch apex",
-                ));
-            }
-            let jt = b.transverse_inertia_kgm2;
-            if !(jt.is_finite() && jt > 0.0 && jt <= 1e4) {
-                return Err(fail(
-                    f("transverse_inertia_kgm2"),
-                    jt.to_string(),
-                    "must lie in (0, 1e4] kg·m²",
-                ));
+            for (l, name, v) in [
+                (&lim::BODY_MASS, "mass_kg", b.mass_kg),
+                (&lim::BODY_CENTROID, "centroid_mm", b.centroid_mm),
+                (
+                    &lim::BODY_TRANSVERSE_INERTIA,
+                    "transverse_inertia_kgm2",
+                    b.transverse_inertia_kgm2,
+                ),
+            ] {
+                l.check_at(path, &format!("bearings.{member}.{name}"), v)?;
             }
         }
-        if !(self.tolerance_nm.is_finite() && (1e-3..=1e3).contains(&self.tolerance_nm)) {
-            return Err(fail(
-                "bearings.tolerance_nm".into(),
-                self.tolerance_nm.to_string(),
-                "must lie in [0.001, 1000] nm",
-            ));
-        }
-        if !(2..=500).contains(&self.max_iterations) {
-            return Err(fail(
-                "bearings.max_iterations".into(),
-                self.max_iterations.to_string(),
-                "must lie in [2, 500]",
-            ));
-        }
-        Ok(())
+        lim::TOLERANCE.check(path, self.tolerance_nm)?;
+        lim::MAX_ITERATIONS.check_integer(path, lim::MAX_ITERATIONS.field, self.max_iterations)
     }
 }

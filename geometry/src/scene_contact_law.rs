@@ -4,6 +4,7 @@
 //! checks.
 
 use crate::error::InputError;
+use crate::limits::multibody as mbl;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -112,71 +113,42 @@ impl LoadRun {
 
     /// Range checks naming field, value and limit.
     pub fn check(&self, path: &Path) -> Result<(), InputError> {
-        for (f, v, lo, hi) in [
-            ("multibody.load_run.pinion_rpm", self.pinion_rpm, 1e-3, 1e5),
-            (
-                "multibody.load_run.pinion_ramp_s",
-                self.pinion_ramp_s,
-                0.0,
-                100.0,
-            ),
-            (
-                "multibody.load_run.wheel_torque_nm",
-                self.wheel_torque_nm,
-                0.0,
-                1e7,
-            ),
-            (
-                "multibody.load_run.wheel_torque_rise_s",
-                self.wheel_torque_rise_s,
-                0.0,
-                100.0,
-            ),
-            ("multibody.load_run.time_s", self.time_s, 1e-4, 100.0),
-            ("multibody.load_run.max_step_s", self.max_step_s, 1e-8, 1.0),
-            (
-                "multibody.load_run.steady_from_s",
-                self.steady_from_s,
-                0.0,
-                100.0,
-            ),
+        for (l, v) in [
+            (&mbl::LOAD_RUN_PINION_RPM, self.pinion_rpm),
+            (&mbl::LOAD_RUN_PINION_RAMP, self.pinion_ramp_s),
+            (&mbl::LOAD_RUN_WHEEL_TORQUE, self.wheel_torque_nm),
+            (&mbl::LOAD_RUN_WHEEL_TORQUE_RISE, self.wheel_torque_rise_s),
+            (&mbl::LOAD_RUN_TIME, self.time_s),
+            (&mbl::LOAD_RUN_MAX_STEP, self.max_step_s),
+            (&mbl::LOAD_RUN_STEADY_FROM, self.steady_from_s),
         ] {
-            if !(v >= lo && v <= hi) {
-                return Err(invalid(path, f, v, &format!("must lie in [{lo}, {hi}]")));
-            }
+            l.check(path, v)?;
         }
-        if self.steady_from_s >= self.time_s {
-            return Err(invalid(
-                path,
-                "multibody.load_run.steady_from_s",
-                self.steady_from_s,
-                &format!(
-                    "must be below multibody.load_run.time_s = {} (the steady window)",
-                    self.time_s
-                ),
-            ));
-        }
+        let l = &mbl::LOAD_RUN_STEADY_WINDOW;
+        l.check_with(path, l.field, self.steady_from_s, &[self.time_s], || {
+            format!(
+                "must be below multibody.load_run.time_s = {} (the steady window)",
+                self.time_s
+            )
+        })?;
         if let Some(dt) = self.output_interval_s {
             let hi = 0.5 * (self.time_s - self.steady_from_s);
-            if !(dt >= self.max_step_s && dt <= hi) {
-                return Err(invalid(
-                    path,
-                    "multibody.load_run.output_interval_s",
-                    dt,
-                    &format!(
-                        "must lie in [max_step_s = {}, half the steady window = {hi}] s",
-                        self.max_step_s
-                    ),
-                ));
-            }
+            let l = &mbl::LOAD_RUN_OUTPUT_INTERVAL;
+            l.check_with(path, l.field, dt, &[self.max_step_s, hi], || {
+                format!(
+                    "must lie in [max_step_s = {}, half the steady window = {hi}] s",
+                    self.max_step_s
+                )
+            })?;
         }
         let steps = self.time_s / self.max_step_s;
-        if steps > crate::scene_checks::MAX_TIME_STEPS {
-            return Err(invalid(
+        let l = &mbl::LOAD_RUN_TIME_STEPS;
+        if !l.admits(steps, &[]) {
+            return Err(l.refuse(
                 path,
-                "multibody.load_run.max_step_s",
-                self.max_step_s,
-                &format!(
+                l.field,
+                self.max_step_s.to_string(),
+                format!(
                     "too small: {steps:.3e} steps over {} s, at most {:.0e}",
                     self.time_s,
                     crate::scene_checks::MAX_TIME_STEPS
@@ -187,88 +159,44 @@ impl LoadRun {
     }
 }
 
-fn invalid(path: &Path, field: &str, value: f64, limit: &str) -> InputError {
-    InputError::Invalid {
-        path: path.to_path_buf(),
-        field: field.into(),
-        value: value.to_string(),
-        limit: limit.into(),
-    }
-}
-
 impl ImpactSettings {
     /// Range checks naming field, value and limit; `coast_contact` must be
     /// off with this law (it carries the drive flanks only).
     pub fn check(&self, path: &Path, coast_contact: bool) -> Result<(), InputError> {
         if let Some(k) = self.stiffness_n_per_mm_e {
-            if !(k > 0.0 && k <= 1e15) {
-                return Err(invalid(
-                    path,
-                    "multibody.impact.stiffness_n_per_mm_e",
-                    k,
-                    "must lie in (0, 1e15] N/mm^e",
-                ));
-            }
+            mbl::IMPACT_STIFFNESS.check(path, k)?;
         }
-        for (f, v, lo, hi) in [
-            ("multibody.impact.exponent", self.exponent, 1.0, 3.0),
-            (
-                "multibody.impact.damping_n_s_per_mm",
-                self.damping_n_s_per_mm,
-                0.0,
-                1e9,
-            ),
-            (
-                "multibody.impact.static_friction",
-                self.static_friction,
-                0.0,
-                2.0,
-            ),
-            (
-                "multibody.impact.dynamic_friction",
-                self.dynamic_friction,
-                0.0,
-                2.0,
-            ),
+        for (l, v) in [
+            (&mbl::IMPACT_EXPONENT, self.exponent),
+            (&mbl::IMPACT_DAMPING, self.damping_n_s_per_mm),
+            (&mbl::IMPACT_STATIC_FRICTION, self.static_friction),
+            (&mbl::IMPACT_DYNAMIC_FRICTION, self.dynamic_friction),
+            (&mbl::IMPACT_PENETRATION_DEPTH, self.penetration_depth_mm),
+            (&mbl::IMPACT_STICTION_SPEED, self.stiction_speed_mm_s),
         ] {
-            if !(v >= lo && v <= hi) {
-                return Err(invalid(path, f, v, &format!("must lie in [{lo}, {hi}]")));
-            }
+            l.check(path, v)?;
         }
-        for (f, v) in [
-            (
-                "multibody.impact.penetration_depth_mm",
-                self.penetration_depth_mm,
-            ),
-            (
-                "multibody.impact.stiction_speed_mm_s",
-                self.stiction_speed_mm_s,
-            ),
-        ] {
-            if !(v > 0.0 && v <= 1e6) {
-                return Err(invalid(path, f, v, "must lie in (0, 1e6]"));
-            }
-        }
-        if !(self.friction_transition_speed_mm_s > self.stiction_speed_mm_s
-            && self.friction_transition_speed_mm_s <= 1e6)
-        {
-            return Err(invalid(
-                path,
-                "multibody.impact.friction_transition_speed_mm_s",
-                self.friction_transition_speed_mm_s,
-                &format!(
+        let l = &mbl::IMPACT_TRANSITION_SPEED;
+        l.check_with(
+            path,
+            l.field,
+            self.friction_transition_speed_mm_s,
+            &[self.stiction_speed_mm_s],
+            || {
+                format!(
                     "must lie in (multibody.impact.stiction_speed_mm_s = {}, 1e6]",
                     self.stiction_speed_mm_s
-                ),
-            ));
-        }
+                )
+            },
+        )?;
         if coast_contact {
-            return Err(InputError::Invalid {
-                path: path.to_path_buf(),
-                field: "multibody.force_law".into(),
-                value: "impact".into(),
-                limit: "needs multibody.coast_contact = false (the impact law's table carries the drive flanks only)".into(),
-            });
+            let l = &mbl::IMPACT_LAW;
+            return Err(l.refuse(
+                path,
+                l.field,
+                "impact".into(),
+                "needs multibody.coast_contact = false (the impact law's table carries the drive flanks only)".into(),
+            ));
         }
         Ok(())
     }

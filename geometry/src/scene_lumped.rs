@@ -3,6 +3,7 @@
 //! the field name; every field is read.
 
 use crate::error::InputError;
+use crate::limits::lumped as lim;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -175,198 +176,109 @@ impl Default for LumpedSettings {
 impl LumpedSettings {
     /// Checks every value against its limit; errors name field, value and limit.
     pub fn check(&self, path: &Path) -> Result<(), InputError> {
-        let ck = LumpedCheck { path };
-        self.check_run(&ck)?;
-        self.check_model(&ck)?;
-        self.check_friction_and_roughness(&ck)?;
-        self.check_design_variants(&ck)?;
-        self.check_order_map(&ck)
+        self.check_run(path)?;
+        self.check_model(path)?;
+        self.check_friction_and_roughness(path)?;
+        self.check_design_variants(path)?;
+        self.check_order_map(path)
     }
 
     /// Speed, torque, mesh cycles, samples and the tolerances.
-    fn check_run(&self, ck: &LumpedCheck) -> Result<(), InputError> {
-        ck.range(
-            "pinion_speed_rpm",
-            self.pinion_speed_rpm,
-            0.0,
-            1e5,
-            "must lie in (0, 100000]",
-        )?;
-        ck.range(
-            "pinion_torque_nm",
-            self.pinion_torque_nm,
-            0.0,
-            1e6,
-            "must lie in (0, 1e6]",
-        )?;
-        ck.range(
-            "mesh_cycles",
-            self.mesh_cycles,
-            0.0,
-            1e4,
-            "must lie in (0, 10000]",
-        )?;
-        if !(self.dropped_mesh_cycles >= 0.0 && self.dropped_mesh_cycles < self.mesh_cycles) {
-            return Err(ck.fail(
-                "dropped_mesh_cycles",
-                self.dropped_mesh_cycles.to_string(),
-                "must lie in [0, mesh_cycles)",
-            ));
-        }
-        if !(16..=4096).contains(&self.samples_per_mesh_cycle) {
-            return Err(ck.fail(
-                "samples_per_mesh_cycle",
-                self.samples_per_mesh_cycle.to_string(),
-                "must lie in [16, 4096]",
-            ));
-        }
-        ck.range(
-            "relative_tolerance",
-            self.relative_tolerance,
-            1e-13,
-            1e-2,
-            "must lie in (1e-13, 1e-2]",
-        )?;
-        ck.range(
-            "fourier_tolerance_of_ptp",
-            self.fourier_tolerance_of_ptp,
-            0.0,
-            1.0,
-            "must lie in (0, 1]",
-        )?;
-        Ok(())
+    fn check_run(&self, path: &Path) -> Result<(), InputError> {
+        lim::PINION_SPEED.check(path, self.pinion_speed_rpm)?;
+        lim::PINION_TORQUE.check(path, self.pinion_torque_nm)?;
+        lim::MESH_CYCLES.check(path, self.mesh_cycles)?;
+        let l = &lim::DROPPED_MESH_CYCLES;
+        l.check_ends(path, l.field, self.dropped_mesh_cycles, &[self.mesh_cycles])?;
+        let l = &lim::SAMPLES;
+        l.check_integer(path, l.field, self.samples_per_mesh_cycle)?;
+        lim::RELATIVE_TOLERANCE.check(path, self.relative_tolerance)?;
+        lim::FOURIER_TOLERANCE.check(path, self.fourier_tolerance_of_ptp)
     }
 
     /// Damping ratios, bearing stiffnesses, masses and inertias, the impact
     /// pulse and the further torques.
-    fn check_model(&self, ck: &LumpedCheck) -> Result<(), InputError> {
-        for (f, v) in [
-            ("mesh_damping_ratio", self.mesh_damping_ratio),
-            ("bearing_damping_ratio", self.bearing_damping_ratio),
-        ] {
-            if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
-                return Err(ck.fail(f, v.to_string(), "must lie in [0, 1]"));
-            }
-        }
-        for (f, k) in [
+    fn check_model(&self, path: &Path) -> Result<(), InputError> {
+        lim::MESH_DAMPING.check(path, self.mesh_damping_ratio)?;
+        lim::BEARING_DAMPING.check(path, self.bearing_damping_ratio)?;
+        for (l, k) in [
             (
-                "pinion_bearing_stiffness_n_per_m",
+                &lim::PINION_BEARING_STIFFNESS,
                 self.pinion_bearing_stiffness_n_per_m,
             ),
             (
-                "wheel_bearing_stiffness_n_per_m",
+                &lim::WHEEL_BEARING_STIFFNESS,
                 self.wheel_bearing_stiffness_n_per_m,
             ),
         ] {
-            if k.iter().any(|v| !(v.is_finite() && *v > 0.0 && *v <= 1e13)) {
-                return Err(ck.fail(f, format!("{k:?}"), "each must lie in (0, 1e13]"));
+            if k.iter().any(|v| !l.admits(*v, &[])) {
+                return Err(l.refuse(path, l.field, format!("{k:?}"), l.text_of_refusal()));
             }
         }
-        for (f, v) in [
-            ("pinion_mass_kg", self.pinion_mass_kg),
-            ("wheel_mass_kg", self.wheel_mass_kg),
-            ("pinion_inertia_kgm2", self.pinion_inertia_kgm2),
-            ("wheel_inertia_kgm2", self.wheel_inertia_kgm2),
+        for (l, v) in [
+            (&lim::PINION_MASS, self.pinion_mass_kg),
+            (&lim::WHEEL_MASS, self.wheel_mass_kg),
+            (&lim::PINION_INERTIA, self.pinion_inertia_kgm2),
+            (&lim::WHEEL_INERTIA, self.wheel_inertia_kgm2),
         ] {
             if let Some(v) = v {
-                if !(v.is_finite() && v > 0.0) {
-                    return Err(ck.fail(f, v.to_string(), "must be finite and > 0"));
-                }
+                l.check(path, v)?;
             }
         }
-        ck.range(
-            "impact_pulse_of_mesh_period",
-            self.impact_pulse_of_mesh_period,
-            0.0,
-            0.5,
-            "must lie in (0, 0.5]",
-        )?;
+        lim::IMPACT_PULSE.check(path, self.impact_pulse_of_mesh_period)?;
         for t in &self.more_pinion_torques_nm {
-            ck.range(
-                "more_pinion_torques_nm",
-                *t,
-                0.0,
-                1e6,
-                "each must lie in (0, 1e6]",
-            )?;
+            lim::MORE_PINION_TORQUES.check(path, *t)?;
         }
         Ok(())
     }
 
     /// `[lumped.friction]` and `[lumped.roughness]`.
-    fn check_friction_and_roughness(&self, ck: &LumpedCheck) -> Result<(), InputError> {
+    fn check_friction_and_roughness(&self, path: &Path) -> Result<(), InputError> {
         if let Some(f) = &self.friction {
-            for (field, v) in [
-                ("friction.base_coefficient", f.base_coefficient),
-                (
-                    "friction.roughness_coefficient_per_um",
-                    f.roughness_coefficient_per_um,
-                ),
-            ] {
-                if !(v.is_finite() && (0.0..=2.0).contains(&v)) {
-                    return Err(ck.fail(field, v.to_string(), "must lie in [0, 2]"));
-                }
-            }
+            lim::FRICTION_BASE.check(path, f.base_coefficient)?;
+            lim::FRICTION_ROUGHNESS.check(path, f.roughness_coefficient_per_um)?;
         }
         if let Some(r) = &self.roughness {
-            if r.ra_um.is_empty() {
-                return Err(ck.fail("roughness.ra_um", "[]".into(), "needs at least one grade"));
+            let l = &lim::ROUGHNESS_GRADES;
+            if !l.admits(r.ra_um.len() as f64, &[]) {
+                return Err(l.refuse(path, l.field, "[]".into(), l.text_of_refusal()));
             }
             for ra in &r.ra_um {
-                ck.range(
-                    "roughness.ra_um",
-                    *ra,
-                    0.0,
-                    10.0,
-                    "each must lie in (0, 10] µm",
-                )?;
+                lim::ROUGHNESS_RA.check(path, *ra)?;
             }
-            for (field, n) in [
-                ("roughness.profile_nodes", r.profile_nodes),
-                ("roughness.face_nodes", r.face_nodes),
+            for (l, n) in [
+                (&lim::ROUGHNESS_PROFILE_NODES, r.profile_nodes),
+                (&lim::ROUGHNESS_FACE_NODES, r.face_nodes),
             ] {
-                if !(2..=crate::design_file::MAX_TOPOGRAPHY_NODES).contains(&n) {
-                    return Err(ck.fail(field, n.to_string(), "must lie in [2, 200]"));
-                }
+                l.check_integer(path, l.field, n)?;
             }
         }
         Ok(())
     }
 
     /// `[[lumped.design_variants]]`: names and ease-off values.
-    fn check_design_variants(&self, ck: &LumpedCheck) -> Result<(), InputError> {
+    fn check_design_variants(&self, path: &Path) -> Result<(), InputError> {
         for v in &self.design_variants {
             let ok_name = !v.name.is_empty()
                 && v.name
                     .chars()
                     .all(|c| c.is_ascii_alphanumeric() || "_.-".contains(c));
             if !ok_name {
-                return Err(ck.fail(
-                    "design_variants.name",
+                let l = &lim::VARIANT_NAME;
+                return Err(l.refuse(
+                    path,
+                    l.field,
                     format!("{:?}", v.name),
-                    "must be non-empty letters, digits, '_', '.', '-'",
+                    "must be non-empty letters, digits, '_', '.', '-'".into(),
                 ));
             }
-            if let Some(m) = v.te_slope_m21 {
-                if !(m.is_finite() && (-0.1..=0.0).contains(&m)) {
-                    return Err(ck.fail(
-                        "design_variants.te_slope_m21",
-                        m.to_string(),
-                        "must lie in [-0.1, 0] per rad",
-                    ));
-                }
-            }
-            for (field, c) in [
-                ("design_variants.profile_crowning_um", v.profile_crowning_um),
-                (
-                    "design_variants.lengthwise_crowning_um",
-                    v.lengthwise_crowning_um,
-                ),
+            for (l, value) in [
+                (&lim::VARIANT_TE_SLOPE, v.te_slope_m21),
+                (&lim::VARIANT_PROFILE_CROWNING, v.profile_crowning_um),
+                (&lim::VARIANT_LENGTHWISE_CROWNING, v.lengthwise_crowning_um),
             ] {
-                if let Some(c) = c {
-                    if !(c.is_finite() && (0.0..=500.0).contains(&c)) {
-                        return Err(ck.fail(field, c.to_string(), "must lie in [0, 500] µm"));
-                    }
+                if let Some(value) = value {
+                    l.check(path, value)?;
                 }
             }
         }
@@ -374,73 +286,24 @@ impl LumpedSettings {
     }
 
     /// `[lumped.order_map]`.
-    fn check_order_map(&self, ck: &LumpedCheck) -> Result<(), InputError> {
+    fn check_order_map(&self, path: &Path) -> Result<(), InputError> {
         if let Some(o) = &self.order_map {
-            if o.pinion_speeds_rpm.is_empty() {
-                return Err(ck.fail(
-                    "order_map.pinion_speeds_rpm",
-                    "[]".into(),
-                    "must hold at least one speed",
-                ));
+            let l = &lim::ORDER_MAP_SPEED_COUNT;
+            if !l.admits(o.pinion_speeds_rpm.len() as f64, &[]) {
+                return Err(l.refuse(path, l.field, "[]".into(), l.text_of_refusal()));
             }
             for &v in &o.pinion_speeds_rpm {
-                if !(v.is_finite() && v > 0.0 && v <= 100_000.0) {
-                    return Err(ck.fail(
-                        "order_map.pinion_speeds_rpm",
-                        v.to_string(),
-                        "must lie in (0, 100000] rpm",
-                    ));
-                }
+                lim::ORDER_MAP_SPEEDS.check(path, v)?;
             }
-            if !(o.wheel_revolutions.is_finite() && (1.0..=20.0).contains(&o.wheel_revolutions)) {
-                return Err(ck.fail(
-                    "order_map.wheel_revolutions",
-                    o.wheel_revolutions.to_string(),
-                    "must lie in [1, 20]",
-                ));
-            }
+            lim::ORDER_MAP_REVOLUTIONS.check(path, o.wheel_revolutions)?;
+            // At least one revolution kept: the entry's upper end.
             let d = o.dropped_wheel_revolutions;
             if !(d.is_finite() && d >= 0.0 && o.wheel_revolutions - d >= 1.0) {
-                return Err(ck.fail(
-                    "order_map.dropped_wheel_revolutions",
-                    d.to_string(),
-                    "must be >= 0 and leave at least one wheel revolution",
-                ));
+                let l = &lim::ORDER_MAP_DROPPED;
+                return Err(l.refuse(path, l.field, d.to_string(), l.text_of_refusal()));
             }
-            if !(o.max_pinion_order.is_finite() && o.max_pinion_order > 0.0) {
-                return Err(ck.fail(
-                    "order_map.max_pinion_order",
-                    o.max_pinion_order.to_string(),
-                    "must be finite and > 0",
-                ));
-            }
+            lim::ORDER_MAP_MAX_ORDER.check(path, o.max_pinion_order)?;
         }
         Ok(())
-    }
-}
-
-/// The checks' error for a field of `[lumped]` in the scene at `path`.
-struct LumpedCheck<'a> {
-    path: &'a Path,
-}
-
-impl LumpedCheck<'_> {
-    /// `lumped.<field>` = `value` outside `limit`.
-    fn fail(&self, field: &str, value: String, limit: &str) -> InputError {
-        InputError::Invalid {
-            path: self.path.to_path_buf(),
-            field: format!("lumped.{field}"),
-            value,
-            limit: limit.into(),
-        }
-    }
-
-    /// `v` finite and in (lo, hi], else `limit`.
-    fn range(&self, field: &str, v: f64, lo: f64, hi: f64, limit: &str) -> Result<(), InputError> {
-        if v.is_finite() && v > lo && v <= hi {
-            Ok(())
-        } else {
-            Err(self.fail(field, v.to_string(), limit))
-        }
     }
 }

@@ -5,6 +5,7 @@
 
 use crate::design::PairData;
 use crate::error::InputError;
+use crate::limits::scene as lim;
 use crate::misalignment::{Component, Misalignment};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -63,33 +64,24 @@ impl SensitivitySettings {
         base: &Misalignment,
         pair: &PairData,
     ) -> Result<(), InputError> {
-        let fail = |field: &str, value: String, limit: String| InputError::Invalid {
-            path: path.to_path_buf(),
-            field: format!("sensitivity.{field}"),
-            value,
-            limit,
-        };
-        if !(3..=41).contains(&self.values) || self.values % 2 == 0 {
-            return Err(fail(
-                "values",
-                self.values.to_string(),
-                "must be odd and lie in [3, 41]".into(),
-            ));
-        }
+        let l = &lim::SENSITIVITY_VALUES;
+        l.check_integer(path, l.field, self.values)?;
         for c in Component::ALL {
             let r = self.range(c);
             let room = Misalignment::limit(c, pair) - base.get(c).abs();
-            if !(r > 0.0 && r <= room) {
-                return Err(fail(
-                    c.field(),
-                    r.to_string(),
-                    format!(
-                        "must lie in (0, {room:.4}] {}: the limit of |{}| less the scene's own misalignment",
-                        c.unit(),
-                        c.symbol()
-                    ),
-                ));
-            }
+            let l = match c {
+                Component::Offset => &lim::SENSITIVITY_OFFSET,
+                Component::PinionAxial => &lim::SENSITIVITY_PINION_AXIAL,
+                Component::WheelAxial => &lim::SENSITIVITY_WHEEL_AXIAL,
+                Component::ShaftAngle => &lim::SENSITIVITY_SHAFT_ANGLE,
+            };
+            l.check_with(path, l.field, r, &[room], || {
+                format!(
+                    "must lie in (0, {room:.4}] {}: the limit of |{}| less the scene's own misalignment",
+                    c.unit(),
+                    c.symbol()
+                )
+            })?;
         }
         Ok(())
     }

@@ -1,0 +1,79 @@
+//! Limits of the scene's `[bearings]` table ([`crate::scene_bearings`]).
+
+use super::*;
+use crate::scene_bearings::{
+    MAX_BEARING_DAMPING_N_S_PER_M, MAX_BEARING_POSITION_MM, MAX_BEARING_STIFFNESS_N_PER_M,
+};
+
+/// A position along the member's axis from its pitch apex.
+const fn position(field: &'static str) -> Limit {
+    Limit::scene(
+        field,
+        "mm",
+        real(
+            closed(-MAX_BEARING_POSITION_MM),
+            closed(MAX_BEARING_POSITION_MM),
+        )
+        .says("must be finite, within ±10,000 mm of the pitch apex"),
+    )
+}
+
+/// A bearing stiffness.
+const fn stiffness(field: &'static str) -> Limit {
+    Limit::scene(
+        field,
+        "N/m",
+        real(closed(0.0), closed_e(MAX_BEARING_STIFFNESS_N_PER_M)).lie_in(" N/m"),
+    )
+    .why("stiffer than this is rigid for any gear mesh")
+}
+
+/// A bearing damping.
+const fn damping(field: &'static str) -> Limit {
+    Limit::scene(
+        field,
+        "N·s/m",
+        real(closed(0.0), closed_e(MAX_BEARING_DAMPING_N_S_PER_M)).lie_in(" N·s/m"),
+    )
+}
+
+limits! {
+    AXIAL_POSITION = position("bearings.<member>[i].axial_position_mm");
+    RADIAL_STIFFNESS = stiffness("bearings.<member>[i].radial_stiffness_n_per_m");
+    AXIAL_STIFFNESS = stiffness("bearings.<member>[i].axial_stiffness_n_per_m");
+    RADIAL_DAMPING = damping("bearings.<member>[i].radial_damping_n_s_per_m");
+    AXIAL_DAMPING = damping("bearings.<member>[i].axial_damping_n_s_per_m");
+    HELD_AGAINST_TILT = Limit::scene(
+        "bearings.<member>",
+        "",
+        words("two bearings with radial stiffness at different axial positions"),
+    )
+    .why("to hold tilt");
+    HELD_ALONG_AXIS = Limit::scene(
+        "bearings.<member>",
+        "",
+        words("one bearing with `axial_stiffness_n_per_m` > 0"),
+    )
+    .why("else the shaft slides along its axis");
+    BODY_MASS = Limit::scene(
+        "bearings.<member>_body.mass_kg",
+        "kg",
+        real(open(0.0), closed_e(1e5)).lie_in(" kg"),
+    );
+    BODY_CENTROID = position("bearings.<member>_body.centroid_mm");
+    BODY_TRANSVERSE_INERTIA = Limit::scene(
+        "bearings.<member>_body.transverse_inertia_kgm2",
+        "kg·m²",
+        real(open(0.0), closed_e(1e4)).lie_in(" kg·m²"),
+    );
+    TOLERANCE = Limit::scene(
+        "bearings.tolerance_nm",
+        "nm",
+        real(closed(1e-3), closed(1e3)).lie_in(" nm"),
+    );
+    MAX_ITERATIONS = Limit::scene(
+        "bearings.max_iterations",
+        "iterations",
+        integer(closed(2.0), closed(500.0)).lie_in(""),
+    );
+}
