@@ -25,6 +25,10 @@ pub const MAX_FLANK_ELEMENTS: FlankElements = FlankElements {
 };
 /// Most contact grid points of a stiffness file (grid_profile × grid_face).
 pub const MAX_GRID_POINTS: usize = 2500;
+/// Most entries of a `[lumped]` list that starts a run per entry (extra
+/// torques, roughness grades, order-map speeds, design variants): as many
+/// as the scene's torques may be.
+pub const MAX_LIST_RUNS: usize = 100;
 /// Most pinion torques of one scene.
 pub const MAX_TORQUES: usize = 100;
 /// Largest pinion torque, N·m.
@@ -160,13 +164,20 @@ impl Scene {
         ] {
             l.check_integer(path, l.field, v)?;
         }
-        let grid_points = st.grid_profile * st.grid_face;
+        // 0 takes the reduced-order mesh level's elements (as the
+        // stiffness plan does).
+        let own = |v: usize, mesh: u32| if v == 0 { mesh as usize } else { v };
+        let (gp, gf) = (
+            own(st.grid_profile, self.mesh.reduced_order.profile),
+            own(st.grid_face, self.mesh.reduced_order.face),
+        );
+        let grid_points = gp * gf;
         let l = &lim::GRID_POINTS;
         if !l.admits(grid_points as f64, &[]) {
             return Err(l.refuse(
                 path,
                 l.field,
-                format!("{} × {} = {grid_points}", st.grid_profile, st.grid_face),
+                format!("{gp} × {gf} = {grid_points}"),
                 format!(
                     "must be <= {MAX_GRID_POINTS} points (each compliance block holds points² values: {:.0} MB here)",
                     (grid_points * grid_points * 8) as f64 / 1e6

@@ -226,6 +226,11 @@ impl LumpedSettings {
             }
         }
         lim::IMPACT_PULSE.check(path, self.impact_pulse_of_mesh_period)?;
+        let l = &lim::MORE_PINION_TORQUE_COUNT;
+        let n = self.more_pinion_torques_nm.len();
+        if !l.admits(n as f64, &[]) {
+            return Err(l.refuse(path, l.field, format!("{n} entries"), l.text_of_refusal()));
+        }
         for t in &self.more_pinion_torques_nm {
             lim::MORE_PINION_TORQUES.check(path, *t)?;
         }
@@ -240,8 +245,9 @@ impl LumpedSettings {
         }
         if let Some(r) = &self.roughness {
             let l = &lim::ROUGHNESS_GRADES;
-            if !l.admits(r.ra_um.len() as f64, &[]) {
-                return Err(l.refuse(path, l.field, "[]".into(), l.text_of_refusal()));
+            let n = r.ra_um.len();
+            if !l.admits(n as f64, &[]) {
+                return Err(l.refuse(path, l.field, format!("{n} entries"), l.text_of_refusal()));
             }
             for ra in &r.ra_um {
                 lim::ROUGHNESS_RA.check(path, *ra)?;
@@ -258,8 +264,23 @@ impl LumpedSettings {
 
     /// `[[lumped.design_variants]]`: names and ease-off values.
     fn check_design_variants(&self, path: &Path) -> Result<(), InputError> {
-        for v in &self.design_variants {
+        let l = &lim::VARIANT_COUNT;
+        let n = self.design_variants.len();
+        if !l.admits(n as f64, &[]) {
+            return Err(l.refuse(path, l.field, format!("{n} entries"), l.text_of_refusal()));
+        }
+        for (i, v) in self.design_variants.iter().enumerate() {
+            if self.design_variants[..i].iter().any(|w| w.name == v.name) {
+                let l = &lim::VARIANT_NAMES_UNIQUE;
+                return Err(l.refuse(
+                    path,
+                    l.field,
+                    format!("{:?}", v.name),
+                    "each name once: the name names the variant's output files".into(),
+                ));
+            }
             let ok_name = !v.name.is_empty()
+                && v.name.len() <= 100
                 && v.name
                     .chars()
                     .all(|c| c.is_ascii_alphanumeric() || "_.-".contains(c));
@@ -269,7 +290,7 @@ impl LumpedSettings {
                     path,
                     l.field,
                     format!("{:?}", v.name),
-                    "must be non-empty letters, digits, '_', '.', '-'".into(),
+                    "must be 1 to 100 letters, digits, '_', '.', '-'".into(),
                 ));
             }
             for (l, value) in [
@@ -289,8 +310,9 @@ impl LumpedSettings {
     fn check_order_map(&self, path: &Path) -> Result<(), InputError> {
         if let Some(o) = &self.order_map {
             let l = &lim::ORDER_MAP_SPEED_COUNT;
-            if !l.admits(o.pinion_speeds_rpm.len() as f64, &[]) {
-                return Err(l.refuse(path, l.field, "[]".into(), l.text_of_refusal()));
+            let n = o.pinion_speeds_rpm.len();
+            if !l.admits(n as f64, &[]) {
+                return Err(l.refuse(path, l.field, format!("{n} entries"), l.text_of_refusal()));
             }
             for &v in &o.pinion_speeds_rpm {
                 lim::ORDER_MAP_SPEEDS.check(path, v)?;

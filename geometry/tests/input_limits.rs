@@ -46,9 +46,17 @@ fn design_with(from: &str, to: &str) -> Result<(), String> {
 /// The default scene, its design path absolute, with `from` replaced by `to`
 /// (which must occur), loaded from a temporary directory.
 fn scene_with(from: &str, to: &str) -> Result<geometry::scene::LoadedScene, String> {
-    let text = std::fs::read_to_string(common::reference("scenes/default.toml")).unwrap();
-    assert!(text.contains(from), "{from} not in the scene");
-    let text = text.replacen(from, to, 1).replace(
+    scene_with_all(&[(from, to)])
+}
+
+/// [`scene_with`] for several replacements, in order.
+fn scene_with_all(edits: &[(&str, &str)]) -> Result<geometry::scene::LoadedScene, String> {
+    let mut text = std::fs::read_to_string(common::reference("scenes/default.toml")).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from} not in the scene");
+        text = text.replacen(from, to, 1);
+    }
+    let text = text.replace(
         "design = \"../white_paper_20x43.toml\"",
         &format!(
             "design = {:?}",
@@ -524,4 +532,36 @@ fn nan_in_scene_numbers_is_refused_by_field() {
     ] {
         refused(scene_with(from, to), "scene.toml", &[field]);
     }
+}
+
+#[test]
+fn a_grid_side_left_to_the_mesh_level_counts_at_the_mesh_level_s_size() {
+    // 0 profile rows: the reduced-order level's 40; 40 × 200 = 8,000 points
+    // (the written 0 × 200 is 0).
+    let r = scene_with_all(&[
+        (
+            "reduced_order = { profile = 12,",
+            "reduced_order = { profile = 40,",
+        ),
+        ("grid_profile = 12", "grid_profile = 0"),
+        ("grid_face = 40", "grid_face = 200"),
+    ]);
+    refused(
+        r,
+        "scene.toml",
+        &["stiffness.grid_profile", "40 × 200 = 8000"],
+    );
+    // Within the limit it loads.
+    scene_with_all(&[("grid_profile = 12", "grid_profile = 0")]).unwrap();
+}
+
+#[test]
+fn lumped_design_variants_with_the_same_name_are_refused() {
+    let lumped = "\n[lumped]\n[[lumped.design_variants]]\nname = \"flat\"\nte_slope_m21 = -0.01\n[[lumped.design_variants]]\nname = \"flat\"\nte_slope_m21 = -0.02\n";
+    let r = scene_with_all(&[("[analyses]", &format!("{lumped}\n[analyses]"))]);
+    refused(
+        r,
+        "scene.toml",
+        &["lumped.design_variants.name", "\"flat\"", "each name once"],
+    );
 }

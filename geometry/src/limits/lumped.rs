@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::design_file::MAX_TOPOGRAPHY_NODES;
+use crate::scene_checks::MAX_LIST_RUNS;
 
 /// A positive number up to `hi`, refused as "must lie in (0, hi]".
 const fn up_to(field: &'static str, unit: &'static str, hi: End) -> Limit {
@@ -87,8 +88,9 @@ limits! {
     ROUGHNESS_GRADES = Limit::scene(
         "lumped.roughness.ra_um",
         "",
-        count(closed(1.0), End::Unbounded).says("needs at least one grade"),
-    );
+        count(closed(1.0), closed(MAX_LIST_RUNS as f64)).says("needs 1 to 100 grades"),
+    )
+    .why("one run per grade");
     ROUGHNESS_RA = Limit::scene(
         "lumped.roughness.ra_um",
         "µm",
@@ -96,10 +98,28 @@ limits! {
     );
     ROUGHNESS_PROFILE_NODES = nodes("lumped.roughness.profile_nodes");
     ROUGHNESS_FACE_NODES = nodes("lumped.roughness.face_nodes");
+    MORE_PINION_TORQUE_COUNT = Limit::scene(
+        "lumped.more_pinion_torques_nm",
+        "",
+        count(End::Unbounded, closed(MAX_LIST_RUNS as f64)).says("holds at most 100 torques"),
+    )
+    .why("one run per torque");
+    VARIANT_COUNT = Limit::scene(
+        "lumped.design_variants",
+        "",
+        count(End::Unbounded, closed(MAX_LIST_RUNS as f64)).says("holds at most 100 variants"),
+    )
+    .why("one run per variant");
+    VARIANT_NAMES_UNIQUE = Limit::scene(
+        "lumped.design_variants.name",
+        "",
+        words("each name once"),
+    )
+    .why("the name in the output");
     VARIANT_NAME = Limit::scene(
         "lumped.design_variants.name",
         "",
-        words("not empty; letters, digits, `_`, `.`, `-`"),
+        words("1 to 100 characters: letters, digits, `_`, `.`, `-`"),
     )
     .why("the name in the output");
     VARIANT_TE_SLOPE =
@@ -111,8 +131,9 @@ limits! {
     ORDER_MAP_SPEED_COUNT = Limit::scene(
         "lumped.order_map.pinion_speeds_rpm",
         "",
-        count(closed(1.0), End::Unbounded).says("must hold at least one speed"),
-    );
+        count(closed(1.0), closed(MAX_LIST_RUNS as f64)).says("must hold 1 to 100 speeds"),
+    )
+    .why("one run per speed");
     ORDER_MAP_SPEEDS = Limit::scene(
         "lumped.order_map.pinion_speeds_rpm",
         "rpm",
