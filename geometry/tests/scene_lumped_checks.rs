@@ -137,7 +137,12 @@ fn scene_lumped_order_map_refuses_no_speed_a_bad_speed_and_no_kept_revolution() 
     let o: &OrderMapSettings = ok.order_map.as_ref().unwrap();
     assert_eq!(o.pinion_speeds_rpm, vec![1000.0, 3000.0]);
     let refused = [
-        (0, "pinion_speeds_rpm = []", "pinion_speeds_rpm", "0 entries"),
+        (
+            0,
+            "pinion_speeds_rpm = []",
+            "pinion_speeds_rpm",
+            "0 entries",
+        ),
         (
             0,
             "pinion_speeds_rpm = [1000.0, -5.0]",
