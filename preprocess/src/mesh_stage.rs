@@ -78,7 +78,7 @@ pub fn convert_to_vtu(msh: &Path, vtu: &Path) -> anyhow::Result<()> {
                 .arg(msh)
                 .arg(tmp),
         )
-            .map_err(|e| anyhow::anyhow!("cannot run {}: {e}", py.display()))?;
+        .map_err(|e| anyhow::anyhow!("cannot run {}: {e}", py.display()))?;
         if !out.status.success() {
             anyhow::bail!(
                 "meshio conversion of {} failed: {}",
