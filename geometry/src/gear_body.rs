@@ -159,6 +159,31 @@ pub fn revolution_volume(poly: &[[f64; 2]]) -> f64 {
     (std::f64::consts::PI / 3.0 * v).abs()
 }
 
+impl BlankShape {
+    /// Whether the half-section is a body: a simple polygon (no two edges
+    /// cross) wholly off the axis, with an area. Bore or hub dimensions
+    /// wider than the body make it cross itself.
+    pub fn is_body(&self) -> bool {
+        let p = &self.polygon;
+        let n = p.len();
+        let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        };
+        let cross = |a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]| {
+            orient(a, b, c) * orient(a, b, d) < 0.0 && orient(c, d, a) * orient(c, d, b) < 0.0
+        };
+        let simple = (0..n).all(|i| {
+            (i + 2..n).all(|j| {
+                (i == 0 && j == n - 1) || !cross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])
+            })
+        });
+        let twice_area: f64 = (0..n)
+            .map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1])
+            .sum();
+        simple && p.iter().all(|q| q[1] > 0.0) && twice_area.abs() > 0.0
+    }
+}
+
 /// The blank of `member` with blank type `blank`.
 pub fn blank_shape(
     pair: &PairData,

@@ -269,6 +269,42 @@ impl Scene {
         Ok(())
     }
 
+    /// Every blank of the scene, its dimensions resolved against the design,
+    /// is a body: the half-section does not cross itself (a bore or hub
+    /// wider than the rim allows). Checked here, before any meshing (the
+    /// mesh stage checks it again on the shape it meshes).
+    fn check_blank_sections(&self, path: &Path, pair: &PairData) -> Result<(), InputError> {
+        use crate::design::Member;
+        use crate::gear_body::{blank_shape, BlankDimensions};
+        let dims = BlankDimensions::resolve(&self.blank_dimensions, pair);
+        for (member, blanks) in [
+            (Member::Pinion, &self.blanks.pinion),
+            (Member::Wheel, &self.blanks.wheel),
+        ] {
+            for &blank in blanks {
+                let shape = blank_shape(pair, member, blank, &dims);
+                if shape.is_body() {
+                    continue;
+                }
+                let (l, value) = match member {
+                    Member::Pinion => (&lim::PINION_BLANK_SECTION, dims.pinion_bore_radius),
+                    Member::Wheel => (&lim::WHEEL_BLANK_SECTION, dims.wheel_hub_radius),
+                };
+                return Err(l.refuse(
+                    path,
+                    l.field,
+                    format!("{}", value * 1e3),
+                    format!(
+                        "the {} blank's half-section crosses itself; the bore and hub must stay inside the body (rim bottom radius at the toe {:.1} mm)",
+                        blank.name(),
+                        shape.polygon[0][1] * 1e3
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// `[blank_dimensions]` and `[blanks]`.
     fn check_blanks(&self, path: &Path) -> Result<(), InputError> {
         let bd = &self.blank_dimensions;
@@ -324,6 +360,7 @@ impl Scene {
     /// and the multibody runs allocate, estimated from the mesh cycle.
     pub fn check_sizes(&self, path: &Path, pair: &PairData) -> Result<(), InputError> {
         self.misalignment.check(path, "misalignment", pair)?;
+        self.check_blank_sections(path, pair)?;
         // A written [sensitivity] table is checked here; the defaults only
         // when the study runs (`solver sensitivity`).
         if let Some(s) = &self.sensitivity {

@@ -565,3 +565,30 @@ fn lumped_design_variants_with_the_same_name_are_refused() {
         &["lumped.design_variants.name", "\"flat\"", "each name once"],
     );
 }
+
+#[test]
+fn a_hub_inside_the_bore_is_refused_at_load_not_after_meshing() {
+    // The default wheel bore is a quarter of the rim bottom radius at the
+    // toe (about 21 mm here): a 10 mm hub lies inside it, and the wheel's
+    // half-section crosses itself. The mesh stage found it only after
+    // meshing the pinion (about 15 s).
+    let r = scene_with_all(&[(
+        "[rotation]",
+        "[blank_dimensions]\nwheel_hub_radius_mm = 10.0\n\n[rotation]",
+    )]);
+    refused(
+        r,
+        "scene.toml",
+        &[
+            "blank_dimensions.wheel_hub_radius_mm",
+            "crosses itself",
+            "85.0 mm",
+        ],
+    );
+    // A hub around the bore loads.
+    scene_with_all(&[(
+        "[rotation]",
+        "[blank_dimensions]\nwheel_hub_radius_mm = 40.0\n\n[rotation]",
+    )])
+    .unwrap();
+}

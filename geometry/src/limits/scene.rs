@@ -178,6 +178,18 @@ limits! {
     WHEEL_LIGHTWEIGHT_WEB_THICKNESS =
         blank_dimension("blank_dimensions.wheel_lightweight_web_thickness_mm");
     WHEEL_HOLE_DIAMETER = blank_dimension("blank_dimensions.wheel_hole_diameter_mm");
+    PINION_BLANK_SECTION = Limit::scene(
+        "blank_dimensions.pinion_bore_radius_mm",
+        "mm",
+        derived("the pinion blank's half-section a simple polygon off the axis: the bore inside the body (below the rim bottom at the toe)"),
+    )
+    .why("the body to mesh");
+    WHEEL_BLANK_SECTION = Limit::scene(
+        "blank_dimensions.wheel_hub_radius_mm",
+        "mm",
+        derived("each wheel blank's half-section a simple polygon off the axis: the hub around the bore and below the rim bottom at the toe"),
+    )
+    .why("the body to mesh");
     OFFSET = shift("misalignment.offset_mm");
     PINION_AXIAL = shift("misalignment.pinion_axial_mm");
     WHEEL_AXIAL = shift("misalignment.wheel_axial_mm");

@@ -156,18 +156,7 @@ fn seam_angle(req: &MeshRequest) -> f64 {
 /// the axis (bore or hub wider than the body, web outside the rim).
 pub(super) fn check_blank(req: &MeshRequest, shape: &BlankShape) -> Result<(), MeshError> {
     let p = &shape.polygon;
-    let n = p.len();
-    let cross = |a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]| {
-        let o = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
-            (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
-        };
-        o(a, b, c) * o(a, b, d) < 0.0 && o(c, d, a) * o(c, d, b) < 0.0
-    };
-    let simple = (0..n).all(|i| {
-        (i + 2..n)
-            .all(|j| (i == 0 && j == n - 1) || !cross(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]))
-    });
-    if simple && p.iter().all(|q| q[1] > 0.0) && revolution_volume_signed(p).abs() > 0.0 {
+    if shape.is_body() {
         return Ok(());
     }
     let (field, value) = match req.member {
@@ -188,14 +177,6 @@ pub(super) fn check_blank(req: &MeshRequest, shape: &BlankShape) -> Result<(), M
             p[0][1] * 1e3
         ),
     ))
-}
-
-/// Twice the signed area of the polygon in (z, ρ).
-fn revolution_volume_signed(p: &[[f64; 2]]) -> f64 {
-    let n = p.len();
-    (0..n)
-        .map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1])
-        .sum()
 }
 
 /// A gmsh session with one thread, OCC's parallel booleans and a model named
