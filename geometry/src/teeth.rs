@@ -40,6 +40,15 @@ pub fn table_mesh_cycles(sc: &Scene, wheel: Blank, mesh_cycle_rad: f64) -> f64 {
     cycles
 }
 
+/// Positions per mesh cycle (`mesh_cycle_rad`) of the multibody contact
+/// table: `multibody.table_step_deg` rounded to a whole number per cycle,
+/// at least 8.
+pub fn table_positions_per_cycle(sc: &Scene, mesh_cycle_rad: f64) -> usize {
+    (mesh_cycle_rad / sc.multibody.table_step_deg.to_radians())
+        .round()
+        .max(8.0) as usize
+}
+
 /// Largest pinion torque the multibody table of wheel blank `wheel`
 /// covers, N·m: the largest of the scene's torques, the run-up's (if the
 /// blank runs up) and the load run's (as pinion torque), times
@@ -73,10 +82,7 @@ pub fn table_span(g: &PairGeometry, sc: &Scene, wheel: Blank, sweep_step: f64) -
     let d = &g.data;
     let tau = d.mesh_cycle();
     let ratio = d.members[0].teeth as f64 / d.members[1].teeth as f64;
-    let table_step = tau
-        / (tau / sc.multibody.table_step_deg.to_radians())
-            .round()
-            .max(8.0);
+    let table_step = tau / table_positions_per_cycle(sc, tau) as f64;
     let [r1, r2] = [0, 1].map(|i| d.mean_cone_distance * d.members[i].pitch_angle.sin());
     let e_min = d.members[0].youngs_modulus.min(d.members[1].youngs_modulus);
     let c = MIN_MESH_STIFFNESS_STEEL * e_min / STEEL_YOUNGS_MODULUS;

@@ -172,23 +172,15 @@ pub fn run(
                     && vtu.exists()
                     && mesh_intact(&dir, &stem);
                 let cached = cached_report(&report_path);
-                let record = |stem: &str| {
-                    let entry_inputs =
-                        MeshInputs::of_scene(scene, &g, &design_text, member, blank, lv);
-                    record_mesh(
-                        &dir,
-                        stem,
-                        member,
-                        blank,
-                        level,
-                        entry_inputs,
-                        &inputs.hash,
-                        &g,
-                    )
+                let wanted = MeshInputs::of_scene(scene, &g, &design_text, member, blank, lv);
+                // Lists the mesh in the manifest with the inputs it was made
+                // from (the scene's, or a mesh's refined on more teeth).
+                let record = |entry: MeshInputs, hash: &str| {
+                    record_mesh(&dir, &stem, member, blank, level, entry, hash, &g)
                 };
                 if let (true, Some(mut r)) = (unchanged, cached) {
                     eprintln!("{stem}: inputs unchanged, reusing {}", msh.display());
-                    record(&stem)?;
+                    record(wanted.clone(), &inputs.hash)?;
                     r.reused = true;
                     reports.push(r);
                     continue;
@@ -196,7 +188,6 @@ pub fn run(
                 // A mesh of this folder refined on more teeth than the
                 // scene asks for serves it as it is (its manifest entry
                 // keeps its own inputs).
-                let wanted = MeshInputs::of_scene(scene, &g, &design_text, member, blank, lv);
                 let serves = |t: &str, e: &MeshEntry| {
                     serde_json::from_str::<Inputs>(t)
                         .is_ok_and(|i| i.schema == MESH_SCHEMA && i.hash == e.inputs_hash)
@@ -243,17 +234,8 @@ pub fn run(
                         r.scene = sc.name.clone();
                         write_json(&report_path, &r)?;
                         match superset {
-                            None => record(&stem)?,
-                            Some(e) => record_mesh(
-                                &dir,
-                                &stem,
-                                member,
-                                blank,
-                                level,
-                                e.inputs,
-                                &e.inputs_hash,
-                                &g,
-                            )?,
+                            None => record(wanted.clone(), &inputs.hash)?,
+                            Some(e) => record(e.inputs, &e.inputs_hash)?,
                         }
                         r.reused = true;
                         reports.push(r);
@@ -264,7 +246,7 @@ pub fn run(
                 convert_to_vtu(&msh, &vtu)?;
                 write_json(&report_path, &report)?;
                 write_json(&inputs_path, &inputs)?;
-                record(&stem)?;
+                record(wanted.clone(), &inputs.hash)?;
                 reports.push(report);
             }
         }

@@ -13,7 +13,7 @@ mod fixture;
 use geometry::design::Member;
 use geometry::pair::{pairs_in_contact, pinion_direction, PairGeometry};
 use geometry::scene::{Blank, Scene};
-use geometry::teeth::{refined_teeth, table_span, table_torque_nm};
+use geometry::teeth::{refined_teeth, table_positions_per_cycle, table_span, table_torque_nm};
 use solver::multibody::mesh_table::{MeshTable, TableSpec};
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -29,7 +29,7 @@ fn the_planned_lead_in_bounds_the_lead_in_of_a_table_built_on_the_fixture() {
     // ten times larger load.
     for scale in [1.0, 10.0] {
         let torque = table_torque_nm(sc, Blank::Standard, ratio) * scale;
-        let per = (tau / sc.multibody.table_step_deg.to_radians()).round() as usize;
+        let per = table_positions_per_cycle(sc, tau);
         let spec = TableSpec {
             start: f.sweep.start,
             direction: f.sweep.direction,
@@ -106,7 +106,7 @@ fn planned_teeth_cover_the_table_span_at_a_coarse_step_and_a_high_torque() {
     let tau = g.data.mesh_cycle();
     let step = sc.rotation.step_deg.to_radians();
     let [before, after] = table_span(&g, sc, Blank::Lightweight, step);
-    let table_step = tau / (tau / sc.multibody.table_step_deg.to_radians()).round();
+    let table_step = tau / table_positions_per_cycle(sc, tau) as f64;
     let ks = -(before / table_step).ceil() as i64..=(after / table_step).ceil() as i64;
     let met = teeth_at(&g, sc, ks, table_step);
     let planned: BTreeSet<usize> = refined_teeth(&g, sc, Member::Wheel, Blank::Lightweight)

@@ -125,7 +125,7 @@ fn tables(
     // Standard blanks repeat every mesh cycle; with a lightweight
     // member the table spans the whole rotation the runs need.
     let periodic = wb == Blank::Standard && pb == Blank::Standard;
-    let per_cycle = (tau / mb.table_step_deg.to_radians()).round().max(8.0) as usize;
+    let per_cycle = geometry::teeth::table_positions_per_cycle(sc, tau);
     // The 10 rpm runs go one sweep step past the sweep's end.
     let cycles = geometry::teeth::table_mesh_cycles(sc, wb, tau);
     let range = cycles * tau + 3.0 * sweep.step;
