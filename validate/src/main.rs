@@ -2,8 +2,9 @@
 
 use clap::{Parser, Subcommand};
 use cli::args::{
-    CalibrateArgs, ConvergenceArgs, GridConvergenceArgs, LineLoadArgs, MeshStiffnessArgs,
-    ReferenceArgs, ReportArgs, StageTradeoffsArgs, StressArgs, TradeoffArgs, UtcaArgs,
+    CalibrateArgs, ConvergenceArgs, ExportInpArgs, GridConvergenceArgs, LineLoadArgs,
+    MeshStiffnessArgs, ReferenceArgs, ReportArgs, StageTradeoffsArgs, StressArgs, TradeoffArgs,
+    UtcaArgs,
 };
 use cli::commands;
 
@@ -64,6 +65,12 @@ enum Cmd {
     /// rows at 1 and 100 N·m; writes the calibrated design, its scene and
     /// the fit's record (reference/white_paper_20x43_calibrat*).
     Calibrate(CalibrateArgs),
+    /// One position of the reference as a CalculiX / Abaqus input deck
+    /// (both bodies as C3D10, the clamped and the driven bore, the flank
+    /// surfaces in penalty contact, a rotation step and one torque step
+    /// per load): `<out>/<scene>/calculix/<stem>.inp`; with `--run`,
+    /// solved by CalculiX, its loaded TE in `<stem>.json`.
+    ExportInp(ExportInpArgs),
 }
 
 fn main() -> anyhow::Result<()> {
@@ -73,6 +80,7 @@ fn main() -> anyhow::Result<()> {
         Cmd::Report(a) => commands::report(a)?,
         Cmd::Utca(a) => commands::utca(a)?,
         Cmd::Reference(a) => commands::reference(a)?,
+        Cmd::ExportInp(a) => commands::export_inp(a)?,
         Cmd::Stress(a) => commands::stress(a)?,
         Cmd::StageTradeoffs(a) => commands::stage_tradeoffs(a)?,
         Cmd::GridConvergence(a) => commands::grid_convergence(a)?,

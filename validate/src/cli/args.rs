@@ -407,3 +407,41 @@ fn column_range(s: &str) -> Result<(usize, usize), String> {
     }
     Ok((a, b))
 }
+
+#[derive(clap::Args)]
+pub struct ExportInpArgs {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Mesh directory (as written by `preprocess mesh`).
+    #[arg(long, default_value = "meshes")]
+    pub meshes: PathBuf,
+    /// Output directory: the deck goes to <out>/<scene>/calculix/.
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// Mesh level of both bodies: reduced, medium or reference.
+    #[arg(long, default_value = "reduced", value_parser = ["reduced", "medium", "reference"])]
+    pub level: String,
+    /// Position of the reference sweep (0: its start).
+    #[arg(long)]
+    pub position: usize,
+    /// Pinion blank (default: the scene's first).
+    #[arg(long, value_parser = ["standard", "lightweight"])]
+    pub pinion_blank: Option<String>,
+    /// Wheel blank (default: the scene's first).
+    #[arg(long, value_parser = ["standard", "lightweight"])]
+    pub wheel_blank: Option<String>,
+    /// Contact of the deck: node-to-surface (the pinion's nodes against the
+    /// wheel's faces), surface-to-surface, or none (the rigid-rotation
+    /// check: no contact, one prescribed rotation).
+    #[arg(long, default_value = "node-to-surface", value_parser = ["node-to-surface", "surface-to-surface", "none"])]
+    pub contact: String,
+    /// Penalty ε = factor · E / (mean flank face size).
+    #[arg(long, default_value_t = 100.0)]
+    pub penalty: f64,
+    /// Solve the deck with CalculiX (`ccx`) and write its loaded TE.
+    #[arg(long)]
+    pub run: bool,
+    /// Solver threads of the CalculiX run.
+    #[arg(long, default_value_t = 2, value_parser = at_least_one)]
+    pub threads: usize,
+}

@@ -452,3 +452,60 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
     );
     Ok(())
 }
+
+pub fn export_inp(a: ExportInpArgs) -> anyhow::Result<()> {
+    use geometry::scene::{Blank, MeshLevel};
+    use validate::deck::{DeckContact, DeckOptions};
+    let sc = geometry::scene::Scene::load(&a.scene)?;
+    let blank = |given: &Option<String>, listed: &[Blank], field: &str| -> anyhow::Result<Blank> {
+        match given {
+            None => listed
+                .first()
+                .copied()
+                .with_context(|| format!("scene {}: no {field} blank", sc.scene.name)),
+            Some(name) => listed
+                .iter()
+                .copied()
+                .find(|b| b.name() == name)
+                .with_context(|| {
+                    format!(
+                        "--{field}-blank {name}: the scene's {field} blanks are {:?}",
+                        listed.iter().map(|b| b.name()).collect::<Vec<_>>()
+                    )
+                }),
+        }
+    };
+    let opt = DeckOptions {
+        level: MeshLevel::from_name(&a.level).with_context(|| {
+            format!("--level {}: must be reduced, medium or reference", a.level)
+        })?,
+        pinion_blank: blank(&a.pinion_blank, &sc.scene.blanks.pinion, "pinion")?,
+        wheel_blank: blank(&a.wheel_blank, &sc.scene.blanks.wheel, "wheel")?,
+        position: a.position,
+        contact: DeckContact::parse(&a.contact)?,
+        penalty_factor: a.penalty,
+    };
+    let e = validate::deck::export::export(&sc, &a.meshes, &a.out, &opt, a.run, a.threads)?;
+    println!(
+        "deck {}: {} + {} C3D10 elements, {} + {} flank faces, start rotation {:.4e} rad",
+        e.inp.display(),
+        e.deck.bodies[0].elements.len(),
+        e.deck.bodies[1].elements.len(),
+        e.deck.bodies[0].flank.len(),
+        e.deck.bodies[1].flank.len(),
+        e.deck.start_rotation
+    );
+    if let Some(s) = &e.solution {
+        println!(
+            "CalculiX ({}, {:.1} s CPU): step 1 TE {:.4} urad, moment {:.4e} N m",
+            s.contact, s.cpu_s, s.start_te_urad, s.start_moment_nm
+        );
+        for l in &s.loads {
+            println!(
+                "  {} N m: TE {:.4} urad (moment at the rotation node {:.4} N m)",
+                l.torque_nm, l.te_urad, l.moment_nm
+            );
+        }
+    }
+    Ok(())
+}
