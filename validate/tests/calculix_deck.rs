@@ -3,13 +3,20 @@
 //! shared with the other tests of the pair):
 //! - the deck's elements are all positive as C3D10, its node sets and
 //!   surfaces hold every bore node and every loaded-flank face of the teeth
-//!   the reference uses, and every number fits CalculiX's 20-character
-//!   fields;
+//!   the reference uses, its z axis is the pinion's, and every number fits
+//!   CalculiX's 20-character fields;
 //! - CalculiX turns the pinion without contact and finds no moment (the
 //!   rigid-rotation check; about 45 s, one linear solve of 350,000 dofs);
-//! - ignored by `make test` (about 9 min of CalculiX, run by `make
-//!   calculix`): CalculiX's loaded TE against `validate reference
-//!   --contact pinion-slave` at the sweep's first position.
+//! - ignored by `make test` for its run time (about 23 min of CalculiX on
+//!   2 cores; `make calculix` runs it): CalculiX's loaded TE against
+//!   `validate reference --contact pinion-slave` at the sweep's first
+//!   position at 100 and 300 N·m, within 1 %. CalculiX's surface-to-surface
+//!   contact by default (measured 2026-11-28: −0.22 / −0.29 %);
+//!   `CALCULIX_CONTACT=node-to-surface` takes its node-to-surface contact,
+//!   which meets the wheel's flank on the four flat facets of each
+//!   quadratic face, and is allowed 1 % plus that facet offset
+//!   ([`deck::facet_offset`], computed by our search on the facets: 10.6
+//!   µrad on these meshes; measured +8.4 / +13.0 µrad, +5.5 / +3.8 %).
 
 #[path = "support/reference_options.rs"]
 mod reference_options;
@@ -161,9 +168,9 @@ fn calculix_turns_the_pinion_without_contact_and_finds_no_moment() {
 }
 
 /// CalculiX's loaded TE against the reference's pinion-slave sweep at the
-/// same position (`make calculix`; about 9 min of CalculiX on 2 cores).
+/// same position (`make calculix`; about 23 min of CalculiX on 2 cores).
 #[test]
-#[ignore = "about 9 min of CalculiX: run by `make calculix`"]
+#[ignore = "about 23 min of CalculiX: run by `make calculix`"]
 fn calculix_loaded_te_of_example_03_agrees_with_the_pinion_slave_reference() {
     use validate::reference::reference_ltca::ContactPasses;
     let scene = example_scene();
@@ -173,7 +180,7 @@ fn calculix_loaded_te_of_example_03_agrees_with_the_pinion_slave_reference() {
     let mut opt = reference_options::options(10_000, None);
     opt.settings.passes = ContactPasses::PinionSlave;
     let reference = validate::reference::reference_stage::run(&scene, &meshes, &out, &opt).unwrap();
-    let contact = std::env::var("CALCULIX_CONTACT").unwrap_or_else(|_| "node-to-surface".into());
+    let contact = std::env::var("CALCULIX_CONTACT").unwrap_or_else(|_| "surface-to-surface".into());
     let e = deck::export::export(
         &scene,
         &meshes,
@@ -184,19 +191,33 @@ fn calculix_loaded_te_of_example_03_agrees_with_the_pinion_slave_reference() {
     )
     .unwrap();
     let s = e.solution.unwrap();
-    let mut worst: f64 = 0.0;
+    let offset = deck::facet_offset(&e.deck).unwrap();
+    eprintln!(
+        "facet offset of the node-to-surface contact: {:.3} urad",
+        offset * 1e6
+    );
     for (r, c) in reference[0].loads.iter().zip(&s.loads) {
         assert_eq!(r.torque_nm, c.torque_nm);
-        let rel = (c.te_urad - r.te_mean_urad) / r.te_mean_urad;
+        let diff = c.te_urad - r.te_mean_urad;
         eprintln!(
-            "{} N m: reference {:.3} urad, CalculiX ({contact}) {:.3} urad ({:+.2} %)",
+            "{} N m: reference {:.3} urad, CalculiX ({contact}) {:.3} urad ({:+.3} urad, {:+.2} %)",
             r.torque_nm,
             r.te_mean_urad,
             c.te_urad,
-            rel * 100.0
+            diff,
+            diff / r.te_mean_urad * 100.0
         );
         assert!((c.moment_nm - r.torque_nm).abs() < 1e-6 * r.torque_nm);
-        worst = worst.max(rel.abs());
+        let allowed = 0.01 * r.te_mean_urad
+            + if contact == "node-to-surface" {
+                offset.abs() * 1e6
+            } else {
+                0.0
+            };
+        assert!(
+            diff.abs() < allowed,
+            "{} N m: |{diff:.3}| urad above {allowed:.3} urad",
+            r.torque_nm
+        );
     }
-    assert!(worst < 0.01, "largest difference {:.2} %", worst * 100.0);
 }

@@ -1,7 +1,11 @@
-//! The reference as an input deck for CalculiX (and, as far as the keywords
-//! go, Abaqus): both gear bodies of one blank pair at one position of the
-//! reference sweep, so that a user can rerun our reference in their own
-//! nonlinear FE code, and so that an independent code checks it.
+//! The reference as an input deck for CalculiX: both gear bodies of one
+//! blank pair at one position of the reference sweep, so that a user can
+//! rerun our reference in their own nonlinear FE code, and so that an
+//! independent code checks it. Nodes, elements, sets, surfaces, material,
+//! steps and loads are written in the Abaqus syntax CalculiX shares; two
+//! keywords are CalculiX's own and need adapting for Abaqus: `*RIGID BODY`
+//! with a `ROT NODE` (Abaqus: a reference node with rotational degrees of
+//! freedom) and the `TYPE=` of `*CONTACT PAIR`.
 //!
 //! The deck ([`build`], then [`inp::write`]):
 //! - both bodies as C3D10 elements from the meshes of one level, placed as
@@ -461,43 +465,98 @@ fn start_angle(
     direction: f64,
     opt: &DeckOptions,
 ) -> Result<f64, DeckError> {
-    const SEARCH_M: f64 = 60e-6;
+    let wf = flank_tri6(wheel);
+    closings(pinion, &wheel.nodes, wf, direction)
+        .into_iter()
+        .map(|(gap, rigid)| (gap + START_OVERCLOSURE_M) / -rigid)
+        .min_by(f64::total_cmp)
+        .ok_or(DeckError::NoContact {
+            position: opt.position,
+            search_um: SEARCH_M * 1e6,
+        })
+}
+
+/// Reach of the deck's own contact search (start and facet offset), m.
+const SEARCH_M: f64 = 60e-6;
+
+/// (gap, ∂gap/∂ψ) of every pinion flank node that closes when the pinion
+/// turns in its driving sense, against the master `faces` (tri6, outward)
+/// on `nodes`.
+fn closings(
+    pinion: &DeckBody,
+    nodes: &[V3],
+    faces: Vec<[usize; 6]>,
+    direction: f64,
+) -> Vec<(f64, f64)> {
     let spin = move |x: V3| [-direction * x[1], direction * x[0], 0.0];
     let fixed = |_: V3| [0.0; 3];
     let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     // Face labels give outward faces of positive elements (checked).
-    let (pf, wf) = (flank_tri6(pinion), flank_tri6(wheel));
     let s = ContactBody {
         body: 0,
         nodes: pinion.nodes.clone(),
         to_body: identity,
-        faces: pf,
+        faces: flank_tri6(pinion),
         rigid: &spin,
         youngs_modulus_pa: pinion.youngs_modulus_pa,
     };
     let m = ContactBody {
         body: 1,
-        nodes: wheel.nodes.clone(),
+        nodes: nodes.to_vec(),
         to_body: identity,
-        faces: wf.clone(),
+        faces: faces.clone(),
         rigid: &fixed,
-        youngs_modulus_pa: wheel.youngs_modulus_pa,
+        youngs_modulus_pa: pinion.youngs_modulus_pa,
     };
-    let master = MasterSurface::new(wheel.nodes.clone(), wf);
+    let master = MasterSurface::new(nodes.to_vec(), faces);
     let set = PenaltySettings {
-        factor: opt.penalty_factor,
+        factor: 1.0,
         max_gap: SEARCH_M,
         reach: 2.0 * SEARCH_M,
         minima_band: 0.0,
     };
     one_pass(&s, &m, &master, &set, 1.0)
         .into_iter()
-        .map(|(c, _)| c)
-        .filter(|c| c.rigid < 0.0)
-        .map(|c| (c.gap0 + START_OVERCLOSURE_M) / -c.rigid)
-        .min_by(f64::total_cmp)
-        .ok_or(DeckError::NoContact {
-            position: opt.position,
-            search_um: SEARCH_M * 1e6,
-        })
+        .map(|(c, _)| (c.gap0, c.rigid))
+        .filter(|&(_, rigid)| rigid < 0.0)
+        .collect()
+}
+
+/// How much later (rad of wheel lag, the TE's unit) the pinion's first
+/// flank node touches the wheel when each quadratic wheel face is replaced
+/// by the four flat triangles between its vertices and mid-edge nodes, as
+/// CalculiX's node-to-surface contact does with the master surface: the
+/// geometric offset of that contact formulation against the reference's
+/// quadratic faces (the facets' chords lie a sag ≈ h²/(8R) off the curved
+/// flank). `None` when no node closes.
+pub fn facet_offset(deck: &Deck) -> Option<f64> {
+    let [pinion, wheel] = &deck.bodies;
+    let quadratic = flank_tri6(wheel);
+    let mut nodes = wheel.nodes.clone();
+    let mut facets = Vec::with_capacity(4 * quadratic.len());
+    for f in &quadratic {
+        for t in [
+            [f[0], f[3], f[5]],
+            [f[3], f[1], f[4]],
+            [f[5], f[4], f[2]],
+            [f[3], f[4], f[5]],
+        ] {
+            // A flat tri6: its mid-edge nodes at the straight midpoints.
+            let mids = [0, 1, 2].map(|k| {
+                let (a, b) = (nodes[t[k]], nodes[t[(k + 1) % 3]]);
+                nodes.push([0, 1, 2].map(|c| 0.5 * (a[c] + b[c])));
+                nodes.len() - 1
+            });
+            facets.push([t[0], t[1], t[2], mids[0], mids[1], mids[2]]);
+        }
+    }
+    let first = |nodes: &[V3], faces| {
+        closings(pinion, nodes, faces, deck.direction)
+            .into_iter()
+            .map(|(gap, rigid)| gap / -rigid)
+            .min_by(f64::total_cmp)
+    };
+    let q = first(&wheel.nodes, quadratic)?;
+    let f = first(&nodes, facets)?;
+    Some(deck.ratio * (f - q))
 }
