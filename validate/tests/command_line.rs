@@ -70,6 +70,31 @@ const OPTIONS: &[(&[&str], &str, Range)] = &[
         "--blank",
         Range::Choice(&["standard", "lightweight"]),
     ),
+    (
+        &["export-inp", "--position", "0"],
+        "--penalty",
+        Range::Positive,
+    ),
+    (
+        &["export-inp", "--position", "0"],
+        "--threads",
+        Range::Count(1, u64::MAX),
+    ),
+    (
+        &["export-inp", "--position", "0"],
+        "--level",
+        Range::Choice(LEVELS),
+    ),
+    (
+        &["export-inp", "--position", "0"],
+        "--contact",
+        Range::Choice(&["node-to-surface", "surface-to-surface", "none"]),
+    ),
+    (
+        &["export-inp", "--position", "0"],
+        "--wheel-blank",
+        Range::Choice(&["standard", "lightweight"]),
+    ),
     (&["tradeoff"], "--slices", Range::Count(4, 400)),
     (&["utca"], "--positions", Range::Count(1, 3600)),
     (

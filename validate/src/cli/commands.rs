@@ -456,6 +456,9 @@ pub fn calibrate(a: CalibrateArgs) -> anyhow::Result<()> {
 pub fn export_inp(a: ExportInpArgs) -> anyhow::Result<()> {
     use geometry::scene::{Blank, MeshLevel};
     use validate::deck::{DeckContact, DeckOptions};
+    if !(a.penalty.is_finite() && a.penalty > 0.0) {
+        anyhow::bail!("--penalty {}: must be a positive number", a.penalty);
+    }
     let sc = geometry::scene::Scene::load(&a.scene)?;
     let blank = |given: &Option<String>, listed: &[Blank], field: &str| -> anyhow::Result<Blank> {
         match given {
