@@ -77,7 +77,10 @@ pub fn export(
     let solution = if run {
         let scratch = dir.join(format!(".{stem}.ccx-{}", std::process::id()));
         std::fs::create_dir_all(&scratch)?;
-        let _cleanup = Scratch(scratch.clone());
+        let _cleanup = Scratch {
+            _registered: formats::interrupt::pending_dir(&scratch),
+            dir: scratch.clone(),
+        };
         std::fs::write(scratch.join("deck.inp"), text.as_bytes())?;
         let r = ccx::run(&scratch, "deck", threads)?;
         let s = solution(&deck, &r)?;
@@ -94,12 +97,16 @@ pub fn export(
     })
 }
 
-/// Removes the scratch folder when dropped.
-struct Scratch(PathBuf);
+/// Removes the scratch folder when dropped; a stopped run removes it
+/// through its registration (after killing CalculiX).
+struct Scratch {
+    dir: PathBuf,
+    _registered: formats::interrupt::Pending,
+}
 
 impl Drop for Scratch {
     fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
+        let _ = std::fs::remove_dir_all(&self.dir);
     }
 }
 
