@@ -8,7 +8,11 @@ use super::{build, ccx, inp, Deck, DeckContact, DeckOptions};
 use formats::output::{write_atomic, write_json};
 use geometry::scene::LoadedScene;
 use serde::Serialize;
+use sha2::Digest;
 use std::path::{Path, PathBuf};
+
+/// Layout version of `<stem>.json`.
+pub const SOLUTION_SCHEMA: u32 = 1;
 
 /// The loaded TE of one step, read from CalculiX's output.
 #[derive(Debug, Clone, Serialize)]
@@ -23,6 +27,11 @@ pub struct CcxLoad {
 /// What a run of the deck gave.
 #[derive(Debug, Clone, Serialize)]
 pub struct CcxSolution {
+    /// Layout version of this file ([`SOLUTION_SCHEMA`]).
+    pub schema: u32,
+    /// SHA-256 of the deck CalculiX solved (its header carries the mesh
+    /// files' hashes).
+    pub inp_sha256: String,
     pub scene: String,
     pub position: usize,
     pub pinion_angle_deg: f64,
@@ -83,7 +92,8 @@ pub fn export(
         };
         std::fs::write(scratch.join("deck.inp"), text.as_bytes())?;
         let r = ccx::run(&scratch, "deck", threads)?;
-        let s = solution(&deck, &r)?;
+        let sha = format!("{:x}", sha2::Sha256::digest(text.as_bytes()));
+        let s = solution(&deck, &r, sha)?;
         write_atomic(&dir.join(format!("{stem}.dat")), &std::fs::read(&r.dat)?)?;
         write_json(&dir.join(format!("{stem}.json")), &s)?;
         Some(s)
@@ -110,8 +120,13 @@ impl Drop for Scratch {
     }
 }
 
-/// The loaded TE of every step from a run of `deck`.
-pub fn solution(deck: &Deck, r: &ccx::CcxRun) -> Result<CcxSolution, ccx::CcxError> {
+/// The loaded TE of every step from a run of `deck`, whose text hashes to
+/// `inp_sha256`.
+pub fn solution(
+    deck: &Deck,
+    r: &ccx::CcxRun,
+    inp_sha256: String,
+) -> Result<CcxSolution, ccx::CcxError> {
     let u = |step| r.node_value("displacements", "NROT", step, 3);
     let m = |step| r.node_value("forces", "NROT", step, 3);
     let mut loads = Vec::new();
@@ -125,6 +140,8 @@ pub fn solution(deck: &Deck, r: &ccx::CcxRun) -> Result<CcxSolution, ccx::CcxErr
         }
     }
     Ok(CcxSolution {
+        schema: SOLUTION_SCHEMA,
+        inp_sha256,
         scene: deck.scene.clone(),
         position: deck.position,
         pinion_angle_deg: deck.phi.to_degrees(),
