@@ -23,6 +23,16 @@ pub fn c3d10_order(gmsh: &[usize; 10]) -> [usize; 10] {
 /// Mid-edge node 4..9 of C3D10 on these vertex pairs.
 const C3D10_EDGES: [[usize; 2]; 6] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
 
+/// The mid-edge node of element `el` (C3D10 order) between its vertices
+/// `p` and `q` (0..4, p ≠ q).
+pub fn mid_edge(el: &[usize; 10], p: usize, q: usize) -> usize {
+    let k = C3D10_EDGES
+        .iter()
+        .position(|e| (e[0] == p && e[1] == q) || (e[0] == q && e[1] == p))
+        .expect("two vertices of a tetrahedron share an edge");
+    el[4 + k]
+}
+
 /// Derivatives ∂Nₖ/∂(ξ, η, ζ) of the C3D10 shape functions at a point of
 /// the reference element (L0 = 1 − ξ − η − ζ, L1 = ξ, L2 = η, L3 = ζ;
 /// vertex Nᵢ = Lᵢ(2Lᵢ − 1), mid-edge N = 4 L_a L_b).

@@ -418,15 +418,6 @@ pub fn element_faces(
 /// Tri6 faces of a body's flank in mesh node numbers, from its element
 /// faces (vertices and mid-edge nodes, C3D10 numbering).
 fn flank_tri6(b: &DeckBody) -> Vec<[usize; 6]> {
-    // Mid-edge node of C3D10 on each vertex pair.
-    let mid = |el: &[usize; 10], p: usize, q: usize| {
-        let edges = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 3], [2, 3]];
-        let k = edges
-            .iter()
-            .position(|e| (e[0] == p && e[1] == q) || (e[0] == q && e[1] == p))
-            .expect("two vertices of a tetrahedron share an edge");
-        el[4 + k]
-    };
     b.flank
         .iter()
         .map(|&(e, label)| {
@@ -436,9 +427,9 @@ fn flank_tri6(b: &DeckBody) -> Vec<[usize; 6]> {
                 el[p],
                 el[q],
                 el[r],
-                mid(el, p, q),
-                mid(el, q, r),
-                mid(el, r, p),
+                c3d10::mid_edge(el, p, q),
+                c3d10::mid_edge(el, q, r),
+                c3d10::mid_edge(el, r, p),
             ]
         })
         .collect()
