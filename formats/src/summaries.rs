@@ -213,6 +213,58 @@ pub struct RunupSummary {
     pub te_dynamic_minus_static_urad: [f64; 2],
 }
 
+/// One run-up of the STE/DTE comparison.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SteDteRun {
+    pub rpm: f64,
+    /// Time of the acceleration from rest, and the whole run, s.
+    pub acceleration_time_s: f64,
+    pub sim_time_s: f64,
+    pub max_step_s: f64,
+    pub steps: usize,
+    pub rejected_steps: usize,
+    /// CPU time of the run (this thread), s, and per step.
+    pub cpu_s: f64,
+    pub cpu_s_per_step: f64,
+}
+
+/// The white paper's first use case: the quasi-static TE (STE, slow
+/// run-up) against the dynamic TE (DTE, fast run-up) of one pinion × wheel
+/// blank, both accelerating from rest to their speed within the same
+/// pinion rotation, compared at the same pinion rotations
+/// (`ste_dte.csv`, `ste_dte.svg`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SteDteSummary {
+    pub pinion_torque_nm: f64,
+    pub acceleration_end_deg: f64,
+    /// The comparison's window, pinion revolutions from rest, and its
+    /// samples (evenly spaced in rotation).
+    pub compared_revolutions: f64,
+    pub samples: usize,
+    /// The pair's mesh cycle (360° / z₁), deg.
+    pub mesh_cycle_deg: f64,
+    pub quasi_static: SteDteRun,
+    pub dynamic: SteDteRun,
+    /// CPU time of the contact-element table both runs share, s.
+    pub table_cpu_s: f64,
+    /// Over the window: mean and peak-to-peak of STE and DTE, µrad.
+    pub ste_mean_urad: f64,
+    pub ste_ptp_urad: f64,
+    pub dte_mean_urad: f64,
+    pub dte_ptp_urad: f64,
+    /// Largest |STE − static balance| over the window, µrad: how
+    /// quasi-static the slow run is (the static balance is the lag that
+    /// carries the load with no inertia).
+    pub ste_minus_static_max_urad: f64,
+    /// DTE − STE: its mean during the acceleration, its largest value
+    /// after it (signed) and where (pinion rotation, deg), and its
+    /// peak-to-peak over the window's last mesh cycle, µrad.
+    pub departure_during_acceleration_urad: f64,
+    pub departure_largest_urad: f64,
+    pub departure_largest_at_deg: f64,
+    pub departure_last_cycle_ptp_urad: f64,
+}
+
 /// `runup_orders.json` of a run-up: the wheel bearing force's order
 /// spectrum over windows of one wheel revolution of pinion angle
 /// (`solver::signal::runup_orders`), every half revolution.
@@ -279,6 +331,10 @@ pub struct DynamicSummary {
     /// The runs with compliant bearings, when the scene has `[bearings]`.
     #[serde(default)]
     pub compliant: Option<CompliantSummary>,
+    /// Static against dynamic TE, when the scene's `[multibody.ste_dte]`
+    /// compares this wheel blank.
+    #[serde(default)]
+    pub ste_dte: Option<SteDteSummary>,
     pub dir: PathBuf,
 }
 

@@ -29,6 +29,7 @@ pub mod scene_checks;
 pub mod scene_contact_law;
 pub mod scene_lumped;
 pub mod scene_sensitivity;
+pub mod scene_ste_dte;
 pub mod teeth;
 pub mod utca;
 

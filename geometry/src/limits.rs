@@ -195,6 +195,14 @@ pub const fn closed_derived(what: &'static str) -> End {
     End::Derived { what, closed: true }
 }
 
+/// An open end at a derived quantity.
+pub const fn open_derived(what: &'static str) -> End {
+    End::Derived {
+        what,
+        closed: false,
+    }
+}
+
 const fn range(lo: End, hi: End, number: Number) -> Range {
     Range {
         lo,

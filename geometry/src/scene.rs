@@ -118,6 +118,9 @@ pub struct MultibodySettings {
     /// Imposed-speed run under a wheel load (`[multibody.load_run]`; none
     /// when absent).
     pub load_run: Option<LoadRun>,
+    /// Static against dynamic TE (`[multibody.ste_dte]`, the white paper's
+    /// first use case; none when absent).
+    pub ste_dte: Option<crate::scene_ste_dte::SteDte>,
 }
 
 impl Default for MultibodySettings {
@@ -148,6 +151,7 @@ impl Default for MultibodySettings {
             force_law: ForceLaw::Element,
             impact: ImpactSettings::default(),
             load_run: None,
+            ste_dte: None,
         }
     }
 }
@@ -177,6 +181,9 @@ impl Scene {
             if let Some(run) = &mb.load_run {
                 cycles = cycles.max(run.rotation() / mesh_cycle_rad + 1.0);
             }
+            if let Some(sd) = mb.ste_dte_of(wheel) {
+                cycles = cycles.max(sd.rotation() / mesh_cycle_rad + 1.0);
+            }
             cycles
         } else {
             sweep
@@ -185,6 +192,13 @@ impl Scene {
 }
 
 impl MultibodySettings {
+    /// The STE/DTE comparison when it runs wheel blank `wheel`.
+    pub fn ste_dte_of(&self, wheel: Blank) -> Option<&crate::scene_ste_dte::SteDte> {
+        self.ste_dte
+            .as_ref()
+            .filter(|sd| sd.wheel_blanks.contains(&wheel))
+    }
+
     /// Pinion rotation of the run-up, rad.
     pub fn runup_rotation(&self) -> f64 {
         let w = |rpm: f64| rpm * std::f64::consts::PI / 30.0;

@@ -257,6 +257,9 @@ impl Scene {
         if let Some(run) = &mb.load_run {
             run.check(path)?;
         }
+        if let Some(sd) = &mb.ste_dte {
+            sd.check(path)?;
+        }
         if mb.rattle_time_s > 0.0 && !mb.coast_contact {
             let l = &mbl::RATTLE_NEEDS_COAST;
             return Err(l.refuse(
@@ -437,6 +440,11 @@ impl Scene {
         }
         if let Some(run) = &mb.load_run {
             rotation = rotation.max(run.rotation());
+        }
+        for &wb in &self.blanks.wheel {
+            if let Some(sd) = mb.ste_dte_of(wb) {
+                rotation = rotation.max(sd.rotation());
+            }
         }
         let n = rotation / mb.table_step_deg.to_radians() + 1.0;
         let l = &mbl::TABLE_POSITIONS;

@@ -26,8 +26,9 @@ pub const UNLOADED_TE_RANGE_BOUND: f64 = 1e-3;
 
 /// Mesh cycles of pinion rotation the multibody contact table of wheel
 /// blank `wheel` covers from the sweep's start (before its end margin):
-/// the sweep, the run-up's rotation if the blank runs up, and the rattle
-/// run's with coast-side contact.
+/// the sweep, the run-up's rotation if the blank runs up, the rattle
+/// run's with coast-side contact, and the STE/DTE run-ups' if they
+/// compare the blank.
 pub fn table_mesh_cycles(sc: &Scene, wheel: Blank, mesh_cycle_rad: f64) -> f64 {
     let mb = &sc.multibody;
     let mut cycles = sc.rotation.mesh_cycles(wheel);
@@ -36,6 +37,9 @@ pub fn table_mesh_cycles(sc: &Scene, wheel: Blank, mesh_cycle_rad: f64) -> f64 {
     }
     if mb.coast_contact && mb.rattle_time_s > 0.0 {
         cycles = cycles.max(mb.rattle_rotation() / mesh_cycle_rad);
+    }
+    if let Some(sd) = mb.ste_dte_of(wheel) {
+        cycles = cycles.max(sd.rotation() / mesh_cycle_rad);
     }
     cycles
 }
@@ -50,7 +54,8 @@ pub fn table_positions_per_cycle(sc: &Scene, mesh_cycle_rad: f64) -> usize {
 }
 
 /// Largest pinion torque the multibody table of wheel blank `wheel`
-/// covers, N·m: the largest of the scene's torques, the run-up's (if the
+/// covers, N·m: the largest of the scene's torques, the STE/DTE runs' (if
+/// they compare the blank), the run-up's (if the
 /// blank runs up) and the load run's (as pinion torque), times
 /// `multibody.table_torque_factor`.
 pub fn table_torque_nm(sc: &Scene, wheel: Blank, ratio: f64) -> f64 {
@@ -64,6 +69,7 @@ pub fn table_torque_nm(sc: &Scene, wheel: Blank, ratio: f64) -> f64 {
                 .then_some(mb.runup_pinion_torque_nm),
         )
         .chain(mb.load_run.as_ref().map(|r| r.wheel_torque_nm * ratio))
+        .chain(mb.ste_dte_of(wheel).map(|sd| sd.pinion_torque_nm))
         .fold(0.0, f64::max)
         * mb.table_torque_factor
 }

@@ -214,6 +214,10 @@ const SCENE_TABLES: &[(&str, &str)] = &[
         "[multibody.load_run]\npinion_rpm = 1000.0\npinion_ramp_s = 0.01\nwheel_torque_nm = 100.0\nwheel_torque_rise_s = 0.01\ntime_s = 0.1\nmax_step_s = 1e-5\nsteady_from_s = 0.05\noutput_interval_s = 1e-3\n",
     ),
     (
+        "multibody.ste_dte",
+        "[multibody.ste_dte]\nwheel_blanks = [\"standard\"]\npinion_torque_nm = 300.0\nrpm = [10.0, 1000.0]\nacceleration_end_deg = 30.0\ntime_s = 0.15\nmax_step_s = 1e-5\ncompared_revolutions = 1.0\n",
+    ),
+    (
         "bearings",
         "[bearings]
 tolerance_nm = 1.0
@@ -499,6 +503,9 @@ const UNDRIVEN: &[&str] = &[
     "multibody.runup_max_step_s",
     "multibody.table_step_deg",
     "multibody.rattle_max_step_s",
+    "multibody.ste_dte.time_s",
+    "multibody.ste_dte.max_step_s",
+    "multibody.ste_dte.compared_revolutions",
     "multibody.load_run.max_step_s",
 ];
 

@@ -83,6 +83,7 @@ fn dynamic() -> DynamicSummary {
         force_law: "element".into(),
         impact_law: None,
         load_run: None,
+        ste_dte: None,
         compliant: Some(CompliantSummary {
             lag_shift_s: 35.0,
             masses_kg: [3.685, 6.692],

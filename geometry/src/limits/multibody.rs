@@ -1,6 +1,7 @@
-//! Limits of the scene's `[multibody]`, `[multibody.impact]` and
-//! `[multibody.load_run]` tables ([`crate::scene_checks`],
-//! [`crate::scene_contact_law`]).
+//! Limits of the scene's `[multibody]`, `[multibody.impact]`,
+//! `[multibody.load_run]` and `[multibody.ste_dte]` tables
+//! ([`crate::scene_checks`], [`crate::scene_contact_law`],
+//! [`crate::scene_ste_dte`]).
 
 use super::*;
 use crate::scene_checks::{
@@ -121,6 +122,65 @@ limits! {
         "mm/s",
         real(open_at("multibody.impact.stiction_speed_mm_s"), closed_e(1e6)).computed(),
     );
+    STE_DTE_TORQUE = within("multibody.ste_dte.pinion_torque_nm", "N·m", 0.0, 1e6);
+    STE_DTE_RPM_QUASI_STATIC = Limit::scene(
+        "multibody.ste_dte.rpm[0]",
+        "rpm",
+        real(open(0.0), closed_e(1e5)).lie_in(""),
+    );
+    STE_DTE_RPM_DYNAMIC = Limit::scene(
+        "multibody.ste_dte.rpm[1]",
+        "rpm",
+        real(open(0.0), closed_e(1e5)).lie_in(""),
+    );
+    STE_DTE_SPEEDS = Limit::scene(
+        "multibody.ste_dte.rpm[1]",
+        "rpm",
+        real(open_at("multibody.ste_dte.rpm[0]"), End::Unbounded).computed(),
+    )
+    .why("the quasi-static run is the slower");
+    STE_DTE_ACCELERATION_END = Limit::scene(
+        "multibody.ste_dte.acceleration_end_deg",
+        "deg",
+        real(open(0.0), closed(3600.0)).lie_in(""),
+    );
+    STE_DTE_TIME = within("multibody.ste_dte.time_s", "s", 1e-4, 100.0);
+    STE_DTE_ACCELERATION_WITHIN = Limit::scene(
+        "multibody.ste_dte.time_s",
+        "s",
+        real(
+            open_derived("the acceleration's time, 2 `multibody.ste_dte.acceleration_end_deg` / ω of `multibody.ste_dte.rpm[1]`"),
+            End::Unbounded,
+        )
+        .computed(),
+    )
+    .why("the acceleration ends within the run");
+    STE_DTE_MAX_STEP = within("multibody.ste_dte.max_step_s", "s", 1e-8, 1.0);
+    STE_DTE_TIME_STEPS = time_steps(
+        "multibody.ste_dte.max_step_s",
+        "time steps of each run, `multibody.ste_dte.time_s` / step",
+    );
+    STE_DTE_REVOLUTIONS = Limit::scene(
+        "multibody.ste_dte.compared_revolutions",
+        "revolutions",
+        real(open(0.0), closed(100.0)).lie_in(""),
+    );
+    STE_DTE_COMPARED_WITHIN = Limit::scene(
+        "multibody.ste_dte.compared_revolutions",
+        "revolutions",
+        real(
+            End::Unbounded,
+            closed_derived("the pinion revolutions the runs cover, (ω `multibody.ste_dte.time_s` − φₐ) / 2π"),
+        )
+        .computed(),
+    )
+    .why("only what was run is compared");
+    STE_DTE_BLANK_ONCE = Limit::scene(
+        "multibody.ste_dte.wheel_blanks[i]",
+        "",
+        words("each blank once"),
+    )
+    .why("its runs and files are named after it");
     LOAD_RUN_PINION_RPM = within("multibody.load_run.pinion_rpm", "rpm", 1e-3, 1e5);
     LOAD_RUN_PINION_RAMP = within("multibody.load_run.pinion_ramp_s", "s", 0.0, 100.0);
     LOAD_RUN_WHEEL_TORQUE = within("multibody.load_run.wheel_torque_nm", "N·m", 0.0, 1e7);

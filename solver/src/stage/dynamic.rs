@@ -8,6 +8,9 @@
 //!   angle domain, lightweight pair, first pinion revolution, which this
 //!   chart is not) and `runup_spectrogram.svg`
 //!   (the wheel bearing force with the mesh orders) for the blanks that run up;
+//! - `ste_dte.csv`, `ste_dte.svg` for the wheel blanks `[multibody.ste_dte]`
+//!   compares: the white paper's first use case, quasi-static against
+//!   dynamic TE in the angle domain ([`crate::stage::ste_dte`]);
 //! - `summary.json`: per torque TE mean and peak-to-peak, steps and CPU time.
 //!
 //! `<out>/<scene>/multibody/` is written as one set
@@ -382,6 +385,25 @@ fn blank_pair(
     } else {
         None
     };
+    let ste_dte = match mb.ste_dte_of(wb) {
+        Some(sd) => Some(crate::stage::ste_dte::ste_dte(
+            &crate::stage::ste_dte::Setup {
+                table,
+                coast: coast.as_ref(),
+                inertia,
+                friction: element_friction,
+                impact: impact.is_some(),
+                damping_ratio: mb.damping_ratio,
+                scheme,
+                control: &control,
+                mesh_cycle: g.data.mesh_cycle(),
+                blanks: [pb, wb],
+            },
+            sd,
+            &odir,
+        )?),
+        None => None,
+    };
     let free_play = coast.as_ref().map(|c| free_play(c, table)).transpose()?;
     let rattle = match &coast {
         Some(c) if mb.rattle_time_s > 0.0 => Some(rattle(
@@ -409,6 +431,7 @@ fn blank_pair(
     )?;
     let summary = DynamicSummary {
         compliant,
+        ste_dte,
         backlash_urad: coast.as_ref().map(|c| c.backlash * 1e6),
         free_play_urad: free_play,
         rattle,

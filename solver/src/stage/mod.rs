@@ -21,4 +21,5 @@ pub mod plan;
 pub mod rattle;
 pub mod runup;
 pub mod sensitivity;
+pub mod ste_dte;
 pub mod trace;

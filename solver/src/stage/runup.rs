@@ -118,6 +118,33 @@ pub(crate) fn runup_spectrogram(
     Ok(())
 }
 
+/// Without coast flanks the wheel must stay on the drive flanks up to the
+/// run-up's top speed `top_rpm`: below the holding torque
+/// ([`Model::holding_torque`]) it runs ahead at the tooth changes and
+/// leaves the mesh, and the run's TE means nothing; refused then. With
+/// coast flanks the impacts across the backlash are followed (a note).
+pub(crate) fn hold_on_drive_flanks(
+    m: &Model,
+    (field, torque): (&str, f64),
+    speed_field: &str,
+    coast: bool,
+    wheel_inertia: f64,
+    top_rpm: f64,
+) -> anyhow::Result<()> {
+    let holding = m.holding_torque()?;
+    if torque < holding {
+        if !coast {
+            anyhow::bail!(
+                "{field} = {torque} N·m is below {holding:.3e} N·m, the torque that holds the wheel (inertia {wheel_inertia:.4e} kg·m²) on the drive flanks up to the run-up's {top_rpm} rpm (the flanks can only push it forward: below this it runs ahead at the tooth changes and, without coast flanks, leaves the mesh); raise the torque, lower {speed_field}, or set multibody.coast_contact = true to follow the impacts across the backlash"
+            );
+        }
+        eprintln!(
+            "  run-up: {torque} N·m is below the holding torque {holding:.3e} N·m at the top speed: the wheel will leave the drive flanks at the tooth changes (coast contact is on: impacts across the backlash)"
+        );
+    }
+    Ok(())
+}
+
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run_up(
     table: &MeshTable,
@@ -142,22 +169,14 @@ pub(crate) fn run_up(
         friction,
         drive: runup_drive(mb, table.ratio),
     };
-    // Without coast flanks the wheel must stay on the drive flanks up to
-    // the top speed: below the holding torque it runs ahead at the tooth
-    // changes and leaves the mesh, and the run-up's TE means nothing.
-    let holding = m.holding_torque()?;
-    if torque < holding {
-        if coast.is_none() {
-            anyhow::bail!(
-                "multibody.runup_pinion_torque_nm = {torque} N·m is below {holding:.3e} N·m, the torque that holds the wheel (inertia {:.4e} kg·m²) on the drive flanks up to the run-up's {} rpm (the flanks can only push it forward: below this it runs ahead at the tooth changes and, without coast flanks, leaves the mesh); raise the torque, lower multibody.runup_rpm, or set multibody.coast_contact = true to follow the impacts across the backlash",
-                inertia[1],
-                mb.runup_rpm[0].abs().max(mb.runup_rpm[1].abs())
-            );
-        }
-        eprintln!(
-            "  run-up: {torque} N·m is below the holding torque {holding:.3e} N·m at the top speed: the wheel will leave the drive flanks at the tooth changes (coast contact is on: impacts across the backlash)"
-        );
-    }
+    hold_on_drive_flanks(
+        &m,
+        ("multibody.runup_pinion_torque_nm", torque),
+        "multibody.runup_rpm",
+        coast.is_some(),
+        inertia[1],
+        mb.runup_rpm[0].abs().max(mb.runup_rpm[1].abs()),
+    )?;
     let s0 = m.static_state(0.0)?;
     if !impact_law {
         m.damping = m.damping_for_ratio(mb.damping_ratio, &s0)?;

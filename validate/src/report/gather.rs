@@ -40,6 +40,8 @@ pub struct ReportFigures {
     pub sensitivity: super::sections::sensitivity::SensitivitySection,
     /// The compliant-bearing multibody section with its spectrograms.
     pub compliant: super::sections::compliant_bearings::CompliantSection,
+    /// Static against dynamic TE (the white paper's first use case).
+    pub ste_dte: super::sections::ste_dte::SteDteSection,
     /// The stress matrix's section and outcome grid.
     pub stress: crate::report::sections::stress::StressSection,
     /// Run time against error for every stage, with its Pareto charts.
@@ -58,6 +60,7 @@ impl ReportFigures {
             .chain(&self.lumped.figures)
             .chain(&self.sensitivity.figures)
             .chain(&self.compliant.figures)
+            .chain(&self.ste_dte.figures)
             .chain(&self.stress.figure)
             .chain(&self.stage_tradeoffs.figures)
     }
@@ -99,6 +102,7 @@ pub fn report_figures(
             reports,
             &super::results::Stamp::now(),
         ),
+        ste_dte: super::sections::ste_dte::section(out, reports),
         ..Default::default()
     };
     let (Some(o), Some(s)) = (out, scene) else {

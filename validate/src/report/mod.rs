@@ -187,6 +187,7 @@ pub fn markdown(
     s.push_str(&figs.lumped.markdown);
     s.push_str(&figs.sensitivity.markdown);
     s.push_str(&figs.compliant.markdown);
+    s.push_str(&figs.ste_dte.markdown);
     while s.ends_with("\n\n") {
         s.pop();
     }

@@ -19,4 +19,5 @@ pub mod pattern_numbers;
 pub mod reference_uncertainty;
 pub mod sensitivity;
 pub mod stage_tradeoffs;
+pub mod ste_dte;
 pub mod stress;
