@@ -252,6 +252,11 @@ pub struct SteDteSummary {
     pub ste_ptp_urad: f64,
     pub dte_mean_urad: f64,
     pub dte_ptp_urad: f64,
+    /// Peak-to-peak of STE and DTE after the acceleration (the window's
+    /// rotations beyond it), µrad: the DTE's without the inertia offset
+    /// of the acceleration.
+    pub ste_ptp_after_acceleration_urad: f64,
+    pub dte_ptp_after_acceleration_urad: f64,
     /// Largest |STE − static balance| over the window, µrad: how
     /// quasi-static the slow run is (the static balance is the lag that
     /// carries the load with no inertia).

@@ -140,6 +140,15 @@ pub fn ste_dte(s: &Setup, sd: &SteDte, odir: &Path) -> anyhow::Result<SteDteSumm
     })?;
     let (ste_mean, ste_ptp) = mean_ptp(&ste);
     let (dte_mean, dte_ptp) = mean_ptp(&dte);
+    let after = |y: &[f64]| -> f64 {
+        let v: Vec<f64> = at
+            .iter()
+            .zip(y)
+            .filter(|(p, _)| **p > phi_a)
+            .map(|(_, v)| *v)
+            .collect();
+        mean_ptp(&v).1
+    };
     let mut csv = String::from(
         "pinion_rotation_deg,te_quasi_static_urad,te_dynamic_urad,te_static_balance_urad\n",
     );
@@ -205,6 +214,8 @@ pub fn ste_dte(s: &Setup, sd: &SteDte, odir: &Path) -> anyhow::Result<SteDteSumm
         ste_ptp_urad: ste_ptp * 1e6,
         dte_mean_urad: dte_mean * 1e6,
         dte_ptp_urad: dte_ptp * 1e6,
+        ste_ptp_after_acceleration_urad: after(&ste) * 1e6,
+        dte_ptp_after_acceleration_urad: after(&dte) * 1e6,
         ste_minus_static_max_urad: ste_minus_static * 1e6,
         departure_during_acceleration_urad: d.mean_during_acceleration * 1e6,
         departure_largest_urad: d.largest_after_acceleration * 1e6,
