@@ -129,6 +129,13 @@ GRID_CONVERGENCE_SCENES := reference/scenes/grids/grid12x20.toml reference/scene
 # it 1.12 revolutions). USE_CASES=0 leaves it out.
 USE_CASES     ?= 1
 STE_DTE_SCENE := reference/scenes/white_paper_ste_dte.toml
+# The rattle run (reference/scenes/rattle.toml: both flank pairs across
+# the backlash, no load, a 5 % pinion speed ripple, the wheel free): its
+# impacts, largest contact forces and wedging (both flank pairs in contact
+# at once) for the report's section "Rattle and wedging"; about 10 min
+# cold (coast flanks meshed and solved too). RATTLE=0 leaves it out.
+RATTLE       ?= 1
+RATTLE_SCENE := reference/scenes/rattle.toml
 
 # The lightweight wheel over its whole revolution:
 # reference/scenes/white_paper_lightweight_runup.toml meshes and solves
@@ -146,7 +153,7 @@ STE_DTE_SCENE := reference/scenes/white_paper_ste_dte.toml
 # are about 6-10 s per wheel, plus the lag shift over one mesh cycle).
 LW_SCENE := reference/scenes/white_paper_lightweight_runup.toml
 
-.PHONY: setup build test bench preprocess solve validate calibrate convergence fe-stiffness stress lightweight calculix clean
+.PHONY: setup build test test-long bench preprocess solve validate calibrate convergence fe-stiffness stress lightweight calculix clean
 
 setup:
 	@bash scripts/setup.sh
@@ -157,6 +164,18 @@ build: setup
 test: setup
 	$(CARGO) test $(RELEASE) --workspace
 	bash scripts/check_env.sh
+
+# The long tier (CI runs it after `make test`): the test binaries that need
+# the `long-tests` feature of preprocess and validate (see their
+# Cargo.toml): fresh meshes of every seed pair and the whole chain on them,
+# the default pinion at the medium and reference levels, the coast-side FE
+# fixture, the reference sweep's shards and cache, and runs stopped by
+# signals at each phase.
+LONG_TESTS_PREPROCESS := seed_pairs mesh_levels signals
+LONG_TESTS_VALIDATE   := seed_pairs_chain solver_coast reference_sweep signals
+test-long: setup
+	$(CARGO) test $(RELEASE) -p preprocess --features long-tests $(addprefix --test ,$(LONG_TESTS_PREPROCESS))
+	$(CARGO) test $(RELEASE) -p validate --features long-tests $(addprefix --test ,$(LONG_TESTS_VALIDATE))
 
 bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench flanks
@@ -231,6 +250,11 @@ validate: solve
 	  $(BIN)/solver ltca $$f --meshes meshes --out $(OUT) && \
 	  $(BIN)/solver dynamic $$f --meshes meshes --out $(OUT) || exit 1; fi
 	@if [ "$(USE_CASES)" = 1 ]; then f=$(STE_DTE_SCENE); s=$(OUT)/white_paper_ste_dte; \
+	  $(BIN)/preprocess flanks $$f --out $$s/flanks && \
+	  $(BIN)/preprocess mesh $$f --level reduced --out meshes && \
+	  $(BIN)/preprocess stiffness $$f --meshes meshes && \
+	  $(BIN)/solver dynamic $$f --meshes meshes --out $(OUT) || exit 1; fi
+	@if [ "$(RATTLE)" = 1 ]; then f=$(RATTLE_SCENE); s=$(OUT)/rattle; \
 	  $(BIN)/preprocess flanks $$f --out $$s/flanks && \
 	  $(BIN)/preprocess mesh $$f --level reduced --out meshes && \
 	  $(BIN)/preprocess stiffness $$f --meshes meshes && \

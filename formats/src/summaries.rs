@@ -530,6 +530,16 @@ pub struct RattleSummary {
     pub coast_impacts: usize,
     /// Share of the time in drive contact, coast contact and free flight.
     pub time_share_drive_coast_free: [f64; 3],
+    /// Episodes with both flank pairs in contact at once (wedging) and
+    /// their share of the time.
+    #[serde(default)]
+    pub wedging_episodes: usize,
+    #[serde(default)]
+    pub time_share_wedged: f64,
+    /// Largest contact force on the wheel of the drive and of the coast
+    /// flanks over the run, N.
+    #[serde(default)]
+    pub peak_force_drive_coast_n: [f64; 2],
     /// Extremes of the pinion mesh torque, N·m (negative: coast side).
     pub mesh_torque_min_max_nm: [f64; 2],
     /// Extremes of the wheel lag, µrad, and of the wheel speed, rpm.

@@ -1,17 +1,20 @@
 //! Gear body meshes with gmsh: volumes, flank fidelity, element counts,
 //! holes, failures, determinism. The pinion of the small scene is meshed once
-//! and shared by the tests of this binary.
+//! and shared by the tests of this binary; the finer levels are in
+//! `mesh_levels.rs` (`make test-long`).
 
 #[path = "../../geometry/tests/common/mod.rs"]
 mod common;
+#[path = "support/flank_fidelity.rs"]
+mod flank_fidelity;
 
 use fem::tet10::volume as tet10_volume;
 use geometry::design::Member;
 use geometry::gear_body::{BlankDimensions, BlankDimensionsMm};
 use geometry::generation::Side;
 use geometry::pair::{teeth_in_contact, PairGeometry};
-use geometry::scene::{Blank, FlankElements, LoadedScene, Scene};
-use geometry::teeth::{opposite_refined_teeth, periodic_teeth, refined_teeth};
+use geometry::scene::{Blank, FlankElements};
+use geometry::teeth::periodic_teeth;
 use preprocess::mesh::{mesh_member, MeshReport, MeshRequest};
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -19,13 +22,6 @@ use std::sync::OnceLock;
 const LEVEL: FlankElements = FlankElements {
     profile: 6,
     face: 10,
-};
-
-/// The medium level of the default scene: gmsh makes caps (flat tets over a
-/// flank's surface triangles) on the pinion's coast flanks at this level.
-const MEDIUM: FlankElements = FlankElements {
-    profile: 20,
-    face: 39,
 };
 
 fn geometry() -> &'static PairGeometry {
@@ -68,48 +64,6 @@ fn pinion() -> &'static (MeshReport, PathBuf) {
         let path = dir.join("pinion.msh");
         let r = mesh_member(&request(Member::Pinion, Blank::Standard, dims()), &path)
             .expect("pinion mesh");
-        (r, path)
-    })
-}
-
-fn default_scene() -> &'static LoadedScene {
-    static SCENE: OnceLock<LoadedScene> = OnceLock::new();
-    SCENE.get_or_init(|| {
-        Scene::load(&common::reference("scenes/default.toml")).expect("default scene")
-    })
-}
-
-/// The default scene's pinion request at `level`, refined on the teeth
-/// `preprocess mesh` refines (both flanks), without periodic sectors: every
-/// tooth meshed freely, as on the lightweight wheel. gmsh makes the poor
-/// tets that the snapping must handle (flank and fillet caps, slivers) at
-/// these levels only when meshing freely.
-fn default_scene_pinion(level: FlankElements, level_name: &'static str) -> MeshRequest<'static> {
-    let sc = &default_scene().scene;
-    let g = geometry();
-    MeshRequest {
-        scene: &sc.name,
-        geom: g,
-        member: Member::Pinion,
-        blank: Blank::Standard,
-        dims: dims(),
-        level,
-        level_name,
-        side: sc.loaded_flank,
-        refined_teeth: refined_teeth(g, sc, Member::Pinion, Blank::Standard),
-        opposite_refined_teeth: opposite_refined_teeth(g, sc, Member::Pinion, Blank::Standard),
-        periodic_teeth: Vec::new(),
-    }
-}
-
-/// The pinion of the default scene at the [`MEDIUM`] level: (report, .msh path).
-fn pinion_medium() -> &'static (MeshReport, PathBuf) {
-    static M: OnceLock<(MeshReport, PathBuf)> = OnceLock::new();
-    M.get_or_init(|| {
-        let dir = std::env::temp_dir().join(format!("bevel-mesh-test-{}", std::process::id()));
-        let path = dir.join("pinion_medium.msh");
-        let r = mesh_member(&default_scene_pinion(MEDIUM, "medium"), &path)
-            .expect("pinion mesh, medium level");
         (r, path)
     })
 }
@@ -196,157 +150,6 @@ fn refined_flanks_have_the_requested_element_counts() {
             );
         }
     }
-}
-
-/// The flank fidelity: every node of a flank group within 0.5 µm of
-/// the generated flank along its normal.
-const FLANK_TOLERANCE: f64 = 0.5e-6;
-
-/// Checks that every flank-group node of the pinion mesh at `path` lies on
-/// the generated flank within [`FLANK_TOLERANCE`] and that the report agrees
-/// (nothing left unsnapped, valid tets).
-fn assert_flank_nodes_on_the_generated_flank(report: &MeshReport, path: &std::path::Path) {
-    let refined: Vec<String> = report
-        .refined_flanks
-        .iter()
-        .map(|r| format!("tooth{}_{}", r.tooth, r.flank))
-        .collect();
-    assert!(!refined.is_empty());
-    let g = geometry();
-    let s = gmsh::Session::new().unwrap();
-    s.open(path).unwrap();
-    let pitch = 2.0 * std::f64::consts::PI / g.data.member(Member::Pinion).teeth as f64;
-    // (normal distance, on a refined flank), every flank-group node once.
-    let mut seen = std::collections::BTreeSet::new();
-    let mut all = Vec::new();
-    for (dim, tag) in s.get_physical_groups(2).unwrap() {
-        let name = s_name(&s, dim, tag);
-        let Some(rest) = name.strip_prefix("tooth") else {
-            continue;
-        };
-        let (k, flank) = rest.split_once('_').unwrap();
-        let k: usize = k.parse().unwrap();
-        let side = if flank == "concave" {
-            Side::Drive
-        } else {
-            Side::Coast
-        };
-        let f = g.flank(Member::Pinion, side);
-        for e in s.get_entities_for_physical_group(dim, tag).unwrap() {
-            let (tags, xyz, _) = s.mesh_get_nodes(2, e, true, false).unwrap();
-            for (t, p) in tags.iter().zip(xyz.chunks(3)) {
-                if !seen.insert(*t) {
-                    continue;
-                }
-                let a = -(k as f64) * pitch;
-                let (sa, ca) = a.sin_cos();
-                let q = [ca * p[0] - sa * p[1], sa * p[0] + ca * p[1], p[2]];
-                let (l, d) = f.gen.frame.axial(&q);
-                let fp = f.at(l, d).unwrap();
-                let dist: f64 = (0..3).map(|i| (q[i] - fp.pos[i]) * fp.normal[i]).sum();
-                all.push((dist.abs(), refined.contains(&name)));
-            }
-        }
-    }
-    let worst = |on_refined: bool| {
-        all.iter()
-            .filter(|a| a.1 == on_refined)
-            .map(|a| a.0)
-            .fold(0.0, f64::max)
-    };
-    let over = all.iter().filter(|a| a.0 > FLANK_TOLERANCE).count();
-    println!(
-        "{} level: {} flank nodes ({} refined), largest normal distance {:.4} um refined, {:.4} um other; {over} over 0.5 um; report: {} snapped (largest move {:.3} um), {} kept, {} flank caps and {} other caps removed, {} interior nodes carried, min SICN {:.2e}",
-        report.level,
-        all.len(),
-        all.iter().filter(|a| a.1).count(),
-        worst(true) * 1e6,
-        worst(false) * 1e6,
-        report.snapped_nodes,
-        report.snap_max_move_um,
-        report.unsnapped_nodes,
-        report.caps_removed,
-        report.other_caps_removed,
-        report.carried_nodes,
-        report.quality_min_sicn
-    );
-    assert!(all.iter().filter(|a| a.1).count() > 1000);
-    assert!(
-        worst(true) < FLANK_TOLERANCE,
-        "refined flank node {:.3} um off the generated flank",
-        worst(true) * 1e6
-    );
-    // Every flank-group face is a flank: no sliver of the top land or heel
-    // (which would sit a millimetre or more off) was put into a flank group.
-    assert!(
-        worst(false) < 0.5e-3,
-        "a flank-group node {:.3} mm off the generated flank",
-        worst(false) * 1e3
-    );
-    // Every other flank node too: caps were removed and slivers carried,
-    // not left off the flank.
-    assert_eq!(over, 0, "{over} flank nodes over 0.5 um");
-    assert_eq!(report.unsnapped_nodes, 0);
-    assert!(
-        report.quality_min_sicn >= 1e-4,
-        "min SICN {} after snapping",
-        report.quality_min_sicn
-    );
-    // Without snapping the loft is off by about 0.5 µm at the median: the
-    // snap must have moved the flank nodes.
-    assert!(report.snapped_nodes + report.unsnapped_nodes >= all.len());
-    assert!(report.snap_max_move_um > 0.5);
-}
-
-#[test]
-fn flank_group_nodes_lie_on_the_generated_flank_within_half_a_micrometre_caps_removed_slivers_carried(
-) {
-    let (report, path) = pinion_medium();
-    assert_flank_nodes_on_the_generated_flank(report, path);
-    // This scene and level were chosen because gmsh makes both kinds of
-    // poor tet there, so that both paths run (gmsh is pinned): caps on a
-    // flank, and a sliver whose snapped vertex alone would invert it.
-    assert!(report.caps_removed > 0, "no flank cap to remove");
-    assert!(report.carried_nodes > 0, "no sliver carried");
-}
-
-/// At the reference level (35 × 75) gmsh puts two caps on the fillets of the
-/// default scene's pinion, next to a refined flank: its snapped flank edge
-/// inverted them, and six flank nodes stayed off the flank before they were
-/// removed.
-#[test]
-fn reference_level_flank_nodes_lie_on_the_generated_flank_fillet_caps_removed() {
-    let dir = std::env::temp_dir().join(format!("bevel-mesh-test-{}", std::process::id()));
-    let path = dir.join("pinion_reference.msh");
-    let level = default_scene().scene.mesh.reference;
-    let report = mesh_member(&default_scene_pinion(level, "reference"), &path).unwrap();
-    assert_flank_nodes_on_the_generated_flank(&report, &path);
-    assert!(report.other_caps_removed > 0, "no fillet cap to remove");
-}
-
-#[test]
-fn fe_reader_drops_the_nodes_of_removed_caps_and_keeps_the_volume() {
-    let (report, path) = pinion_medium();
-    let body = preprocess::body_mesh::read(path).unwrap();
-    let mut used = vec![false; body.mesh.nodes.len()];
-    for t in &body.mesh.tets {
-        for &n in t {
-            used[n] = true;
-        }
-    }
-    assert!(used.iter().all(|&u| u), "a node without a tetrahedron");
-    assert_eq!(body.mesh.nodes.len(), report.nodes);
-    assert_eq!(body.mesh.tets.len(), report.tet10_elements);
-    let v: f64 = body
-        .mesh
-        .tets
-        .iter()
-        .map(|t| tet10_volume(&t.map(|n| body.mesh.nodes[n])))
-        .sum();
-    assert!((v / report.mesh_volume_m3 - 1.0).abs() < 1e-12);
-    // Each flank face's nodes are tet nodes (read would fail otherwise) and
-    // the flank groups survived the surgery.
-    assert!(body.groups.keys().any(|k| k.starts_with("tooth")));
 }
 
 fn s_name(s: &gmsh::Session, dim: i32, tag: i32) -> String {
@@ -499,7 +302,7 @@ fn standard_blank_periodic_teeth_are_meshed_as_turned_copies_of_the_solved_tooth
         "{}",
         r.periodic_copy_deviation_m
     );
-    assert_flank_nodes_on_the_generated_flank(r, path);
+    flank_fidelity::assert_flank_nodes_on_the_generated_flank(geometry(), r, path);
     let body = preprocess::body_mesh::read(path).unwrap();
     let x = &body.mesh.nodes;
     let z = g.data.member(Member::Pinion).teeth as usize;

@@ -134,7 +134,9 @@ mod tests {
         assert!((d.mean_during_acceleration - 5.0).abs() < 1e-12);
         assert!(d.largest_after_acceleration_at > pa);
         assert!(d.largest_after_acceleration_at - pa < period / 4.0);
-        assert!((d.largest_after_acceleration - 5.0).abs() < 0.05, "{d:?}");
+        // The first sample after φa lies up to a grid step (0.87 mrad)
+        // past it: 1.5 % of the period and of the decay length there.
+        assert!((d.largest_after_acceleration - 5.0).abs() < 0.1, "{d:?}");
         assert!(d.last_cycle_ptp < 1e-10, "{d:?}");
     }
 

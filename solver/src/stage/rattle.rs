@@ -75,7 +75,10 @@ pub(crate) fn rattle(
     );
     let (mut t, mut te, mut lim_hi, mut lim_lo) = (vec![], vec![], vec![], vec![]);
     let mut impacts = Impacts::default();
-    let mut share = [0.0; 3];
+    let mut share = [0.0; 4];
+    // Largest contact force on the wheel of the drive and of the coast
+    // flanks, N.
+    let mut peak = [0.0f64; 2];
     let mut torque = [f64::INFINITY, f64::NEG_INFINITY];
     let mut wheel = [f64::INFINITY, f64::NEG_INFINITY];
     let mut last_t = 0.0;
@@ -84,6 +87,13 @@ pub(crate) fn rattle(
     let (_, steps) = integrate(&m, s0, &mut integ, mb.rattle_time_s, |s| {
         let c = m.contact(s.q, s.v)?;
         let now = c.touching();
+        let norm = |f: [f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+        let coast_force = c.coast.map_or([0.0; 3], |cs| cs.force);
+        let drive_force: [f64; 3] = std::array::from_fn(|i| c.mesh.force[i] - coast_force[i]);
+        peak = [
+            peak[0].max(norm(drive_force)),
+            peak[1].max(norm(coast_force)),
+        ];
         let before = impacts.record(now);
         share[before.slot()] += s.t - last_t;
         last_t = s.t;
@@ -148,10 +158,11 @@ pub(crate) fn rattle(
     let te_lo = te.iter().copied().fold(f64::INFINITY, f64::min);
     let te_hi = te.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     eprintln!(
-        "  rattle: {steps} steps ({} rejected), {} drive and {} coast impacts, mesh torque {:.1}..{:.1} N·m, {:.1} µs/step",
+        "  rattle: {steps} steps ({} rejected), {} drive and {} coast impacts, {} wedging episodes, mesh torque {:.1}..{:.1} N·m, {:.1} µs/step",
         integ.rejected,
         impacts.drive,
         impacts.coast,
+        impacts.wedged,
         torque[0],
         torque[1],
         cpu / steps.max(1) as f64 * 1e6
@@ -168,7 +179,10 @@ pub(crate) fn rattle(
         cpu_s_per_step: cpu / steps.max(1) as f64,
         drive_impacts: impacts.drive,
         coast_impacts: impacts.coast,
-        time_share_drive_coast_free: share.map(|x| x / total),
+        time_share_drive_coast_free: [share[0] / total, share[1] / total, share[2] / total],
+        wedging_episodes: impacts.wedged,
+        time_share_wedged: share[3] / total,
+        peak_force_drive_coast_n: peak,
         mesh_torque_min_max_nm: torque,
         te_min_max_urad: [te_lo, te_hi],
         wheel_rpm_min_max: wheel,

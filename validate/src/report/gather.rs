@@ -42,6 +42,8 @@ pub struct ReportFigures {
     pub compliant: super::sections::compliant_bearings::CompliantSection,
     /// Static against dynamic TE (the white paper's first use case).
     pub ste_dte: super::sections::ste_dte::SteDteSection,
+    /// The rattle run, its impacts and wedging.
+    pub rattle: super::sections::rattle::RattleSection,
     /// The stress matrix's section and outcome grid.
     pub stress: crate::report::sections::stress::StressSection,
     /// Run time against error for every stage, with its Pareto charts.
@@ -61,6 +63,7 @@ impl ReportFigures {
             .chain(&self.sensitivity.figures)
             .chain(&self.compliant.figures)
             .chain(&self.ste_dte.figures)
+            .chain(&self.rattle.figures)
             .chain(&self.stress.figure)
             .chain(&self.stage_tradeoffs.figures)
     }
@@ -103,6 +106,7 @@ pub fn report_figures(
             &super::results::Stamp::now(),
         ),
         ste_dte: super::sections::ste_dte::section(out, reports),
+        rattle: super::sections::rattle::section(out, reports),
         ..Default::default()
     };
     let (Some(o), Some(s)) = (out, scene) else {

@@ -96,15 +96,19 @@ pub enum Touching {
     Neither,
     Drive,
     Coast,
+    /// Both flank pairs at once: the pair is wedged (the free play across
+    /// the backlash closed, e.g. by a negative backlash).
+    Both,
 }
 
 impl Touching {
-    /// Slot in a [drive, coast, neither] triple.
+    /// Slot in a [drive, coast, neither, both] quadruple.
     pub fn slot(self) -> usize {
         match self {
             Touching::Drive => 0,
             Touching::Coast => 1,
             Touching::Neither => 2,
+            Touching::Both => 3,
         }
     }
 
@@ -113,16 +117,20 @@ impl Touching {
             Touching::Drive => "drive",
             Touching::Coast => "coast",
             Touching::Neither => "none",
+            Touching::Both => "wedged",
         }
     }
 }
 
 impl Contact {
-    /// The pair in contact: the drive flanks while they push the wheel
-    /// forward, the coast flanks while they push it back.
+    /// The pair in contact: both flank pairs when each is into contact
+    /// (u > 0 on both: wedged), else the drive flanks while they push the
+    /// wheel forward, the coast flanks while they push it back.
     pub fn touching(&self) -> Touching {
         let coast_u = self.coast.map_or(f64::NEG_INFINITY, |c| c.u);
-        if self.mesh.u > 0.0 && self.mesh.grad[0] > 0.0 {
+        if self.mesh.u > 0.0 && coast_u > 0.0 {
+            Touching::Both
+        } else if self.mesh.u > 0.0 && self.mesh.grad[0] > 0.0 {
             Touching::Drive
         } else if coast_u > 0.0 && self.mesh.grad[0] < 0.0 {
             Touching::Coast
@@ -132,11 +140,13 @@ impl Contact {
     }
 }
 
-/// Contacts begun on each flank pair (impacts), counted along a run.
+/// Contacts begun on each flank pair (impacts) and wedging episodes
+/// (both pairs at once), counted along a run.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Impacts {
     pub drive: usize,
     pub coast: usize,
+    pub wedged: usize,
     last: Touching,
 }
 
@@ -147,6 +157,7 @@ impl Impacts {
             match now {
                 Touching::Drive => self.drive += 1,
                 Touching::Coast => self.coast += 1,
+                Touching::Both => self.wedged += 1,
                 Touching::Neither => {}
             }
         }

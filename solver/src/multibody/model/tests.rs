@@ -41,3 +41,51 @@ fn smoothstep_is_c1() {
     assert_eq!(smoothstep(2.0), (1.0, 0.0));
     assert!((smoothstep(0.5).0 - 0.5).abs() < 1e-15);
 }
+
+/// A contact whose drive and coast pairs are `u` = (drive, coast) into
+/// contact, with combined pinion torque `t1`.
+fn contact(u: [f64; 2], t1: f64) -> Contact {
+    let state = |u: f64, t: f64| crate::multibody::mesh_table::MeshState {
+        theta: 0.0,
+        u,
+        potential: 0.0,
+        grad: [t, 0.0],
+        hess: [[0.0; 2]; 2],
+        force: [0.0; 3],
+    };
+    Contact {
+        force: [0.0; 2],
+        stiffness: [[0.0; 2]; 2],
+        damping: [[0.0; 2]; 2],
+        mesh: state(u[0], t1),
+        coast: Some(state(u[1], 0.0)),
+    }
+}
+
+#[test]
+fn both_flank_pairs_into_contact_is_wedging_whatever_the_net_torque() {
+    for t1 in [-50.0, 0.0, 50.0] {
+        assert_eq!(contact([1e-7, 2e-7], t1).touching(), Touching::Both);
+    }
+    assert_eq!(contact([1e-7, -1e-6], 50.0).touching(), Touching::Drive);
+    assert_eq!(contact([-1e-6, 1e-7], -50.0).touching(), Touching::Coast);
+    assert_eq!(contact([-1e-6, -1e-6], 0.0).touching(), Touching::Neither);
+}
+
+#[test]
+fn impacts_count_each_contact_begun_and_each_wedging_episode_once() {
+    let mut i = Impacts::default();
+    for t in [
+        Touching::Drive,
+        Touching::Drive,
+        Touching::Neither,
+        Touching::Coast,
+        Touching::Both,
+        Touching::Both,
+        Touching::Coast,
+        Touching::Drive,
+    ] {
+        i.record(t);
+    }
+    assert_eq!((i.drive, i.coast, i.wedged), (2, 2, 1));
+}

@@ -16,6 +16,7 @@ pub mod lumped_order_map;
 pub mod lumped_seed003;
 pub mod lumped_studies;
 pub mod pattern_numbers;
+pub mod rattle;
 pub mod reference_uncertainty;
 pub mod sensitivity;
 pub mod stage_tradeoffs;
