@@ -512,6 +512,30 @@ impl Limit {
         }
     }
 
+    /// The time steps of a run of `time_s` at steps up to `max_step_s`
+    /// within this entry's range (a time-steps limit on the step's field),
+    /// else its refusal naming the count.
+    pub fn check_time_steps(
+        &self,
+        path: &Path,
+        time_s: f64,
+        max_step_s: f64,
+    ) -> Result<(), InputError> {
+        let steps = time_s / max_step_s;
+        if self.admits(steps, &[]) {
+            return Ok(());
+        }
+        Err(self.refuse(
+            path,
+            self.field,
+            max_step_s.to_string(),
+            format!(
+                "too small: {steps:.3e} steps over {time_s} s, at most {:.0e}",
+                crate::scene_checks::MAX_TIME_STEPS
+            ),
+        ))
+    }
+
     /// `v` of `field` in the range whose ends that are not numbers have
     /// the values `ends`, else the refusal with `limit`.
     pub fn check_with(

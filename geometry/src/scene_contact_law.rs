@@ -141,20 +141,7 @@ impl LoadRun {
                 )
             })?;
         }
-        let steps = self.time_s / self.max_step_s;
-        let l = &mbl::LOAD_RUN_TIME_STEPS;
-        if !l.admits(steps, &[]) {
-            return Err(l.refuse(
-                path,
-                l.field,
-                self.max_step_s.to_string(),
-                format!(
-                    "too small: {steps:.3e} steps over {} s, at most {:.0e}",
-                    self.time_s,
-                    crate::scene_checks::MAX_TIME_STEPS
-                ),
-            ));
-        }
+        mbl::LOAD_RUN_TIME_STEPS.check_time_steps(path, self.time_s, self.max_step_s)?;
         Ok(())
     }
 }

@@ -94,20 +94,7 @@ impl SteDte {
                 "must be at most the {turns:.4} pinion revolutions the runs cover (multibody.ste_dte.time_s at multibody.ste_dte.rpm[1])"
             )
         })?;
-        let steps = self.time_s / self.max_step_s;
-        let l = &mbl::STE_DTE_TIME_STEPS;
-        if !l.admits(steps, &[]) {
-            return Err(l.refuse(
-                path,
-                l.field,
-                self.max_step_s.to_string(),
-                format!(
-                    "too small: {steps:.3e} steps over {} s, at most {:.0e}",
-                    self.time_s,
-                    crate::scene_checks::MAX_TIME_STEPS
-                ),
-            ));
-        }
+        mbl::STE_DTE_TIME_STEPS.check_time_steps(path, self.time_s, self.max_step_s)?;
         if let Some(i) = (1..self.wheel_blanks.len())
             .find(|&i| self.wheel_blanks[..i].contains(&self.wheel_blanks[i]))
         {

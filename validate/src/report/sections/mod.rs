@@ -15,6 +15,7 @@ pub mod lumped_fe_stiffness;
 pub mod lumped_order_map;
 pub mod lumped_seed003;
 pub mod lumped_studies;
+pub mod multibody_runs;
 pub mod pattern_numbers;
 pub mod rattle;
 pub mod reference_uncertainty;

@@ -10,7 +10,8 @@
 //! (`rattle_te.svg`) is copied as `rattle_<blanks>.svg`. An absent summary
 //! is one line of text.
 
-use crate::report::figures::{copied, figure_lines, Figure};
+use crate::report::figures::figure_lines;
+use crate::report::sections::multibody_runs::{absent, blank_names, charts, read, Section};
 use formats::summaries::{DynamicSummary, RattleSummary};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -18,12 +19,8 @@ use std::path::Path;
 /// The scene whose runs the section reports.
 pub const RATTLE_SCENE: &str = "rattle";
 
-/// The section's markdown and the figures it shows.
-#[derive(Debug, Clone, Default)]
-pub struct RattleSection {
-    pub markdown: String,
-    pub figures: Vec<Figure>,
-}
+/// The section's markdown and its charts.
+pub type RattleSection = Section;
 
 /// The sentence on wedging of one blank pair.
 pub fn wedging_sentence(blanks: &str, r: &RattleSummary) -> String {
@@ -42,49 +39,28 @@ pub fn wedging_sentence(blanks: &str, r: &RattleSummary) -> String {
     }
 }
 
-fn absent(mut s: String, why: &str) -> RattleSection {
-    let _ = writeln!(s, "Not run: {why}.\n");
-    RattleSection {
-        markdown: s,
-        figures: vec![],
-    }
-}
-
 /// The section from the stages' output root `out` (None: no root given),
 /// its charts copied into `reports`.
 pub fn section(out: Option<&Path>, reports: &Path) -> RattleSection {
-    let s = String::from("## Rattle and wedging (multibody)\n\n");
-    let Some(out) = out else {
-        return absent(s, "the report was built without an output root");
-    };
-    let dir = out.join(RATTLE_SCENE).join("multibody");
-    let path = dir.join("summary.json");
-    let dynamic: Vec<DynamicSummary> = match std::fs::read_to_string(&path)
-        .map_err(|e| e.to_string())
-        .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()))
-    {
-        Ok(v) => v,
-        Err(e) => {
-            return absent(
-                s,
-                &format!(
-                    "`{}` cannot be read ({e}); `solver dynamic reference/scenes/{RATTLE_SCENE}.toml` writes it",
-                    path.display()
-                ),
-            )
-        }
+    let heading = String::from("## Rattle and wedging (multibody)\n\n");
+    let (dir, dynamic) = match read(out, RATTLE_SCENE) {
+        Ok(r) => r,
+        Err(why) => return absent(heading, &why),
     };
     let runs: Vec<(String, &DynamicSummary, &RattleSummary)> = dynamic
         .iter()
-        .filter_map(|d| {
-            let name = format!("{:?} / {:?}", d.pinion_blank, d.wheel_blank).to_lowercase();
-            d.rattle.as_ref().map(|r| (name, d, r))
-        })
+        .filter_map(|d| d.rattle.as_ref().map(|r| (blank_names(d).0, d, r)))
         .collect();
     if runs.is_empty() {
-        return absent(s, &format!("`{}` holds no rattle run", path.display()));
+        return absent(
+            heading,
+            &format!(
+                "`{}` holds no rattle run",
+                dir.join("summary.json").display()
+            ),
+        );
     }
-    let mut s = s;
+    let mut s = heading;
     let r0 = runs[0].2;
     let _ = writeln!(
         s,
@@ -129,20 +105,18 @@ pub fn section(out: Option<&Path>, reports: &Path) -> RattleSection {
         let _ = writeln!(s, "- {}", wedging_sentence(name, r));
     }
     s.push('\n');
-    let mut figures = Vec::new();
-    for (name, d, _) in &runs {
-        let blanks = format!("{:?}_{:?}", d.pinion_blank, d.wheel_blank).to_lowercase();
-        if let Some(f) = copied(
-            &format!("Rattle: wheel lag between the drive and the coast contact, {name}"),
-            &dir.join(&blanks).join("rattle_te.svg"),
-            reports,
-            &format!("rattle_{blanks}.svg"),
-        ) {
-            figures.push(f);
-        }
-    }
+    let figures = charts(
+        &dir,
+        runs.iter().map(|r| r.1),
+        reports,
+        (
+            "rattle_te.svg",
+            "rattle",
+            "Rattle: wheel lag between the drive and the coast contact",
+        ),
+    );
     figure_lines(&mut s, &figures, false);
-    RattleSection {
+    Section {
         markdown: s,
         figures,
     }

@@ -11,7 +11,8 @@
 //! each blank (`ste_dte.svg`) is copied into the report directory as
 //! `ste_dte_<blanks>.svg`. An absent summary is one line of text.
 
-use crate::report::figures::{copied, figure_lines, Figure};
+use crate::report::figures::figure_lines;
+use crate::report::sections::multibody_runs::{absent, blank_names, charts, read, Section};
 use formats::summaries::{DynamicSummary, SteDteSummary};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -29,12 +30,8 @@ pub const SIGNIFICANT_PTP_DIFFERENCE: f64 = 0.10;
 /// (s), CPU total (s, "~1.5 h") and per step (s, "~0.4 s").
 pub const PAPER_TABLE_6: (f64, usize, f64, f64, f64) = (0.15, 15_258, 1e-5, 5400.0, 0.4);
 
-/// The section's markdown and the figures it shows.
-#[derive(Debug, Clone, Default)]
-pub struct SteDteSection {
-    pub markdown: String,
-    pub figures: Vec<Figure>,
-}
+/// The section's markdown and its charts.
+pub type SteDteSection = Section;
 
 /// "a significant difference" or "not a significant difference" of
 /// `dte` from `ste` (relative, by [`SIGNIFICANT_PTP_DIFFERENCE`]) with the
@@ -120,52 +117,28 @@ pub fn transient_sentence(blanks: &str, s: &SteDteSummary) -> String {
     )
 }
 
-fn absent(mut s: String, why: &str) -> SteDteSection {
-    let _ = writeln!(s, "Not run: {why}.\n");
-    SteDteSection {
-        markdown: s,
-        figures: vec![],
-    }
-}
-
 /// The section from the stages' output root `out` (None: no root given),
 /// its charts copied into `reports`.
 pub fn section(out: Option<&Path>, reports: &Path) -> SteDteSection {
-    let s = String::from("## Static against dynamic TE (use case 1)\n\n");
-    let Some(out) = out else {
-        return absent(s, "the report was built without an output root");
-    };
-    let dir = out.join(STE_DTE_SCENE).join("multibody");
-    let path = dir.join("summary.json");
-    let dynamic: Vec<DynamicSummary> = match std::fs::read_to_string(&path)
-        .map_err(|e| e.to_string())
-        .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()))
-    {
-        Ok(v) => v,
-        Err(e) => {
-            return absent(
-                s,
-                &format!(
-                    "`{}` cannot be read ({e}); `solver dynamic reference/scenes/{STE_DTE_SCENE}.toml` writes it",
-                    path.display()
-                ),
-            )
-        }
+    let heading = String::from("## Static against dynamic TE (use case 1)\n\n");
+    let (dir, dynamic) = match read(out, STE_DTE_SCENE) {
+        Ok(r) => r,
+        Err(why) => return absent(heading, &why),
     };
     let runs: Vec<(String, &DynamicSummary, &SteDteSummary)> = dynamic
         .iter()
-        .filter_map(|d| {
-            let name = format!("{:?} / {:?}", d.pinion_blank, d.wheel_blank).to_lowercase();
-            d.ste_dte.as_ref().map(|sd| (name, d, sd))
-        })
+        .filter_map(|d| d.ste_dte.as_ref().map(|sd| (blank_names(d).0, d, sd)))
         .collect();
     if runs.is_empty() {
         return absent(
-            s,
-            &format!("`{}` holds no STE/DTE comparison", path.display()),
+            heading,
+            &format!(
+                "`{}` holds no STE/DTE comparison",
+                dir.join("summary.json").display()
+            ),
         );
     }
-    let mut s = s;
+    let mut s = heading;
     let first = runs[0].2;
     let _ = writeln!(
         s,
@@ -237,20 +210,18 @@ pub fn section(out: Option<&Path>, reports: &Path) -> SteDteSection {
         "| white paper, lightweight | 1 to 1,000 | {p_time} | {p_steps} | {p_step:.0e} | ~{p_cpu:.0} (~1.5 h) | ~{:.0} |\n",
         p_per * 1e6
     );
-    let mut figures = Vec::new();
-    for (name, d, _) in &runs {
-        let blanks = format!("{:?}_{:?}", d.pinion_blank, d.wheel_blank).to_lowercase();
-        if let Some(f) = copied(
-            &format!("Quasi-static against dynamic TE in the angle domain, {name}"),
-            &dir.join(&blanks).join("ste_dte.svg"),
-            reports,
-            &format!("ste_dte_{blanks}.svg"),
-        ) {
-            figures.push(f);
-        }
-    }
+    let figures = charts(
+        &dir,
+        runs.iter().map(|r| r.1),
+        reports,
+        (
+            "ste_dte.svg",
+            "ste_dte",
+            "Quasi-static against dynamic TE in the angle domain",
+        ),
+    );
     figure_lines(&mut s, &figures, false);
-    SteDteSection {
+    Section {
         markdown: s,
         figures,
     }
