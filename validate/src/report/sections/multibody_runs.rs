@@ -72,3 +72,19 @@ pub fn charts<'a>(
     })
     .collect()
 }
+
+/// The runs that hold what `pick` takes from them, each with its blank
+/// pair's name.
+pub fn picked<'a, T>(
+    runs: &'a [DynamicSummary],
+    pick: impl Fn(&'a DynamicSummary) -> Option<&'a T>,
+) -> Vec<(String, &'a DynamicSummary, &'a T)> {
+    runs.iter()
+        .filter_map(|d| pick(d).map(|x| (blank_names(d).0, d, x)))
+        .collect()
+}
+
+/// The line of a section whose summary at `dir` holds no `what`.
+pub fn holds_none(dir: &Path, what: &str) -> String {
+    format!("`{}` holds no {what}", dir.join("summary.json").display())
+}

@@ -11,8 +11,8 @@
 //! is one line of text.
 
 use crate::report::figures::figure_lines;
-use crate::report::sections::multibody_runs::{absent, blank_names, charts, read, Section};
-use formats::summaries::{DynamicSummary, RattleSummary};
+use crate::report::sections::multibody_runs::{absent, charts, holds_none, picked, read, Section};
+use formats::summaries::RattleSummary;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -47,18 +47,9 @@ pub fn section(out: Option<&Path>, reports: &Path) -> RattleSection {
         Ok(r) => r,
         Err(why) => return absent(heading, &why),
     };
-    let runs: Vec<(String, &DynamicSummary, &RattleSummary)> = dynamic
-        .iter()
-        .filter_map(|d| d.rattle.as_ref().map(|r| (blank_names(d).0, d, r)))
-        .collect();
+    let runs = picked(&dynamic, |d| d.rattle.as_ref());
     if runs.is_empty() {
-        return absent(
-            heading,
-            &format!(
-                "`{}` holds no rattle run",
-                dir.join("summary.json").display()
-            ),
-        );
+        return absent(heading, &holds_none(&dir, "rattle run"));
     }
     let mut s = heading;
     let r0 = runs[0].2;

@@ -12,8 +12,8 @@
 //! `ste_dte_<blanks>.svg`. An absent summary is one line of text.
 
 use crate::report::figures::figure_lines;
-use crate::report::sections::multibody_runs::{absent, blank_names, charts, read, Section};
-use formats::summaries::{DynamicSummary, SteDteSummary};
+use crate::report::sections::multibody_runs::{absent, charts, holds_none, picked, read, Section};
+use formats::summaries::SteDteSummary;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -125,18 +125,9 @@ pub fn section(out: Option<&Path>, reports: &Path) -> SteDteSection {
         Ok(r) => r,
         Err(why) => return absent(heading, &why),
     };
-    let runs: Vec<(String, &DynamicSummary, &SteDteSummary)> = dynamic
-        .iter()
-        .filter_map(|d| d.ste_dte.as_ref().map(|sd| (blank_names(d).0, d, sd)))
-        .collect();
+    let runs = picked(&dynamic, |d| d.ste_dte.as_ref());
     if runs.is_empty() {
-        return absent(
-            heading,
-            &format!(
-                "`{}` holds no STE/DTE comparison",
-                dir.join("summary.json").display()
-            ),
-        );
+        return absent(heading, &holds_none(&dir, "STE/DTE comparison"));
     }
     let mut s = heading;
     let first = runs[0].2;
