@@ -441,10 +441,8 @@ impl Scene {
         if let Some(run) = &mb.load_run {
             rotation = rotation.max(run.rotation());
         }
-        for &wb in &self.blanks.wheel {
-            if let Some(sd) = mb.ste_dte_of(wb) {
-                rotation = rotation.max(sd.rotation());
-            }
+        if let Some(sd) = self.blanks.wheel.iter().find_map(|&wb| mb.ste_dte_of(wb)) {
+            rotation = rotation.max(sd.rotation());
         }
         let n = rotation / mb.table_step_deg.to_radians() + 1.0;
         let l = &mbl::TABLE_POSITIONS;

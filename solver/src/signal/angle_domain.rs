@@ -3,6 +3,7 @@
 //! 1,000 rpm run-ups), and how far the dynamic TE departs from the
 //! quasi-static one.
 
+use crate::ltca::mean_ptp;
 use crate::multibody::model::interpolate;
 
 /// `n + 1` pinion rotations evenly spaced over [0, `end`], rad.
@@ -14,13 +15,6 @@ pub fn grid(end: f64, n: usize) -> Vec<f64> {
 /// interpolated at the rotations `at`.
 pub fn sample(q1: &[f64], y: &[f64], at: &[f64]) -> Vec<f64> {
     at.iter().map(|&a| interpolate(q1, y, a)).collect()
-}
-
-/// Mean and peak-to-peak of `y`.
-pub fn mean_ptp(y: &[f64]) -> (f64, f64) {
-    let lo = y.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = y.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    (y.iter().sum::<f64>() / y.len() as f64, hi - lo)
 }
 
 /// How a dynamic TE departs from the quasi-static one at the same
@@ -74,11 +68,7 @@ pub fn departure(
         .map(|(_, v)| *v)
         .collect();
     Some(Departure {
-        mean_during_acceleration: if during.is_empty() {
-            0.0
-        } else {
-            during.iter().sum::<f64>() / during.len() as f64
-        },
+        mean_during_acceleration: mean_ptp(&during).0,
         largest_after_acceleration: largest,
         largest_after_acceleration_at: grid[k],
         last_cycle_ptp: mean_ptp(&last).1,

@@ -12,11 +12,12 @@
 //! synchronized signals), `ste_dte_<rpm>rpm.csv` (each run's steps) and
 //! `ste_dte.svg` (the white paper's Figure 13, our way).
 
+use crate::ltca::mean_ptp;
 use crate::multibody::backlash::Coast;
 use crate::multibody::mesh_table::MeshTable;
 use crate::multibody::model::{Drive, Model, Ramp};
 use crate::multibody::time_step::{Integrator, Scheme, StepControl};
-use crate::signal::angle_domain::{departure, grid, mean_ptp, sample};
+use crate::signal::angle_domain::{departure, grid, sample};
 use crate::stage::runup::hold_on_drive_flanks;
 use crate::stage::trace::{record, trace_csv, Trace};
 use anyhow::Context;
