@@ -36,6 +36,10 @@ pub struct DesignFile {
     pub cutter: CutterDesign,
     #[serde(default)]
     pub ease_off: EaseOffDesign,
+    /// Machine settings of the four flanks; the flanks they cut enter as
+    /// a topography of the pinion's ease-off ([`crate::machine`]).
+    #[serde(default)]
+    pub machine_settings: Option<crate::machine::settings::MachineSettingsDesign>,
     /// Published results this pair is compared with. Not part of the
     /// geometry: [`geometry_text`] leaves this table out of what the meshes
     /// and stiffness files are hashed from.
@@ -201,6 +205,8 @@ pub struct PairData {
     pub cutter_radius: f64,
     pub edge_radius: f64,
     pub ease_off: EaseOffDesign,
+    /// Machine settings of the four flanks, if the design file gives them.
+    pub machine_settings: Option<crate::machine::settings::MachineSettings>,
     /// Published results, paths resolved against the design file's folder.
     pub published: PublishedDesign,
 }

@@ -65,6 +65,10 @@ impl DesignFile {
             cutter_radius: mm(self.cutter.radius_mm),
             edge_radius: mm(self.cutter.edge_radius_mm),
             ease_off: self.ease_off.clone(),
+            machine_settings: self
+                .machine_settings
+                .as_ref()
+                .map(crate::machine::settings::MachineSettings::from_design),
             published: {
                 let dir = path.parent().unwrap_or(Path::new("."));
                 PublishedDesign {

@@ -27,6 +27,9 @@ pub struct EaseOff {
     /// Mesh cycle (pinion), rad.
     pub mesh_cycle: f64,
     pub topography: Option<Bicubic>,
+    /// The relative deviation of the flanks the machine settings cut
+    /// ([`crate::machine::deviation`]), µm, bicubic on its grid.
+    pub settings: Option<Bicubic>,
 }
 
 impl EaseOff {
@@ -39,7 +42,14 @@ impl EaseOff {
             roll_vertex,
             mesh_cycle,
             topography: d.topography.as_ref().map(Bicubic::new),
+            settings: None,
         }
+    }
+
+    /// With the machine settings' deviation `t` added.
+    pub fn with_settings(mut self, t: Option<&TopographyDesign>) -> Self {
+        self.settings = t.map(Bicubic::new);
+        self
     }
 
     /// Normal deviation at normalised (ξ, η), roll angle φ and wheel lever λ₂, m.
@@ -51,7 +61,7 @@ impl EaseOff {
             + x * x * self.lengthwise_crowning
             + x * y * self.bias
             + r * r * lever * self.motion_error;
-        if let Some(t) = &self.topography {
+        for t in [&self.topography, &self.settings].into_iter().flatten() {
             e += t.value(eta, xi) * 1e-6;
         }
         e

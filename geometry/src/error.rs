@@ -90,4 +90,19 @@ pub enum GeometryError {
         flank: &'static str,
         cone_distance_mm: f64,
     },
+    #[error("machine_settings: the {member} {flank} flank the settings cut was not met along the conjugate flank's normal at flank coordinates (face {xi:.3}, profile {eta:.3}) (Newton did not converge: no cradle angle cuts there, or the cutter misses the flank)")]
+    SettingsCut {
+        member: &'static str,
+        flank: &'static str,
+        xi: f64,
+        eta: f64,
+    },
+    #[error("machine_settings: the flanks the settings cut lie {deviation_um:.1} µm from the design's conjugate flanks (relative, pinion {flank} flank at face {xi:.3}, profile {eta:.3}), beyond the limit of {limit_um} µm: the settings describe another gear (check their signs against docs/machine_settings.md)")]
+    SettingsDeviation {
+        flank: &'static str,
+        deviation_um: f64,
+        xi: f64,
+        eta: f64,
+        limit_um: f64,
+    },
 }

@@ -107,26 +107,37 @@ pub struct MemberFrame {
 impl MemberFrame {
     pub fn new(pair: &PairData, m: Member) -> Self {
         let d = pair.member(m);
-        let (s, c) = d.pitch_angle.sin_cos();
-        let (x, y, z, k) = match m {
+        MemberFrame {
+            axes: Self::axes_at(m, d.pitch_angle),
+            roll_ratio: Self::roll_sign(m) / d.pitch_angle.sin(),
+            pitch_angle: d.pitch_angle,
+            teeth: d.teeth,
+        }
+    }
+    /// The member's axes (columns, fixed frame) at zero rotation when its
+    /// axis makes the angle `gamma` with the pitch plane z = 0: the
+    /// pinion's below it, the wheel's above, both in the x–z plane.
+    pub fn axes_at(m: Member, gamma: f64) -> Matrix3<f64> {
+        let (s, c) = gamma.sin_cos();
+        let (x, y, z) = match m {
             Member::Pinion => (
                 Vector3::new(s, 0.0, c),
                 Vector3::new(0.0, -1.0, 0.0),
                 Vector3::new(c, 0.0, -s),
-                -1.0 / s,
             ),
             Member::Wheel => (
                 Vector3::new(s, 0.0, -c),
                 Vector3::new(0.0, 1.0, 0.0),
                 Vector3::new(c, 0.0, s),
-                1.0 / s,
             ),
         };
-        MemberFrame {
-            axes: Matrix3::from_columns(&[x, y, z]),
-            roll_ratio: k,
-            pitch_angle: d.pitch_angle,
-            teeth: d.teeth,
+        Matrix3::from_columns(&[x, y, z])
+    }
+    /// Sign of the member's rotation per crown rotation (−1 pinion, +1 wheel).
+    pub fn roll_sign(m: Member) -> f64 {
+        match m {
+            Member::Pinion => -1.0,
+            Member::Wheel => 1.0,
         }
     }
     /// Axis in the fixed frame.
@@ -370,6 +381,15 @@ impl GeneratedFlank {
     }
 }
 
+/// +1 when a member's outward normal on `side` is the generating cone's
+/// normal (pointing away from the cutter axis), else −1.
+pub fn outward(m: Member, side: Side) -> f64 {
+    match (m, side) {
+        (Member::Pinion, Side::Coast) | (Member::Wheel, Side::Drive) => 1.0,
+        _ => -1.0,
+    }
+}
+
 /// Sign h of the tooth trace in the crown frame: t = (cos β, h sin β, 0).
 /// A right-hand pinion (outer half turning clockwise seen from the apex) has h = −1.
 pub fn trace_sign(pinion_hand: Hand) -> f64 {
@@ -415,12 +435,12 @@ impl Generator {
         let st1 = pair.normal_thickness(Member::Pinion) / cosb;
         let st2 = pair.normal_thickness(Member::Wheel) / cosb;
         let flank = |m: Member, side: Side| {
-            let (phase, outward) = match (m, side) {
-                (Member::Pinion, Side::Drive) => (0.0, -1.0),
-                (Member::Pinion, Side::Coast) => (-h * st1 / rm, 1.0),
-                (Member::Wheel, Side::Drive) => (0.0, 1.0),
-                (Member::Wheel, Side::Coast) => (h * st2 / rm, -1.0),
+            let phase = match (m, side) {
+                (Member::Pinion, Side::Coast) => -h * st1 / rm,
+                (Member::Wheel, Side::Coast) => h * st2 / rm,
+                _ => 0.0,
             };
+            let outward = outward(m, side);
             let d = pair.member(m);
             GeneratedFlank {
                 member: m,

@@ -16,6 +16,7 @@ pub mod flank;
 pub mod gear_body;
 pub mod generation;
 pub mod limits;
+pub mod machine;
 pub mod mate;
 pub mod material;
 pub mod minimize;

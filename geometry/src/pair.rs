@@ -104,7 +104,14 @@ impl PairGeometry {
             fp.wheel.fit_fillet_limit()?;
             fp.roll_range = fp.active_roll_range()?;
             let vertex = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);
-            fp.pinion.ease = Some(EaseOff::new(&data.ease_off, vertex, data.mesh_cycle()));
+            let settings = match &data.machine_settings {
+                Some(ms) => Some(crate::machine::deviation::deviation(fp, ms)?.topography),
+                None => None,
+            };
+            fp.pinion.ease = Some(
+                EaseOff::new(&data.ease_off, vertex, data.mesh_cycle())
+                    .with_settings(settings.as_ref()),
+            );
         }
         Ok(geom)
     }
