@@ -102,6 +102,12 @@ pub const MAX_DEPTH_MODULES: f64 = 3.0;
 /// (both surfaced as "Newton did not converge").
 pub const MIN_CUTTER_RADIUS_CONE_DISTANCES: f64 = 0.4;
 pub const MAX_CUTTER_RADIUS_CONE_DISTANCES: f64 = 4.0;
+/// Largest radial setting, in mean cone distances (cone distance plus the
+/// largest cutter radius).
+pub const MAX_RADIAL_SETTING_CONE_DISTANCES: f64 = 5.0;
+/// Largest machine offset either way (sliding base, machine centre to
+/// back, blank offset), in mean cone distances.
+pub const MAX_OFFSET_CONE_DISTANCES: f64 = 0.5;
 /// Largest magnitude of a topography deviation, µm.
 pub const MAX_TOPOGRAPHY_UM: f64 = 1000.0;
 /// Largest number of topography nodes along either direction.
@@ -142,7 +148,104 @@ fn check_design(d: &DesignFile, path: &Path) -> Result<(), InputError> {
     let g1 = check_pitch_angles(path, d)?;
     check_members(path, d)?;
     check_module_and_clearance(path, d, g1)?;
-    check_cutter_and_ease_off(path, d)
+    check_cutter_and_ease_off(path, d)?;
+    check_machine_settings(path, d)
+}
+
+/// Every number of `[machine_settings]`, if given (the deviation of the
+/// flanks they cut is checked when the flanks are built).
+fn check_machine_settings(path: &Path, d: &DesignFile) -> Result<(), InputError> {
+    let Some(ms) = &d.machine_settings else {
+        return Ok(());
+    };
+    let rm = d.pair.mean_cone_distance_mm;
+    for (member, m) in [("pinion", &ms.pinion), ("wheel", &ms.wheel)] {
+        for (flank, f) in [("concave", &m.concave), ("convex", &m.convex)] {
+            let at = |name: &str| format!("machine_settings.{member}.{flank}.{name}");
+            for (l, name, v) in [
+                (
+                    &lim::SETTINGS_BLADE_ANGLE,
+                    "blade_angle_deg",
+                    f.blade_angle_deg,
+                ),
+                (
+                    &lim::SETTINGS_CRADLE_ANGLE,
+                    "cradle_angle_deg",
+                    f.cradle_angle_deg,
+                ),
+                (
+                    &lim::SETTINGS_ROOT_ANGLE,
+                    "machine_root_angle_deg",
+                    f.machine_root_angle_deg,
+                ),
+                (
+                    &lim::SETTINGS_RATIO_OF_ROLL,
+                    "ratio_of_roll",
+                    f.ratio_of_roll,
+                ),
+                (
+                    &lim::SETTINGS_ROLL_2C,
+                    "modified_roll_2c",
+                    f.modified_roll_2c,
+                ),
+                (
+                    &lim::SETTINGS_ROLL_6D,
+                    "modified_roll_6d",
+                    f.modified_roll_6d,
+                ),
+                (&lim::SETTINGS_TILT, "cutter_tilt_deg", f.cutter_tilt_deg),
+                (
+                    &lim::SETTINGS_SWIVEL,
+                    "cutter_swivel_deg",
+                    f.cutter_swivel_deg,
+                ),
+            ] {
+                l.check_at(path, &at(name), v)?;
+            }
+            for (l, name, v, scale) in [
+                (
+                    &lim::SETTINGS_BLADE_RADIUS,
+                    "blade_radius_mm",
+                    f.blade_radius_mm,
+                    MAX_CUTTER_RADIUS_CONE_DISTANCES,
+                ),
+                (
+                    &lim::SETTINGS_RADIAL,
+                    "radial_setting_mm",
+                    f.radial_setting_mm,
+                    MAX_RADIAL_SETTING_CONE_DISTANCES,
+                ),
+            ] {
+                let hi = scale * rm;
+                l.check_with(path, &at(name), v, &[hi], || {
+                    format!("must lie in (0, {hi}] ({scale} × pair.mean_cone_distance_mm)")
+                })?;
+            }
+            let hi = MAX_OFFSET_CONE_DISTANCES * rm;
+            for (l, name, v) in [
+                (
+                    &lim::SETTINGS_SLIDING_BASE,
+                    "sliding_base_mm",
+                    f.sliding_base_mm,
+                ),
+                (
+                    &lim::SETTINGS_CENTRE_TO_BACK,
+                    "machine_center_to_back_mm",
+                    f.machine_center_to_back_mm,
+                ),
+                (
+                    &lim::SETTINGS_BLANK_OFFSET,
+                    "blank_offset_mm",
+                    f.blank_offset_mm,
+                ),
+            ] {
+                l.check_with(path, &at(name), v, &[-hi, hi], || {
+                    format!("must lie in [-{hi}, {hi}] (± {MAX_OFFSET_CONE_DISTANCES} × pair.mean_cone_distance_mm)")
+                })?;
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The `[pair]` table: angles, module, cone distance and face width.

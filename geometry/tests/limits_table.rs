@@ -269,10 +269,21 @@ max_pinion_order = 50.0
 ];
 
 /// The same for the white-paper design.
-const DESIGN_TABLES: &[(&str, &str)] = &[(
-    "ease_off.topography",
-    "[ease_off.topography]\nprofile = [0.0, 0.5, 1.0]\nface = [0.0, 0.5, 1.0]\ndeviation_um = [[0.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 0.0]]\n",
-)];
+const DESIGN_TABLES: &[(&str, &str)] = &[
+    (
+        "ease_off.topography",
+        "[ease_off.topography]\nprofile = [0.0, 0.5, 1.0]\nface = [0.0, 0.5, 1.0]\ndeviation_um = [[0.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 0.0]]\n",
+    ),
+    (
+        "machine_settings",
+        concat!(
+            "[machine_settings.pinion.concave]\nblade_radius_mm = 117.134116\nblade_angle_deg = 20.0\nradial_setting_mm = 115.468611\ncradle_angle_deg = -59.348062\nmachine_root_angle_deg = 24.943905\nratio_of_roll = 2.371181\n",
+            "[machine_settings.pinion.convex]\nblade_radius_mm = 111.465884\nblade_angle_deg = 20.0\nradial_setting_mm = 112.976894\ncradle_angle_deg = -52.369927\nmachine_root_angle_deg = 24.943905\nratio_of_roll = 2.371181\n",
+            "[machine_settings.wheel.concave]\nblade_radius_mm = 111.465884\nblade_angle_deg = 20.0\nradial_setting_mm = 112.976894\ncradle_angle_deg = -59.904597\nmachine_root_angle_deg = 65.056095\nratio_of_roll = 1.102875\n",
+            "[machine_settings.wheel.convex]\nblade_radius_mm = 117.134116\nblade_angle_deg = 20.0\nradial_setting_mm = 115.468611\ncradle_angle_deg = -59.348062\nmachine_root_angle_deg = 65.056095\nratio_of_roll = 1.102875\n",
+        ),
+    ),
+];
 
 /// The default scene (its design path absolute) and the white-paper
 /// design as TOML values, and a folder to load them from.
@@ -338,7 +349,17 @@ impl Files {
 fn instances(field: &str) -> Vec<(String, Option<&'static str>)> {
     let field = field.replace("[i]", "[0]").replace("[j]", "[0]");
     let mut out = Vec::new();
-    if field.contains("<member>") {
+    if field.contains("<flank>") {
+        for (m, _) in instances(&field.replace("<flank>", "concave")) {
+            let member = m.split('.').nth(1).and_then(|m| match m {
+                "pinion" => Some("pinion"),
+                "wheel" => Some("wheel"),
+                _ => None,
+            });
+            out.push((m.clone(), member));
+            out.push((m.replace(".concave.", ".convex."), member));
+        }
+    } else if field.contains("<member>") {
         for (m, mate) in [("pinion", "wheel"), ("wheel", "pinion")] {
             out.push((
                 field.replace("<member>", m).replace("<mate>", mate),

@@ -228,7 +228,10 @@ fn a_generated_flank_is_the_envelope_of_the_cutters_cone() {
                     )
                 };
                 let touch = s_at(0.0);
-                assert!(touch.abs() < 1e-12, "{side:?} {m:?}: s = {touch:e} m at the cut");
+                assert!(
+                    touch.abs() < 1e-12,
+                    "{side:?} {m:?}: s = {touch:e} m at the cut"
+                );
                 for k in 1..=10 {
                     let dphi = 0.002 * k as f64;
                     for sgn in [1.0, -1.0] {
@@ -302,4 +305,32 @@ fn settings_far_from_the_design_are_refused_naming_the_limit() {
         e.contains("machine_settings") && e.contains("200 µm"),
         "{e}"
     );
+}
+
+#[test]
+fn settings_written_to_a_design_file_read_back_the_same() {
+    let p = common::white_paper();
+    let s = MachineSettings::of_crown_generation(&p);
+    let text = toml::to_string(&s.to_design()).unwrap();
+    println!("{text}");
+    let back: geometry::machine::settings::MachineSettingsDesign = toml::from_str(&text).unwrap();
+    let again = MachineSettings::from_design(&back);
+    for m in [Member::Pinion, Member::Wheel] {
+        for side in [Side::Drive, Side::Coast] {
+            let (a, b) = (s.flank(m, side), again.flank(m, side));
+            for (x, y) in [
+                (a.blade_radius, b.blade_radius),
+                (a.radial_setting, b.radial_setting),
+                (a.cradle_angle, b.cradle_angle),
+                (a.blade_angle, b.blade_angle),
+                (a.machine_root_angle, b.machine_root_angle),
+                (a.ratio_of_roll, b.ratio_of_roll),
+            ] {
+                assert!(
+                    (x - y).abs() <= 1e-15 * x.abs().max(1.0),
+                    "{m:?} {side:?}: {x} {y}"
+                );
+            }
+        }
+    }
 }

@@ -3,8 +3,9 @@
 
 use super::*;
 use crate::design_file::{
-    MAX_CONE_DISTANCE_MM, MAX_CUTTER_RADIUS_CONE_DISTANCES, MAX_DEPTH_MODULES, MAX_TEETH,
-    MAX_TOPOGRAPHY_NODES, MAX_TOPOGRAPHY_UM, MIN_CUTTER_RADIUS_CONE_DISTANCES,
+    MAX_CONE_DISTANCE_MM, MAX_CUTTER_RADIUS_CONE_DISTANCES, MAX_DEPTH_MODULES,
+    MAX_OFFSET_CONE_DISTANCES, MAX_RADIAL_SETTING_CONE_DISTANCES, MAX_TEETH, MAX_TOPOGRAPHY_NODES,
+    MAX_TOPOGRAPHY_UM, MIN_CUTTER_RADIUS_CONE_DISTANCES,
 };
 
 /// A number in [lo, hi], refused as "must lie in [lo, hi]".
@@ -33,6 +34,24 @@ const fn depth(field: &'static str) -> Limit {
         .computed(),
     )
     .why("usual: about 1 and 1.25 modules; strongly shifted pinions reach 2")
+}
+
+/// A machine offset (sliding base, machine centre to back, blank
+/// offset): at most half the mean cone distance either way.
+const fn offset(field: &'static str) -> Limit {
+    Limit::design(
+        field,
+        "mm",
+        real(
+            closed_at(
+                -MAX_OFFSET_CONE_DISTANCES,
+                "pair.mean_cone_distance_mm",
+                0.0,
+            ),
+            closed_at(MAX_OFFSET_CONE_DISTANCES, "pair.mean_cone_distance_mm", 0.0),
+        )
+        .computed(),
+    )
 }
 
 /// The nodes of a topography axis.
@@ -206,4 +225,46 @@ limits! {
         derived("both flanks generated regularly down to the fillet limit at toe, mean and heel (checked when the flanks are built)"),
     )
     .why("undercut");
+    SETTINGS_BLADE_RADIUS = Limit::design(
+        "machine_settings.<member>.<flank>.blade_radius_mm",
+        "mm",
+        real(
+            open(0.0),
+            closed_at(MAX_CUTTER_RADIUS_CONE_DISTANCES, "pair.mean_cone_distance_mm", 0.0),
+        )
+        .computed(),
+    )
+    .why("the largest cutter radius of `cutter.radius_mm`");
+    SETTINGS_BLADE_ANGLE = within("machine_settings.<member>.<flank>.blade_angle_deg", "deg", 0.0, 45.0);
+    SETTINGS_RADIAL = Limit::design(
+        "machine_settings.<member>.<flank>.radial_setting_mm",
+        "mm",
+        real(
+            open(0.0),
+            closed_at(MAX_RADIAL_SETTING_CONE_DISTANCES, "pair.mean_cone_distance_mm", 0.0),
+        )
+        .computed(),
+    )
+    .why("the mean point lies within the cone distance plus the largest cutter radius");
+    SETTINGS_CRADLE_ANGLE = within("machine_settings.<member>.<flank>.cradle_angle_deg", "deg", -360.0, 360.0);
+    SETTINGS_ROOT_ANGLE = within("machine_settings.<member>.<flank>.machine_root_angle_deg", "deg", 0.0, 90.0);
+    SETTINGS_SLIDING_BASE = offset("machine_settings.<member>.<flank>.sliding_base_mm");
+    SETTINGS_CENTRE_TO_BACK = offset("machine_settings.<member>.<flank>.machine_center_to_back_mm");
+    SETTINGS_BLANK_OFFSET = offset("machine_settings.<member>.<flank>.blank_offset_mm");
+    SETTINGS_RATIO_OF_ROLL = Limit::design(
+        "machine_settings.<member>.<flank>.ratio_of_roll",
+        "",
+        real(open(0.0), closed(100.0)).lie_in(""),
+    )
+    .why("1 / sin γ reaches 57 at a 1° pitch angle");
+    SETTINGS_ROLL_2C = within("machine_settings.<member>.<flank>.modified_roll_2c", "1/rad", -10.0, 10.0);
+    SETTINGS_ROLL_6D = within("machine_settings.<member>.<flank>.modified_roll_6d", "1/rad²", -100.0, 100.0);
+    SETTINGS_TILT = within("machine_settings.<member>.<flank>.cutter_tilt_deg", "deg", 0.0, 45.0);
+    SETTINGS_SWIVEL = within("machine_settings.<member>.<flank>.cutter_swivel_deg", "deg", -360.0, 360.0);
+    SETTINGS_DEVIATION = Limit::design(
+        "machine_settings",
+        "µm",
+        derived("the flanks the settings cut within 200 µm (relative, pinion and wheel deviation summed at mating points) of the design's conjugate flanks over the pinion's flank, each member's rotation about its axis removed (checked when the flanks are built)"),
+    )
+    .why("else the settings describe another gear");
 }

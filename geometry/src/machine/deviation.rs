@@ -163,8 +163,8 @@ fn lever(p: &RawPoint<f64>) -> f64 {
 /// Newton starts from the cone point nearest the generating crown's point
 /// of `p` and its crown roll.
 pub fn normal_offset(machine: &Machine, p: &RawPoint<f64>) -> Option<f64> {
-    let crown = Rotation3::from_axis_angle(&Vector3::z_axis(), -p.crown_roll)
-        * Vector3::from(p.pos_fixed);
+    let crown =
+        Rotation3::from_axis_angle(&Vector3::z_axis(), -p.crown_roll) * Vector3::from(p.pos_fixed);
     let (mut zeta, mut theta) = machine.tool_parameters(&crown);
     let (pos, n) = (Vector3::from(p.pos), Vector3::from(p.normal));
     let mut roll = p.crown_roll;
@@ -175,13 +175,13 @@ pub fn normal_offset(machine: &Machine, p: &RawPoint<f64>) -> Option<f64> {
         let r = c.pos - pos - n * t;
         let at = |z: f64, th: f64| machine.cut(z, th, roll).map(|c| c.pos);
         let gz = (at(zeta + STEP_ZETA, theta)? - at(zeta - STEP_ZETA, theta)?) / (2.0 * STEP_ZETA);
-        let gt = (at(zeta, theta + STEP_THETA)? - at(zeta, theta - STEP_THETA)?) / (2.0 * STEP_THETA);
+        let gt =
+            (at(zeta, theta + STEP_THETA)? - at(zeta, theta - STEP_THETA)?) / (2.0 * STEP_THETA);
         let step = Matrix3::from_columns(&[gz, gt, -n]).lu().solve(&(-r))?;
         zeta += step[0];
         theta += step[1];
         t += step[2];
-        if (gz * step[0] + gt * step[1]).norm() < PROJECTION_TOL && step[2].abs() < PROJECTION_TOL
-        {
+        if (gz * step[0] + gt * step[1]).norm() < PROJECTION_TOL && step[2].abs() < PROJECTION_TOL {
             return Some(t);
         }
     }

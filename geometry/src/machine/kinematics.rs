@@ -125,12 +125,8 @@ impl Machine {
         let (st, ct) = theta.sin_cos();
         let rho = self.settings.blade_radius + self.slope * zeta * self.tan_a;
         let p = self.centre + self.tilt * Vector3::new(rho * ct, rho * st, zeta);
-        let n = self.tilt
-            * Vector3::new(
-                self.cos_a * ct,
-                self.cos_a * st,
-                -self.slope * self.sin_a,
-            );
+        let n =
+            self.tilt * Vector3::new(self.cos_a * ct, self.cos_a * st, -self.slope * self.sin_a);
         (p, n)
     }
 
