@@ -11,6 +11,7 @@
 //! wheel radians, and T a measured or imported topography.
 
 use crate::design::{EaseOffDesign, TopographyDesign};
+use crate::machine::surface_fit::ChebyshevSurface;
 use crate::Scalar;
 use serde::Serialize;
 
@@ -28,8 +29,8 @@ pub struct EaseOff {
     pub mesh_cycle: f64,
     pub topography: Option<Bicubic>,
     /// The relative deviation of the flanks the machine settings cut
-    /// ([`crate::machine::deviation`]), µm, bicubic on its grid.
-    pub settings: Option<Bicubic>,
+    /// ([`crate::machine::deviation`]), µm, a smooth fit of its grid.
+    pub settings: Option<ChebyshevSurface>,
 }
 
 impl EaseOff {
@@ -46,9 +47,9 @@ impl EaseOff {
         }
     }
 
-    /// With the machine settings' deviation `t` added.
-    pub fn with_settings(mut self, t: Option<&TopographyDesign>) -> Self {
-        self.settings = t.map(Bicubic::new);
+    /// With the machine settings' deviation added (its fitted surface).
+    pub fn with_settings(mut self, t: Option<ChebyshevSurface>) -> Self {
+        self.settings = t;
         self
     }
 
@@ -61,8 +62,11 @@ impl EaseOff {
             + x * x * self.lengthwise_crowning
             + x * y * self.bias
             + r * r * lever * self.motion_error;
-        for t in [&self.topography, &self.settings].into_iter().flatten() {
+        if let Some(t) = &self.topography {
             e += t.value(eta, xi) * 1e-6;
+        }
+        if let Some(t) = &self.settings {
+            e += t.value(xi, eta) * 1e-6;
         }
         e
     }

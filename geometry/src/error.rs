@@ -97,6 +97,14 @@ pub enum GeometryError {
         xi: f64,
         eta: f64,
     },
+    #[error("machine_settings: the relative deviation the settings cut on the pinion {flank} flank is not smooth: its fitted surface misses a grid node by {residual_um:.4} µm, beyond {limit_um} µm")]
+    SettingsFit {
+        flank: &'static str,
+        residual_um: f64,
+        limit_um: f64,
+    },
+    #[error("local synthesis: no pinion settings found that cut the design's ease-off of the {flank} flank to second order at the mean point (Gauss-Newton did not converge)")]
+    Synthesis { flank: &'static str },
     #[error("machine_settings: the flanks the settings cut lie {deviation_um:.1} µm from the design's conjugate flanks (relative, pinion {flank} flank at face {xi:.3}, profile {eta:.3}), beyond the limit of {limit_um} µm: the settings describe another gear (check their signs against docs/machine_settings.md)")]
     SettingsDeviation {
         flank: &'static str,

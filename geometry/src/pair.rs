@@ -105,12 +105,11 @@ impl PairGeometry {
             fp.roll_range = fp.active_roll_range()?;
             let vertex = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);
             let settings = match &data.machine_settings {
-                Some(ms) => Some(crate::machine::deviation::deviation(fp, ms)?.topography),
+                Some(ms) => Some(crate::machine::deviation::deviation(fp, ms)?.surface()?),
                 None => None,
             };
             fp.pinion.ease = Some(
-                EaseOff::new(&data.ease_off, vertex, data.mesh_cycle())
-                    .with_settings(settings.as_ref()),
+                EaseOff::new(&data.ease_off, vertex, data.mesh_cycle()).with_settings(settings),
             );
         }
         Ok(geom)

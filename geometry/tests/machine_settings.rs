@@ -312,7 +312,6 @@ fn settings_written_to_a_design_file_read_back_the_same() {
     let p = common::white_paper();
     let s = MachineSettings::of_crown_generation(&p);
     let text = toml::to_string(&s.to_design()).unwrap();
-    println!("{text}");
     let back: geometry::machine::settings::MachineSettingsDesign = toml::from_str(&text).unwrap();
     let again = MachineSettings::from_design(&back);
     for m in [Member::Pinion, Member::Wheel] {
@@ -332,5 +331,72 @@ fn settings_written_to_a_design_file_read_back_the_same() {
                 );
             }
         }
+    }
+}
+
+/// Second-order contact at the vertex of the TE parabola (the middle of
+/// the active roll range), on the tooth in contact there: TE'' (rad/rad²,
+/// from five UTCA positions 0.1° apart), the contact path's direction in
+/// the axial section (rad) and the contact ellipse's semi-axes at 6.3 µm
+/// (m).
+fn contact_at_the_mean_point(fp: &FlankPair, dir: f64) -> (f64, f64, [f64; 2]) {
+    let phi = 0.5 * (fp.roll_range[0] + fp.roll_range[1]);
+    let rs = RollSurface::new(fp, LineGrid::default()).unwrap();
+    let h = 0.1f64.to_radians();
+    let u = run(fp, &rs, phi - 2.0 * dir * h, h, 5, dir);
+    let c: Vec<_> = (0..5).map(|k| u.teeth[k][u.contact[k]]).collect();
+    assert!(
+        c.iter().all(|x| x.tooth == c[2].tooth),
+        "one tooth in contact"
+    );
+    let te = &u.te;
+    let te2 = (-te[4] + 16.0 * te[3] - 30.0 * te[2] + 16.0 * te[1] - te[0]) / (12.0 * h * h);
+    let path = (c[3].d - c[1].d).atan2(c[3].l - c[1].l);
+    let at = fp.placement(phi, c[2].te, dir);
+    let e = geometry::direct::contact_ellipse(fp, at, c[2].tooth, c[2].uv, 6.3e-6).unwrap();
+    (te2, path, e.semi_axes)
+}
+
+#[test]
+fn local_synthesis_gives_back_the_second_order_contact_at_the_mean_point() {
+    // The wanted contact is the white-paper design's ease-off; the pair
+    // cut by the synthesized settings (no ease-off) must have the same
+    // TE parabola, path direction and contact ellipse at the mean point
+    // within 1 %.
+    let p = common::white_paper();
+    let g = common::geometry(&p);
+    let s = geometry::machine::synthesis::synthesize(&g).unwrap();
+    for side in &s.sides {
+        let worst = (0..5).fold(0.0f64, |w, i| {
+            w.max((side.achieved_um[i] - side.wanted_um[i]).abs())
+        });
+        println!(
+            "{:?}: {} iterations, derivatives within {worst:.1e} µm, {:.2} µm over the flank",
+            side.side, side.iterations, side.largest_difference_um
+        );
+        assert!(worst < 1e-6, "{:?}", side.side);
+    }
+    let mut q = p.clone();
+    q.ease_off = Default::default();
+    q.machine_settings = Some(s.settings);
+    let h = common::geometry(&q);
+    for side in [Side::Drive, Side::Coast] {
+        let dir = pinion_direction(&p, side);
+        let (te_a, path_a, ell_a) = contact_at_the_mean_point(g.side(side), dir);
+        let (te_b, path_b, ell_b) = contact_at_the_mean_point(h.side(side), dir);
+        println!(
+            "{side:?}: TE'' {te_a:.4e} / {te_b:.4e}, path {:.3}° / {:.3}°, ellipse {:.3}×{:.3} / {:.3}×{:.3} mm",
+            path_a.to_degrees(),
+            path_b.to_degrees(),
+            ell_a[0] * 1e3,
+            ell_a[1] * 1e3,
+            ell_b[0] * 1e3,
+            ell_b[1] * 1e3
+        );
+        let rel = |a: f64, b: f64| ((a - b) / a).abs();
+        assert!(rel(te_a, te_b) < 0.01, "{side:?}: TE''");
+        assert!(rel(path_a, path_b) < 0.01, "{side:?}: path direction");
+        assert!(rel(ell_a[0], ell_b[0]) < 0.01, "{side:?}: major axis");
+        assert!(rel(ell_a[1], ell_b[1]) < 0.01, "{side:?}: minor axis");
     }
 }

@@ -9,6 +9,8 @@ use geometry::direct::contact_ellipse;
 use geometry::error::{GeometryError, InputError};
 use geometry::flank::Flank;
 use geometry::generation::Side;
+use geometry::machine::summary::{settings_out, SettingsOut, SettingsSource};
+use geometry::machine::synthesis::SideSynthesis;
 use geometry::pair::{pinion_direction, FlankPair, PairGeometry};
 use geometry::scene::{Scene, UtcaSettings};
 use geometry::utca::{roll_surface, sweep, Utca};
@@ -30,6 +32,8 @@ pub enum FlankStageError {
     Set(#[from] formats::result_set::ResultSetError),
     #[error("{}: cannot read the design file: {message}", .path.display())]
     Design { path: PathBuf, message: String },
+    #[error("machine settings of {file}: not written as TOML: {message}")]
+    SettingsToml { file: &'static str, message: String },
 }
 
 /// What the stage needs from a design or scene file.
@@ -224,8 +228,18 @@ pub struct FlankSummary {
     pub normal_backlash_mm: f64,
     pub mean_normal_thickness_mm: [f64; 2],
     pub mean_point: MeanPoint,
+    /// Where `machine_settings.toml` comes from, and the local synthesis
+    /// (where the design file gives no settings).
+    pub machine_settings: MachineSettingsSummary,
     pub utca: UtcaSummary,
     pub timing_s: Timing,
+}
+
+/// The summary's account of the machine settings written.
+#[derive(Debug, Clone, Serialize)]
+pub struct MachineSettingsSummary {
+    pub source: SettingsSource,
+    pub synthesis: Vec<SideSynthesis>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -240,6 +254,7 @@ pub struct UtcaSummary {
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Timing {
     pub geometry: f64,
+    pub machine_settings: f64,
     pub flank_grids: f64,
     pub roll_surface: f64,
     pub utca: f64,
@@ -285,8 +300,12 @@ fn write_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStag
     let mut timing = Timing::default();
     let t = Instant::now();
     let mut g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
-    g.misalign(&input.misalignment);
     timing.geometry = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let settings = settings_out(&g)?;
+    write_settings(out, &settings)?;
+    timing.machine_settings = t.elapsed().as_secs_f64();
+    g.misalign(&input.misalignment);
     let pair = &g.data;
 
     let mut mean_point = MeanPoint::new();
@@ -351,6 +370,10 @@ fn write_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStag
             pair.normal_thickness(Member::Wheel) * 1e3,
         ],
         mean_point,
+        machine_settings: MachineSettingsSummary {
+            source: settings.source,
+            synthesis: settings.synthesis,
+        },
         utca: UtcaSummary {
             te_ptp_urad: report.te_ptp_urad,
             te_mean_urad: report.te_mean_urad,
@@ -362,6 +385,48 @@ fn write_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStag
     };
     write_json(&out.join("summary.json"), &summary)?;
     Ok(summary)
+}
+
+/// Writes `machine_settings.toml` (the `[machine_settings]` table of a
+/// design file) and one summary per member,
+/// `machine_settings_<member>.toml`.
+fn write_settings(out: &Path, s: &SettingsOut) -> Result<(), FlankStageError> {
+    #[derive(Serialize)]
+    struct Table {
+        machine_settings: geometry::machine::settings::MachineSettingsDesign,
+    }
+    let source = match s.source {
+        SettingsSource::DesignFile => "as the design file gives them",
+        SettingsSource::LocalSynthesis => {
+            "by local synthesis of the pinion from the design's ease-off (wheel: the crown generation's settings); see summary.json for how closely"
+        }
+    };
+    let head = format!(
+        "# Machine settings of the four flanks, {source}.\n# Frames and signs: docs/machine_settings.md. Paste into a design file to cut these flanks.\n\n"
+    );
+    let table = Table {
+        machine_settings: s.settings.to_design(),
+    };
+    let text = head + &toml_text("machine_settings.toml", &table)?;
+    formats::output::write_atomic(&out.join("machine_settings.toml"), text.as_bytes())?;
+    for m in &s.members {
+        let file = if m.member == "pinion" {
+            "machine_settings_pinion.toml"
+        } else {
+            "machine_settings_wheel.toml"
+        };
+        let text = toml_text(file, m)?;
+        formats::output::write_atomic(&out.join(file), text.as_bytes())?;
+    }
+    Ok(())
+}
+
+/// TOML text of `v`, for the file named `file`.
+fn toml_text<T: Serialize>(file: &'static str, v: &T) -> Result<String, FlankStageError> {
+    toml::to_string(v).map_err(|e| FlankStageError::SettingsToml {
+        file,
+        message: e.to_string(),
+    })
 }
 
 fn utca_report(

@@ -20,9 +20,11 @@
 use crate::design::Member;
 use crate::design::TopographyDesign;
 use crate::error::GeometryError;
+use crate::flank::Flank;
 use crate::generation::{RawPoint, Side};
 use crate::machine::kinematics::Machine;
-use crate::machine::settings::MachineSettings;
+use crate::machine::settings::{FlankSettings, MachineSettings};
+use crate::machine::surface_fit::ChebyshevSurface;
 use crate::pair::FlankPair;
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use serde::Serialize;
@@ -30,10 +32,13 @@ use serde::Serialize;
 /// Nodes of the deviation grid along the profile (odd: one at η = ½).
 pub const PROFILE_NODES: usize = 21;
 /// Nodes along the face width (odd: one at ξ = ½).
-pub const FACE_NODES: usize = 31;
+pub const FACE_NODES: usize = 33;
 /// Largest relative deviation the settings may cut from the design's
 /// flanks, µm: beyond it they describe another gear.
 pub const MAX_DEVIATION_UM: f64 = 200.0;
+
+/// Largest miss of the smooth surface at a grid node, µm.
+pub const MAX_FIT_RESIDUAL_UM: f64 = 0.01;
 
 /// Convergence of the normal projection, m.
 const PROJECTION_TOL: f64 = 1e-13;
@@ -96,17 +101,7 @@ pub fn deviation(
     let mut members = Vec::with_capacity(2);
     for (k, m) in [Member::Pinion, Member::Wheel].into_iter().enumerate() {
         let base = Machine::new(settings.flank(m, fp.side), m, fp.side);
-        let at_mean = &points[mean][k];
-        let mut index = 0.0;
-        for _ in 0..8 {
-            let t = normal_offset(&base.indexed(index), at_mean)
-                .ok_or_else(|| cut_error(k, 0.5, 0.5))?;
-            index -= t / lever(at_mean);
-            if t.abs() < 1e-14 {
-                break;
-            }
-        }
-        let machine = base.indexed(index);
+        let machine = indexed_at(&base, &points[mean][k]).ok_or_else(|| cut_error(k, 0.5, 0.5))?;
         let mut rows = vec![vec![0.0; FACE_NODES]; PROFILE_NODES];
         for (n, pair) in points.iter().enumerate() {
             let (i, j) = (n / FACE_NODES, n % FACE_NODES);
@@ -116,7 +111,7 @@ pub fn deviation(
         }
         members.push(MemberDeviation {
             deviation_um: rows,
-            removed_rotation_urad: -index * 1e6,
+            removed_rotation_urad: -machine.index() * 1e6,
         });
     }
     let wheel = members.pop().expect("two members");
@@ -152,8 +147,81 @@ pub fn deviation(
     })
 }
 
+/// The machine with its cut flank turned about the work axis so that it
+/// passes through the conjugate point `mean` (Newton on the rotation,
+/// steps −t / λ), None where the flank is not met there.
+pub fn indexed_at(base: &Machine, mean: &RawPoint<f64>) -> Option<Machine> {
+    let mut index = 0.0;
+    for _ in 0..8 {
+        let t = normal_offset(&base.indexed(index), mean)?;
+        index -= t / lever(mean);
+        if t.abs() < 1e-14 {
+            break;
+        }
+    }
+    Some(base.indexed(index))
+}
+
+/// One member's deviation on its own flank's grid (`profile` × `face`
+/// nodes of its normalised (ξ, η)), with the rotation that zeroes it at
+/// its mean point (ξ = η = ½) removed: what the settings `s` cut on
+/// `flank` relative to its conjugate flank.
+pub fn member_grid(
+    flank: &Flank,
+    s: &FlankSettings,
+    profile: &[f64],
+    face: &[f64],
+) -> Result<MemberDeviation, GeometryError> {
+    let (m, side) = (flank.gen.member, flank.gen.side);
+    let error = |xi: f64, eta: f64| GeometryError::SettingsCut {
+        member: m.name(),
+        flank: side.flank_name(m),
+        xi,
+        eta,
+    };
+    let point = |xi: f64, eta: f64| -> Result<RawPoint<f64>, GeometryError> {
+        let (l, d) = flank.bounds.from_unit(xi, eta);
+        let uv = flank.solve_ld(l, d)?;
+        Ok(flank.gen.eval(uv[0], uv[1]))
+    };
+    let machine =
+        indexed_at(&Machine::new(s, m, side), &point(0.5, 0.5)?).ok_or_else(|| error(0.5, 0.5))?;
+    let mut rows = Vec::with_capacity(profile.len());
+    for &eta in profile {
+        let mut row = Vec::with_capacity(face.len());
+        for &xi in face {
+            let t = normal_offset(&machine, &point(xi, eta)?).ok_or_else(|| error(xi, eta))?;
+            row.push(-t * 1e6);
+        }
+        rows.push(row);
+    }
+    Ok(MemberDeviation {
+        deviation_um: rows,
+        removed_rotation_urad: -machine.index() * 1e6,
+    })
+}
+
+impl SettingsDeviation {
+    /// The relative deviation as a smooth surface ([`ChebyshevSurface`]),
+    /// refused where the fit misses a node by more than
+    /// [`MAX_FIT_RESIDUAL_UM`] (a deviation too rough for the settings
+    /// to have cut it).
+    pub fn surface(&self) -> Result<ChebyshevSurface, GeometryError> {
+        let t = &self.topography;
+        let flank = self.side.flank_name(Member::Pinion);
+        match ChebyshevSurface::fit(&t.profile, &t.face, &t.deviation_um) {
+            Some((s, r)) if r <= MAX_FIT_RESIDUAL_UM => Ok(s),
+            other => Err(GeometryError::SettingsFit {
+                flank,
+                residual_um: other.map_or(f64::NAN, |(_, r)| r),
+                limit_um: MAX_FIT_RESIDUAL_UM,
+            }),
+        }
+    }
+}
+
 /// Normal lever n · (e_z × P) of a member point about its axis, m.
-fn lever(p: &RawPoint<f64>) -> f64 {
+pub fn lever(p: &RawPoint<f64>) -> f64 {
     let (pos, n) = (Vector3::from(p.pos), Vector3::from(p.normal));
     n.dot(&Vector3::z().cross(&pos))
 }

@@ -119,6 +119,11 @@ impl Machine {
         self
     }
 
+    /// The rotation of [`Machine::indexed`], rad.
+    pub fn index(&self) -> f64 {
+        self.index
+    }
+
     /// Cone point X and normal N (away from the cutter axis) at height ζ
     /// along the cutter axis and angle θ about it, cradle at rest.
     pub fn tool(&self, zeta: f64, theta: f64) -> (Vector3<f64>, Vector3<f64>) {
@@ -229,7 +234,7 @@ impl Machine {
     }
 
     /// A direction `v` of the machine frame, carried like [`Machine::to_work`].
-    fn to_work_direction(&self, v: &Vector3<f64>, phic: f64) -> Vector3<f64> {
+    fn direction_to_work(&self, v: &Vector3<f64>, phic: f64) -> Vector3<f64> {
         self.work_rotation(phic) * (self.axes.transpose() * (self.cradle(phic) * v))
     }
 
@@ -257,7 +262,7 @@ impl Machine {
         };
         Some(CutPoint {
             pos: self.to_work(&x, phic),
-            normal: self.to_work_direction(&n, phic) * self.outward,
+            normal: self.direction_to_work(&n, phic) * self.outward,
             cradle_roll: phic,
         })
     }

@@ -26,3 +26,6 @@
 pub mod deviation;
 pub mod kinematics;
 pub mod settings;
+pub mod summary;
+pub mod surface_fit;
+pub mod synthesis;
