@@ -169,6 +169,11 @@ fn check_machine_settings(path: &Path, d: &DesignFile) -> Result<(), InputError>
                     f.blade_angle_deg,
                 ),
                 (
+                    &lim::SETTINGS_BLADE_CURVATURE,
+                    "blade_profile_curvature_per_m",
+                    f.blade_profile_curvature_per_m,
+                ),
+                (
                     &lim::SETTINGS_CRADLE_ANGLE,
                     "cradle_angle_deg",
                     f.cradle_angle_deg,

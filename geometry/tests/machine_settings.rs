@@ -152,7 +152,7 @@ fn machine_centre_to_back_shifts_the_flank_along_the_work_axis() {
 }
 
 /// Every setting away from the crown gear's: tilt, swivel, offsets,
-/// another ratio of roll and modified roll.
+/// another ratio of roll, modified roll and a curved blade.
 fn general(s: &FlankSettings) -> FlankSettings {
     FlankSettings {
         cutter_tilt: 3f64.to_radians(),
@@ -164,7 +164,55 @@ fn general(s: &FlankSettings) -> FlankSettings {
         ratio_of_roll: s.ratio_of_roll * 1.003,
         modified_roll_2c: 0.05,
         modified_roll_6d: -0.2,
+        blade_profile_curvature: 2.0,
         ..*s
+    }
+}
+
+#[test]
+fn a_curved_blades_normal_is_normal_to_its_surface_and_it_bends_by_its_curvature() {
+    // The cutter surface's normal is perpendicular to its difference
+    // tangents, and the blade's points leave the straight blade along its
+    // normal by κ s²/2 (s the length along the straight blade).
+    let p = common::white_paper_conjugate();
+    let base = MachineSettings::of_crown_generation(&p);
+    for side in [Side::Drive, Side::Coast] {
+        for m in [Member::Pinion, Member::Wheel] {
+            let curved = general(base.flank(m, side));
+            let straight = FlankSettings {
+                blade_profile_curvature: 0.0,
+                ..curved
+            };
+            let (mc, ms) = (
+                Machine::new(&curved, m, side),
+                Machine::new(&straight, m, side),
+            );
+            let theta = mc
+                .tool_parameters(&Vector3::new(p.mean_cone_distance, 0.0, 0.0))
+                .1;
+            for zeta in [-4e-3, -1e-3, 0.0, 2e-3, 5e-3] {
+                let (x, n) = mc.tool(zeta, theta);
+                let h = 1e-6;
+                let tz = mc.tool(zeta + h, theta).0 - mc.tool(zeta - h, theta).0;
+                let tt = mc.tool(zeta, theta + h).0 - mc.tool(zeta, theta - h).0;
+                assert!(
+                    n.dot(&tz.normalize()).abs() < 1e-8,
+                    "{side:?} {m:?} ζ {zeta}"
+                );
+                assert!(
+                    n.dot(&tt.normalize()).abs() < 1e-8,
+                    "{side:?} {m:?} ζ {zeta}"
+                );
+                let (xs, ns) = ms.tool(zeta, theta);
+                let s = zeta / curved.blade_angle.cos();
+                let bend = 0.5 * curved.blade_profile_curvature * s * s;
+                assert!(
+                    ((x - xs).norm() - bend).abs() < 1e-12 && (x - xs).cross(&ns).norm() < 1e-12,
+                    "{side:?} {m:?} ζ {zeta}: {:e} against κ s²/2 = {bend:e}",
+                    (x - xs).norm()
+                );
+            }
+        }
     }
 }
 

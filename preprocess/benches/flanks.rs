@@ -101,6 +101,49 @@ fn main() {
         note: String::new(),
     });
 
+    // Flanks from machine settings: the synthesized settings of the same
+    // design (no ease-off) against the designed pair, same run.
+    let t_synth = time(5, || geometry::machine::synthesis::synthesize(&g).unwrap());
+    out.push(Entry {
+        name: "local synthesis (both pinion flanks)",
+        value: t_synth * 1e3,
+        unit: "ms",
+        target: None,
+        note: String::new(),
+    });
+    let mut cut = pair.clone();
+    cut.ease_off = Default::default();
+    cut.machine_settings = Some(
+        geometry::machine::synthesis::synthesize(&g)
+            .unwrap()
+            .settings,
+    );
+    let t_cut = time(5, || PairGeometry::new(&cut).unwrap());
+    out.push(Entry {
+        name: "pair geometry from machine settings",
+        value: t_cut * 1e3,
+        unit: "ms",
+        target: None,
+        note: format!(
+            "{:.1}x the designed pair's; the settings' deviation on 2 x 21 x 33 nodes per side",
+            t_cut / t_geom
+        ),
+    });
+    let gc = PairGeometry::new(&cut).unwrap();
+    let fc = gc.side(Side::Drive);
+    let rc = roll_surface(fc, &s).unwrap();
+    let t_sweep_cut = time(5, || sweep(fc, &cut, &rc, &s));
+    out.push(Entry {
+        name: "UTCA per position, flanks from machine settings",
+        value: t_sweep_cut * 1e6 / n as f64,
+        unit: "us",
+        target: None,
+        note: format!(
+            "{:.2}x the designed pair's (same run)",
+            t_sweep_cut / t_sweep
+        ),
+    });
+
     let machine = format!(
         "{} cores, {}",
         std::thread::available_parallelism().map_or(0, |n| n.get()),

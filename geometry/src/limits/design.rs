@@ -236,6 +236,12 @@ limits! {
     )
     .why("the largest cutter radius of `cutter.radius_mm`");
     SETTINGS_BLADE_ANGLE = within("machine_settings.<member>.<flank>.blade_angle_deg", "deg", 0.0, 45.0);
+    SETTINGS_BLADE_CURVATURE = Limit::design(
+        "machine_settings.<member>.<flank>.blade_profile_curvature_per_m",
+        "1/m",
+        real(closed(-100.0), closed(100.0)).lie_in(""),
+    )
+    .why("a blade profile radius of at least 10 mm");
     SETTINGS_RADIAL = Limit::design(
         "machine_settings.<member>.<flank>.radial_setting_mm",
         "mm",

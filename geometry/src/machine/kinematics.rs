@@ -12,7 +12,12 @@
 //!   N(ζ, θ) = T [cos α cos θ, cos α sin θ, −σ sin α],
 //!
 //! σ = +1 on the drive side (the blade cone widening toward +z) and −1 on
-//! the coast side, N pointing away from the cutter axis.
+//! the coast side, N pointing away from the cutter axis. A curved blade
+//! (profile curvature κ) bends away from the straight one by κ s²/2 along
+//! its normal, s = ζ / cos α the length along the straight blade, toward
+//! the work's material (its ends cut deeper: profile crowning for κ > 0);
+//! its normal turns by κ s. ζ then labels the blade point by the straight
+//! blade's height.
 //!
 //! The cradle turns by φ_c about z; the work, whose axis a makes the
 //! machine root angle γ_m with the cradle plane (pinion below, wheel above,
@@ -63,7 +68,6 @@ pub struct Machine {
     apex: Vector3<f64>,
     centre: Vector3<f64>,
     tilt: Matrix3<f64>,
-    tan_a: f64,
     sin_a: f64,
     cos_a: f64,
     /// A rotation of the cut flank about the work axis, rad (the tooth's
@@ -104,7 +108,6 @@ impl Machine {
             apex,
             centre,
             tilt,
-            tan_a: s.blade_angle.tan(),
             sin_a: s.blade_angle.sin(),
             cos_a: s.blade_angle.cos(),
             index: 0.0,
@@ -128,10 +131,20 @@ impl Machine {
     /// along the cutter axis and angle θ about it, cradle at rest.
     pub fn tool(&self, zeta: f64, theta: f64) -> (Vector3<f64>, Vector3<f64>) {
         let (st, ct) = theta.sin_cos();
-        let rho = self.settings.blade_radius + self.slope * zeta * self.tan_a;
-        let p = self.centre + self.tilt * Vector3::new(rho * ct, rho * st, zeta);
-        let n =
-            self.tilt * Vector3::new(self.cos_a * ct, self.cos_a * st, -self.slope * self.sin_a);
+        // In the blade's radial plane (radius, axial): the straight blade
+        // along t, its normal n_b, s the length along it; a curved blade
+        // bends away by κ s²/2 (material removed toward its ends).
+        let t = [self.slope * self.sin_a, self.cos_a];
+        let nb = [self.cos_a, -self.slope * self.sin_a];
+        let s = zeta / self.cos_a;
+        let bend = -self.outward * 0.5 * self.settings.blade_profile_curvature * s * s;
+        let rho = self.settings.blade_radius + s * t[0] + bend * nb[0];
+        let z = zeta + bend * nb[1];
+        let tilt = self.outward * self.settings.blade_profile_curvature * s;
+        let (nr, nz) = (nb[0] + tilt * t[0], nb[1] + tilt * t[1]);
+        let norm = nr.hypot(nz);
+        let p = self.centre + self.tilt * Vector3::new(rho * ct, rho * st, z);
+        let n = self.tilt * Vector3::new(nr * ct / norm, nr * st / norm, nz / norm);
         (p, n)
     }
 

@@ -16,6 +16,10 @@ pub struct FlankSettingsDesign {
     pub blade_radius_mm: f64,
     /// Blade angle against the cutter axis, deg.
     pub blade_angle_deg: f64,
+    /// Profile curvature of a curved blade, 1/m (0: straight; positive:
+    /// its ends cut deeper, crowning the work's profile).
+    #[serde(default)]
+    pub blade_profile_curvature_per_m: f64,
     /// Distance of the cutter centre from the cradle axis, mm.
     pub radial_setting_mm: f64,
     /// Angle of the cutter centre about the cradle axis from the machine
@@ -80,6 +84,8 @@ pub struct MachineSettingsDesign {
 pub struct FlankSettings {
     pub blade_radius: f64,
     pub blade_angle: f64,
+    /// 1/m.
+    pub blade_profile_curvature: f64,
     pub radial_setting: f64,
     pub cradle_angle: f64,
     pub machine_root_angle: f64,
@@ -102,6 +108,7 @@ impl FlankSettings {
         FlankSettings {
             blade_radius: mm(d.blade_radius_mm),
             blade_angle: deg(d.blade_angle_deg),
+            blade_profile_curvature: d.blade_profile_curvature_per_m,
             radial_setting: mm(d.radial_setting_mm),
             cradle_angle: deg(d.cradle_angle_deg),
             machine_root_angle: deg(d.machine_root_angle_deg),
@@ -124,6 +131,7 @@ impl FlankSettings {
         FlankSettingsDesign {
             blade_radius_mm: mm(self.blade_radius),
             blade_angle_deg: deg(self.blade_angle),
+            blade_profile_curvature_per_m: self.blade_profile_curvature,
             radial_setting_mm: mm(self.radial_setting),
             cradle_angle_deg: deg(self.cradle_angle),
             machine_root_angle_deg: deg(self.machine_root_angle),
@@ -200,6 +208,7 @@ impl MachineSettings {
             FlankSettings {
                 blade_radius: c.radius,
                 blade_angle: c.tan_alpha.atan(),
+                blade_profile_curvature: 0.0,
                 radial_setting: c.center[0].hypot(c.center[1]),
                 cradle_angle: c.center[1].atan2(c.center[0]) + f.phase,
                 machine_root_angle: gamma,

@@ -14,9 +14,14 @@
 //! value and five derivatives (f, f_ξ, f_η, f_ξξ, f_ξη, f_ηη) against the
 //! wheel cut by the crown generation's settings (conjugate), the cut flank
 //! taken as it is (no rotation removed, so that the settings cut the
-//! design's tooth thickness): Gauss–Newton with the minimum-norm step over seven settings
-//! (blade angle, radial setting, blade radius, ratio of roll, modified roll
-//! 2C, machine root angle, sliding base), each scaled by a typical change,
+//! design's tooth thickness): Gauss–Newton over six settings, each acting
+//! mainly on one of them (cradle angle: the value, a turn of the flank;
+//! radial setting: f_ξ, the spiral angle; blade angle: f_η, the pressure
+//! angle; blade radius: f_ξξ, the lengthwise crowning; blade profile
+//! curvature: f_ηη, the profile crowning; modified roll 2C: the
+//! transmission error's parabola and with it f_ξη), each weighted by its
+//! effect (its Jacobian column's norm), the steps halved where they do not
+//! reduce the residual, starting
 //! from the crown generation's settings. The derivatives are central
 //! differences on a stencil of ±[`STENCIL`] in ξ and η, the same for the
 //! design and the cut flank. What the settings cannot follow (the
@@ -40,14 +45,13 @@ pub const STENCIL: f64 = 0.01;
 const MAX_ITERATIONS: usize = 30;
 
 /// The settings varied, with the change each is scaled by.
-const VARIABLES: [(&str, f64); 7] = [
+const VARIABLES: [(&str, f64); 6] = [
     ("blade_angle", 1e-3),
+    ("blade_profile_curvature", 0.1),
     ("radial_setting", 1e-4),
     ("blade_radius", 1e-3),
-    ("ratio_of_roll", 1e-3),
     ("modified_roll_2c", 1e-2),
-    ("machine_root_angle", 1e-3),
-    ("sliding_base", 1e-4),
+    ("cradle_angle", 1e-4),
 ];
 
 /// One pinion flank's synthesis.
@@ -131,12 +135,11 @@ fn varied(base: &FlankSettings, x: &[f64]) -> FlankSettings {
     let mut s = *base;
     let v = |i: usize| x[i] * VARIABLES[i].1;
     s.blade_angle += v(0);
-    s.radial_setting += v(1);
-    s.blade_radius += v(2);
-    s.ratio_of_roll *= 1.0 + v(3);
+    s.blade_profile_curvature += v(1);
+    s.radial_setting += v(2);
+    s.blade_radius += v(3);
     s.modified_roll_2c += v(4);
-    s.machine_root_angle += v(5);
-    s.sliding_base += v(6);
+    s.cradle_angle += v(5);
     s
 }
 
@@ -183,14 +186,42 @@ pub fn synthesize(g: &PairGeometry) -> Result<Synthesis, GeometryError> {
                 let col = residual(&xp).ok_or_else(failed)? - residual(&xm).ok_or_else(failed)?;
                 jac.set_column(k, &col);
             }
+            // Each setting weighted by its effect (its column's norm), so
+            // that the minimum-norm step moves the settings that act.
+            let norms: Vec<f64> = (0..VARIABLES.len())
+                .map(|k| jac.column(k).norm().max(1e-300))
+                .collect();
+            for (k, n) in norms.iter().enumerate() {
+                jac.column_mut(k).scale_mut(1.0 / n);
+            }
             let step = jac
                 .svd(true, true)
                 .solve(&(-&r), 1e-12)
                 .map_err(|_| failed())?;
-            for (xi, s) in x.iter_mut().zip(step.iter()) {
-                *xi += s;
+            // Halve the step while it cuts no flank or does not reduce the
+            // residual; where no step does, the residual is as small as
+            // the differences let it be (judged below).
+            let mut length = 1.0;
+            let mut reduced = false;
+            while length > 1e-3 {
+                let trial: Vec<f64> = x
+                    .iter()
+                    .zip(step.iter().zip(&norms))
+                    .map(|(xi, (s, n))| xi + length * s / n)
+                    .collect();
+                match residual(&trial) {
+                    Some(rt) if rt.amax() < r.amax() => {
+                        x = trial;
+                        r = rt;
+                        reduced = true;
+                        break;
+                    }
+                    _ => length *= 0.5,
+                }
             }
-            r = residual(&x).ok_or_else(failed)?;
+            if !reduced {
+                break;
+            }
         }
         if r.amax() > 1e-6 * scale {
             return Err(failed());
