@@ -10,12 +10,13 @@
 //!
 //!   f(ξ, η) = Σᵢ Σⱼ cᵢⱼ Tᵢ(2η − 1) Tⱼ(2ξ − 1),   i, j ≤ [`DEGREE`],
 //!
-//! the cᵢⱼ minimizing Σ (f − f_node)² over the grid (SVD). Outside the unit
+//! the cᵢⱼ minimizing Σ (f − f_node)² over the grid (the tensor grid's
+//! least squares separate: C = A_η⁺ F A_ξ⁺ᵀ). Outside the unit
 //! square it continues along its tangent plane at the nearest point of the
 //! square (C¹), so that a polynomial is never extrapolated far.
 
 use crate::Scalar;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use serde::Serialize;
 
 /// Polynomial degree in each of ξ and η.
@@ -44,30 +45,23 @@ impl ChebyshevSurface {
     /// few nodes for the degree.
     pub fn fit(profile: &[f64], face: &[f64], f: &[Vec<f64>]) -> Option<(Self, f64)> {
         let n = DEGREE + 1;
-        let rows = profile.len() * face.len();
         if profile.len() < n || face.len() < n {
             return None;
         }
-        let mut a = DMatrix::zeros(rows, n * n);
-        let mut b = DVector::zeros(rows);
-        for (i, &eta) in profile.iter().enumerate() {
-            let te = chebyshev(2.0 * eta - 1.0);
-            for (j, &xi) in face.iter().enumerate() {
-                let tx = chebyshev(2.0 * xi - 1.0);
-                let r = i * face.len() + j;
-                for p in 0..n {
-                    for q in 0..n {
-                        a[(r, p * n + q)] = te[p] * tx[q];
-                    }
-                }
-                b[r] = f[i][j];
-            }
-        }
-        let c = a.clone().svd(true, true).solve(&b, 1e-14).ok()?;
-        let residual = (a * &c - b).amax();
+        // On a tensor grid the design matrix is A_η ⊗ A_ξ, whose
+        // pseudo-inverse is A_η⁺ ⊗ A_ξ⁺: C = A_η⁺ F A_ξ⁺ᵀ.
+        let basis = |x: &[f64]| {
+            DMatrix::from_fn(x.len(), n, |i, k| chebyshev(2.0 * x[i] - 1.0)[k])
+        };
+        let (ae, ax) = (basis(profile), basis(face));
+        let values = DMatrix::from_fn(profile.len(), face.len(), |i, j| f[i][j]);
+        let pe = ae.clone().pseudo_inverse(1e-14).ok()?;
+        let px = ax.clone().pseudo_inverse(1e-14).ok()?;
+        let c = &pe * &values * px.transpose();
+        let residual = (&ae * &c * ax.transpose() - values).amax();
         Some((
             ChebyshevSurface {
-                c: c.iter().copied().collect(),
+                c: c.transpose().iter().copied().collect(),
             },
             residual,
         ))
