@@ -69,6 +69,73 @@ pub fn nodal_stress(mesh: &TetMesh, material: &Material, u: &[f64]) -> Vec<Stres
         .collect()
 }
 
+/// One stress component as a linear functional of the nodal
+/// displacements: (global dof 3·node + direction, coefficient) pairs, each
+/// dof once.
+pub type Functional = Vec<(usize, f64)>;
+
+/// The recovered stress at each of `nodes` ([`nodal_stress`]) as six
+/// linear functionals of u, so that Σ c u[dof] over row k is component k
+/// of `nodal_stress(u)` at that node, for every u. An element holding the
+/// node contributes its stress there, σ(ξ_l) = Σ_a,i hooke(sym(e_i ⊗ ∇N_a))
+/// u_ai, weighted by its share of the holding elements' volume. With a
+/// factor's forward solves, gᵀ K⁻¹ f = (L⁻¹ P g) · (L⁻¹ P f): a stress
+/// at a node per unit load without solving for the whole field.
+pub fn nodal_stress_functionals(
+    mesh: &TetMesh,
+    material: &Material,
+    nodes: &[usize],
+) -> Vec<[Functional; 6]> {
+    let at: std::collections::HashMap<usize, usize> =
+        nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
+    let refs = tet10::reference_nodes();
+    let (lambda, mu) = material.lame();
+    let mut rows: Vec<[Functional; 6]> = vec![Default::default(); nodes.len()];
+    let mut weight = vec![0.0; nodes.len()];
+    for (e, tet) in mesh.tets.iter().enumerate() {
+        let holds: Vec<(usize, usize)> = tet
+            .iter()
+            .enumerate()
+            .filter_map(|(l, n)| at.get(n).map(|&k| (l, k)))
+            .collect();
+        if holds.is_empty() {
+            continue;
+        }
+        let x = mesh.element(e);
+        let v = tet10::volume(&x).abs();
+        for (l, k) in holds {
+            weight[k] += v;
+            for (a, &node) in tet.iter().enumerate() {
+                for i in 0..3 {
+                    let mut unit = [[0.0; 3]; 10];
+                    unit[a][i] = 1.0;
+                    let s = hooke(tet10::strain(&x, &unit, refs[l]), lambda, mu);
+                    for c in 0..6 {
+                        rows[k][c].push((3 * node + i, v * s[c]));
+                    }
+                }
+            }
+        }
+    }
+    for (row, w) in rows.iter_mut().zip(&weight) {
+        for f in row.iter_mut() {
+            f.sort_by_key(|&(d, _)| d);
+            let mut merged: Functional = Vec::with_capacity(f.len());
+            for &(d, c) in f.iter() {
+                match merged.last_mut() {
+                    Some((last, sum)) if *last == d => *sum += c,
+                    _ => merged.push((d, c)),
+                }
+            }
+            for (_, c) in merged.iter_mut() {
+                *c /= w;
+            }
+            *f = merged;
+        }
+    }
+    rows
+}
+
 /// Principal stresses σ₁ ≥ σ₂ ≥ σ₃ (eigenvalues of the stress tensor).
 pub fn principal(s: Stress) -> [f64; 3] {
     let m = nalgebra::Matrix3::new(s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]);

@@ -239,6 +239,39 @@ fn recovered_stress_of_pure_bending_is_mz_over_i_at_every_node() {
 
 /// Lamé: a thick cylinder a ≤ r ≤ b under internal pressure p, plane strain:
 /// u_r = (1+ν) p a² / (E (b² − a²)) · [(1 − 2ν) r + b²/r].
+/// The stress functionals of a node give `nodal_stress` of any
+/// displacement field (a pseudo-random one on a distorted mesh), to
+/// round-off: they are its linear form, not an approximation.
+#[test]
+fn stress_functionals_give_the_recovered_stress_of_any_displacement() {
+    let mut block = mapped_block([3, 2, 2], |q| [0.05 * q[0], 0.02 * q[1], 0.03 * q[2]]);
+    distort_interior(&mut block, 0.002, 11);
+    let mesh = &block.mesh;
+    let mut seed = 12345_u64;
+    let u: Vec<f64> = (0..3 * mesh.nodes.len())
+        .map(|_| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-5
+        })
+        .collect();
+    let nodes: Vec<usize> = (0..mesh.nodes.len()).step_by(5).collect();
+    let g = stress::nodal_stress_functionals(mesh, &STEEL, &nodes);
+    let s = stress::nodal_stress(mesh, &STEEL, &u);
+    let scale = s.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+    for (k, &n) in nodes.iter().enumerate() {
+        for c in 0..6 {
+            let v: f64 = g[k][c].iter().map(|&(d, w)| w * u[d]).sum();
+            assert!(
+                (v - s[n][c]).abs() <= 1e-12 * scale,
+                "node {n} component {c}: {v} against {}",
+                s[n][c]
+            );
+        }
+    }
+}
+
 fn lame_block(n: [usize; 3]) -> (Block, Vec<f64>) {
     let (a, b, t, p) = (0.05, 0.1, 0.01, 100e6);
     let map = |q: [f64; 3]| {

@@ -50,9 +50,7 @@ impl ChebyshevSurface {
         }
         // On a tensor grid the design matrix is A_η ⊗ A_ξ, whose
         // pseudo-inverse is A_η⁺ ⊗ A_ξ⁺: C = A_η⁺ F A_ξ⁺ᵀ.
-        let basis = |x: &[f64]| {
-            DMatrix::from_fn(x.len(), n, |i, k| chebyshev(2.0 * x[i] - 1.0)[k])
-        };
+        let basis = |x: &[f64]| DMatrix::from_fn(x.len(), n, |i, k| chebyshev(2.0 * x[i] - 1.0)[k]);
         let (ae, ax) = (basis(profile), basis(face));
         let values = DMatrix::from_fn(profile.len(), face.len(), |i, j| f[i][j]);
         let pe = ae.clone().pseudo_inverse(1e-14).ok()?;
