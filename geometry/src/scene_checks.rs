@@ -259,6 +259,20 @@ impl Scene {
         }
         if let Some(sd) = &mb.ste_dte {
             sd.check(path)?;
+            if let Some((i, wb)) = sd
+                .wheel_blanks
+                .iter()
+                .enumerate()
+                .find(|(_, wb)| !self.blanks.wheel.contains(wb))
+            {
+                let l = &mbl::STE_DTE_BLANK_IN_SCENE;
+                return Err(l.refuse(
+                    path,
+                    &format!("multibody.ste_dte.wheel_blanks[{i}]"),
+                    format!("\"{}\"", wb.name()),
+                    "must be one of blanks.wheel (a blank the scene does not analyse has no stiffness files)".into(),
+                ));
+            }
         }
         if mb.rattle_time_s > 0.0 && !mb.coast_contact {
             let l = &mbl::RATTLE_NEEDS_COAST;

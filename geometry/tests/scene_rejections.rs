@@ -359,3 +359,32 @@ fn misalignment_at_its_limit_loads_without_a_sensitivity_table() {
     .unwrap_err();
     assert!(e.contains("sensitivity.offset_mm"), "{e}");
 }
+
+#[test]
+fn a_static_against_dynamic_te_blank_the_scene_does_not_analyse_is_refused_naming_it() {
+    let ste_dte = "[multibody.ste_dte]\nwheel_blanks = [\"lightweight\"]\npinion_torque_nm = 300.0\nrpm = [10.0, 1000.0]\nacceleration_end_deg = 30.0\ntime_s = 0.15\nmax_step_s = 1e-5\ncompared_revolutions = 1.0";
+    // With both wheel blanks analysed the section loads.
+    assert!(scene_with(ste_dte).is_ok());
+    // With the standard wheel only, the lightweight comparison is refused.
+    let text = std::fs::read_to_string(common::reference("scenes/default.toml")).unwrap();
+    let text = text
+        .replace(
+            "wheel = [\"standard\", \"lightweight\"]",
+            "wheel = [\"standard\"]",
+        )
+        .replace(
+            "design = \"../white_paper_20x43.toml\"",
+            &format!(
+                "design = {:?}",
+                common::white_paper_path().display().to_string()
+            ),
+        );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, format!("{text}\n{ste_dte}\n")).unwrap();
+    let e = Scene::load(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("multibody.ste_dte.wheel_blanks[0]") && e.contains("blanks.wheel"),
+        "{e}"
+    );
+}

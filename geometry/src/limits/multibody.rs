@@ -181,6 +181,12 @@ limits! {
         words("each blank once"),
     )
     .why("its runs and files are named after it");
+    STE_DTE_BLANK_IN_SCENE = Limit::scene(
+        "multibody.ste_dte.wheel_blanks[i]",
+        "",
+        words("one of `blanks.wheel`"),
+    )
+    .why("a blank the scene does not analyse has no stiffness files to run on");
     LOAD_RUN_PINION_RPM = within("multibody.load_run.pinion_rpm", "rpm", 1e-3, 1e5);
     LOAD_RUN_PINION_RAMP = within("multibody.load_run.pinion_ramp_s", "s", 0.0, 100.0);
     LOAD_RUN_WHEEL_TORQUE = within("multibody.load_run.wheel_torque_nm", "N·m", 0.0, 1e7);
