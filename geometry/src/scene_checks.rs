@@ -300,6 +300,28 @@ impl Scene {
         ] {
             for &blank in blanks {
                 let shape = blank_shape(pair, member, blank, &dims);
+                if let Some(h) = &shape.holes {
+                    // The holes sit halfway between hub and web top: each
+                    // must stay off both, and off its neighbours.
+                    let height = 2.0 * (h.circle_radius - dims.wheel_hub_radius);
+                    let chord =
+                        2.0 * h.circle_radius * (std::f64::consts::PI / h.count as f64).sin();
+                    let room = height.min(chord);
+                    if h.diameter >= room {
+                        let l = &lim::WHEEL_HOLES_IN_WEB;
+                        return Err(l.refuse(
+                            path,
+                            l.field,
+                            format!("{}", h.diameter * 1e3),
+                            format!(
+                                "must be < {:.3} mm: the web's radial height from the hub to the rim bottom is {:.3} mm and the holes' centres lie {:.3} mm apart",
+                                room * 1e3,
+                                height * 1e3,
+                                chord * 1e3
+                            ),
+                        ));
+                    }
+                }
                 if shape.is_body() {
                     continue;
                 }

@@ -388,3 +388,16 @@ fn a_static_against_dynamic_te_blank_the_scene_does_not_analyse_is_refused_namin
         "{e}"
     );
 }
+
+#[test]
+fn web_holes_wider_than_the_lightweight_web_are_refused_naming_the_field() {
+    let e = scene_with("[blank_dimensions]\nwheel_hole_diameter_mm = 80.0")
+        .err()
+        .unwrap_or_default();
+    assert!(
+        e.contains("blank_dimensions.wheel_hole_diameter_mm") && e.contains("radial height"),
+        "{e}"
+    );
+    // The default holes (85 % of the web's height) load.
+    assert!(scene_with("").is_ok());
+}

@@ -184,6 +184,12 @@ limits! {
         derived("the pinion blank's half-section a simple polygon off the axis: the bore inside the body (below the rim bottom at the toe)"),
     )
     .why("the body to mesh");
+    WHEEL_HOLES_IN_WEB = Limit::scene(
+        "blank_dimensions.wheel_hole_diameter_mm",
+        "mm",
+        derived("below the lightweight web's radial height (hub to rim bottom) and the distance between the three holes' centres"),
+    )
+    .why("the holes stay inside the web and apart");
     WHEEL_BLANK_SECTION = Limit::scene(
         "blank_dimensions.wheel_hub_radius_mm",
         "mm",
