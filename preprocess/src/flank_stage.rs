@@ -238,8 +238,11 @@ pub struct FlankSummary {
 /// The summary's account of the machine settings written.
 #[derive(Debug, Clone, Serialize)]
 pub struct MachineSettingsSummary {
-    pub source: SettingsSource,
+    /// Where the settings written come from (None: none written).
+    pub source: Option<SettingsSource>,
     pub synthesis: Vec<SideSynthesis>,
+    /// Why a design without settings got none (the local synthesis failed).
+    pub not_synthesized: Option<String>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -302,8 +305,28 @@ fn write_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStag
     let mut g = PairGeometry::build(&input.pair, Some(&input.design_path))?;
     timing.geometry = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let settings = settings_out(&g)?;
-    write_settings(out, &settings)?;
+    // A design's own settings must cut its flanks (their errors are the
+    // design's); the synthesis for a design without settings is an extra
+    // output, whose failure is reported, not fatal.
+    let machine_settings = match settings_out(&g) {
+        Ok(s) => {
+            write_settings(out, &s)?;
+            MachineSettingsSummary {
+                source: Some(s.source),
+                synthesis: s.synthesis,
+                not_synthesized: None,
+            }
+        }
+        Err(e) if input.pair.machine_settings.is_none() => {
+            eprintln!("warning: {}: no machine settings written: {e}", input.name);
+            MachineSettingsSummary {
+                source: None,
+                synthesis: Vec::new(),
+                not_synthesized: Some(e.to_string()),
+            }
+        }
+        Err(e) => return Err(e.into()),
+    };
     timing.machine_settings = t.elapsed().as_secs_f64();
     g.misalign(&input.misalignment);
     let pair = &g.data;
@@ -370,10 +393,7 @@ fn write_stage(input: &FlankInput, out: &Path) -> Result<FlankSummary, FlankStag
             pair.normal_thickness(Member::Wheel) * 1e3,
         ],
         mean_point,
-        machine_settings: MachineSettingsSummary {
-            source: settings.source,
-            synthesis: settings.synthesis,
-        },
+        machine_settings,
         utca: UtcaSummary {
             te_ptp_urad: report.te_ptp_urad,
             te_mean_urad: report.te_mean_urad,

@@ -20,6 +20,9 @@ fn small_scene_writes_grids_utca_plots_and_summary() {
         "roll_angles.svg",
         "contact_path.svg",
         "tooth_section.svg",
+        "machine_settings.toml",
+        "machine_settings_pinion.toml",
+        "machine_settings_wheel.toml",
     ] {
         let p = out.join(f);
         assert!(
@@ -105,4 +108,23 @@ fn scene_with_bad_setting_names_the_field() {
         err.contains("bad.toml") && err.contains("utca.step_deg") && err.contains("-0.5"),
         "{err}"
     );
+}
+
+/// A design without settings whose ease-off no settings cut (500 µm
+/// lengthwise and 300 µm profile crowning: the synthesis fails) still gets
+/// its flanks and UTCA; no settings files are written and the summary says
+/// why.
+#[test]
+fn a_design_whose_ease_off_no_settings_cut_gets_none_and_the_summary_says_why() {
+    let mut input = load_input(&common::reference("scenes/small.toml")).unwrap();
+    input.pair.ease_off.lengthwise_crowning_um = 500.0;
+    input.pair.ease_off.profile_crowning_um = 300.0;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("flanks");
+    let summary = run_stage(&input, &out).unwrap();
+    assert!(summary.machine_settings.source.is_none());
+    let why = summary.machine_settings.not_synthesized.unwrap();
+    assert!(why.contains("pinion"), "{why}");
+    assert!(!out.join("machine_settings.toml").exists());
+    assert!(out.join("utca.json").is_file());
 }
