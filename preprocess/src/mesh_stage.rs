@@ -210,23 +210,33 @@ pub fn run(
                     reports.push(r);
                     continue;
                 }
-                // A sibling's mesh of the same inputs. Not one refined on
-                // more teeth: its other teeth's elements differ, so the
-                // scene's numbers would depend on which scenes a machine
-                // had meshed before.
+                // A sibling's mesh: the same inputs first, else one
+                // refined on more teeth.
                 let same_inputs = |t: &str, _: &MeshEntry| {
                     serde_json::from_str::<Inputs>(t).is_ok_and(|i| i == inputs)
                 };
-                if let Some((from, _)) = crate::sibling_reuse::mesh(root, &dir, &stem, same_inputs)
-                {
+                let copied = crate::sibling_reuse::mesh(root, &dir, &stem, same_inputs)
+                    .map(|(from, _)| (from, None))
+                    .or_else(|| {
+                        crate::sibling_reuse::mesh(root, &dir, &stem, serves)
+                            .map(|(from, e)| (from, Some(e)))
+                    });
+                if let Some((from, superset)) = copied {
                     if let Some(mut r) = cached_report(&report_path) {
+                        let how = match superset {
+                            None => "same inputs as",
+                            Some(_) => "refined on more teeth than the scene asks for:",
+                        };
                         eprintln!(
-                            "{stem}: same inputs as {}, copied",
+                            "{stem}: {how} {}, copied",
                             paths::msh(&from, &stem).display()
                         );
                         r.scene = sc.name.clone();
                         write_json(&report_path, &r)?;
-                        record(wanted.clone(), &inputs.hash)?;
+                        match superset {
+                            None => record(wanted.clone(), &inputs.hash)?,
+                            Some(e) => record(e.inputs, &e.inputs_hash)?,
+                        }
                         r.reused = true;
                         reports.push(r);
                         continue;

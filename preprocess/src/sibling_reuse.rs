@@ -36,8 +36,8 @@ fn copy_all(from: &Path, to: &Path, names: &[String]) -> anyhow::Result<()> {
 }
 
 /// A sibling folder whose mesh `stem` serves (`accept` on the text of its
-/// `<stem>.inputs.json` and its manifest entry; the mesh stage accepts the
-/// same inputs only) and whose `.msh` is the one its manifest lists:
+/// `<stem>.inputs.json` and its manifest entry: the same inputs, or a mesh
+/// refined on more teeth) and whose `.msh` is the one its manifest lists:
 /// its `.msh`, `.vtu`, `.report.json` and `.inputs.json` are copied into
 /// `dir`. Returns the folder copied from and its manifest entry.
 pub fn mesh(
