@@ -7,7 +7,17 @@ use geometry::scene::{LoadedScene, Scene};
 
 /// The default scene with its design path made absolute and `extra` appended.
 fn scene_with(extra: &str) -> Result<LoadedScene, String> {
-    let text = std::fs::read_to_string(common::reference("scenes/default.toml")).unwrap();
+    scene_edited(&[], extra)
+}
+
+/// The default scene with each `(from, to)` of `edits` replaced in its
+/// text, its design path made absolute and `extra` appended.
+fn scene_edited(edits: &[(&str, &str)], extra: &str) -> Result<LoadedScene, String> {
+    let mut text = std::fs::read_to_string(common::reference("scenes/default.toml")).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from} not in the scene");
+        text = text.replace(from, to);
+    }
     let design = common::white_paper_path();
     let text = text.replace(
         "design = \"../white_paper_20x43.toml\"",
@@ -366,23 +376,15 @@ fn a_static_against_dynamic_te_blank_the_scene_does_not_analyse_is_refused_namin
     // With both wheel blanks analysed the section loads.
     assert!(scene_with(ste_dte).is_ok());
     // With the standard wheel only, the lightweight comparison is refused.
-    let text = std::fs::read_to_string(common::reference("scenes/default.toml")).unwrap();
-    let text = text
-        .replace(
+    let e = scene_edited(
+        &[(
             "wheel = [\"standard\", \"lightweight\"]",
             "wheel = [\"standard\"]",
-        )
-        .replace(
-            "design = \"../white_paper_20x43.toml\"",
-            &format!(
-                "design = {:?}",
-                common::white_paper_path().display().to_string()
-            ),
-        );
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("scene.toml");
-    std::fs::write(&path, format!("{text}\n{ste_dte}\n")).unwrap();
-    let e = Scene::load(&path).unwrap_err().to_string();
+        )],
+        ste_dte,
+    )
+    .err()
+    .unwrap_or_default();
     assert!(
         e.contains("multibody.ste_dte.wheel_blanks[0]") && e.contains("blanks.wheel"),
         "{e}"

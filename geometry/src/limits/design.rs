@@ -36,6 +36,19 @@ const fn depth(field: &'static str) -> Limit {
     .why("usual: about 1 and 1.25 modules; strongly shifted pinions reach 2")
 }
 
+/// A length of the machine settings in (0, `scale` mean cone distances].
+const fn settings_length(field: &'static str, scale: f64) -> Limit {
+    Limit::design(
+        field,
+        "mm",
+        real(
+            open(0.0),
+            closed_at(scale, "pair.mean_cone_distance_mm", 0.0),
+        )
+        .computed(),
+    )
+}
+
 /// A machine offset (sliding base, machine centre to back, blank
 /// offset): at most half the mean cone distance either way.
 const fn offset(field: &'static str) -> Limit {
@@ -225,14 +238,9 @@ limits! {
         derived("both flanks generated regularly down to the fillet limit at toe, mean and heel (checked when the flanks are built)"),
     )
     .why("undercut");
-    SETTINGS_BLADE_RADIUS = Limit::design(
+    SETTINGS_BLADE_RADIUS = settings_length(
         "machine_settings.<member>.<flank>.blade_radius_mm",
-        "mm",
-        real(
-            open(0.0),
-            closed_at(MAX_CUTTER_RADIUS_CONE_DISTANCES, "pair.mean_cone_distance_mm", 0.0),
-        )
-        .computed(),
+        MAX_CUTTER_RADIUS_CONE_DISTANCES,
     )
     .why("the largest cutter radius of `cutter.radius_mm`");
     SETTINGS_BLADE_ANGLE = within("machine_settings.<member>.<flank>.blade_angle_deg", "deg", 0.0, 45.0);
@@ -242,14 +250,9 @@ limits! {
         real(closed(-100.0), closed(100.0)).lie_in(""),
     )
     .why("a blade profile radius of at least 10 mm");
-    SETTINGS_RADIAL = Limit::design(
+    SETTINGS_RADIAL = settings_length(
         "machine_settings.<member>.<flank>.radial_setting_mm",
-        "mm",
-        real(
-            open(0.0),
-            closed_at(MAX_RADIAL_SETTING_CONE_DISTANCES, "pair.mean_cone_distance_mm", 0.0),
-        )
-        .computed(),
+        MAX_RADIAL_SETTING_CONE_DISTANCES,
     )
     .why("the mean point lies within the cone distance plus the largest cutter radius");
     SETTINGS_CRADLE_ANGLE = within("machine_settings.<member>.<flank>.cradle_angle_deg", "deg", -360.0, 360.0);

@@ -67,17 +67,17 @@ pub struct SettingsDeviation {
     pub topography: TopographyDesign,
 }
 
+/// `n` equally spaced nodes over [0, 1] (n ≥ 2).
+pub fn unit_nodes(n: usize) -> Vec<f64> {
+    (0..n).map(|i| i as f64 / (n - 1) as f64).collect()
+}
+
 /// The settings' deviation on the side of `fp`.
 pub fn deviation(
     fp: &FlankPair,
     settings: &MachineSettings,
 ) -> Result<SettingsDeviation, GeometryError> {
-    let profile: Vec<f64> = (0..PROFILE_NODES)
-        .map(|i| i as f64 / (PROFILE_NODES - 1) as f64)
-        .collect();
-    let face: Vec<f64> = (0..FACE_NODES)
-        .map(|j| j as f64 / (FACE_NODES - 1) as f64)
-        .collect();
+    let (profile, face) = (unit_nodes(PROFILE_NODES), unit_nodes(FACE_NODES));
     let flanks = [&fp.pinion, &fp.wheel];
     let cut_error = |k: usize, xi: f64, eta: f64| {
         let m = flanks[k].gen.member;

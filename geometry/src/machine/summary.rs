@@ -14,7 +14,7 @@
 use crate::design::Member;
 use crate::error::GeometryError;
 use crate::generation::Side;
-use crate::machine::deviation::member_grid;
+use crate::machine::deviation::{member_grid, unit_nodes};
 use crate::machine::settings::{side_of, FlankSettingsDesign, MachineSettings};
 use crate::machine::synthesis::{synthesize, SideSynthesis};
 use crate::pair::PairGeometry;
@@ -88,12 +88,7 @@ pub fn settings_out(g: &PairGeometry) -> Result<SettingsOut, GeometryError> {
             (s.settings, SettingsSource::LocalSynthesis, s.sides)
         }
     };
-    let profile: Vec<f64> = (0..SUMMARY_PROFILE)
-        .map(|i| i as f64 / (SUMMARY_PROFILE - 1) as f64)
-        .collect();
-    let face: Vec<f64> = (0..SUMMARY_FACE)
-        .map(|j| j as f64 / (SUMMARY_FACE - 1) as f64)
-        .collect();
+    let (profile, face) = (unit_nodes(SUMMARY_PROFILE), unit_nodes(SUMMARY_FACE));
     let data = &g.data;
     let flank = |m: Member, concave: bool| -> Result<FlankSettingsSummary, GeometryError> {
         let side: Side = side_of(m, concave);
