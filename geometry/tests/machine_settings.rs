@@ -6,7 +6,7 @@
 
 mod common;
 
-use geometry::design::Member;
+use geometry::design::{Member, PairData};
 use geometry::generation::{MemberFrame, Side};
 use geometry::machine::deviation::{deviation, normal_offset};
 use geometry::machine::kinematics::Machine;
@@ -169,49 +169,63 @@ fn general(s: &FlankSettings) -> FlankSettings {
     }
 }
 
+/// Every flank's settings moved away from the crown generation's
+/// ([`general`]), with its side and member.
+fn general_flanks(p: &PairData) -> Vec<(Side, Member, FlankSettings)> {
+    let base = MachineSettings::of_crown_generation(p);
+    [Side::Drive, Side::Coast]
+        .into_iter()
+        .flat_map(|side| {
+            [Member::Pinion, Member::Wheel].map(|m| (side, m, general(base.flank(m, side))))
+        })
+        .collect()
+}
+
+/// The cutter's angle about its axis at the mean point (the pitch line's
+/// point at the mean cone distance).
+fn mean_angle(machine: &Machine, p: &PairData) -> f64 {
+    machine
+        .tool_parameters(&Vector3::new(p.mean_cone_distance, 0.0, 0.0))
+        .1
+}
+
 #[test]
 fn a_curved_blades_normal_is_normal_to_its_surface_and_it_bends_by_its_curvature() {
     // The cutter surface's normal is perpendicular to its difference
     // tangents, and the blade's points leave the straight blade along its
     // normal by κ s²/2 (s the length along the straight blade).
     let p = common::white_paper_conjugate();
-    let base = MachineSettings::of_crown_generation(&p);
-    for side in [Side::Drive, Side::Coast] {
-        for m in [Member::Pinion, Member::Wheel] {
-            let curved = general(base.flank(m, side));
-            let straight = FlankSettings {
-                blade_profile_curvature: 0.0,
-                ..curved
-            };
-            let (mc, ms) = (
-                Machine::new(&curved, m, side),
-                Machine::new(&straight, m, side),
+    for (side, m, curved) in general_flanks(&p) {
+        let straight = FlankSettings {
+            blade_profile_curvature: 0.0,
+            ..curved
+        };
+        let (mc, ms) = (
+            Machine::new(&curved, m, side),
+            Machine::new(&straight, m, side),
+        );
+        let theta = mean_angle(&mc, &p);
+        for zeta in [-4e-3, -1e-3, 0.0, 2e-3, 5e-3] {
+            let (x, n) = mc.tool(zeta, theta);
+            let h = 1e-6;
+            let tz = mc.tool(zeta + h, theta).0 - mc.tool(zeta - h, theta).0;
+            let tt = mc.tool(zeta, theta + h).0 - mc.tool(zeta, theta - h).0;
+            assert!(
+                n.dot(&tz.normalize()).abs() < 1e-8,
+                "{side:?} {m:?} ζ {zeta}"
             );
-            let theta = mc
-                .tool_parameters(&Vector3::new(p.mean_cone_distance, 0.0, 0.0))
-                .1;
-            for zeta in [-4e-3, -1e-3, 0.0, 2e-3, 5e-3] {
-                let (x, n) = mc.tool(zeta, theta);
-                let h = 1e-6;
-                let tz = mc.tool(zeta + h, theta).0 - mc.tool(zeta - h, theta).0;
-                let tt = mc.tool(zeta, theta + h).0 - mc.tool(zeta, theta - h).0;
-                assert!(
-                    n.dot(&tz.normalize()).abs() < 1e-8,
-                    "{side:?} {m:?} ζ {zeta}"
-                );
-                assert!(
-                    n.dot(&tt.normalize()).abs() < 1e-8,
-                    "{side:?} {m:?} ζ {zeta}"
-                );
-                let (xs, ns) = ms.tool(zeta, theta);
-                let s = zeta / curved.blade_angle.cos();
-                let bend = 0.5 * curved.blade_profile_curvature * s * s;
-                assert!(
-                    ((x - xs).norm() - bend).abs() < 1e-12 && (x - xs).cross(&ns).norm() < 1e-12,
-                    "{side:?} {m:?} ζ {zeta}: {:e} against κ s²/2 = {bend:e}",
-                    (x - xs).norm()
-                );
-            }
+            assert!(
+                n.dot(&tt.normalize()).abs() < 1e-8,
+                "{side:?} {m:?} ζ {zeta}"
+            );
+            let (xs, ns) = ms.tool(zeta, theta);
+            let s = zeta / curved.blade_angle.cos();
+            let bend = 0.5 * curved.blade_profile_curvature * s * s;
+            assert!(
+                ((x - xs).norm() - bend).abs() < 1e-12 && (x - xs).cross(&ns).norm() < 1e-12,
+                "{side:?} {m:?} ζ {zeta}: {:e} against κ s²/2 = {bend:e}",
+                (x - xs).norm()
+            );
         }
     }
 }
@@ -254,42 +268,38 @@ fn a_generated_flank_is_the_envelope_of_the_cutters_cone() {
     // (s ≥ 0 along the outward normal), touching it at that angle: the
     // flank is the envelope, and no other cradle angle cuts deeper.
     let p = common::white_paper_conjugate();
-    let base = MachineSettings::of_crown_generation(&p);
-    for side in [Side::Drive, Side::Coast] {
-        for m in [Member::Pinion, Member::Wheel] {
-            let machine = Machine::new(&general(base.flank(m, side)), m, side);
-            let blade = if m == Member::Pinion { -1.0 } else { 1.0 };
-            for (zeta, dtheta) in [(0.0, 0.0), (2e-3, 0.05), (-2e-3, -0.08)] {
-                let zeta = blade * zeta;
-                // The cone point at the mean point's angle, turned by dθ.
-                let x0 = Vector3::new(p.mean_cone_distance, 0.0, 0.0);
-                let (_, theta0) = machine.tool_parameters(&x0);
-                let cut = machine.cut(zeta, theta0 + dtheta, 0.0).unwrap();
-                let (g, n) = (cut.pos, cut.normal);
-                let s_at = |dphi: f64| {
-                    cone_on_line(
-                        &machine,
-                        cut.cradle_roll + dphi,
-                        (zeta, theta0 + dtheta),
-                        g,
-                        n,
-                    )
-                };
-                let touch = s_at(0.0);
-                assert!(
-                    touch.abs() < 1e-12,
-                    "{side:?} {m:?}: s = {touch:e} m at the cut"
-                );
-                for k in 1..=10 {
-                    let dphi = 0.002 * k as f64;
-                    for sgn in [1.0, -1.0] {
-                        let s = s_at(sgn * dphi);
-                        assert!(
+    for (side, m, settings) in general_flanks(&p) {
+        let machine = Machine::new(&settings, m, side);
+        let blade = if m == Member::Pinion { -1.0 } else { 1.0 };
+        for (zeta, dtheta) in [(0.0, 0.0), (2e-3, 0.05), (-2e-3, -0.08)] {
+            let zeta = blade * zeta;
+            // The cone point at the mean point's angle, turned by dθ.
+            let theta0 = mean_angle(&machine, &p);
+            let cut = machine.cut(zeta, theta0 + dtheta, 0.0).unwrap();
+            let (g, n) = (cut.pos, cut.normal);
+            let s_at = |dphi: f64| {
+                cone_on_line(
+                    &machine,
+                    cut.cradle_roll + dphi,
+                    (zeta, theta0 + dtheta),
+                    g,
+                    n,
+                )
+            };
+            let touch = s_at(0.0);
+            assert!(
+                touch.abs() < 1e-12,
+                "{side:?} {m:?}: s = {touch:e} m at the cut"
+            );
+            for k in 1..=10 {
+                let dphi = 0.002 * k as f64;
+                for sgn in [1.0, -1.0] {
+                    let s = s_at(sgn * dphi);
+                    assert!(
                             s > 0.0,
                             "{side:?} {m:?} ζ {zeta}: the cone at δφ_c = {:+.3} rad cuts {s:e} m into the flank",
                             sgn * dphi
                         );
-                    }
                 }
             }
         }
