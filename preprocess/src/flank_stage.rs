@@ -415,14 +415,18 @@ fn write_settings(out: &Path, s: &SettingsOut) -> Result<(), FlankStageError> {
     struct Table {
         machine_settings: geometry::machine::settings::MachineSettingsDesign,
     }
-    let source = match s.source {
-        SettingsSource::DesignFile => "as the design file gives them",
-        SettingsSource::LocalSynthesis => {
-            "by local synthesis of the pinion from the design's ease-off (wheel: the crown generation's settings); see summary.json for how closely"
-        }
+    let (source, paste) = match s.source {
+        SettingsSource::DesignFile => (
+            "as the design file gives them",
+            "Paste into a design file to cut these flanks",
+        ),
+        SettingsSource::LocalSynthesis => (
+            "by local synthesis of the pinion from the design's ease-off (wheel: the crown generation's settings); see summary.json for how closely",
+            "Paste into a design file in place of its [ease_off] (the settings carry it)",
+        ),
     };
     let head = format!(
-        "# Machine settings of the four flanks, {source}.\n# Frames and signs: docs/machine_settings.md. Paste into a design file to cut these flanks.\n\n"
+        "# Machine settings of the four flanks, {source}.\n# Frames and signs: docs/machine_settings.md. {paste}.\n\n"
     );
     let table = Table {
         machine_settings: s.settings.to_design(),
