@@ -34,7 +34,9 @@
 //!   f(φ_c) = N_f · (e_z × X_f) − φ_w′(φ_c) N_f · (a × (X_f − A)) = 0,
 //!
 //! solved for φ_c by Newton (bracketed where Newton strays). The work's
-//! point is X_m = R_z(−φ_w) Mᵀ (X_f − A), M the work's axes. A Formate
+//! point is X_m = R_z(δ − φ_w) Mᵀ (X_f − A), M the work's axes and δ a
+//! rotation of the cut flank about the work axis ([`Machine::indexed`],
+//! 0 unless set). A Formate
 //! flank (not generated) is the cutter's imprint with cradle and work at
 //! rest: φ_c = φ_w = 0, every cone point.
 //!
