@@ -169,7 +169,7 @@ pub struct TopographyDesign {
     pub profile: Vec<f64>,
     /// Strictly increasing face coordinates in [0, 1].
     pub face: Vec<f64>,
-    /// `deviation_um[i][j]` at (profile[i], face[j]).
+    /// `deviation_um[i][j]` at (`profile[i]`, `face[j]`).
     pub deviation_um: Vec<Vec<f64>>,
 }
 

@@ -49,7 +49,7 @@ const STEP_THETA: f64 = 1e-6;
 /// One member's deviation on the grid.
 #[derive(Debug, Clone, Serialize)]
 pub struct MemberDeviation {
-    /// `deviation_um[i][j]` at (profile[i], face[j]), after the rotation
+    /// `deviation_um[i][j]` at (`profile[i]`, `face[j]`), after the rotation
     /// is removed, µm.
     pub deviation_um: Vec<Vec<f64>>,
     /// The rotation about the member's axis removed, µrad.

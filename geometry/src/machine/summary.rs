@@ -49,7 +49,7 @@ pub struct FlankSettingsSummary {
 pub struct DeviationGrid {
     pub profile: Vec<f64>,
     pub face: Vec<f64>,
-    /// `deviation_um[i][j]` at (profile[i], face[j]), material removed
+    /// `deviation_um[i][j]` at (`profile[i]`, `face[j]`), material removed
     /// positive, µm.
     pub deviation_um: Vec<Vec<f64>>,
 }

@@ -40,7 +40,7 @@ fn chebyshev<D: Scalar>(x: D) -> [D; DEGREE + 1] {
 }
 
 impl ChebyshevSurface {
-    /// Fits values `f[i][j]` at (profile[i], face[j]); returns the surface
+    /// Fits values `f[i][j]` at (`profile[i]`, `face[j]`); returns the surface
     /// and its largest residual at the nodes. None where the grid has too
     /// few nodes for the degree.
     pub fn fit(profile: &[f64], face: &[f64], f: &[Vec<f64>]) -> Option<(Self, f64)> {
