@@ -443,6 +443,7 @@ impl Scene {
         let text = InputError::read_text(path)?;
         let scene = Scene::parse(&text, path)?;
         scene.check(path)?;
+        scene.check_given_run_up_blanks(path, &text)?;
         let design_path = path.parent().unwrap_or(Path::new(".")).join(&scene.design);
         let pair = load_pair(&design_path)?;
         scene.check_sizes(path, &pair)?;

@@ -344,6 +344,36 @@ impl Scene {
         Ok(())
     }
 
+    /// A `multibody.runup_wheel_blanks` the scene file gives (`text`) names
+    /// only blanks of `blanks.wheel`. The default list (the standard
+    /// wheel) is not checked: a scene of the lightweight wheel alone then
+    /// runs no run-up, as before.
+    pub fn check_given_run_up_blanks(&self, path: &Path, text: &str) -> Result<(), InputError> {
+        let given = toml::from_str::<toml::Value>(text).ok().is_some_and(|v| {
+            v.get("multibody")
+                .and_then(|m| m.get("runup_wheel_blanks"))
+                .is_some()
+        });
+        if !given {
+            return Ok(());
+        }
+        let list = &self.multibody.runup_wheel_blanks;
+        if let Some((i, wb)) = list
+            .iter()
+            .enumerate()
+            .find(|(_, wb)| !self.blanks.wheel.contains(wb))
+        {
+            let l = &mbl::RUNUP_BLANK_IN_SCENE;
+            return Err(l.refuse(
+                path,
+                &format!("multibody.runup_wheel_blanks[{i}]"),
+                format!("\"{}\"", wb.name()),
+                "must be one of blanks.wheel (a blank the scene does not analyse has no stiffness files)".into(),
+            ));
+        }
+        Ok(())
+    }
+
     /// `[blank_dimensions]` and `[blanks]`.
     fn check_blanks(&self, path: &Path) -> Result<(), InputError> {
         let bd = &self.blank_dimensions;

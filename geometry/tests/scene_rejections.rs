@@ -403,3 +403,25 @@ fn web_holes_wider_than_the_lightweight_web_are_refused_naming_the_field() {
     // The default holes (85 % of the web's height) load.
     assert!(scene_with("").is_ok());
 }
+
+#[test]
+fn a_run_up_blank_the_scene_does_not_analyse_is_refused_where_the_scene_names_it() {
+    let wheel_only = (
+        "wheel = [\"standard\", \"lightweight\"]",
+        "wheel = [\"lightweight\"]",
+    );
+    // The default list (the standard wheel) is not checked: a scene of the
+    // lightweight wheel alone loads and runs no run-up.
+    assert!(scene_edited(&[wheel_only], "").is_ok());
+    // Named by the scene, it is refused.
+    let e = scene_edited(
+        &[wheel_only],
+        "[multibody]\nrunup_wheel_blanks = [\"standard\"]",
+    )
+    .err()
+    .unwrap_or_default();
+    assert!(
+        e.contains("multibody.runup_wheel_blanks[0]") && e.contains("blanks.wheel"),
+        "{e}"
+    );
+}

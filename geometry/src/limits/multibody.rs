@@ -46,6 +46,12 @@ limits! {
         words("each blank once"),
     )
     .why("its runs and files are named after it");
+    RUNUP_BLANK_IN_SCENE = Limit::scene(
+        "multibody.runup_wheel_blanks[i]",
+        "",
+        words("one of `blanks.wheel`, where the scene gives the list"),
+    )
+    .why("a blank the scene does not analyse has no stiffness files to run on");
     DAMPING_RATIO = within("multibody.damping_ratio", "", 0.0, 10.0);
     RHO_INF = within("multibody.rho_inf", "", 0.0, 1.0);
     TE_TOLERANCE = within("multibody.te_tolerance_urad", "µrad", MIN_TE_TOLERANCE_URAD, 100.0)
