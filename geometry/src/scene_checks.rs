@@ -259,20 +259,12 @@ impl Scene {
         }
         if let Some(sd) = &mb.ste_dte {
             sd.check(path)?;
-            if let Some((i, wb)) = sd
-                .wheel_blanks
-                .iter()
-                .enumerate()
-                .find(|(_, wb)| !self.blanks.wheel.contains(wb))
-            {
-                let l = &mbl::STE_DTE_BLANK_IN_SCENE;
-                return Err(l.refuse(
-                    path,
-                    &format!("multibody.ste_dte.wheel_blanks[{i}]"),
-                    format!("\"{}\"", wb.name()),
-                    "must be one of blanks.wheel (a blank the scene does not analyse has no stiffness files)".into(),
-                ));
-            }
+            self.analysed_wheel_blanks(
+                path,
+                &mbl::STE_DTE_BLANK_IN_SCENE,
+                "multibody.ste_dte.wheel_blanks",
+                &sd.wheel_blanks,
+            )?;
         }
         if mb.rattle_time_s > 0.0 && !mb.coast_contact {
             let l = &mbl::RATTLE_NEEDS_COAST;
@@ -357,21 +349,36 @@ impl Scene {
         if !given {
             return Ok(());
         }
-        let list = &self.multibody.runup_wheel_blanks;
-        if let Some((i, wb)) = list
+        self.analysed_wheel_blanks(
+            path,
+            &mbl::RUNUP_BLANK_IN_SCENE,
+            "multibody.runup_wheel_blanks",
+            &self.multibody.runup_wheel_blanks,
+        )
+    }
+
+    /// Every blank of `list` (the field `field`) one of `blanks.wheel`,
+    /// else refused with `l` naming the first other one.
+    fn analysed_wheel_blanks(
+        &self,
+        path: &Path,
+        l: &Limit,
+        field: &str,
+        list: &[Blank],
+    ) -> Result<(), InputError> {
+        match list
             .iter()
             .enumerate()
             .find(|(_, wb)| !self.blanks.wheel.contains(wb))
         {
-            let l = &mbl::RUNUP_BLANK_IN_SCENE;
-            return Err(l.refuse(
+            Some((i, wb)) => Err(l.refuse(
                 path,
-                &format!("multibody.runup_wheel_blanks[{i}]"),
+                &format!("{field}[{i}]"),
                 format!("\"{}\"", wb.name()),
                 "must be one of blanks.wheel (a blank the scene does not analyse has no stiffness files)".into(),
-            ));
+            )),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     /// `[blank_dimensions]` and `[blanks]`.

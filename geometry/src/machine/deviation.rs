@@ -79,40 +79,27 @@ pub fn deviation(
 ) -> Result<SettingsDeviation, GeometryError> {
     let (profile, face) = (unit_nodes(PROFILE_NODES), unit_nodes(FACE_NODES));
     let flanks = [&fp.pinion, &fp.wheel];
-    let cut_error = |k: usize, xi: f64, eta: f64| {
-        let m = flanks[k].gen.member;
-        GeometryError::SettingsCut {
-            member: m.name(),
-            flank: fp.side.flank_name(m),
-            xi,
-            eta,
-        }
-    };
-    // The conjugate points of both members at every node.
-    let mut points = Vec::with_capacity(PROFILE_NODES * FACE_NODES);
+    // The conjugate points of both members at every node, row-major.
+    let mut points: [Vec<RawPoint<f64>>; 2] = Default::default();
     for &eta in &profile {
         for &xi in &face {
             let (l, d) = fp.pinion.bounds.from_unit(xi, eta);
             let uv = fp.pinion.solve_ld(l, d)?;
-            points.push(flanks.map(|f| f.gen.eval(uv[0], uv[1])));
+            for (k, f) in flanks.iter().enumerate() {
+                points[k].push(f.gen.eval(uv[0], uv[1]));
+            }
         }
     }
     let mean = (PROFILE_NODES / 2) * FACE_NODES + FACE_NODES / 2;
     let mut members = Vec::with_capacity(2);
     for (k, m) in [Member::Pinion, Member::Wheel].into_iter().enumerate() {
         let base = Machine::new(settings.flank(m, fp.side), m, fp.side);
-        let machine = indexed_at(&base, &points[mean][k]).ok_or_else(|| cut_error(k, 0.5, 0.5))?;
-        let mut rows = vec![vec![0.0; FACE_NODES]; PROFILE_NODES];
-        for (n, pair) in points.iter().enumerate() {
-            let (i, j) = (n / FACE_NODES, n % FACE_NODES);
-            let t = normal_offset(&machine, &pair[k])
-                .ok_or_else(|| cut_error(k, face[j], profile[i]))?;
-            rows[i][j] = -t * 1e6;
-        }
-        members.push(MemberDeviation {
-            deviation_um: rows,
-            removed_rotation_urad: -machine.index() * 1e6,
-        });
+        members.push(member_deviation(
+            &base,
+            &points[k][mean],
+            &points[k],
+            (&profile, &face),
+        )?);
     }
     let wheel = members.pop().expect("two members");
     let pinion = members.pop().expect("two members");
@@ -173,27 +160,47 @@ pub fn member_grid(
     face: &[f64],
 ) -> Result<MemberDeviation, GeometryError> {
     let (m, side) = (flank.gen.member, flank.gen.side);
-    let error = |xi: f64, eta: f64| GeometryError::SettingsCut {
-        member: m.name(),
-        flank: side.flank_name(m),
-        xi,
-        eta,
-    };
     let point = |xi: f64, eta: f64| -> Result<RawPoint<f64>, GeometryError> {
         let (l, d) = flank.bounds.from_unit(xi, eta);
         let uv = flank.solve_ld(l, d)?;
         Ok(flank.gen.eval(uv[0], uv[1]))
     };
-    let machine =
-        indexed_at(&Machine::new(s, m, side), &point(0.5, 0.5)?).ok_or_else(|| error(0.5, 0.5))?;
-    let mut rows = Vec::with_capacity(profile.len());
+    let mut points = Vec::with_capacity(profile.len() * face.len());
     for &eta in profile {
-        let mut row = Vec::with_capacity(face.len());
         for &xi in face {
-            let t = normal_offset(&machine, &point(xi, eta)?).ok_or_else(|| error(xi, eta))?;
-            row.push(-t * 1e6);
+            points.push(point(xi, eta)?);
         }
-        rows.push(row);
+    }
+    member_deviation(
+        &Machine::new(s, m, side),
+        &point(0.5, 0.5)?,
+        &points,
+        (profile, face),
+    )
+}
+
+/// The deviation of the flank `base` cuts at the conjugate `points`
+/// (row-major on the `(profile, face)` grid), the cut flank turned so that
+/// it passes through `mean`; an error naming the member, the flank and the
+/// grid node where it is not met.
+fn member_deviation(
+    base: &Machine,
+    mean: &RawPoint<f64>,
+    points: &[RawPoint<f64>],
+    (profile, face): (&[f64], &[f64]),
+) -> Result<MemberDeviation, GeometryError> {
+    let error = |xi: f64, eta: f64| GeometryError::SettingsCut {
+        member: base.member().name(),
+        flank: base.side().flank_name(base.member()),
+        xi,
+        eta,
+    };
+    let machine = indexed_at(base, mean).ok_or_else(|| error(0.5, 0.5))?;
+    let mut rows = vec![Vec::with_capacity(face.len()); profile.len()];
+    for (n, p) in points.iter().enumerate() {
+        let (i, j) = (n / face.len(), n % face.len());
+        let t = normal_offset(&machine, p).ok_or_else(|| error(face[j], profile[i]))?;
+        rows[i].push(-t * 1e6);
     }
     Ok(MemberDeviation {
         deviation_um: rows,

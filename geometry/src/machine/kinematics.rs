@@ -59,6 +59,8 @@ const SCAN_STEP: f64 = 0.01;
 #[derive(Debug, Clone, Copy)]
 pub struct Machine {
     pub settings: FlankSettings,
+    member: Member,
+    side: Side,
     /// σ: +1 drive side, −1 coast side.
     slope: f64,
     /// +1 when the work's outward normal is N, else −1.
@@ -100,6 +102,8 @@ impl Machine {
         let tilt = Rotation3::from_axis_angle(&about, s.cutter_tilt).into_inner();
         Machine {
             settings: s,
+            member: m,
+            side,
             slope: match side {
                 Side::Drive => 1.0,
                 Side::Coast => -1.0,
@@ -122,6 +126,16 @@ impl Machine {
     pub fn indexed(mut self, index: f64) -> Self {
         self.index = index;
         self
+    }
+
+    /// The member this machine cuts.
+    pub fn member(&self) -> Member {
+        self.member
+    }
+
+    /// The side of the flank it cuts.
+    pub fn side(&self) -> Side {
+        self.side
     }
 
     /// The rotation of [`Machine::indexed`], rad.

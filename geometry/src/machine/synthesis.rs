@@ -44,15 +44,10 @@ pub const STENCIL: f64 = 0.01;
 /// Gauss–Newton iterations at most.
 const MAX_ITERATIONS: usize = 30;
 
-/// The settings varied, with the change each is scaled by.
-const VARIABLES: [(&str, f64); 6] = [
-    ("blade_angle", 1e-3),
-    ("blade_profile_curvature", 0.1),
-    ("radial_setting", 1e-4),
-    ("blade_radius", 1e-3),
-    ("modified_roll_2c", 1e-2),
-    ("cradle_angle", 1e-4),
-];
+/// The change each varied setting is scaled by, in the order [`varied`]
+/// applies them: blade angle (rad), blade profile curvature (1/m), radial
+/// setting (m), blade radius (m), modified roll 2C, cradle angle (rad).
+const SCALES: [f64; 6] = [1e-3, 0.1, 1e-4, 1e-3, 1e-2, 1e-4];
 
 /// One pinion flank's synthesis.
 #[derive(Debug, Clone, Serialize)]
@@ -133,7 +128,7 @@ fn derivatives(f: &[f64], unit: f64) -> [f64; 6] {
 /// The pinion settings `base` changed by the scaled variables `x`.
 fn varied(base: &FlankSettings, x: &[f64]) -> FlankSettings {
     let mut s = *base;
-    let v = |i: usize| x[i] * VARIABLES[i].1;
+    let v = |i: usize| x[i] * SCALES[i];
     s.blade_angle += v(0);
     s.blade_profile_curvature += v(1);
     s.radial_setting += v(2);
@@ -173,13 +168,13 @@ pub fn synthesize(g: &PairGeometry) -> Result<Synthesis, GeometryError> {
             Some(DVector::from_iterator(6, (0..6).map(|i| d[i] - wanted[i])))
         };
         let scale = wanted.iter().fold(1.0f64, |a, w| a.max(w.abs()));
-        let mut x = vec![0.0; VARIABLES.len()];
+        let mut x = vec![0.0; SCALES.len()];
         let mut r = residual(&x).ok_or_else(failed)?;
         let mut iterations = 0;
         while r.amax() > 1e-9 * scale && iterations < MAX_ITERATIONS {
             iterations += 1;
-            let mut jac = DMatrix::zeros(6, VARIABLES.len());
-            for k in 0..VARIABLES.len() {
+            let mut jac = DMatrix::zeros(6, SCALES.len());
+            for k in 0..SCALES.len() {
                 let (mut xp, mut xm) = (x.clone(), x.clone());
                 xp[k] += 0.5;
                 xm[k] -= 0.5;
@@ -188,7 +183,7 @@ pub fn synthesize(g: &PairGeometry) -> Result<Synthesis, GeometryError> {
             }
             // Each setting weighted by its effect (its column's norm), so
             // that the minimum-norm step moves the settings that act.
-            let norms: Vec<f64> = (0..VARIABLES.len())
+            let norms: Vec<f64> = (0..SCALES.len())
                 .map(|k| jac.column(k).norm().max(1e-300))
                 .collect();
             for (k, n) in norms.iter().enumerate() {
