@@ -77,6 +77,38 @@ impl TetMesh {
         adj
     }
 
+    /// The nodes on the mesh's boundary, ascending: the corner and mid-edge
+    /// nodes of every face that one element only holds.
+    pub fn boundary_nodes(&self) -> Vec<usize> {
+        // Faces opposite each vertex, as corner triples with their mid-edge
+        // nodes (crate::tet10::EDGES: 4 (0,1), 5 (1,2), 6 (2,0), 7 (3,0),
+        // 8 (3,2), 9 (3,1)).
+        const FACES: [[usize; 6]; 4] = [
+            [1, 2, 3, 5, 8, 9],
+            [0, 2, 3, 6, 8, 7],
+            [0, 1, 3, 4, 9, 7],
+            [0, 1, 2, 4, 5, 6],
+        ];
+        let mut count: std::collections::HashMap<[usize; 3], (u32, [usize; 6])> =
+            std::collections::HashMap::with_capacity(2 * self.tets.len());
+        for t in &self.tets {
+            for f in FACES {
+                let nodes = f.map(|l| t[l]);
+                let mut key = [nodes[0], nodes[1], nodes[2]];
+                key.sort_unstable();
+                count.entry(key).or_insert((0, nodes)).0 += 1;
+            }
+        }
+        let mut out: Vec<usize> = count
+            .values()
+            .filter(|(c, _)| *c == 1)
+            .flat_map(|(_, n)| *n)
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
     /// The sub-mesh of the listed elements, with its nodes renumbered; returns
     /// the sub-mesh and, for each of its nodes, the index in `self`.
     pub fn submesh(&self, elements: &[usize]) -> (TetMesh, Vec<usize>) {

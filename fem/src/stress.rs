@@ -136,6 +136,88 @@ pub fn nodal_stress_functionals(
     rows
 }
 
+/// The recovered stress ([`nodal_stress`]) at a few nodes only, from the
+/// displacements of the elements that hold them: what a body whose field
+/// is known only where asked for (pruned backward solves) needs. Built
+/// once per node set; [`NodalStressAt::support`] names the nodes whose
+/// displacements [`NodalStressAt::eval`] reads.
+#[derive(Debug, Clone)]
+pub struct NodalStressAt {
+    nodes: Vec<usize>,
+    /// Per node: (element, the node's local index in it, element volume).
+    holders: Vec<Vec<(usize, usize, f64)>>,
+}
+
+impl NodalStressAt {
+    /// The holding elements of each of `nodes` in `mesh`.
+    pub fn new(mesh: &TetMesh, nodes: &[usize]) -> NodalStressAt {
+        let at: std::collections::HashMap<usize, usize> =
+            nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
+        let mut holders = vec![Vec::new(); nodes.len()];
+        for (e, tet) in mesh.tets.iter().enumerate() {
+            for (l, n) in tet.iter().enumerate() {
+                if let Some(&k) = at.get(n) {
+                    holders[k].push((e, l, tet10::volume(&mesh.element(e)).abs()));
+                }
+            }
+        }
+        NodalStressAt {
+            nodes: nodes.to_vec(),
+            holders,
+        }
+    }
+
+    /// The nodes asked for, in their order.
+    pub fn nodes(&self) -> &[usize] {
+        &self.nodes
+    }
+
+    /// The distinct nodes of every holding element, ascending.
+    pub fn support(&self, mesh: &TetMesh) -> Vec<usize> {
+        let mut v: Vec<usize> = self
+            .holders
+            .iter()
+            .flatten()
+            .flat_map(|&(e, _, _)| mesh.tets[e])
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+
+    /// The recovered stress at each node, `u(n)` the displacement of
+    /// support node n (zeros for a node of no element).
+    pub fn eval(
+        &self,
+        mesh: &TetMesh,
+        material: &Material,
+        u: impl Fn(usize) -> [f64; 3],
+    ) -> Vec<Stress> {
+        let refs = tet10::reference_nodes();
+        let (lambda, mu) = material.lame();
+        self.holders
+            .iter()
+            .map(|hs| {
+                let mut sum = [0.0; 6];
+                let mut w = 0.0;
+                for &(e, l, v) in hs {
+                    let ue = mesh.tets[e].map(&u);
+                    let s = hooke(tet10::strain(&mesh.element(e), &ue, refs[l]), lambda, mu);
+                    for c in 0..6 {
+                        sum[c] += v * s[c];
+                    }
+                    w += v;
+                }
+                if w > 0.0 {
+                    sum.map(|c| c / w)
+                } else {
+                    [0.0; 6]
+                }
+            })
+            .collect()
+    }
+}
+
 /// Principal stresses σ₁ ≥ σ₂ ≥ σ₃ (eigenvalues of the stress tensor).
 pub fn principal(s: Stress) -> [f64; 3] {
     let m = nalgebra::Matrix3::new(s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]);

@@ -272,6 +272,71 @@ fn stress_functionals_give_the_recovered_stress_of_any_displacement() {
     }
 }
 
+/// The stress at a few nodes from their holding elements' displacements
+/// only equals `nodal_stress` of the whole field there, and the support
+/// it reads is all it needs: displacements outside it set to NaN change
+/// nothing.
+#[test]
+fn stress_at_a_few_nodes_from_their_support_equals_the_whole_fields_recovery() {
+    let mut block = mapped_block([3, 2, 2], |q| [0.05 * q[0], 0.02 * q[1], 0.03 * q[2]]);
+    distort_interior(&mut block, 0.002, 7);
+    let mesh = &block.mesh;
+    let mut seed = 99_u64;
+    let u: Vec<f64> = (0..3 * mesh.nodes.len())
+        .map(|_| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-5
+        })
+        .collect();
+    let nodes: Vec<usize> = (0..mesh.nodes.len()).step_by(7).collect();
+    let at = stress::NodalStressAt::new(mesh, &nodes);
+    let support = at.support(mesh);
+    assert!(
+        support.len() < mesh.nodes.len(),
+        "the support is not the whole mesh"
+    );
+    let s = stress::nodal_stress(mesh, &STEEL, &u);
+    let scale = s.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+    let got = at.eval(mesh, &STEEL, |n| {
+        if support.binary_search(&n).is_ok() {
+            [u[3 * n], u[3 * n + 1], u[3 * n + 2]]
+        } else {
+            [f64::NAN; 3]
+        }
+    });
+    for (k, &n) in nodes.iter().enumerate() {
+        for c in 0..6 {
+            assert!(
+                (got[k][c] - s[n][c]).abs() <= 1e-12 * scale,
+                "node {n} component {c}: {} against {}",
+                got[k][c],
+                s[n][c]
+            );
+        }
+    }
+}
+
+/// The boundary nodes of a box's tet10 mesh are exactly its nodes on the
+/// box's six faces (interior nodes distorted, so none sits there by chance).
+#[test]
+fn boundary_nodes_of_a_box_are_its_nodes_on_the_six_faces() {
+    let mut block = mapped_block([3, 2, 4], |q| [0.03 * q[0], 0.02 * q[1], 0.04 * q[2]]);
+    distort_interior(&mut block, 0.001, 5);
+    let mesh = &block.mesh;
+    let on_face = |p: [f64; 3]| {
+        let ext = [0.03, 0.02, 0.04];
+        (0..3).any(|c| p[c].abs() < 1e-12 || (p[c] - ext[c]).abs() < 1e-12)
+    };
+    let expected: Vec<usize> = (0..mesh.nodes.len())
+        .filter(|&n| on_face(mesh.nodes[n]))
+        .collect();
+    let found = mesh.boundary_nodes();
+    assert!(found.len() < mesh.nodes.len(), "an interior exists");
+    assert_eq!(found, expected);
+}
+
 fn lame_block(n: [usize; 3]) -> (Block, Vec<f64>) {
     let (a, b, t, p) = (0.05, 0.1, 0.01, 100e6);
     let map = |q: [f64; 3]| {

@@ -7,11 +7,13 @@
 
 pub mod body_mesh;
 pub mod field_convergence;
+pub mod fillet_nodes;
 pub mod flank_stage;
 pub mod influence;
 pub mod mesh;
 pub mod mesh_stage;
 pub mod periodic_sectors;
+pub mod root_stress;
 pub mod sibling_reuse;
 pub mod solve_paths;
 pub mod stiffness_stage;

@@ -110,6 +110,44 @@ fn example_03_reference_position_matches_its_golden_output() {
         }
     }
 
+    // The fillets' stresses: a row per load in the report section, the
+    // loaded flanks' fillets in tension, the others in compression, both
+    // growing with the load; every fillet of every loaded tooth in
+    // root_stress.csv.
+    let rows = validate::report::sections::root_stress::rows(&out, &scene.scene.name).unwrap();
+    assert_eq!(rows.len(), b.loads.len());
+    for (r, l) in rows.iter().zip(&b.loads) {
+        for (member, e) in [("pinion", &r.stress.pinion), ("wheel", &r.stress.wheel)] {
+            assert!(
+                e.tension_mpa > 0.0 && e.compression_mpa < 0.0,
+                "{member} at {} N m: {e:?}",
+                l.torque_nm
+            );
+            q.push(Quantity::new(
+                format!("{}nm.{member}_root_tension_mpa", l.torque_nm),
+                e.tension_mpa,
+                "MPa",
+                REL,
+                0.0,
+            ));
+            q.push(Quantity::new(
+                format!("{}nm.{member}_root_compression_mpa", l.torque_nm),
+                e.compression_mpa,
+                "MPa",
+                REL,
+                0.0,
+            ));
+        }
+    }
+    assert!(rows[1].stress.pinion.tension_mpa > rows[0].stress.pinion.tension_mpa);
+    assert!(rows[1].stress.wheel.tension_mpa > rows[0].stress.wheel.tension_mpa);
+    let csv = std::fs::read_to_string(
+        validate::reference::reference_stage::reference_dir(&out, &scene.scene.name, "reduced")
+            .join("standard_standard/root_stress.csv"),
+    )
+    .unwrap();
+    assert!(csv.lines().count() > 2 * b.loads.len(), "{csv}");
+
     golden::check(
         &dir.join("golden.json"),
         "examples/03_reference_position: preprocess::mesh_stage::run (reduced level) then validate::reference::reference_stage::run at the first position of examples/03_reference_position/scene.toml (test validate/tests/example_03_reference_position.rs)",

@@ -8,6 +8,7 @@
 //! - [`body_compliance`] (full solves, the check) and [`path_compliance`]
 //!   (forward solves on the contact nodes' factor paths): a body's
 //!   condensed compliance;
+//! - [`reference_root_stress`]: the fillets' stresses per load and position;
 //! - [`reference_ltca`]: one position, all loads; [`reference_stage`]: the
 //!   `validate reference` sweep with its cache, [`reference_blank_pair`] one
 //!   blank pair of it.
@@ -22,5 +23,6 @@ pub mod reference_blank_pair;
 pub mod reference_ltca;
 pub mod reference_options;
 pub mod reference_outputs;
+pub mod reference_root_stress;
 pub mod reference_stage;
 pub mod reference_summary;

@@ -43,19 +43,20 @@ pub struct PathCompliance {
 impl PathCompliance {
     /// Assembles and factors the body with the `fixed` dofs (3 · node +
     /// component) held at zero, and keeps the factor on the paths of the
-    /// `contact` nodes only (every node a constraint can name). Forward
+    /// `kept` nodes only (every node a constraint can name, and the nodes
+    /// whose displacements are asked for: the fillets' support). Forward
     /// solves run `block` right-hand sides (a third as many nodes) per block.
     pub fn new(
         mesh: &TetMesh,
         material: &Material,
         fixed: &[usize],
-        contact: &[usize],
+        kept: &[usize],
         block: usize,
     ) -> Result<PathCompliance, ContactError> {
         let t = std::time::Instant::now();
         let ClampedBody { dofs, factor, .. } =
             ClampedBody::new(mesh, material, fixed, Factorization::Supernodal)?;
-        let keep: Vec<usize> = contact
+        let keep: Vec<usize> = kept
             .iter()
             .flat_map(|&n| {
                 let dofs = &dofs;

@@ -11,7 +11,7 @@ use serde::Serialize;
 /// Version of the reference computation (constraints, solve, position
 /// results); part of every cache key. A summary of another layout fails to
 /// parse and is rebuilt from the cached positions.
-pub const REFERENCE_SCHEMA: u32 = 6;
+pub const REFERENCE_SCHEMA: u32 = 7;
 
 /// Options of the stage.
 #[derive(Debug, Clone, Serialize)]

@@ -2,6 +2,7 @@
 //! the per-load summaries, the unloaded check, and the copy of a reused
 //! blank's files into a new result set.
 
+use super::reference_root_stress::root_stress_summary;
 use super::reference_summary::{LoadSummary, UnloadedCheck};
 use crate::reference::reference_ltca::{Member, PositionResult};
 use anyhow::Context;
@@ -82,7 +83,7 @@ pub(crate) fn report_factor(name: &str, m: Option<&Member>) {
     if let Some(c) = m.map(|m| &m.compliance) {
         let gb = |n: usize| n as f64 * 8.0 / 1e9;
         eprintln!(
-            "reference: {name}: {} dofs, factor {:.2} GB in {:.0} s, {:.2} GB kept on the contact nodes' paths",
+            "reference: {name}: {} dofs, factor {:.2} GB in {:.0} s, {:.2} GB kept on the paths of the contact and fillet nodes",
             c.dofs_free,
             gb(c.factor_nnz[1]),
             c.factor_s,
@@ -93,10 +94,14 @@ pub(crate) fn report_factor(name: &str, m: Option<&Member>) {
 
 /// Per-torque statistics of the positions `res`, solved at the penalty
 /// factors `penalty` = [p, p_c] (the TE at p and at the check factor p_c).
+/// Per torque: the TE statistics, the penalty check, pressure, balance,
+/// margins and root stress of the positions `res`; `rotation` turns a
+/// pinion angle into the sweep's rotation (deg).
 pub(crate) fn load_summaries(
     res: &[PositionResult],
     torques: &[f64],
     penalty: [f64; 2],
+    rotation: &dyn Fn(f64) -> f64,
 ) -> Vec<LoadSummary> {
     let n = res.len().max(1) as f64;
     let [p, pc] = penalty;
@@ -150,6 +155,7 @@ pub(crate) fn load_summaries(
                     .collect::<Option<Vec<f64>>>()
                     .map(|v| v.into_iter().fold(f64::INFINITY, f64::min) * 1e6),
                 cpu_s_per_position: res.iter().map(|r| r.cpu_s).sum::<f64>() / n,
+                root_stress: root_stress_summary(res, k, rotation),
             }
         })
         .collect()

@@ -2,6 +2,7 @@
 //! `compare_cache.json`): one type each, written by the stage and read by
 //! the report.
 
+use super::reference_root_stress::RootStressSummary;
 use crate::reference::reference_ltca::PositionResult;
 use serde::{Deserialize, Serialize};
 
@@ -99,6 +100,11 @@ pub struct LoadSummary {
     pub search_margin_min_um: Option<f64>,
     /// Contact solves (both penalties) per position, s.
     pub cpu_s_per_position: f64,
+    /// Each member's largest root (fillet) tension and compression over
+    /// the positions, with where they sit; None when a position was solved
+    /// without them (cached before they were computed).
+    #[serde(default)]
+    pub root_stress: Option<RootStressSummary>,
 }
 
 /// Summary of one pinion × wheel blank combination.

@@ -166,6 +166,7 @@ pub fn markdown(
             figure_lines(&mut s, &figs.patterns, false);
         }
     }
+    s.push_str(&figs.root_stress);
     if let Some(p) = &parts {
         s.push_str(&p.run_time);
     }

@@ -85,6 +85,11 @@ pub fn run(i: &ReportInputs) -> anyhow::Result<Made> {
             loaded.as_ref().map_or(&[][..], |l| l.rows.as_slice()),
         )?;
     }
+    if let (Some(o), Some(sc)) = (i.out, sc.as_ref()) {
+        figures.root_stress = crate::report::sections::root_stress::text(
+            &crate::report::sections::root_stress::rows(o, &sc.scene.name)?,
+        );
+    }
     if let Some(o) = i.out {
         figures.contact_laws = Some(crate::report::sections::contact_laws::build(
             o,

@@ -10,6 +10,7 @@ use results::{bodies, print_summary, write_pattern};
 
 use super::reference_options::{utca_at, StageOptions, REFERENCE_SCHEMA};
 use super::reference_outputs::{copy_files, load_summaries, unloaded_check, write_te_csv};
+use super::reference_root_stress::write_root_stress_csv;
 use super::reference_summary::{BlankSummary, CacheComparison};
 use crate::reference::reference_ltca::{Member, PositionResult};
 use anyhow::Context;
@@ -270,6 +271,9 @@ impl Run<'_> {
             fp.roll_range[0],
             self.direction,
         )?;
+        let (start, direction) = (fp.roll_range[0], self.direction);
+        let rotation = move |phi: f64| ((phi - start) * direction).to_degrees();
+        write_root_stress_csv(&sdir.join("root_stress.csv"), res, &rotation)?;
         write_pattern(
             &sdir,
             res,
@@ -315,6 +319,7 @@ impl Run<'_> {
                     opt.settings.penalty_factor,
                     opt.settings.penalty_factor_check,
                 ],
+                &rotation,
             ),
             unloaded: unloaded_check(res, &utca.te),
         };

@@ -26,6 +26,8 @@ use geometry::misalignment::Pose;
 use geometry::pair::FlankPair;
 use nalgebra::Vector3;
 use preprocess::body_mesh::BodyMesh;
+use preprocess::fillet_nodes::FilletError;
+use preprocess::root_stress::{FilletStress, RootStressPoints};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -41,11 +43,17 @@ pub struct Member {
     pub youngs_modulus_pa: f64,
     /// Inward unit normal at each flank node, member frame.
     inward: HashMap<usize, V3>,
+    /// The fillets of the teeth that can touch, whose root stress each
+    /// loaded solve gives (None: not asked for).
+    pub root: Option<RootStressPoints>,
+    /// The tooth of each loaded-flank node.
+    tooth_of: HashMap<usize, usize>,
 }
 
 impl Member {
     /// Factors the body (bore clamped) and collects the loaded flank faces
-    /// of `teeth` (`flank` = "concave"/"convex").
+    /// of `teeth` (`flank` = "concave"/"convex"); the factor is kept on the
+    /// paths of the flank nodes and of the `root` fillets' support.
     pub fn new(
         mesh: BodyMesh,
         frame: MemberFrame,
@@ -53,8 +61,10 @@ impl Member {
         flank: &str,
         teeth: &[usize],
         block: usize,
+        root: Option<RootStressPoints>,
     ) -> Result<Member, ReferenceError> {
         let mut faces = Vec::new();
+        let mut tooth_of = HashMap::new();
         for &k in teeth {
             let name = format!("tooth{k}_{flank}");
             let g = mesh.group(&name);
@@ -62,6 +72,7 @@ impl Member {
                 return Err(ReferenceError::MissingGroup(name));
             }
             faces.extend_from_slice(g);
+            tooth_of.extend(g.iter().flatten().map(|&n| (n, k)));
         }
         let unmatched = orient_outward(&mesh.mesh, &mut faces);
         if unmatched > 0 {
@@ -74,8 +85,13 @@ impl Member {
         let mut contact: Vec<usize> = faces.iter().flatten().copied().collect();
         contact.sort_unstable();
         contact.dedup();
-        let compliance =
-            PathCompliance::new(&mesh.mesh, material, &clamped(&bore), &contact, block)?;
+        let mut keep = contact.clone();
+        if let Some(r) = &root {
+            keep.extend(r.support(&r.teeth()));
+            keep.sort_unstable();
+            keep.dedup();
+        }
+        let compliance = PathCompliance::new(&mesh.mesh, material, &clamped(&bore), &keep, block)?;
         let inward = nodal_normals(&mesh.mesh.nodes, &faces)
             .into_iter()
             .map(|(i, n)| (i, n.map(|c| -c)))
@@ -87,6 +103,8 @@ impl Member {
             faces,
             compliance,
             youngs_modulus_pa: material.youngs_modulus_pa,
+            root,
+            tooth_of,
         })
     }
 
@@ -108,14 +126,47 @@ impl Member {
             geometry::design::Member::Pinion => g.frames[0],
             geometry::design::Member::Wheel => g.frames[1],
         };
+        let material = preprocess::influence::fe_material(g.data.member(which).material());
+        let root = RootStressPoints::new(&mesh, g, which, side, teeth, material)?;
         Member::new(
             mesh,
             frame,
-            &preprocess::influence::fe_material(g.data.member(which).material()),
+            &material,
             side.flank_name(which),
             teeth,
             block,
+            Some(root),
         )
+    }
+
+    /// The teeth (of those that can touch) holding any of the flank
+    /// `nodes`, ascending.
+    pub fn teeth_of(&self, nodes: impl Iterator<Item = usize>) -> Vec<usize> {
+        let mut t: Vec<usize> = nodes
+            .filter_map(|n| self.tooth_of.get(&n).copied())
+            .collect();
+        t.sort_unstable();
+        t.dedup();
+        t
+    }
+
+    /// Root stress of both fillets of each of `teeth` (of [`Member::root`])
+    /// under each forward-solved load of `z`: one backward solve for all
+    /// loads on the paths of the fillets' support nodes. Empty without
+    /// fillets.
+    pub fn root_stress(
+        &self,
+        z: &[&fem::path_solve::PathVec],
+        teeth: &[usize],
+    ) -> Result<Vec<Vec<FilletStress>>, ReferenceError> {
+        let Some(root) = &self.root else {
+            return Ok(vec![Vec::new(); z.len()]);
+        };
+        let support = root.support(teeth);
+        let u = self.compliance.displacements(z, &support)?;
+        Ok(u.iter()
+            .map(|u| root.evaluate(&self.mesh.mesh, teeth, &support, u))
+            .collect())
     }
 
     /// Node coordinates in the fixed frame at rotation `phi`, the body
@@ -158,6 +209,8 @@ pub enum ReferenceError {
     NoContact { phi_deg: f64, max_gap_um: f64 },
     #[error(transparent)]
     Contact(#[from] ContactError),
+    #[error("root fillets: {0}")]
+    Fillet(#[from] FilletError),
 }
 
 /// Which node-to-surface passes the reference contact enforces.
@@ -242,6 +295,11 @@ pub struct LoadResult {
     /// it was recorded.)
     #[serde(default)]
     pub search_margin_m: Option<f64>,
+    /// Root stress of each fillet of the teeth that can touch, pinion's
+    /// then wheel's, at the penalty factor's solution (None where the
+    /// fillets were not asked for).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root_stress: Option<[Vec<FilletStress>; 2]>,
 }
 
 /// All torques of one position.
@@ -283,6 +341,9 @@ pub struct TimeSplit {
     /// Loaded gaps of the constraints outside the working set (backward
     /// solves on their paths).
     pub outside_s: f64,
+    /// Root stresses (backward solves on the fillets' support nodes).
+    #[serde(default)]
+    pub root_stress_s: f64,
 }
 
 /// The pair in the reference model.

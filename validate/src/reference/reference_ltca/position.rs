@@ -48,6 +48,8 @@ impl ReferencePair<'_> {
         let (mut first_force, mut first_idx) = (Vec::new(), Vec::new());
         let mut pattern = Vec::new();
         let mut warm: [Option<Vec<usize>>; 2] = [None, None];
+        // Per loaded torque: the constraints' forces (constraint, N).
+        let mut solved: Vec<Vec<(usize, f64)>> = Vec::new();
         let all: Vec<f64> = std::iter::once(UNLOADED_TORQUE_NM)
             .chain(torques.iter().copied())
             .collect();
@@ -126,7 +128,18 @@ impl ReferencePair<'_> {
                     .map(|(&i, &v)| (self.pinion.mesh.mesh.nodes[i], v))
                     .collect();
             }
+            if k > 0 {
+                solved.push(
+                    ws.idx
+                        .iter()
+                        .copied()
+                        .zip(s.force.iter().copied())
+                        .filter(|&(_, f)| f != 0.0)
+                        .collect(),
+                );
+            }
             loads.push(LoadResult {
+                root_stress: None,
                 torque_nm: t,
                 te: ratio * s.psi,
                 te_check: ratio * sc.psi,
@@ -137,6 +150,7 @@ impl ReferencePair<'_> {
                 search_margin_m,
             });
         }
+        self.root_stresses(&cs, &ws, &solved, &mut loads[1..], &mut split)?;
         // The sliding window: keep the vectors of the nodes this position
         // loaded; the next position's contact lies next to them.
         for (body, m) in [(0, &mut *self.pinion), (1, &mut *self.wheel)] {
@@ -167,5 +181,42 @@ impl ReferencePair<'_> {
             cpu_s: t0.elapsed().as_secs_f64(),
             time_split: Some(split),
         })
+    }
+
+    /// The root stress of each body's loaded teeth (those whose flank
+    /// carries a contact force at any torque) under each torque's forces
+    /// `solved`, into `loads` (the loaded torques' results, in order).
+    fn root_stresses(
+        &self,
+        cs: &[Constraint],
+        ws: &WorkingSet,
+        solved: &[Vec<(usize, f64)>],
+        loads: &mut [LoadResult],
+        split: &mut TimeSplit,
+    ) -> Result<(), ReferenceError> {
+        if self.pinion.root.is_none() && self.wheel.root.is_none() {
+            return Ok(());
+        }
+        let lap = std::time::Instant::now();
+        let mut per_body = Vec::with_capacity(2);
+        for (b, m) in [(0, &*self.pinion), (1, &*self.wheel)] {
+            let teeth = m.teeth_of(solved.iter().flatten().flat_map(|&(c, _)| {
+                cs[c]
+                    .terms
+                    .iter()
+                    .filter(move |t| t.body == b)
+                    .map(|t| t.node)
+            }));
+            let z: Vec<_> = solved.iter().map(|f| ws.load_vector_of(f, b)).collect();
+            let zr: Vec<_> = z.iter().collect();
+            per_body.push(m.root_stress(&zr, &teeth)?);
+        }
+        let wheel = per_body.pop().expect("two bodies");
+        let pinion = per_body.pop().expect("two bodies");
+        for ((l, p), w) in loads.iter_mut().zip(pinion).zip(wheel) {
+            l.root_stress = Some([p, w]);
+        }
+        split.root_stress_s += lap.elapsed().as_secs_f64();
+        Ok(())
     }
 }

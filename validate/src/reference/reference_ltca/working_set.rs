@@ -18,6 +18,39 @@ pub(super) struct WorkingSet {
     pub(super) y: Vec<[PathVec; 2]>,
 }
 
+impl WorkingSet {
+    /// z_b = Σ_c λ_c y_cb: body `body`'s forward-solved load under the
+    /// constraint forces `force` (in the order of `idx`).
+    pub(super) fn load_vector(&self, force: &[f64], body: usize) -> PathVec {
+        let parts: Vec<(&PathVec, &[f64])> = self
+            .y
+            .iter()
+            .zip(force.iter())
+            .filter(|(_, f)| **f != 0.0)
+            .map(|(v, f)| (&v[body], std::slice::from_ref(f)))
+            .collect();
+        combine(&parts)
+    }
+}
+
+impl WorkingSet {
+    /// [`WorkingSet::load_vector`] for forces given per constraint (indices
+    /// into the position's constraints, each in the set).
+    pub(super) fn load_vector_of(&self, forces: &[(usize, f64)], body: usize) -> PathVec {
+        let parts: Vec<(&PathVec, &[f64])> = forces
+            .iter()
+            .map(|(c, f)| {
+                let p = self
+                    .idx
+                    .binary_search(c)
+                    .expect("a solved constraint stays in the set");
+                (&self.y[p][body], std::slice::from_ref(f))
+            })
+            .collect();
+        combine(&parts)
+    }
+}
+
 impl ReferencePair<'_> {
     /// Every two-pass constraint up to the search gap that closes as the
     /// pinion turns in its driving sense, at pinion angle `phi`, each with
@@ -211,15 +244,7 @@ impl ReferencePair<'_> {
             }
             let z: Vec<PathVec> = loads
                 .iter()
-                .map(|(force, _)| {
-                    let parts: Vec<(&PathVec, &[f64])> =
-                        ws.y.iter()
-                            .zip(force.iter())
-                            .filter(|(_, f)| **f != 0.0)
-                            .map(|(v, f)| (&v[b], std::slice::from_ref(f)))
-                            .collect();
-                    combine(&parts)
-                })
+                .map(|(force, _)| ws.load_vector(force, b))
                 .collect();
             let zr: Vec<&PathVec> = z.iter().collect();
             let u = body.displacements(&zr, &at)?;

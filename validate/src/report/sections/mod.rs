@@ -19,6 +19,7 @@ pub mod multibody_runs;
 pub mod pattern_numbers;
 pub mod rattle;
 pub mod reference_uncertainty;
+pub mod root_stress;
 pub mod sensitivity;
 pub mod stage_tradeoffs;
 pub mod ste_dte;
