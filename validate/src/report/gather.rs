@@ -30,8 +30,8 @@ pub struct ReportFigures {
     pub ablation: String,
     /// The reduced model at its stiffness grid's limit (markdown).
     pub grid_convergence: String,
-    /// The reference FE's tooth root stresses (markdown, no figures).
-    pub root_stress: String,
+    /// The reference FE's tooth root stresses over the mesh cycle.
+    pub root_stress: crate::report::sections::root_stress::RootStressSection,
     /// The calibrated variant of the design (no figures).
     pub calibrated_variant: crate::report::sections::calibrated_variant::CalibratedSection,
     /// The "Contact laws" section with its load-run charts (seeds 001/002).
@@ -68,6 +68,7 @@ impl ReportFigures {
             .chain(&self.rattle.figures)
             .chain(&self.stress.figure)
             .chain(&self.stage_tradeoffs.figures)
+            .chain(&self.root_stress.figures)
     }
 }
 

@@ -166,7 +166,7 @@ pub fn markdown(
             figure_lines(&mut s, &figs.patterns, false);
         }
     }
-    s.push_str(&figs.root_stress);
+    s.push_str(&figs.root_stress.markdown);
     if let Some(p) = &parts {
         s.push_str(&p.run_time);
     }

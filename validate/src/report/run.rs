@@ -86,9 +86,8 @@ pub fn run(i: &ReportInputs) -> anyhow::Result<Made> {
         )?;
     }
     if let (Some(o), Some(sc)) = (i.out, sc.as_ref()) {
-        figures.root_stress = crate::report::sections::root_stress::text(
-            &crate::report::sections::root_stress::rows(o, &sc.scene.name)?,
-        );
+        figures.root_stress =
+            crate::report::sections::root_stress::build(o, &sc.scene.name, i.reports)?;
     }
     if let Some(o) = i.out {
         figures.contact_laws = Some(crate::report::sections::contact_laws::build(

@@ -8,6 +8,8 @@
 use crate::reference::reference_root_stress::{FilletPlace, RootStressSummary};
 use crate::reference::reference_stage::reference_dir;
 use crate::reference::reference_summary::BlankSummary;
+use crate::report::figures::{figure_lines, Figure};
+use charts::{te_curve, Series};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -38,7 +40,8 @@ pub fn rows(out: &Path, scene: &str) -> anyhow::Result<Vec<Row>> {
             .map(|e| e.path())
             .filter(|p| p.join("summary.json").is_file())
             .collect();
-        pairs.sort();
+        // The standard blanks first, as the report's other tables.
+        pairs.sort_by_key(|p| (!p.ends_with("standard_standard"), p.clone()));
         for p in pairs {
             let text = std::fs::read_to_string(p.join("summary.json"))?;
             // A summary of an older layout is not this section's to judge.
@@ -66,6 +69,128 @@ fn place(p: &FilletPlace) -> String {
         "tooth {}, ξ {:.2}, h {:.2}, {:.1}°",
         p.tooth, p.xi, p.height, p.pinion_rotation_deg
     )
+}
+
+/// The section: its markdown and its figures.
+#[derive(Debug, Clone, Default)]
+pub struct RootStressSection {
+    pub markdown: String,
+    pub figures: Vec<Figure>,
+}
+
+/// The section from the sweeps under `out` for `scene`, its figures
+/// written into `reports`.
+pub fn build(out: &Path, scene: &str, reports: &Path) -> anyhow::Result<RootStressSection> {
+    let rows = rows(out, scene)?;
+    let mut markdown = text(&rows);
+    let figures = match finest(&rows) {
+        Some(top) => cycle_figures(out, scene, top, &rows, reports),
+        None => Vec::new(),
+    };
+    if !figures.is_empty() {
+        let _ = writeln!(
+            markdown,
+            "The largest tension in each tooth's loaded fillet over the pinion rotation at the largest load (mesh level `{top}`), one curve per tooth, at the solved positions where that tooth's flank carries load.\n",
+            top = finest(&rows).unwrap_or_default()
+        );
+        figure_lines(&mut markdown, &figures, true);
+    }
+    Ok(RootStressSection { markdown, figures })
+}
+
+/// Per blank pair of the level `level` at its largest load, one chart per
+/// member: each loaded tooth's largest loaded-fillet tension against the
+/// pinion rotation, from `root_stress.csv`.
+fn cycle_figures(
+    out: &Path,
+    scene: &str,
+    level: &str,
+    rows: &[Row],
+    reports: &Path,
+) -> Vec<Figure> {
+    let mut figs = Vec::new();
+    let mut pairs: Vec<&str> = rows
+        .iter()
+        .filter(|r| r.level == level)
+        .map(|r| r.blanks.as_str())
+        .collect();
+    pairs.dedup();
+    for blanks in pairs {
+        let Some(t) = rows
+            .iter()
+            .filter(|r| r.level == level && r.blanks == blanks)
+            .map(|r| r.torque_nm)
+            .reduce(f64::max)
+        else {
+            continue;
+        };
+        let path = reference_dir(out, scene, level)
+            .join(blanks)
+            .join("root_stress.csv");
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue;
+        };
+        for member in ["pinion", "wheel"] {
+            let series = tooth_series(&text, member, t);
+            if series.is_empty() {
+                continue;
+            }
+            let file = format!("root_stress_{blanks}_{member}_{t}nm.svg");
+            let title = format!(
+                "Root stress of the {member}'s teeth, {} blanks, {t} N·m",
+                blanks.replace('_', " / ")
+            );
+            let target = reports.join(&file);
+            if te_curve(
+                &target,
+                &title,
+                "pinion rotation (deg)",
+                "largest loaded-fillet tension (MPa)",
+                &series,
+            )
+            .is_ok()
+            {
+                if let Ok(svg) = std::fs::read_to_string(&target) {
+                    figs.push(Figure { title, file, svg });
+                }
+            }
+        }
+    }
+    figs
+}
+
+/// One series per tooth of `member`: its loaded fillet's largest tension
+/// (MPa) against the rotation at torque `t`, from a `root_stress.csv` text.
+fn tooth_series(csv: &str, member: &str, t: f64) -> Vec<Series> {
+    let mut by_tooth: std::collections::BTreeMap<usize, (Vec<f64>, Vec<f64>)> = Default::default();
+    for line in csv.lines().skip(1) {
+        let c: Vec<&str> = line.split(',').collect();
+        if c.len() < 6 || c[2] != member || c[4] != "loaded" {
+            continue;
+        }
+        let (Ok(deg), Ok(torque), Ok(tooth), Ok(sigma)) = (
+            c[0].parse::<f64>(),
+            c[1].parse::<f64>(),
+            c[3].parse::<usize>(),
+            c[5].parse::<f64>(),
+        ) else {
+            continue;
+        };
+        if torque == t {
+            let e = by_tooth.entry(tooth).or_default();
+            e.0.push(deg);
+            e.1.push(sigma);
+        }
+    }
+    by_tooth
+        .into_iter()
+        .map(|(tooth, (x, y))| Series {
+            name: format!("tooth {tooth}"),
+            x,
+            y,
+            dashed: false,
+        })
+        .collect()
 }
 
 /// The finest level among `rows`.
@@ -214,6 +339,28 @@ mod tests {
             t.contains("moves by at most 9.1 % (wheel, standard_standard at 300 N·m)"),
             "{t}"
         );
+    }
+
+    /// The per-tooth curves take the loaded fillets of one member at one
+    /// torque only, tooth by tooth in rotation order.
+    #[test]
+    fn root_stress_curves_are_one_per_tooth_of_the_loaded_fillets() {
+        let csv = "pinion_rotation_deg,torque_nm,member,tooth,fillet,sigma1_max_mpa,sigma1_xi,sigma1_height,sigma3_min_mpa,sigma3_xi,sigma3_height
+0,300,pinion,1,loaded,170,0.5,0.5,-10,0.5,0.5
+0,300,pinion,1,opposite,30,0.5,0.5,-170,0.5,0.5
+0,300,wheel,42,loaded,160,0.5,0.5,-10,0.5,0.5
+0,700,pinion,1,loaded,330,0.5,0.5,-20,0.5,0.5
+0.5,300,pinion,1,loaded,175,0.5,0.5,-10,0.5,0.5
+0.5,300,pinion,2,loaded,20,0.5,0.5,-1,0.5,0.5
+";
+        let s = tooth_series(csv, "pinion", 300.0);
+        assert_eq!(s.len(), 2);
+        assert_eq!(
+            (s[0].name.as_str(), &s[0].x[..], &s[0].y[..]),
+            ("tooth 1", &[0.0, 0.5][..], &[170.0, 175.0][..])
+        );
+        assert_eq!((s[1].name.as_str(), &s[1].y[..]), ("tooth 2", &[20.0][..]));
+        assert_eq!(tooth_series(csv, "wheel", 300.0)[0].y, vec![160.0]);
     }
 
     /// One level only: the table without the mesh comparison; no rows: no
