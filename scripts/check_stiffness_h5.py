@@ -1,8 +1,9 @@
 """Reads a stiffness file with h5py and prints what another tool would see.
 
 Usage: check_stiffness_h5.py FILE. Prints one JSON object: root attributes,
-dataset shapes and units. Exits non-zero if a documented dataset or its
-`units` attribute is missing.
+dataset shapes and units (the optional root-stress block's too, when the
+file has it). Exits non-zero if a documented dataset or its `units`
+attribute is missing.
 """
 import json
 import sys
@@ -24,6 +25,12 @@ with h5py.File(sys.argv[1], "r") as f:
         out["shapes"][name] = list(ds.shape)
         if ds.dtype.kind == "f":
             out["units"][name] = ds.attrs["units"]
+    if "root_stress" in f:
+        for name in ["root_stress/offsets", "root_stress/xi", "root_stress/height", "root_stress/stress"]:
+            ds = f[name]
+            out["shapes"][name] = list(ds.shape)
+            if ds.dtype.kind == "f":
+                out["units"][name] = ds.attrs["units"]
     total = f["compliance/total"][...]
     out["total_sum"] = float(total.sum())
     print(json.dumps(out))

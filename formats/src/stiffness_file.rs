@@ -15,13 +15,60 @@
 //! | `grid/depth_h` | s × points | mid-surface depth h of each point (m) |
 //! | `compliance/total`, `compliance/global` | s × o × points × points | normal approach at point j of tooth solved+offset under a unit load at point i (m/N) |
 //! | `compliance/local` | s × points × points | the near-load part on the loaded tooth (m/N) |
+//! | `root_stress/offsets` | r | responding teeth of the root stress, relative to the loaded one |
+//! | `root_stress/xi`, `root_stress/height` | fillet points | face-width position (0 toe, 1 heel) and fillet height (0 root, 1 flank junction) of each fillet point: the loaded flank's fillet's points, then the other flank's |
+//! | `root_stress/stress` | s × r × points × fillet points × 6 | stress (Voigt xx, yy, zz, yz, xz, xy) at each fillet point of tooth solved+offset under a unit load at grid point i, in that tooth's own frame turned back onto tooth 0 (Pa/N) |
 //!
-//! Point index = i_face · profile + i_profile.
+//! Point index = i_face · profile + i_profile. Fillet points: side-major,
+//! then face-major over [`ROOT_STRESS_GRID`] (ξ, height) cell centres.
 
 use std::path::{Path, PathBuf};
 
-/// Bumped whenever the file layout or its meaning changes.
-pub const STIFFNESS_SCHEMA: u32 = 1;
+/// Bumped whenever the file layout or its meaning changes (also when
+/// [`ROOT_STRESS_GRID`] or [`ROOT_STRESS_OFFSETS`] change).
+pub const STIFFNESS_SCHEMA: u32 = 2;
+
+/// Fillet points per fillet side where the root stress is stored: across
+/// the face width × up the fillet (cell centres of the unit square).
+pub const ROOT_STRESS_GRID: [usize; 2] = [11, 5];
+
+/// Responding teeth of the root stress, relative to the loaded tooth (those
+/// of them the file's offsets hold).
+pub const ROOT_STRESS_OFFSETS: [i32; 3] = [-1, 0, 1];
+
+/// The stiffness file's root-stress influence coefficients.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RootStressBlock {
+    /// Responding teeth relative to the loaded one.
+    pub offsets: Vec<i32>,
+    /// Per fillet point: face-width position and fillet height; the loaded
+    /// flank's fillet's points first, then the other flank's.
+    pub xi: Vec<f64>,
+    pub height: Vec<f64>,
+    /// stress[s][r][i][point][6], Pa/N (see the module's table).
+    pub stress: Vec<f64>,
+}
+
+impl RootStressBlock {
+    /// Fillet points (both sides).
+    pub fn points(&self) -> usize {
+        self.xi.len()
+    }
+
+    /// The (xi, height) of the cell centres of one fillet side, face-major.
+    pub fn side_points() -> (Vec<f64>, Vec<f64>) {
+        let [nf, nh] = ROOT_STRESS_GRID;
+        let mut xi = Vec::with_capacity(nf * nh);
+        let mut h = Vec::with_capacity(nf * nh);
+        for a in 0..nf {
+            for b in 0..nh {
+                xi.push((a as f64 + 0.5) / nf as f64);
+                h.push((b as f64 + 0.5) / nh as f64);
+            }
+        }
+        (xi, h)
+    }
+}
 
 /// Everything besides the mesh that determines a stiffness file.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -109,6 +156,8 @@ pub struct StiffnessData {
     pub total: Vec<f64>,
     pub local: Vec<f64>,
     pub global: Vec<f64>,
+    /// Root-stress influence coefficients (None: not computed).
+    pub root_stress: Option<RootStressBlock>,
 }
 
 impl StiffnessData {
@@ -230,6 +279,25 @@ fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
         .create("teeth/offsets")
         .and_then(|ds| ds.write_raw(&d.offsets[..]))
         .map_err(&e)?;
+    if let Some(r) = &d.root_stress {
+        let nr = r.offsets.len();
+        let nf = r.points();
+        f.create_group("root_stress").map_err(&e)?;
+        f.new_dataset::<i32>()
+            .shape([nr])
+            .create("root_stress/offsets")
+            .and_then(|ds| ds.write_raw(&r.offsets[..]))
+            .map_err(&e)?;
+        put("root_stress/xi", &[nf], &r.xi, "1").map_err(&e)?;
+        put("root_stress/height", &[nf], &r.height, "1").map_err(&e)?;
+        put(
+            "root_stress/stress",
+            &[ns, nr, np, nf, 6],
+            &r.stress,
+            "Pa/N",
+        )
+        .map_err(&e)?;
+    }
     f.flush().map_err(&e)?;
     // Close now (not when the last handle drops) so the file can be renamed
     // and reopened at once.
@@ -347,7 +415,24 @@ pub fn read(path: &Path, expected_hash: Option<&str>) -> Result<StiffnessData, S
     };
     let n_total = size("compliance/total", &[ns, no, np, np])?;
     let n_local = size("compliance/local", &[ns, np, np])?;
+    let root_stress = match f.group("root_stress") {
+        Err(_) => None,
+        Ok(_) => {
+            let offsets: Vec<i32> = dataset("root_stress/offsets", None)?
+                .read_raw()
+                .map_err(&e)?;
+            let nf = dataset("root_stress/xi", None)?.size();
+            let n = size("root_stress/stress", &[ns, offsets.len(), np, nf, 6])?;
+            Some(RootStressBlock {
+                xi: get("root_stress/xi", nf)?,
+                height: get("root_stress/height", nf)?,
+                stress: get("root_stress/stress", n)?,
+                offsets,
+            })
+        }
+    };
     Ok(StiffnessData {
+        root_stress,
         input_hash: hash,
         config: s("config")?,
         member: s("member")?,

@@ -192,6 +192,7 @@ mod tests {
             total,
             local,
             global,
+            root_stress: None,
         }
     }
 

@@ -61,6 +61,9 @@ pub struct Fillet {
     /// Largest distance of a node from the sampled fillet along its
     /// normal, m.
     pub max_normal_distance_m: f64,
+    /// The rotation about the member axis that brings tooth 0's fillet
+    /// onto this one, rad (a whole number of pitches).
+    pub turn: f64,
 }
 
 /// Errors finding the fillet nodes.
@@ -241,6 +244,7 @@ pub fn fillet_nodes(
                 xi: vec![],
                 height: vec![],
                 max_normal_distance_m: 0.0,
+                turn: angle,
             };
             for &n in &surface {
                 let x = mesh.mesh.nodes[n];

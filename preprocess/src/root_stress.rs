@@ -11,7 +11,7 @@
 //! asked for (the reference's pruned backward solves) gives just those.
 
 use crate::body_mesh::BodyMesh;
-use crate::fillet_nodes::{fillet_nodes, Fillet, FilletError};
+use crate::fillet_nodes::{fillet_nodes, Fillet, FilletError, FilletSide};
 use fem::stress::{principal, NodalStressAt, Stress};
 use fem::{Material, TetMesh};
 use geometry::design::Member;
@@ -41,7 +41,7 @@ pub struct FilletStress {
 pub fn fillet_extremes(f: &Fillet, s: &[Stress]) -> FilletStress {
     let mut out = FilletStress {
         tooth: f.tooth,
-        loaded_side: f.side == crate::fillet_nodes::FilletSide::Loaded,
+        loaded_side: f.side == FilletSide::Loaded,
         max_principal_pa: f64::NEG_INFINITY,
         max_xi: f64::NAN,
         max_height: f64::NAN,
@@ -164,5 +164,94 @@ impl RootStressPoints {
             }
         }
         out
+    }
+}
+
+/// The stress tensor `s` of a tooth turned by `turn` (rad) about the
+/// member axis, expressed in the frame turned back onto tooth 0:
+/// σ₀ = Rᵀ σ R with R the rotation about z by `turn`.
+pub fn turned_back(s: Stress, turn: f64) -> Stress {
+    let m = nalgebra::Matrix3::new(s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]);
+    let r = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), turn);
+    let b = r.matrix().transpose() * m * r.matrix();
+    [
+        b[(0, 0)],
+        b[(1, 1)],
+        b[(2, 2)],
+        b[(1, 2)],
+        b[(0, 2)],
+        b[(0, 1)],
+    ]
+}
+
+/// One tooth's fillet points on a fixed (ξ, height) grid: at each grid
+/// point of each side the fillet node nearest in (ξ, height), where the
+/// reduced model stores its root-stress coefficients (the same points on
+/// every tooth whatever its mesh).
+#[derive(Debug, Clone)]
+pub struct FilletGridPoints {
+    pub tooth: usize,
+    turn: f64,
+    at: NodalStressAt,
+    support: Vec<usize>,
+    material: Material,
+    /// Each point's face-width position and fillet height (the grid's,
+    /// loaded side first).
+    pub xi: Vec<f64>,
+    pub height: Vec<f64>,
+}
+
+impl FilletGridPoints {
+    /// Tooth `tooth`'s points (one of `points`' teeth) at the grid
+    /// `(xi, height)` of one side, repeated for both sides.
+    pub fn new(
+        mesh: &TetMesh,
+        points: &RootStressPoints,
+        tooth: usize,
+        (xi, height): (&[f64], &[f64]),
+    ) -> Option<FilletGridPoints> {
+        let mut nodes = Vec::with_capacity(2 * xi.len());
+        let mut turn = None;
+        for side in [FilletSide::Loaded, FilletSide::Opposite] {
+            let f = points
+                .fillets
+                .iter()
+                .find(|f| f.tooth == tooth && f.side == side)?;
+            turn = Some(f.turn);
+            for (&x, &h) in xi.iter().zip(height) {
+                let k = (0..f.nodes.len()).min_by(|&a, &b| {
+                    let d = |k: usize| (f.xi[k] - x).powi(2) + (f.height[k] - h).powi(2);
+                    d(a).total_cmp(&d(b))
+                })?;
+                nodes.push(f.nodes[k]);
+            }
+        }
+        let at = NodalStressAt::new(mesh, &nodes);
+        let support = at.support(mesh);
+        Some(FilletGridPoints {
+            tooth,
+            turn: turn?,
+            at,
+            support,
+            material: points.material,
+            xi: [xi, xi].concat(),
+            height: [height, height].concat(),
+        })
+    }
+
+    /// The nodes whose displacements [`FilletGridPoints::eval`] reads,
+    /// ascending.
+    pub fn support(&self) -> &[usize] {
+        &self.support
+    }
+
+    /// The stress at each point (Pa) in the tooth's own frame turned back
+    /// onto tooth 0, `u(n)` the displacement of support node n.
+    pub fn eval(&self, mesh: &TetMesh, u: impl Fn(usize) -> [f64; 3]) -> Vec<Stress> {
+        self.at
+            .eval(mesh, &self.material, u)
+            .into_iter()
+            .map(|s| turned_back(s, self.turn))
+            .collect()
     }
 }

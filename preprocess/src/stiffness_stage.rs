@@ -144,6 +144,7 @@ pub fn request<'a>(
         fillet_rise: crate::influence::FILLET_RISE,
         block,
         solves: Solves::default(),
+        root: None,
     }
 }
 
@@ -277,6 +278,7 @@ pub fn stiffness_data(
         total: inf.total,
         local: inf.local,
         global: inf.global,
+        root_stress: inf.root_stress,
     }
 }
 
@@ -369,7 +371,31 @@ fn run_one(
     eprintln!("{stem}: reading {}", msh.display());
     let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
     formats::stop_point::at("reading");
-    let req = request(&config, &fg, &body, g, member, side, st.solve_block);
+    let mut req = request(&config, &fg, &body, g, member, side, st.solve_block);
+    // The fillets of every tooth whose root stress a loaded tooth's grid
+    // loads reach.
+    let mut root_teeth: Vec<usize> = req
+        .solved_teeth
+        .iter()
+        .flat_map(|&k| {
+            formats::stiffness_file::ROOT_STRESS_OFFSETS
+                .into_iter()
+                .filter(|o| req.offsets.contains(o))
+                .map(move |o| (k as i64 + o as i64).rem_euclid(req.teeth as i64) as usize)
+        })
+        .collect();
+    root_teeth.sort_unstable();
+    root_teeth.dedup();
+    let root = crate::root_stress::RootStressPoints::new(
+        &body,
+        g,
+        member,
+        side,
+        &root_teeth,
+        req.material,
+    )
+    .with_context(|| format!("{stem}: root fillets of teeth {root_teeth:?}"))?;
+    req.root = Some(&root);
     eprintln!(
         "{stem}: {} nodes, {} tet10; unit loads on {} tooth(s) x {} grid points",
         body.mesh.nodes.len(),

@@ -20,6 +20,7 @@ use preprocess::influence::{
     InfluenceRequest, Solves,
 };
 use preprocess::mesh::{mesh_member, MeshRequest};
+use preprocess::root_stress::{FilletGridPoints, RootStressPoints};
 use std::sync::OnceLock;
 
 fn synthetic() -> StiffnessData {
@@ -47,6 +48,12 @@ fn synthetic() -> StiffnessData {
         total: seq(ns * no * np * np, 1e-10),
         local: seq(ns * np * np, 1e-11),
         global: seq(ns * no * np * np, 2e-10),
+        root_stress: Some(formats::stiffness_file::RootStressBlock {
+            offsets: vec![0, 1],
+            xi: seq(4, 0.2),
+            height: seq(4, 0.1),
+            stress: seq(ns * 2 * np * 4 * 6, 1e3),
+        }),
     }
 }
 
@@ -79,13 +86,21 @@ fn stiffness_file_round_trips_and_h5py_reads_it() {
         String::from_utf8_lossy(&out.stderr)
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["attrs"]["schema_version"], 1);
+    assert_eq!(
+        v["attrs"]["schema_version"],
+        stiffness_file::STIFFNESS_SCHEMA
+    );
     assert_eq!(v["attrs"]["input_hash"], "abc123");
     assert_eq!(
         v["shapes"]["compliance/total"],
         serde_json::json!([1, 3, 6, 6])
     );
     assert_eq!(v["units"]["compliance/global"], "m/N");
+    assert_eq!(
+        v["shapes"]["root_stress/stress"],
+        serde_json::json!([1, 2, 6, 4, 6])
+    );
+    assert_eq!(v["units"]["root_stress/stress"], "Pa/N");
     let sum: f64 = d.total.iter().sum();
     assert!((v["total_sum"].as_f64().unwrap() - sum).abs() < 1e-12 * sum);
 }
@@ -115,7 +130,7 @@ fn stiffness_file_from_other_inputs_or_schema_is_rejected() {
             e,
             StiffnessFileError::Schema {
                 found: 99,
-                expected: 1,
+                expected: stiffness_file::STIFFNESS_SCHEMA,
                 ..
             }
         ),
@@ -188,6 +203,15 @@ fn fields_both() -> &'static (BodyMesh, Vec<usize>, Influence, Influence) {
             .expect("four neighbouring refined teeth");
         let solved = vec![a, (a + 1) % z];
         let md = g.data.member(Member::Pinion);
+        let root = RootStressPoints::new(
+            &body,
+            g,
+            Member::Pinion,
+            Side::Drive,
+            &root_teeth(a, z),
+            preprocess::influence::fe_material(md.material()),
+        )
+        .unwrap();
         let run = |solves: Solves| {
             compute(
                 &InfluenceRequest {
@@ -203,6 +227,7 @@ fn fields_both() -> &'static (BodyMesh, Vec<usize>, Influence, Influence) {
                     fillet_rise: preprocess::influence::FILLET_RISE,
                     block: 8,
                     solves,
+                    root: Some(&root),
                 },
                 &["bore"],
             )
@@ -211,6 +236,12 @@ fn fields_both() -> &'static (BodyMesh, Vec<usize>, Influence, Influence) {
         let (pruned, full) = (run(Solves::Pruned), run(Solves::Full));
         (body, pt, pruned, full)
     })
+}
+
+/// The teeth whose fillets the root stress of loaded teeth a and a + 1
+/// reaches (offsets −1..1): a − 1 ..= a + 2.
+fn root_teeth(a: usize, z: usize) -> Vec<usize> {
+    (0..4).map(|k| (a + z - 1 + k) % z).collect()
 }
 
 /// The stiffness stage's fields (pruned solves).
@@ -264,6 +295,143 @@ fn pruned_solves_give_the_fields_of_full_solves() {
     );
 }
 
+/// The root-stress coefficients by the pruned path (the fillet points'
+/// support solved backward from the forward vectors) equal the full
+/// solves' (the stress of the whole field at the same points) to rounding;
+/// both store the loaded tooth and its two neighbours.
+#[test]
+fn pruned_solves_give_the_root_stress_of_full_solves() {
+    let (_, _, pruned, full) = fields_both();
+    let (p, f) = (
+        pruned.root_stress.as_ref().unwrap(),
+        full.root_stress.as_ref().unwrap(),
+    );
+    assert_eq!(p.offsets, vec![-1, 0, 1]);
+    assert_eq!((&p.xi, &p.height), (&f.xi, &f.height));
+    let scale = f.stress.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = p
+        .stress
+        .iter()
+        .zip(&f.stress)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    println!(
+        "root stress, pruned against full: {:.1e} of the largest {scale:.3e} Pa/N; {:.2} s pruned, {:.2} s full",
+        worst / scale,
+        pruned.stats.root_stress_s,
+        full.stats.root_stress_s
+    );
+    assert!(
+        scale > 0.0 && worst < 1e-10 * scale,
+        "{worst:e} of {scale:e}"
+    );
+}
+
+/// Linearity and the file's layout: the stored coefficients of three grid
+/// loads of different size on tooth a, summed, give the stress at every
+/// fillet point of teeth a − 1, a, a + 1 that a direct FE solve of the
+/// three loads together gives (the same bump weights, bore clamped) within
+/// 1e-9 of the largest.
+#[test]
+fn root_stress_coefficients_superpose_to_a_direct_solve_of_the_combined_load() {
+    let (body, _, inf) = fields();
+    let g = geometry();
+    let md = g.data.member(Member::Pinion);
+    let z = md.teeth as usize;
+    let material = preprocess::influence::fe_material(md.material());
+    let grid = FlankGrid::new(g.flank(Member::Pinion, Side::Drive), GRID).unwrap();
+    let (sf, sp) = grid.spacing();
+    let k = inf.solved_teeth[0];
+    let r = inf.root_stress.as_ref().unwrap();
+    let np = grid.len();
+    let nf = r.points();
+    let loads = [(7usize, 1500.0), (np / 2, 700.0), (np - 9, 2500.0)];
+    let faces = body.group(&format!("tooth{k}_concave"));
+    let a = 2.0 * std::f64::consts::PI * k as f64 / z as f64;
+    let fixed = fem::clamp_nodes(&body.group_nodes("bore"));
+    let fe =
+        fem::ClampedBody::new(&body.mesh, &material, &fixed, fem::Factorization::Auto).unwrap();
+    let mut f = vec![0.0; fe.dofs.n_free()];
+    for &(i, c) in &loads {
+        let p = rotate_z(grid.position[i], a);
+        let n = rotate_z(grid.normal[i], a);
+        let w = preprocess::influence::patch_weights(
+            &body.mesh,
+            faces,
+            p,
+            n.map(|x| -x),
+            0.75 * sf.max(sp),
+        )
+        .unwrap();
+        for (d, v) in w {
+            if let Some(q) = fe.dofs.free_index(d) {
+                f[q] += c * v;
+            }
+        }
+    }
+    let u = fe.dofs.expand(&fe.factor.solve(&f));
+    let points = RootStressPoints::new(
+        body,
+        g,
+        Member::Pinion,
+        Side::Drive,
+        &root_teeth(k, z),
+        material,
+    )
+    .unwrap();
+    let (xi, h) = formats::stiffness_file::RootStressBlock::side_points();
+    let mut worst = 0.0f64;
+    let mut scale = 0.0f64;
+    for (ri, &o) in r.offsets.iter().enumerate() {
+        let tooth = (k as i64 + o as i64).rem_euclid(z as i64) as usize;
+        let gp = FilletGridPoints::new(&body.mesh, &points, tooth, (&xi, &h)).unwrap();
+        let direct = gp.eval(&body.mesh, |n| [u[3 * n], u[3 * n + 1], u[3 * n + 2]]);
+        for (pt, d) in direct.iter().enumerate() {
+            for (c, &dc) in d.iter().enumerate() {
+                let sum: f64 = loads
+                    .iter()
+                    .map(|&(i, w)| w * r.stress[(((ri * np) + i) * nf + pt) * 6 + c])
+                    .sum();
+                worst = worst.max((sum - dc).abs());
+                scale = scale.max(dc.abs());
+            }
+        }
+    }
+    println!(
+        "superposed coefficients against the direct solve: {:.1e} of {scale:.3e} Pa",
+        worst / scale
+    );
+    assert!(
+        scale > 1e6 && worst < 1e-9 * scale,
+        "{worst:e} of {scale:e}"
+    );
+}
+
+/// The stored stress is in each tooth's own frame turned back onto tooth
+/// 0, so two neighbouring teeth of the standard blank (the same mesh
+/// turned by a pitch) under their own loads store nearly the same
+/// coefficients at offset 0; stored in the body frame they would differ by
+/// the pitch's turn (18° on this 20-tooth pinion).
+#[test]
+fn root_stress_of_neighbouring_teeth_is_the_same_in_their_own_frames() {
+    let (_, _, inf) = fields();
+    let r = inf.root_stress.as_ref().unwrap();
+    let o0 = r.offsets.iter().position(|&o| o == 0).unwrap();
+    let per_o = (GRID.profile * GRID.face) * r.points() * 6;
+    let per_s = r.offsets.len() * per_o;
+    let block = |s: usize| &r.stress[s * per_s + o0 * per_o..s * per_s + (o0 + 1) * per_o];
+    let (a, b) = (block(0), block(1));
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    println!(
+        "tooth a against a + 1, own frames: {:.2e} of the largest",
+        worst / scale
+    );
+    assert!(worst < 0.02 * scale, "{worst:e} of {scale:e}");
+}
+
 /// The local half-tooth model is held where its sides join the rest of the
 /// body. Under the root row the fillet curves out of the flank's tangent
 /// plane; when its elements counted as beside the half tooth (fillet rise
@@ -297,6 +465,7 @@ fn local_field_does_not_depend_on_how_far_the_half_tooth_reaches_into_the_fillet
             fillet_rise: rise,
             block: 8,
             solves: Solves::default(),
+            root: None,
         };
         let place = half_tooth(&req, k, &inf.depth[0]);
         let supports = local_supports(&body.mesh, &place);
@@ -516,6 +685,7 @@ fn lightweight_wheel_compliance_varies_with_order_three_around_the_wheel() {
             fillet_rise: preprocess::influence::FILLET_RISE,
             block: 16,
             solves: Solves::default(),
+            root: None,
         },
         &["bore"],
     )

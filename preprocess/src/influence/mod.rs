@@ -15,6 +15,7 @@
 
 mod local;
 mod patch;
+mod root;
 mod solves;
 
 pub use local::{half_tooth, local_model, local_supports, HalfTooth, FILLET_RISE, NITSCHE_GAMMA};
@@ -90,6 +91,8 @@ pub struct InfluenceRequest<'a> {
     pub block: usize,
     /// How the unit-load fields are solved.
     pub solves: Solves,
+    /// The fillets whose root-stress coefficients are wanted (None: none).
+    pub root: Option<&'a crate::root_stress::RootStressPoints>,
 }
 
 /// Influence fields: `total[s][o][i][j]` is the normal approach (m/N) at
@@ -105,6 +108,8 @@ pub struct Influence {
     pub total: Vec<f64>,
     pub local: Vec<f64>,
     pub global: Vec<f64>,
+    /// Root-stress coefficients, when asked for.
+    pub root_stress: Option<formats::stiffness_file::RootStressBlock>,
     pub stats: InfluenceStats,
 }
 
@@ -119,6 +124,10 @@ pub struct InfluenceStats {
     pub solve_s: f64,
     /// Gram products of the pruned forward vectors, s (0 with full solves).
     pub gram_s: f64,
+    /// Root-stress coefficients (backward solves on the fillet points'
+    /// support, or the full fields' stresses), s.
+    #[serde(default)]
+    pub root_stress_s: f64,
     /// Unit loads solved (pruned: one per grid point of every loaded or
     /// responding tooth; full: one per grid point of every loaded tooth).
     pub right_hand_sides: usize,
@@ -249,10 +258,11 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
             }
         }
     }
+    let mut targets = root::RootTargets::new(req)?;
     formats::stop_point::at("solving");
     let total = match req.solves {
-        Solves::Full => solves::full(req, &dofs, &factor, &weights, &mut stats),
-        Solves::Pruned => solves::pruned(req, &dofs, factor, &weights, &mut stats)?,
+        Solves::Full => solves::full(req, &dofs, &factor, &weights, &mut stats, &mut targets),
+        Solves::Pruned => solves::pruned(req, &dofs, factor, &weights, &mut stats, &mut targets)?,
     };
 
     let t = Instant::now();
@@ -282,6 +292,7 @@ pub fn compute(req: &InfluenceRequest, fixed_groups: &[&str]) -> Result<Influenc
         total,
         local,
         global,
+        root_stress: targets.map(|t| t.block),
         stats,
     })
 }

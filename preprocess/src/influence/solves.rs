@@ -13,6 +13,7 @@
 //! against a backward solve (one grid point per loaded tooth, see
 //! [`InfluenceStats::backward_check`]).
 
+use super::root::RootTargets;
 use super::{gather, InfluenceError, InfluenceRequest, InfluenceStats, Weights};
 use fem::path_solve::{gram, PathFactor, PathVec};
 use fem::{Dofs, Factor};
@@ -59,6 +60,7 @@ pub(super) fn full(
     factor: &Factor,
     weights: &BTreeMap<usize, Vec<Weights>>,
     stats: &mut InfluenceStats,
+    targets: &mut Option<RootTargets>,
 ) -> Vec<f64> {
     let (np, no, ns) = (req.grid.len(), req.offsets.len(), req.solved_teeth.len());
     let mut total = vec![0.0; ns * no * np * np];
@@ -79,6 +81,14 @@ pub(super) fn full(
             stats.right_hand_sides += cols.len();
             for (c, &i) in cols.iter().enumerate() {
                 let u = &rhs[c * n..(c + 1) * n];
+                if let Some(t) = targets.as_mut() {
+                    let lap = Instant::now();
+                    let at = |node: usize| {
+                        [0, 1, 2].map(|d| dofs.free_index(3 * node + d).map_or(0.0, |f| u[f]))
+                    };
+                    t.fill(req, s, k, i, &at);
+                    stats.root_stress_s += lap.elapsed().as_secs_f64();
+                }
                 for (oi, &o) in req.offsets.iter().enumerate() {
                     let row = ((s * no + oi) * np + i) * np;
                     for (q, w) in weights[&tooth_of(req, k, o)].iter().enumerate() {
@@ -88,7 +98,7 @@ pub(super) fn full(
             }
         }
     }
-    stats.solve_s = t.elapsed().as_secs_f64();
+    stats.solve_s = t.elapsed().as_secs_f64() - stats.root_stress_s;
     total
 }
 
@@ -120,6 +130,7 @@ pub(super) fn pruned(
     factor: Factor,
     weights: &BTreeMap<usize, Vec<Weights>>,
     stats: &mut InfluenceStats,
+    targets: &mut Option<RootTargets>,
 ) -> Result<Vec<f64>, InfluenceError> {
     let (np, no, ns) = (req.grid.len(), req.offsets.len(), req.solved_teeth.len());
     // Every tooth's loads on the free dofs, once.
@@ -133,6 +144,13 @@ pub(super) fn pruned(
         .flatten()
         .map(|&(f, _)| f)
         .collect();
+    if let Some(t) = targets.as_ref() {
+        keep.extend(
+            t.support_nodes()
+                .iter()
+                .flat_map(|&n| (0..3).filter_map(move |c| dofs.free_index(3 * n + c))),
+        );
+    }
     keep.sort_unstable();
     keep.dedup();
     let pf = PathFactor::new(factor, &keep)?;
@@ -167,6 +185,11 @@ pub(super) fn pruned(
         }
         gram_s += t.elapsed().as_secs_f64();
         check = check.max(backward_check(req, &pf, &loads, &held, s, &total)?);
+        if let Some(t) = targets.as_mut() {
+            let lap = Instant::now();
+            t.fill_pruned(req, &pf, dofs, s, &held[&k])?;
+            stats.root_stress_s += lap.elapsed().as_secs_f64();
+        }
         for &o in &req.offsets {
             let j = tooth_of(req, k, o);
             let left = uses.get_mut(&j).expect("counted above");

@@ -277,6 +277,7 @@ mod tests {
             total: Vec::new(),
             local: Vec::new(),
             global,
+            root_stress: None,
         };
         (d.clone(), MemberCompliance::new(d, Material::STEEL))
     }

@@ -95,6 +95,7 @@ pub fn compliance(
             fillet_rise: preprocess::influence::FILLET_RISE,
             block: 8,
             solves: Solves::default(),
+            root: None,
         },
         &["bore"],
     )
