@@ -247,15 +247,7 @@ fn stress_functionals_give_the_recovered_stress_of_any_displacement() {
     let mut block = mapped_block([3, 2, 2], |q| [0.05 * q[0], 0.02 * q[1], 0.03 * q[2]]);
     distort_interior(&mut block, 0.002, 11);
     let mesh = &block.mesh;
-    let mut seed = 12345_u64;
-    let u: Vec<f64> = (0..3 * mesh.nodes.len())
-        .map(|_| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-5
-        })
-        .collect();
+    let u = random_field(3 * mesh.nodes.len(), 12345);
     let nodes: Vec<usize> = (0..mesh.nodes.len()).step_by(5).collect();
     let g = stress::nodal_stress_functionals(mesh, &STEEL, &nodes);
     let s = stress::nodal_stress(mesh, &STEEL, &u);
@@ -272,6 +264,19 @@ fn stress_functionals_give_the_recovered_stress_of_any_displacement() {
     }
 }
 
+/// `n` pseudo-random displacements in ±5 µm (a linear congruential
+/// sequence from `seed`).
+fn random_field(n: usize, mut seed: u64) -> Vec<f64> {
+    (0..n)
+        .map(|_| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-5
+        })
+        .collect()
+}
+
 /// The stress at a few nodes from their holding elements' displacements
 /// only equals `nodal_stress` of the whole field there, and the support
 /// it reads is all it needs: displacements outside it set to NaN change
@@ -281,15 +286,7 @@ fn stress_at_a_few_nodes_from_their_support_equals_the_whole_fields_recovery() {
     let mut block = mapped_block([3, 2, 2], |q| [0.05 * q[0], 0.02 * q[1], 0.03 * q[2]]);
     distort_interior(&mut block, 0.002, 7);
     let mesh = &block.mesh;
-    let mut seed = 99_u64;
-    let u: Vec<f64> = (0..3 * mesh.nodes.len())
-        .map(|_| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-5
-        })
-        .collect();
+    let u = random_field(3 * mesh.nodes.len(), 99);
     let nodes: Vec<usize> = (0..mesh.nodes.len()).step_by(7).collect();
     let at = stress::NodalStressAt::new(mesh, &nodes);
     let support = at.support(mesh);

@@ -31,6 +31,7 @@ pub mod memory_estimate;
 pub mod output;
 pub mod paths;
 pub mod result_set;
+pub mod root_stress;
 pub mod sensitivity_summary;
 pub mod stiffness_file;
 pub mod stiffness_plan;

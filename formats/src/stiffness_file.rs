@@ -30,7 +30,7 @@ pub const STIFFNESS_SCHEMA: u32 = 2;
 
 /// Fillet points per fillet side where the root stress is stored: across
 /// the face width × up the fillet (cell centres of the unit square).
-pub const ROOT_STRESS_GRID: [usize; 2] = [11, 5];
+pub const ROOT_STRESS_GRID: [usize; 2] = [21, 9];
 
 /// Responding teeth of the root stress, relative to the loaded tooth (those
 /// of them the file's offsets hold).

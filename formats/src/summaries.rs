@@ -19,6 +19,9 @@ pub struct LoadSummary {
     pub cpu_s_per_position: f64,
     /// Contact solve alone, s per position.
     pub solve_s_per_position: f64,
+    /// Root stress alone (part of `cpu_s_per_position`), s per position.
+    #[serde(default)]
+    pub root_stress_s_per_position: f64,
     pub max_pressure_mpa: f64,
     pub mesh_stiffness_mean_nm_per_rad: f64,
     /// Largest torque share of one tooth pair over the sweep.
@@ -33,6 +36,11 @@ pub struct LoadSummary {
     /// the check existed).
     #[serde(default)]
     pub edge_contact: Option<EdgeContact>,
+    /// Each member's largest root (fillet) tension and compression over
+    /// the sweep, with where they sit; None when the stiffness files hold
+    /// no root-stress coefficients (or in files written before them).
+    #[serde(default)]
+    pub root_stress: Option<crate::root_stress::RootStressSummary>,
 }
 
 /// An edge of the active flank that the contact can reach.

@@ -12,57 +12,23 @@
 
 use crate::body_mesh::BodyMesh;
 use crate::fillet_nodes::{fillet_nodes, Fillet, FilletError, FilletSide};
-use fem::stress::{principal, NodalStressAt, Stress};
+use fem::stress::{NodalStressAt, Stress};
 use fem::{Material, TetMesh};
 use geometry::design::Member;
 use geometry::generation::Side;
 use geometry::pair::PairGeometry;
-use serde::{Deserialize, Serialize};
 
-/// One fillet's extreme stresses.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct FilletStress {
-    pub tooth: usize,
-    /// Under the loaded flank (true) or the tooth's other flank.
-    pub loaded_side: bool,
-    /// Largest first principal stress over the fillet's nodes, Pa, and its
-    /// node's face-width position and fillet height.
-    pub max_principal_pa: f64,
-    pub max_xi: f64,
-    pub max_height: f64,
-    /// Smallest third principal stress, Pa (negative: compression), and
-    /// where.
-    pub min_principal_pa: f64,
-    pub min_xi: f64,
-    pub min_height: f64,
-}
+pub use formats::root_stress::FilletStress;
 
 /// The extremes of one fillet's nodal stresses `s` (one per node of `f`).
 pub fn fillet_extremes(f: &Fillet, s: &[Stress]) -> FilletStress {
-    let mut out = FilletStress {
-        tooth: f.tooth,
-        loaded_side: f.side == FilletSide::Loaded,
-        max_principal_pa: f64::NEG_INFINITY,
-        max_xi: f64::NAN,
-        max_height: f64::NAN,
-        min_principal_pa: f64::INFINITY,
-        min_xi: f64::NAN,
-        min_height: f64::NAN,
-    };
-    for (k, s) in s.iter().enumerate() {
-        let p = principal(*s);
-        if p[0] > out.max_principal_pa {
-            out.max_principal_pa = p[0];
-            out.max_xi = f.xi[k];
-            out.max_height = f.height[k];
-        }
-        if p[2] < out.min_principal_pa {
-            out.min_principal_pa = p[2];
-            out.min_xi = f.xi[k];
-            out.min_height = f.height[k];
-        }
-    }
-    out
+    formats::root_stress::fillet_extremes(
+        f.tooth,
+        f.side == FilletSide::Loaded,
+        &f.xi,
+        &f.height,
+        s,
+    )
 }
 
 /// The fillets of some teeth of one body, ready to turn displacements

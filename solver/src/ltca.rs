@@ -283,6 +283,13 @@ pub struct PositionLoad {
     /// The loaded contact's reach past an edge of the active flank (the
     /// largest overshoot over the slices), if any.
     pub edge: Option<EdgeHit>,
+    /// Root stress of each loaded tooth's two fillets, pinion's then
+    /// wheel's ([`crate::element::root_stress`]); None when a stiffness
+    /// file has no root-stress coefficients.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub root_stress: Option<[Vec<formats::root_stress::FilletStress>; 2]>,
+    /// Time spent on the root stress, s.
+    pub root_stress_s: f64,
 }
 
 /// A position over all torques.
@@ -484,6 +491,8 @@ fn position_load(
         min_force_n: s.force.iter().copied().fold(f64::INFINITY, f64::min),
         finite: s.theta.is_finite() && s.force.iter().all(|f| f.is_finite()),
         edge: position_edge(fp, &g.slices, &s.force, &half_widths),
+        root_stress: None,
+        root_stress_s: 0.0,
     }
 }
 
@@ -561,15 +570,21 @@ pub fn run_variant(
             let (a, assembly_s) = timed(|| assemble(&g, pc, sweep.friction));
             let mut a = a?;
             variant.apply(&mut a);
-            let (mut loads, sols) = solve_torques(fp, &g, &a, torques)?;
+            let (mut loads, mut sols) = solve_torques(fp, &g, &a, torques)?;
             let (neighbours, wider) = loaded_pair_rule(fp, rs, pc, sweep, tau, &g, &sols, variant)?;
             let g = match wider {
                 Some((g2, a2)) => {
-                    loads = solve_torques(fp, &g2, &a2, torques)?.0;
+                    (loads, sols) = solve_torques(fp, &g2, &a2, torques)?;
                     g2
                 }
                 None => g,
             };
+            for (l, s) in loads.iter_mut().zip(&sols) {
+                let (r, dt) =
+                    timed(|| crate::element::root_stress::root_stress(pc, &g.slices, &s.force));
+                l.root_stress = r?;
+                l.root_stress_s = dt;
+            }
             Ok(PositionResult {
                 rotation,
                 utca_te: g.utca_te,

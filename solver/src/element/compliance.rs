@@ -11,7 +11,8 @@
 
 use crate::element::interp::{grid_weights, Weights};
 use crate::SolverError;
-use formats::stiffness_file::StiffnessData;
+use formats::root_stress::Stress;
+use formats::stiffness_file::{RootStressBlock, StiffnessData};
 use geometry::Material;
 
 /// One member's influence data, ready for interpolation.
@@ -31,6 +32,8 @@ pub struct MemberCompliance {
     /// model's wheel, see `geometry::pair::OppositePlacement`).
     tooth_shift: i64,
     pub material: Material,
+    /// The stiffness file's root-stress coefficients, when it has them.
+    root: Option<RootStressBlock>,
 }
 
 impl MemberCompliance {
@@ -54,6 +57,7 @@ impl MemberCompliance {
             depth: d.depth_h,
             tooth_shift: 0,
             material,
+            root: d.root_stress,
         };
         m.symmetrize();
         m
@@ -152,6 +156,52 @@ impl MemberCompliance {
     /// Reference depth h at the point with weights `w` on solved tooth `s`, m.
     pub fn depth(&self, s: usize, w: &Weights) -> f64 {
         crate::element::interp::apply(w, &self.depth[s * self.np..(s + 1) * self.np])
+    }
+
+    /// Grid points of the contact grid.
+    pub fn points(&self) -> usize {
+        self.np
+    }
+
+    /// The fillet points' (ξ, height) and how many of them lie on the
+    /// loaded flank's fillet (the first ones), when the file has root
+    /// stress.
+    pub fn root_points(&self) -> Option<(&[f64], &[f64], usize)> {
+        self.root
+            .as_ref()
+            .map(|r| (&r.xi[..], &r.height[..], r.points() / 2))
+    }
+
+    /// Adds to `out` (one tensor per fillet point of the responding tooth)
+    /// the root stress of a force `force` (N) at the grid weights `w` on
+    /// solved tooth `s`, seen at the tooth `offset` from it:
+    /// σ += F Σ_a w_a S[s][offset][a]. False (nothing added) when the file
+    /// has no root stress or not that offset.
+    pub fn add_root_stress(
+        &self,
+        s: usize,
+        offset: i64,
+        w: &Weights,
+        force: f64,
+        out: &mut [Stress],
+    ) -> bool {
+        let Some(r) = &self.root else {
+            return false;
+        };
+        let Some(ri) = r.offsets.iter().position(|&o| o as i64 == offset) else {
+            return false;
+        };
+        let nf = r.points();
+        for &(a, x) in w.iter() {
+            let at = ((s * r.offsets.len() + ri) * self.np + a) * nf * 6;
+            let block = &r.stress[at..at + nf * 6];
+            for (o, v) in out.iter_mut().zip(block.chunks_exact(6)) {
+                for c in 0..6 {
+                    o[c] += force * x * v[c];
+                }
+            }
+        }
+        true
     }
 
     /// The np × np block of solved tooth `s` responding at offset `o` (None beyond the stored teeth).

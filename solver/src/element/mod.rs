@@ -7,12 +7,15 @@
 //! [`weber_banaschek`] (the local, near-contact approach of a line
 //! contact) → [`contact_problem`] (slice forces and loaded TE);
 //! [`edge_cut`] is the local approach of a slice whose strip a tip edge
-//! cuts; [`edge_contact`] tells when a slice's contact reaches a flank edge.
+//! cuts; [`edge_contact`] tells when a slice's contact reaches a flank edge;
+//! [`root_stress`] turns the slice forces into the loaded teeth's fillet
+//! stresses.
 
 pub mod compliance;
 pub mod contact_problem;
 pub mod edge_contact;
 pub mod edge_cut;
 pub mod interp;
+pub mod root_stress;
 pub mod slices;
 pub mod weber_banaschek;

@@ -239,11 +239,20 @@ fn print_summary(scene: &str, summary: &BlankSummary) {
     }
     for l in &summary.loads {
         eprintln!(
-            "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {:.2} ms/position",
+            "  {:6.1} N·m: TE mean {:8.2} µrad, ptp {:7.2} µrad, {:.2} ms/position{}",
             l.torque_nm,
             l.te_mean_urad,
             l.te_ptp_urad,
-            l.cpu_s_per_position * 1e3
+            l.cpu_s_per_position * 1e3,
+            match &l.root_stress {
+                Some(r) => format!(
+                    " (root stress {:.2} ms of it: largest tension pinion {:.1} MPa, wheel {:.1} MPa)",
+                    l.root_stress_s_per_position * 1e3,
+                    r.pinion.tension_mpa,
+                    r.wheel.tension_mpa
+                ),
+                None => String::new(),
+            }
         );
     }
     if let Some(c) = &summary.coast {
@@ -352,12 +361,14 @@ pub fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummar
             let te: Vec<f64> = res.iter().map(|p| p.loads[i].te).collect();
             let (m, ptp) = mean_ptp(&te);
             let solve: f64 = res.iter().map(|p| p.loads[i].solve_s).sum();
+            let root: f64 = res.iter().map(|p| p.loads[i].root_stress_s).sum();
             let setup: f64 = res.iter().map(|p| p.geometry_s + p.assembly_s).sum();
             LoadSummary {
                 torque_nm: t,
                 te_mean_urad: m * 1e6,
                 te_ptp_urad: ptp * 1e6,
-                cpu_s_per_position: (setup + solve) / n,
+                cpu_s_per_position: (setup + solve + root) / n,
+                root_stress_s_per_position: root / n,
                 solve_s_per_position: solve / n,
                 max_pressure_mpa: res
                     .iter()
@@ -378,6 +389,10 @@ pub fn load_summaries(res: &[PositionResult], torques: &[f64]) -> Vec<LoadSummar
                 wheel_torque_mean_nm: res.iter().map(|p| p.loads[i].wheel_torque_nm).sum::<f64>()
                     / n,
                 edge_contact: first_edge_contact(res, i),
+                root_stress: formats::root_stress::summarize(
+                    res.iter()
+                        .map(|p| (p.rotation.to_degrees(), p.loads[i].root_stress.as_ref())),
+                ),
             }
         })
         .collect()

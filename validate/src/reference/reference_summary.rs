@@ -2,8 +2,8 @@
 //! `compare_cache.json`): one type each, written by the stage and read by
 //! the report.
 
-use super::reference_root_stress::RootStressSummary;
 use crate::reference::reference_ltca::PositionResult;
+use formats::root_stress::RootStressSummary;
 use serde::{Deserialize, Serialize};
 
 /// The largest differences between positions solved now and their cached

@@ -507,6 +507,8 @@ mod tests {
                 pair: 2,
                 overshoot_mm: 0.3,
             }),
+            root_stress: None,
+            root_stress_s_per_position: 0.0,
         };
         let mut b = BlankSummary {
             pinion_blank: Blank::Standard,
