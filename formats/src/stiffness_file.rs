@@ -88,6 +88,9 @@ pub struct StiffnessConfig {
     pub clamped_groups: Vec<String>,
     /// How the local (near-load) field is computed (the stiffness stage's `influence::local_model`).
     pub local_model: String,
+    /// Whether the file holds root-stress coefficients (the scene's
+    /// `[stiffness] root_stress`).
+    pub root_stress: bool,
     /// Hash of the mesh inputs (from `<stem>.inputs.json`) and of the mesh file.
     pub mesh_inputs_hash: String,
     pub mesh_file_sha256: String,

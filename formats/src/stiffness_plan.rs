@@ -109,6 +109,7 @@ pub fn plan(
         poisson_ratio: md.poisson_ratio,
         clamped_groups: vec!["bore".into()],
         local_model: String::new(),
+        root_stress: st.root_stress,
         mesh_inputs_hash: String::new(),
         mesh_file_sha256: String::new(),
     };

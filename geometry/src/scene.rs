@@ -250,6 +250,10 @@ pub struct StiffnessSettings {
     pub response_teeth: usize,
     /// Right-hand sides per sequential solve block (two blocks run in parallel).
     pub solve_block: usize,
+    /// Whether the files also hold root-stress influence coefficients (the
+    /// fillet stresses under every grid load), from which the LTCA gives
+    /// the loaded teeth's root stress.
+    pub root_stress: bool,
 }
 
 impl Default for StiffnessSettings {
@@ -260,6 +264,7 @@ impl Default for StiffnessSettings {
             load_radius_factor: 0.75,
             response_teeth: 2,
             solve_block: 16,
+            root_stress: true,
         }
     }
 }

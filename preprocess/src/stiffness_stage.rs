@@ -372,6 +372,7 @@ fn run_one(
     let body = body_mesh::read(&msh).map_err(anyhow::Error::msg)?;
     formats::stop_point::at("reading");
     let mut req = request(&config, &fg, &body, g, member, side, st.solve_block);
+    let root_asked = config.root_stress;
     // The fillets of every tooth whose root stress a loaded tooth's grid
     // loads reach.
     let mut root_teeth: Vec<usize> = req
@@ -386,16 +387,22 @@ fn run_one(
         .collect();
     root_teeth.sort_unstable();
     root_teeth.dedup();
-    let root = crate::root_stress::RootStressPoints::new(
-        &body,
-        g,
-        member,
-        side,
-        &root_teeth,
-        req.material,
-    )
-    .with_context(|| format!("{stem}: root fillets of teeth {root_teeth:?}"))?;
-    req.root = Some(&root);
+    let root = if root_asked {
+        Some(
+            crate::root_stress::RootStressPoints::new(
+                &body,
+                g,
+                member,
+                side,
+                &root_teeth,
+                req.material,
+            )
+            .with_context(|| format!("{stem}: root fillets of teeth {root_teeth:?}"))?,
+        )
+    } else {
+        None
+    };
+    req.root = root.as_ref();
     eprintln!(
         "{stem}: {} nodes, {} tet10; unit loads on {} tooth(s) x {} grid points",
         body.mesh.nodes.len(),

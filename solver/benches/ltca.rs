@@ -14,7 +14,7 @@ use geometry::scene::{Blank, Scene};
 use geometry::utca::roll_surface;
 use serde_json::json;
 use solver::element::compliance::PairCompliance;
-use solver::ltca::{mean_ptp, run, Sweep};
+use solver::ltca::{mean_ptp, run, run_with_root_stress, Sweep};
 use solver::stage::context::{member_compliance, scene_sweep};
 use std::path::Path;
 use std::time::Instant;
@@ -65,7 +65,7 @@ fn main() {
         let mut best: Option<(f64, f64, f64, f64, f64, Vec<_>)> = None;
         for _ in 0..REPEATS {
             let t = Instant::now();
-            let res = run(fp, &rs, &pc, &sweep, torques).unwrap();
+            let res = run_with_root_stress(fp, &rs, &pc, &sweep, torques).unwrap();
             let wall = t.elapsed().as_secs_f64();
             let n = res.len() as f64;
             let geom = res.iter().map(|p| p.geometry_s).sum::<f64>() / n;

@@ -557,6 +557,32 @@ pub fn run_variant(
     torques: &[f64],
     variant: Variant,
 ) -> Result<Vec<PositionResult>, SolverError> {
+    sweep_positions(fp, rs, pc, sweep, torques, variant, false)
+}
+
+/// [`run`], and at every position and torque the loaded teeth's root
+/// stress ([`crate::element::root_stress`]) where both stiffness files hold
+/// root-stress coefficients: the LTCA stage's sweep. The studies that
+/// need the TE only ([`run`]) do not pay for it.
+pub fn run_with_root_stress(
+    fp: &FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    sweep: &Sweep,
+    torques: &[f64],
+) -> Result<Vec<PositionResult>, SolverError> {
+    sweep_positions(fp, rs, pc, sweep, torques, Variant::Element, true)
+}
+
+fn sweep_positions(
+    fp: &FlankPair,
+    rs: &RollSurface,
+    pc: &PairCompliance,
+    sweep: &Sweep,
+    torques: &[f64],
+    variant: Variant,
+    root_stress: bool,
+) -> Result<Vec<PositionResult>, SolverError> {
     let tau = fp.pinion.gen.frame.pitch();
     (0..sweep.positions)
         .into_par_iter()
@@ -579,7 +605,7 @@ pub fn run_variant(
                 }
                 None => g,
             };
-            for (l, s) in loads.iter_mut().zip(&sols) {
+            for (l, s) in loads.iter_mut().zip(&sols).filter(|_| root_stress) {
                 let (r, dt) =
                     timed(|| crate::element::root_stress::root_stress(pc, &g.slices, &s.force));
                 l.root_stress = r?;

@@ -102,7 +102,7 @@ fn blank_pair(
         sc.pinion_torque_nm.len(),
         sweep.slices
     );
-    let res = run_sweep(ctx.fp(), rs, pc, &sweep, &sc.pinion_torque_nm)
+    let res = crate::ltca::run_with_root_stress(ctx.fp(), rs, pc, &sweep, &sc.pinion_torque_nm)
         .with_context(|| format!("scene {}: LTCA, {wb:?} wheel blank", sc.name))?;
     let name = pair.name();
     // Written into the staging directory; the summaries name the
