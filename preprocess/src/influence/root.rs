@@ -20,6 +20,9 @@ use fem::Dofs;
 use formats::stiffness_file::{RootStressBlock, ROOT_STRESS_GRID, ROOT_STRESS_OFFSETS};
 use std::collections::{BTreeMap, HashMap};
 
+/// Grid loads per backward solve of the pruned path.
+const BACKWARD_BLOCK: usize = 64;
+
 /// Where the root stress is wanted, and the coefficients found so far.
 pub(super) struct RootTargets {
     /// Offsets of the request that are root-stress offsets.
@@ -72,12 +75,14 @@ impl RootTargets {
         }))
     }
 
-    /// Every support node of every responding tooth's points.
-    pub(super) fn support_nodes(&self) -> Vec<usize> {
+    /// Every support node of the points of `teeth` (all responding teeth
+    /// when None).
+    pub(super) fn support_nodes(&self, teeth: Option<&[usize]>) -> Vec<usize> {
         let mut v: Vec<usize> = self
             .teeth
-            .values()
-            .flat_map(|t| t.support().iter().copied())
+            .iter()
+            .filter(|(j, _)| teeth.is_none_or(|t| t.contains(j)))
+            .flat_map(|(_, t)| t.support().iter().copied())
             .collect();
         v.sort_unstable();
         v.dedup();
@@ -115,7 +120,8 @@ impl RootTargets {
         y: &[PathVec],
     ) -> Result<(), InfluenceError> {
         let k = req.solved_teeth[s];
-        let nodes = self.support_nodes();
+        let mine: Vec<usize> = self.offsets.iter().map(|&o| tooth_of(req, k, o)).collect();
+        let nodes = self.support_nodes(Some(&mine));
         let mut at: HashMap<usize, [Option<usize>; 3]> = HashMap::new();
         let mut list = Vec::new();
         for &n in &nodes {
@@ -127,11 +133,15 @@ impl RootTargets {
             });
             at.insert(n, f);
         }
-        let refs: Vec<&PathVec> = y.iter().collect();
-        let x = pf.backward_at(&refs, &list)?;
-        for (i, xi) in x.iter().enumerate() {
-            let u = |n: usize| at[&n].map(|p| p.map_or(0.0, |p| xi[p]));
-            self.fill(req, s, k, i, &u);
+        // Blocks of loads: the backward solves' work space is loads × the
+        // rows on the support's paths.
+        for (c, chunk) in y.chunks(BACKWARD_BLOCK).enumerate() {
+            let refs: Vec<&PathVec> = chunk.iter().collect();
+            let x = pf.backward_at(&refs, &list)?;
+            for (i, xi) in x.iter().enumerate() {
+                let u = |n: usize| at[&n].map(|p| p.map_or(0.0, |p| xi[p]));
+                self.fill(req, s, k, c * BACKWARD_BLOCK + i, &u);
+            }
         }
         Ok(())
     }

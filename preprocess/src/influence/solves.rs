@@ -146,7 +146,7 @@ pub(super) fn pruned(
         .collect();
     if let Some(t) = targets.as_ref() {
         keep.extend(
-            t.support_nodes()
+            t.support_nodes(None)
                 .iter()
                 .flat_map(|&n| (0..3).filter_map(move |c| dofs.free_index(3 * n + c))),
         );
