@@ -113,6 +113,10 @@ mod tests {
     /// Five teeth, all solved, offsets −1..1, a 3 × 4 grid, two
     /// fillet points per side, pseudo-random root-stress coefficients.
     fn member(name: &str, seed: u64) -> MemberCompliance {
+        MemberCompliance::new(data(name, seed), Material::STEEL)
+    }
+
+    fn data(name: &str, seed: u64) -> StiffnessData {
         let (gp, gf, no, ns, nf) = (3, 4, 3, 5, 4);
         let np = gp * gf;
         let mut state = seed;
@@ -122,7 +126,7 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e5
         };
-        let d = StiffnessData {
+        StiffnessData {
             input_hash: String::new(),
             config: String::new(),
             member: name.into(),
@@ -149,8 +153,7 @@ mod tests {
                 height: vec![0.5, 0.5, 0.5, 0.5],
                 stress: (0..ns * 3 * np * nf * 6).map(|_| rnd()).collect(),
             }),
-        };
-        MemberCompliance::new(d, Material::STEEL)
+        }
     }
 
     fn slice(pair: i32, xi: f64, eta: f64, wheel: [f64; 2]) -> Slice {
@@ -239,39 +242,12 @@ mod tests {
             pinion: MemberCompliance::new(
                 StiffnessData {
                     root_stress: None,
-                    ..pc_data()
+                    ..data("pinion", 1)
                 },
                 Material::STEEL,
             ),
             wheel: pc.wheel.clone(),
         };
         assert!(root_stress(&plain, &slices, &force).unwrap().is_none());
-    }
-
-    fn pc_data() -> StiffnessData {
-        let np = 12;
-        StiffnessData {
-            input_hash: String::new(),
-            config: String::new(),
-            member: "pinion".into(),
-            blank: "standard".into(),
-            level: "reduced".into(),
-            teeth: 5,
-            axisymmetric: true,
-            grid_profile: 3,
-            grid_face: 4,
-            xi: vec![0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0],
-            eta: vec![0.0, 0.5, 1.0],
-            position: vec![0.0; 3 * np],
-            normal: vec![0.0; 3 * np],
-            lever: vec![0.0; np],
-            solved_teeth: vec![0],
-            offsets: vec![0],
-            depth_h: vec![1e-3; np],
-            total: Vec::new(),
-            local: Vec::new(),
-            global: vec![1e-9; np * np],
-            root_stress: None,
-        }
     }
 }
