@@ -2,6 +2,7 @@
 //! misalignment E, P, G, ΔΣ swept alone at the scene's loads): written by
 //! the solver, read by the report with this one definition.
 
+use crate::root_stress::RootStressSummary;
 use geometry::gear_body::Blank;
 use geometry::misalignment::{Component, Misalignment};
 use serde::{Deserialize, Serialize};
@@ -21,6 +22,11 @@ pub struct SensitivityLoad {
     pub pattern_height_mm: f64,
     /// Largest Hertz pressure over the sweep, MPa.
     pub max_pressure_mpa: f64,
+    /// The tooth root (fillet) stress extremes of pinion and wheel over the
+    /// sweep, with where each sits; None when the stiffness files hold no
+    /// root-stress coefficients (`[stiffness] root_stress = false`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root_stress: Option<RootStressSummary>,
 }
 
 /// One value of one swept misalignment.

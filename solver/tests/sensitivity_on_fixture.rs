@@ -1,7 +1,8 @@
 //! `solver sensitivity` on the checked-in example-02 stiffness fixture (no
 //! gmsh): four curves of the scene's 9 values, the middle value of each the
 //! scene's own (aligned) LTCA, the summary's CSV and charts written as one
-//! result set, and the stiffness files only read.
+//! result set, and the stiffness files only read; without root-stress
+//! coefficients in the files, no root stress.
 
 use geometry::misalignment::Component;
 use geometry::scene::Scene;
@@ -51,7 +52,19 @@ fn sensitivity_study_sweeps_each_misalignment_around_the_aligned_ltca() {
     {
         assert!(sdir.join(f).is_file(), "{f} missing");
     }
+    // The fixture's files hold no root-stress coefficients: no root stress,
+    // no root-stress charts, empty CSV cells.
+    for (f, _) in solver::stage::sensitivity::ROOT_STRESS_CHART_FILES {
+        assert!(!sdir.join(f).exists(), "{f} written without root stress");
+    }
+    assert!(s
+        .curves
+        .iter()
+        .flat_map(|c| &c.points)
+        .flat_map(|p| &p.loads)
+        .all(|l| l.root_stress.is_none()));
     let csv = std::fs::read_to_string(sdir.join("summary.csv")).unwrap();
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",,,")), "{csv}");
     let torques = scene.scene.pinion_torque_nm.len();
     assert_eq!(csv.lines().count(), 1 + 4 * 9 * torques);
     // The aligned LTCA of the same scene.

@@ -1,8 +1,10 @@
 //! The report's misalignment-sensitivity section from a synthetic
 //! `solver sensitivity` output: the tables are formatted from the summary,
 //! the charts are copied next to the report, and an absent summary is one
-//! line of text.
+//! line of text; the root-stress columns and charts appear exactly when
+//! the summary holds root stress.
 
+use formats::root_stress::{FilletPlace, RootStressExtreme, RootStressSummary};
 use formats::sensitivity_summary::{
     SensitivityCurve, SensitivityLoad, SensitivityPoint, SensitivitySummary,
 };
@@ -10,7 +12,28 @@ use geometry::misalignment::{Component, Misalignment};
 use geometry::scene::Blank;
 use validate::report::sections::sensitivity::section;
 
-fn summary() -> SensitivitySummary {
+/// Root-stress extremes of one load: the pinion's tension grows with the
+/// torque and moves toward the heel with the value.
+fn root_stress(t: f64, value: f64) -> RootStressSummary {
+    let place = |xi| FilletPlace {
+        pinion_rotation_deg: 3.0,
+        tooth: 1,
+        xi,
+        height: 0.3,
+    };
+    let member = |tension_mpa, xi| RootStressExtreme {
+        tension_mpa,
+        tension_at: place(xi),
+        compression_mpa: -0.5 * tension_mpa,
+        compression_at: place(0.5),
+    };
+    RootStressSummary {
+        pinion: member(t, 0.5 + value),
+        wheel: member(0.8 * t, 0.5 - value),
+    }
+}
+
+fn summary(root: bool) -> SensitivitySummary {
     let curves = Component::ALL
         .iter()
         .enumerate()
@@ -36,6 +59,7 @@ fn summary() -> SensitivitySummary {
                                 pattern_length_mm: 20.0,
                                 pattern_height_mm: 5.0,
                                 max_pressure_mpa: 1234.0 + t,
+                                root_stress: root.then(|| root_stress(t, value)),
                             })
                             .collect(),
                     }
@@ -63,7 +87,7 @@ fn sensitivity_section_tabulates_the_summary_and_copies_its_charts() {
     let reports = tempfile::tempdir().unwrap();
     let dir = out.path().join("synthetic").join("sensitivity");
     std::fs::create_dir_all(&dir).unwrap();
-    let s = summary();
+    let s = summary(false);
     formats::output::write_json(&dir.join("summary.json"), &s).unwrap();
     solver::stage::sensitivity::write_charts(&dir, &s).unwrap();
     let sec = section(Some(out.path()), Some("synthetic"), reports.path());
@@ -87,6 +111,11 @@ fn sensitivity_section_tabulates_the_summary_and_copies_its_charts() {
         !sec.markdown.contains("| 10.10 |"),
         "a row of the smaller torque"
     );
+    assert!(
+        sec.markdown.contains("No root stress") && !sec.markdown.contains("σ_F pinion"),
+        "{}",
+        sec.markdown
+    );
     assert_eq!(sec.figures.len(), 6);
     for f in &sec.figures {
         assert!(
@@ -103,4 +132,44 @@ fn sensitivity_section_tabulates_the_summary_and_copies_its_charts() {
         none.markdown
     );
     assert!(none.figures.is_empty());
+}
+
+/// With root stress in every load: its four columns (tension and ξ of
+/// pinion and wheel at the largest torque) and its two charts.
+#[test]
+fn sensitivity_section_adds_the_root_stress_where_the_summary_has_it() {
+    let out = tempfile::tempdir().unwrap();
+    let reports = tempfile::tempdir().unwrap();
+    let dir = out.path().join("synthetic").join("sensitivity");
+    std::fs::create_dir_all(&dir).unwrap();
+    let s = summary(true);
+    formats::output::write_json(&dir.join("summary.json"), &s).unwrap();
+    solver::stage::sensitivity::write_charts(&dir, &s).unwrap();
+    let csv = solver::stage::sensitivity::summary_csv(&s).unwrap();
+    assert!(
+        csv.lines()
+            .nth(1)
+            .unwrap()
+            .ends_with(",100.000,0.4500,80.000,0.5500"),
+        "{csv}"
+    );
+    let sec = section(Some(out.path()), Some("synthetic"), reports.path());
+    assert!(
+        sec.markdown.contains("σ_F pinion (MPa)"),
+        "{}",
+        sec.markdown
+    );
+    // E at −0.05, 300 N·m: pinion 300 MPa at ξ 0.45, wheel 240 MPa at ξ 0.55.
+    assert!(
+        sec.markdown.contains(
+            "| -0.0500 | 10.30 | 295.00 | 120.95 | 1.05 | 20.00 | 5.00 | 1534 | 300.0 | 0.45 | 240.0 | 0.55 |"
+        ),
+        "{}",
+        sec.markdown
+    );
+    assert_eq!(sec.figures.len(), 8);
+    assert!(sec
+        .figures
+        .iter()
+        .any(|f| f.file == "sensitivity_wheel_root_stress.svg"));
 }

@@ -4,19 +4,23 @@
 //! at every value the loaded TCA of the first pinion × wheel blank runs at
 //! the scene's loads over the scene's sweep: TE peak-to-peak and mean, the
 //! loaded pattern's centre and extent on the pinion flank (L along the face,
-//! d in height) and the largest pressure. The stiffness files are read once:
+//! d in height), the largest pressure and, where the stiffness files hold
+//! root-stress coefficients, the largest tooth root (fillet) tension of
+//! pinion and wheel with where it sits. The stiffness files are read once:
 //! they are body-fixed and serve every pose.
 //!
 //! Writes `<out>/<scene>/sensitivity/` as one result set: `summary.json`
 //! ([`formats::sensitivity_summary`]), `summary.csv` (one row per
-//! misalignment × value × torque) and the charts of [`CHART_FILES`].
+//! misalignment × value × torque), the charts of [`CHART_FILES`] and, with
+//! root stress, those of [`ROOT_STRESS_CHART_FILES`].
 
-use crate::ltca::{mean_ptp, run as run_sweep, PositionResult};
+use crate::ltca::{mean_ptp, run_with_root_stress, PositionResult};
 use crate::stage::context::{record_stiffness_inputs, LoadedPair};
 use anyhow::Context;
 use charts::{te_curve, Series};
 use formats::output::{write_atomic, write_json};
 use formats::result_set::ResultSet;
+use formats::root_stress::RootStressSummary;
 use formats::sensitivity_summary::{
     SensitivityCurve, SensitivityLoad, SensitivityPoint, SensitivitySummary,
 };
@@ -42,15 +46,29 @@ pub const CHART_FILES: [(&str, &str); 6] = [
     ("max_pressure.svg", "largest pressure (MPa)"),
 ];
 
-/// One chart's quantity of a load.
+/// The root-stress chart files (written when the stiffness files hold
+/// root-stress coefficients) and the quantity each shows.
+pub const ROOT_STRESS_CHART_FILES: [(&str, &str); 2] = [
+    (
+        "pinion_root_stress.svg",
+        "largest pinion root tension (MPa)",
+    ),
+    ("wheel_root_stress.svg", "largest wheel root tension (MPa)"),
+];
+
+/// One chart's quantity of a load: the charts of [`CHART_FILES`], then
+/// those of [`ROOT_STRESS_CHART_FILES`] (NaN without root stress).
 fn quantity(l: &SensitivityLoad, chart: usize) -> f64 {
+    let tension = |f: fn(&RootStressSummary) -> f64| l.root_stress.as_ref().map_or(f64::NAN, f);
     match chart {
         0 => l.te_ptp_urad,
         1 => l.te_mean_urad,
         2 => l.pattern_centre_l_mm,
         3 => l.pattern_centre_d_mm,
         4 => l.pattern_length_mm,
-        _ => l.max_pressure_mpa,
+        5 => l.max_pressure_mpa,
+        6 => tension(|r| r.pinion.tension_mpa),
+        _ => tension(|r| r.wheel.tension_mpa),
     }
 }
 
@@ -86,6 +104,10 @@ pub fn load_statistics(
             .map(|p| p.loads[i].max_pressure_pa)
             .fold(0.0, f64::max)
             * 1e-6,
+        root_stress: formats::root_stress::summarize(
+            res.iter()
+                .map(|p| (p.rotation.to_degrees(), p.loads[i].root_stress.as_ref())),
+        ),
     }
 }
 
@@ -128,7 +150,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Sen
             g.misalign(&m);
             let fp = g.side(sc.loaded_flank);
             let rs = roll_surface(fp, &sc.utca)?;
-            let res = run_sweep(fp, &rs, &pc, &sweep, torques).with_context(|| {
+            let res = run_with_root_stress(fp, &rs, &pc, &sweep, torques).with_context(|| {
                 format!(
                     "scene {}: sensitivity, {} = {value} {} (misalignment {m:?})",
                     sc.name,
@@ -187,14 +209,25 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Sen
 /// One row per misalignment × value × torque.
 pub fn summary_csv(s: &SensitivitySummary) -> Result<String, std::fmt::Error> {
     let mut csv = String::from(
-        "misalignment,unit,value,torque_nm,te_ptp_urad,te_mean_urad,pattern_centre_l_mm,pattern_centre_d_mm,pattern_length_mm,pattern_height_mm,max_pressure_mpa\n",
+        "misalignment,unit,value,torque_nm,te_ptp_urad,te_mean_urad,pattern_centre_l_mm,pattern_centre_d_mm,pattern_length_mm,pattern_height_mm,max_pressure_mpa,pinion_root_tension_mpa,pinion_root_tension_xi,wheel_root_tension_mpa,wheel_root_tension_xi\n",
     );
+    // Empty cells where the stiffness files hold no root stress.
+    let root = |l: &SensitivityLoad| match &l.root_stress {
+        Some(r) => format!(
+            "{:.3},{:.4},{:.3},{:.4}",
+            r.pinion.tension_mpa,
+            r.pinion.tension_at.xi,
+            r.wheel.tension_mpa,
+            r.wheel.tension_at.xi
+        ),
+        None => ",,,".into(),
+    };
     for c in &s.curves {
         for p in &c.points {
             for l in &p.loads {
                 writeln!(
                     csv,
-                    "{},{},{},{},{:.5},{:.5},{:.5},{:.5},{:.5},{:.5},{:.3}",
+                    "{},{},{},{},{:.5},{:.5},{:.5},{:.5},{:.5},{:.5},{:.3},{}",
                     c.component.field(),
                     c.unit,
                     p.value,
@@ -205,7 +238,8 @@ pub fn summary_csv(s: &SensitivitySummary) -> Result<String, std::fmt::Error> {
                     l.pattern_centre_d_mm,
                     l.pattern_length_mm,
                     l.pattern_height_mm,
-                    l.max_pressure_mpa
+                    l.max_pressure_mpa,
+                    root(l)
                 )?;
             }
         }
@@ -213,8 +247,9 @@ pub fn summary_csv(s: &SensitivitySummary) -> Result<String, std::fmt::Error> {
     Ok(csv)
 }
 
-/// The charts of [`CHART_FILES`]: the quantity against the misalignment as
-/// a fraction of its range, one curve per misalignment and torque.
+/// The charts of [`CHART_FILES`] (and of [`ROOT_STRESS_CHART_FILES`] when
+/// every load has root stress): the quantity against the misalignment as a
+/// fraction of its range, one curve per misalignment and torque.
 pub fn write_charts(dir: &Path, s: &SensitivitySummary) -> Result<(), charts::PlotError> {
     let ranges: Vec<String> = s
         .curves
@@ -222,7 +257,16 @@ pub fn write_charts(dir: &Path, s: &SensitivitySummary) -> Result<(), charts::Pl
         .map(|c| format!("{} ±{} {}", c.symbol, c.range, c.unit))
         .collect();
     let x_label = format!("misalignment / its range ({})", ranges.join(", "));
-    for (k, (file, y_label)) in CHART_FILES.iter().enumerate() {
+    let with_root_stress = s
+        .curves
+        .iter()
+        .flat_map(|c| &c.points)
+        .flat_map(|p| &p.loads)
+        .all(|l| l.root_stress.is_some());
+    let files = CHART_FILES
+        .iter()
+        .chain(ROOT_STRESS_CHART_FILES.iter().filter(|_| with_root_stress));
+    for (k, (file, y_label)) in files.enumerate() {
         let mut series = Vec::new();
         for c in &s.curves {
             for (i, t) in s.torques_nm.iter().enumerate() {

@@ -29,6 +29,19 @@ const CHARTS: [(&str, &str); 6] = [
     ("Largest pressure against misalignment", "max_pressure.svg"),
 ];
 
+/// The root-stress charts, written by `solver sensitivity` when the
+/// stiffness files hold root-stress coefficients.
+const ROOT_STRESS_CHARTS: [(&str, &str); 2] = [
+    (
+        "Largest pinion root tension against misalignment",
+        "pinion_root_stress.svg",
+    ),
+    (
+        "Largest wheel root tension against misalignment",
+        "wheel_root_stress.svg",
+    ),
+];
+
 /// The section's markdown and the figures it shows (already written into
 /// the report directory).
 #[derive(Debug, Clone, Default)]
@@ -71,8 +84,10 @@ pub fn section(out: Option<&Path>, scene: Option<&str>, reports: &Path) -> Sensi
     };
     let mut s = s;
     markdown(&mut s, &r);
+    let with_root_stress = has_root_stress(&r);
     let figures: Vec<Figure> = CHARTS
         .iter()
+        .chain(ROOT_STRESS_CHARTS.iter().filter(|_| with_root_stress))
         .filter_map(|(title, file)| {
             copied(
                 title,
@@ -87,6 +102,15 @@ pub fn section(out: Option<&Path>, scene: Option<&str>, reports: &Path) -> Sensi
         markdown: s,
         figures,
     }
+}
+
+/// Whether every load of the study has the root stress.
+fn has_root_stress(r: &SensitivitySummary) -> bool {
+    r.curves
+        .iter()
+        .flat_map(|c| &c.points)
+        .flat_map(|p| &p.loads)
+        .all(|l| l.root_stress.is_some())
 }
 
 /// The text and one table per misalignment at the largest torque.
@@ -110,15 +134,25 @@ fn markdown(s: &mut String, r: &SensitivitySummary) {
             .join(", "),
         r.wall_s
     );
+    let root = has_root_stress(r);
+    let _ = writeln!(
+        s,
+        "{}\n",
+        if root {
+            "σ_F: the largest first principal stress over the sweep on the loaded side's fillets of pinion and wheel (the reduced model's stress influence coefficients combined with the slice forces), ξ where it sits along the face (0 toe, 1 heel)."
+        } else {
+            "No root stress: the stiffness files hold no root-stress coefficients (`[stiffness] root_stress = false`)."
+        }
+    );
     let Some(&torque) = r.torques_nm.last() else {
         return;
     };
     for c in &r.curves {
-        curve_table(s, c, torque);
+        curve_table(s, c, torque, root);
     }
 }
 
-fn curve_table(s: &mut String, c: &SensitivityCurve, torque: f64) {
+fn curve_table(s: &mut String, c: &SensitivityCurve, torque: f64, root: bool) {
     let _ = writeln!(
         s,
         "### {} ({}), ±{} {}, at {torque} N·m\n",
@@ -129,17 +163,34 @@ fn curve_table(s: &mut String, c: &SensitivityCurve, torque: f64) {
     );
     let _ = writeln!(
         s,
-        "| {} ({}) | TE ptp (µrad) | mean TE (µrad) | centre L (mm) | centre d (mm) | length (mm) | height (mm) | p_max (MPa) |",
-        c.symbol, c.unit
+        "| {} ({}) | TE ptp (µrad) | mean TE (µrad) | centre L (mm) | centre d (mm) | length (mm) | height (mm) | p_max (MPa) |{}",
+        c.symbol,
+        c.unit,
+        if root {
+            " σ_F pinion (MPa) | ξ pinion | σ_F wheel (MPa) | ξ wheel |"
+        } else {
+            ""
+        }
     );
-    s.push_str("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    s.push_str("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    s.push_str(if root { "---:|---:|---:|---:|\n" } else { "\n" });
     for p in &c.points {
         let Some(l) = p.loads.iter().find(|l| l.torque_nm == torque) else {
             continue;
         };
+        let root_cells = match (&l.root_stress, root) {
+            (Some(r), true) => format!(
+                " {:.1} | {:.2} | {:.1} | {:.2} |",
+                r.pinion.tension_mpa,
+                r.pinion.tension_at.xi,
+                r.wheel.tension_mpa,
+                r.wheel.tension_at.xi
+            ),
+            _ => String::new(),
+        };
         let _ = writeln!(
             s,
-            "| {:+.4} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0} |",
+            "| {:+.4} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.0} |{root_cells}",
             p.value,
             l.te_ptp_urad,
             l.te_mean_urad,
