@@ -21,6 +21,7 @@ pub mod mate;
 pub mod material;
 pub mod minimize;
 pub mod misalignment;
+pub mod nominal_root_stress;
 pub mod pair;
 pub mod placement;
 pub mod roughness;

@@ -82,7 +82,7 @@ fn reduced_root_stress_matches_the_reference_on_the_same_meshes_and_follows_misa
     .unwrap();
     let fp = g.side(sc.loaded_flank);
     let rs = geometry::utca::roll_surface(fp, &sc.utca).unwrap();
-    let mut first = pair.sweep.clone();
+    let mut first = pair.sweep;
     first.positions = 1;
     let res = solver::ltca::run_with_root_stress(fp, &rs, &pair.pc, &first, &sc.pinion_torque_nm)
         .unwrap();

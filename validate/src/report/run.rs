@@ -86,8 +86,7 @@ pub fn run(i: &ReportInputs) -> anyhow::Result<Made> {
         )?;
     }
     if let (Some(o), Some(sc)) = (i.out, sc.as_ref()) {
-        figures.root_stress =
-            crate::report::sections::root_stress::build(o, &sc.scene.name, i.reports)?;
+        figures.root_stress = crate::report::sections::root_stress::build(o, sc, i.reports)?;
     }
     if let Some(o) = i.out {
         figures.contact_laws = Some(crate::report::sections::contact_laws::build(

@@ -3,7 +3,9 @@
 //! every mesh level's reference sweep that computed them
 //! ([`crate::reference::reference_root_stress`]): the finest level's
 //! extremes with where they sit, then each level's largest tension beside
-//! the finest one's (how much the value still moves with the mesh).
+//! the finest one's (how much the value still moves with the mesh), the
+//! design's nominal root stress as an order-of-magnitude anchor, and the
+//! reduced model's root stress against the reference's.
 
 use crate::reference::reference_stage::reference_dir;
 use crate::reference::reference_summary::BlankSummary;
@@ -11,6 +13,9 @@ use crate::report::figures::{figure_lines, Figure};
 use charts::{te_curve, Series};
 use formats::root_stress::{FilletPlace, RootStressSummary};
 use formats::stiffness_file::ROOT_STRESS_GRID;
+use geometry::design::PairData;
+use geometry::nominal_root_stress::nominal_root_stress;
+use geometry::scene::LoadedScene;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -194,14 +199,69 @@ pub struct RootStressSection {
     pub figures: Vec<Figure>,
 }
 
+/// The nominal root stress of the design (an estimate,
+/// [`geometry::nominal_root_stress`]) beside the reference's largest
+/// tension at the finest level, per blank pair and load.
+pub fn nominal(rows: &[Row], pair: &PairData, alpha_n: f64) -> String {
+    let Some(top) = finest(rows) else {
+        return String::new();
+    };
+    let lines: Vec<String> = rows
+        .iter()
+        .filter(|r| r.level == top && r.torque_nm > 0.0)
+        .map(|r| {
+            let n = nominal_root_stress(pair, alpha_n, r.torque_nm);
+            let [p, w] = n.sigma_pa.map(|s| s * 1e-6);
+            format!(
+                "| {} | {} | {:.1} | {:.1} | {:.2} | {:.1} | {:.1} | {:.2} |",
+                r.blanks,
+                r.torque_nm,
+                p,
+                r.stress.pinion.tension_mpa,
+                r.stress.pinion.tension_mpa / p,
+                w,
+                r.stress.wheel.tension_mpa,
+                r.stress.wheel.tension_mpa / w
+            )
+        })
+        .collect();
+    if lines.is_empty() {
+        return String::new();
+    }
+    let n = nominal_root_stress(pair, alpha_n, 1.0);
+    let mut s = format!(
+        "An order-of-magnitude anchor, an estimate and not a rating: the nominal root stress σ_F0 = F_mt / (b m_mn) · Y_Fa · Y_Sa · Y_ε of the design data alone, with the structure of ISO 10300-3:2014 method B1 (virtual cylindrical gears in the normal section at the mean point) and ISO 6336-3 method B's form and stress correction factors for the load at the tip (`geometry::nominal_root_stress`; checked against the published spur-gear table of Y_Fa and Y_Sa). Chosen by us: the bevel-spiral and load-sharing factors are 1 and no load factor enters, so σ_F0 is the stress of the load spread evenly over the face width; the web of a lightweight blank does not enter. Here: virtual teeth {:.1} / {:.1}, Y_Fa {:.3} / {:.3}, Y_Sa {:.3} / {:.3} (pinion / wheel), ε_vα {:.3}, Y_ε {:.3}.\n\n| blank pair | load, N·m | pinion σ_F0, MPa | reference tension, MPa | ratio | wheel σ_F0, MPa | reference tension, MPa | ratio |\n|---|---|---|---|---|---|---|---|\n",
+        n.teeth[0].z,
+        n.teeth[1].z,
+        n.factors[0].y_fa,
+        n.factors[1].y_fa,
+        n.factors[0].y_sa,
+        n.factors[1].y_sa,
+        n.contact_ratio,
+        n.y_epsilon
+    );
+    for l in lines {
+        s.push_str(&l);
+        s.push('\n');
+    }
+    s.push('\n');
+    s
+}
+
 /// The section from the sweeps under `out` for `scene`, its figures
 /// written into `reports`.
-pub fn build(out: &Path, scene: &str, reports: &Path) -> anyhow::Result<RootStressSection> {
-    let rows = rows(out, scene)?;
+pub fn build(out: &Path, scene: &LoadedScene, reports: &Path) -> anyhow::Result<RootStressSection> {
+    let name = scene.scene.name.as_str();
+    let rows = rows(out, name)?;
     let mut markdown = text(&rows);
-    markdown.push_str(&comparison(&rows, &reduced_rows(out, scene)?));
+    markdown.push_str(&nominal(
+        &rows,
+        &scene.pair,
+        scene.pair.pressure_angle[scene.scene.loaded_flank.index()],
+    ));
+    markdown.push_str(&comparison(&rows, &reduced_rows(out, name)?));
     let figures = match finest(&rows) {
-        Some(top) => cycle_figures(out, scene, top, &rows, reports),
+        Some(top) => cycle_figures(out, name, top, &rows, reports),
         None => Vec::new(),
     };
     if !figures.is_empty() {
@@ -523,5 +583,42 @@ mod tests {
         assert!(t.contains("Mesh level `reduced`"), "{t}");
         assert!(!t.contains("per mesh level"), "{t}");
         assert_eq!(text(&[]), "");
+    }
+
+    /// The nominal table at the finest level: σ_F0 from the design data
+    /// (computed here independently of the section: F_mt/(b m_mn) times the
+    /// factors) and the reference's tension over it; zero-torque rows and
+    /// coarser levels left out; no rows, no table.
+    #[test]
+    fn nominal_root_stress_table_sets_the_estimate_beside_the_finest_level() {
+        let pair = geometry::design_file::load_pair(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../reference/white_paper_20x43.toml"
+        )))
+        .unwrap();
+        let a = pair.pressure_angle[0];
+        let rows = vec![
+            row("medium", 700.0, 1.0, 1.0),
+            row("reference", 0.0, 0.0, 0.0),
+            row("reference", 700.0, 374.2, 309.7),
+        ];
+        let t = nominal(&rows, &pair, a);
+        let n = nominal_root_stress(&pair, a, 700.0);
+        let f_mt =
+            2.0 * 700.0 / (2.0 * pair.mean_cone_distance * pair.members[0].pitch_angle.sin());
+        let by_hand = f_mt / (pair.face_width * pair.normal_module)
+            * n.factors[0].y_fa
+            * n.factors[0].y_sa
+            * (0.25 + 0.75 / n.contact_ratio);
+        assert!((n.sigma_pa[0] / by_hand - 1.0).abs() < 1e-12);
+        let p = n.sigma_pa[0] * 1e-6;
+        let line = format!(
+            "| standard_standard | 700 | {p:.1} | 374.2 | {:.2} |",
+            374.2 / p
+        );
+        assert!(t.contains(&line), "{line} not in\n{t}");
+        assert_eq!(t.matches("| standard_standard |").count(), 1, "{t}");
+        assert!(t.contains("ISO 10300-3:2014 method B1"), "{t}");
+        assert_eq!(nominal(&[], &pair, a), "");
     }
 }
