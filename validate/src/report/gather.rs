@@ -158,5 +158,27 @@ pub fn report_figures(
         }
         f.pattern_torque_nm = (!f.patterns.is_empty()).then_some(t);
     }
+    // The contact pressure at every load, both models.
+    let mut pressure_rows = Vec::new();
+    for wb in &s.blanks.wheel {
+        for pb in &s.blanks.pinion {
+            let blank = format!("{pb:?}_{wb:?}").to_lowercase();
+            for &t in &s.pinion_torque_nm {
+                if let Some(n) =
+                    crate::report::sections::loaded_contact::pattern_points(o, &s.name, &blank, t)
+                        .and_then(|(a, b)| {
+                            crate::report::sections::pattern_numbers::numbers(&a, &b)
+                        })
+                {
+                    pressure_rows.push((blank.clone(), t, n));
+                }
+            }
+        }
+    }
+    let table = crate::report::sections::pattern_numbers::table(&pressure_rows);
+    if !table.is_empty() {
+        f.pattern_numbers.push('\n');
+        f.pattern_numbers.push_str(&table);
+    }
     f
 }

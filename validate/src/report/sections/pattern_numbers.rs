@@ -15,6 +15,7 @@
 
 use super::loaded_contact::{PatternPoint, PATTERN_CELLS_SLICES};
 use serde::Serialize;
+use std::fmt::Write as _;
 
 /// Distance from the flank's edges (unit flank) beyond which a point is
 /// interior.
@@ -39,6 +40,8 @@ pub struct PatternNumbers {
     pub interior_peak_difference_pct: f64,
     /// Edges each model's contact reaches: [reduced, reference].
     pub edges: [Vec<&'static str>; 2],
+    /// Largest pressure anywhere, edges included, MPa: [reduced, reference].
+    pub overall_peak_mpa: [f64; 2],
 }
 
 /// Largest pressure farther than [`EDGE_BAND`] from every edge (0 when none).
@@ -113,7 +116,55 @@ pub fn numbers(reduced: &[PatternPoint], reference: &[PatternPoint]) -> Option<P
         interior_peak_mpa: [pa, pb],
         interior_peak_difference_pct: (pa / pb - 1.0) * 100.0,
         edges: [edges_reached(reduced, pa), edges_reached(reference, pb)],
+        overall_peak_mpa: [reduced, reference].map(|v| v.iter().map(|p| p.2).fold(0.0, f64::max)),
     })
+}
+
+/// The contact pressure table: per blank pair and load, both models'
+/// largest pressure away from the edges (judged against
+/// [`PEAK_TARGET_PCT`]) and anywhere, and the edges each model's contact
+/// reaches; then how many loads meet the target and agree on the edges.
+/// `rows`: (blank pair, load N·m, numbers).
+pub fn table(rows: &[(String, f64, PatternNumbers)]) -> String {
+    if rows.is_empty() {
+        return String::new();
+    }
+    let list = |e: &[&str]| {
+        if e.is_empty() {
+            "none".to_string()
+        } else {
+            e.join(", ")
+        }
+    };
+    let mut s = format!(
+        "Contact pressure per blank pair and load (the pattern's definitions above: interior farther than {EDGE_BAND} of the unit flank from every edge; an edge is reached where a point with at least {:.0} % of the model's interior peak lies within {EDGE_FLAG_BAND} of it):\n\n| blank pair | load, N·m | interior p_max reduced, MPa | reference, MPa | diff % | largest anywhere reduced, MPa | reference, MPa | edges reached, reduced | reference | IoU |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        FLAG_FRACTION * 100.0
+    );
+    let mut within = 0;
+    let mut same_edges = 0;
+    for (blanks, t, n) in rows {
+        let _ = writeln!(
+            s,
+            "| {blanks} | {t} | {:.0} | {:.0} | {:+.1} | {:.0} | {:.0} | {} | {} | {:.2} |",
+            n.interior_peak_mpa[0],
+            n.interior_peak_mpa[1],
+            n.interior_peak_difference_pct,
+            n.overall_peak_mpa[0],
+            n.overall_peak_mpa[1],
+            list(&n.edges[0]),
+            list(&n.edges[1]),
+            n.iou
+        );
+        within += usize::from(n.interior_peak_difference_pct.abs() <= PEAK_TARGET_PCT);
+        same_edges += usize::from(n.edges[0] == n.edges[1]);
+    }
+    let _ = writeln!(
+        s,
+        "\nThe interior peaks agree within the {PEAK_TARGET_PCT:.0} % target at {within} of {} loads; the two models reach the same edges at {same_edges} of {}.\n",
+        rows.len(),
+        rows.len()
+    );
+    s
 }
 
 /// The numbers as a sentence with their verdicts.
@@ -214,5 +265,30 @@ mod tests {
         let b = patch([0.4, 0.8 - 1e-9], [1.0 / 3.0, 2.0 / 3.0 - 1e-9], 500.0);
         let n = numbers(&a, &b).unwrap();
         assert!((n.iou - 1.0 / 3.0).abs() < 1e-12, "{}", n.iou);
+    }
+
+    /// The table's rows and its counts: a matching interior patch, and a
+    /// reference with a tip-edge peak 20 % above the reduced model's
+    /// interior one (outside the target, edges not the same).
+    #[test]
+    fn contact_pressure_table_counts_loads_within_the_target_and_same_edges() {
+        let a = patch([0.3, 0.7], [0.3, 0.7], 1000.0);
+        let mut b = patch([0.3, 0.7], [0.3, 0.7], 1200.0);
+        b.push((0.5, 1.0, 2500.0));
+        let same = numbers(&a, &a).unwrap();
+        let edge = numbers(&a, &b).unwrap();
+        assert_eq!(edge.overall_peak_mpa, [1000.0, 2500.0]);
+        let t = table(&[
+            ("standard_standard".into(), 300.0, same),
+            ("standard_standard".into(), 700.0, edge),
+        ]);
+        assert!(
+            t.contains(
+                "| standard_standard | 700 | 1000 | 1200 | -16.7 | 1000 | 2500 | none | tip |"
+            ),
+            "{t}"
+        );
+        assert!(t.contains("within the 10 % target at 1 of 2 loads; the two models reach the same edges at 1 of 2."), "{t}");
+        assert_eq!(table(&[]), "");
     }
 }
