@@ -204,6 +204,11 @@ pub struct QuasiStaticSummary {
     pub rejected_steps: usize,
     pub cpu_s: f64,
     pub cpu_s_per_step: f64,
+    /// The loaded teeth's largest root tension over the sweep, [pinion,
+    /// wheel], MPa; None when the stiffness files hold no root-stress
+    /// coefficients.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root_tension_mpa: Option<[f64; 2]>,
 }
 
 /// The run-up.
@@ -219,6 +224,18 @@ pub struct RunupSummary {
     pub cpu_s_per_step: f64,
     /// Dynamic minus quasi-static TE: extremes over the run, µrad.
     pub te_dynamic_minus_static_urad: [f64; 2],
+    /// The loaded teeth's largest root tension over the run, [pinion,
+    /// wheel], MPa, dynamic and quasi-static (at the same pinion rotations,
+    /// the static lag); None without root-stress coefficients.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root_tension_mpa: Option<RunupRootTension>,
+}
+
+/// The run-up's largest root tensions, MPa.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct RunupRootTension {
+    pub dynamic: [f64; 2],
+    pub quasi_static: [f64; 2],
 }
 
 /// One run-up of the STE/DTE comparison.

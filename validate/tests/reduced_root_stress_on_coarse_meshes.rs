@@ -20,7 +20,11 @@
 //!   default scene against the fine reference;
 //! - the misalignment sensitivity study carrying the root stress: at every
 //!   misalignment's middle value (the aligned pair) it equals the LTCA's,
-//!   and it grows with the torque at every value.
+//!   and it grows with the torque at every value;
+//! - the multibody runs: the 10 rpm runs' largest root tension over the
+//!   sweep (from the contact-element table's tabulated tension) within 2 %
+//!   of the LTCA's at the same loads; the run-up reports both its dynamic
+//!   and its quasi-static root tension.
 
 #[path = "support/reference_options.rs"]
 mod reference_options;
@@ -162,7 +166,46 @@ fn reduced_root_stress_matches_the_reference_on_the_same_meshes_and_follows_misa
             at(curve.points.len() - 1)
         );
     }
+
+    // The multibody runs: the 10 rpm runs' largest root tension over the
+    // sweep against the LTCA's at the same loads (the table interpolates
+    // its nodes' largest tension over the loaded teeth in rotation and
+    // lag), and the run-up's dynamic and quasi-static root tension.
+    let t2 = std::time::Instant::now();
+    scene.scene.analyses.multibody = true;
+    let dynamic = solver::stage::dynamic::run(&scene, &meshes, &out).unwrap();
+    let t_dynamic = t2.elapsed().as_secs_f64();
+    let d = &dynamic[0];
+    for (i, q) in d.quasi_static.iter().enumerate() {
+        let ltca = formats::root_stress::summarize(
+            all.iter()
+                .map(|p| (p.rotation.to_degrees(), p.loads[i].root_stress.as_ref())),
+        )
+        .unwrap();
+        let mb = q.root_tension_mpa.expect("multibody root tension");
+        for (k, l) in [ltca.pinion.tension_mpa, ltca.wheel.tension_mpa]
+            .into_iter()
+            .enumerate()
+        {
+            let diff = mb[k] / l - 1.0;
+            eprintln!(
+                "10 rpm {} N m, member {k}: multibody {:.2} MPa, LTCA {l:.2} MPa, {:+.2} %",
+                q.torque_nm,
+                mb[k],
+                100.0 * diff
+            );
+            assert!(diff.abs() < 0.02, "{} N m member {k}: {diff}", q.torque_nm);
+        }
+    }
+    let runup = d.runup.as_ref().unwrap().root_tension_mpa.unwrap();
+    eprintln!("run-up root tension {runup:?}");
+    for k in 0..2 {
+        assert!(
+            runup.dynamic[k] > 0.0 && runup.quasi_static[k] > 0.0,
+            "{runup:?}"
+        );
+    }
     eprintln!(
-        "stiffness files {t_stiffness:.1} s, reference position {t_reference:.1} s, sensitivity study {t_study:.1} s"
+        "stiffness files {t_stiffness:.1} s, reference position {t_reference:.1} s, sensitivity study {t_study:.1} s, multibody {t_dynamic:.1} s"
     );
 }

@@ -65,6 +65,7 @@ fn dynamic() -> DynamicSummary {
             rejected_steps: 0,
             cpu_s: 0.26,
             cpu_s_per_step: 130e-6,
+            root_tension_mpa: None,
         }],
         runup: Some(RunupSummary {
             pinion_torque_nm: 300.0,
@@ -76,6 +77,7 @@ fn dynamic() -> DynamicSummary {
             cpu_s: 1.0,
             cpu_s_per_step: 70e-6,
             te_dynamic_minus_static_urad: [0.0, 15.0],
+            root_tension_mpa: None,
         }),
         backlash_urad: None,
         free_play_urad: None,

@@ -177,6 +177,8 @@ pub fn build(
                     wrench: Vec::with_capacity(lags.len()),
                     friction: Vec::with_capacity(lags.len()),
                     tangential: Vec::with_capacity(lags.len()),
+                    // The impact law has no root stress.
+                    root_tension: Vec::new(),
                     cpu: 0.0,
                 },
                 damping: Vec::with_capacity(lags.len()),

@@ -180,6 +180,7 @@ mod tests {
             wrench: vec![],
             tangential: vec![],
             friction: vec![],
+            root_tension: vec![],
             cpu_s_per_position: 0.0,
             impact: None,
             moments: Default::default(),

@@ -290,6 +290,9 @@ fn quasi_static(
             rejected_steps: integ.rejected,
             cpu_s: cpu,
             cpu_s_per_step: cpu / steps.max(1) as f64,
+            root_tension_mpa: tr
+                .largest_root_tension([0.0, sweep_range])
+                .map(|r| r.map(|v| v * 1e-6)),
         });
     }
     te_curve(

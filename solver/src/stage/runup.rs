@@ -15,7 +15,7 @@ use anyhow::Context;
 use charts::te_curve;
 use charts::Series;
 use formats::output::write_atomic;
-use formats::summaries::RunupSummary;
+use formats::summaries::{RunupRootTension, RunupSummary};
 use std::time::Instant;
 
 use crate::multibody::model::{Drive, Ramp};
@@ -201,6 +201,22 @@ pub(crate) fn run_up(
         &odir.join("runup.csv"),
         trace_csv(&tr, Some(&statics)).as_bytes(),
     )?;
+    // The root tension at the quasi-static lags of the same rotations.
+    let root_tension_mpa = match tr.largest_root_tension([f64::NEG_INFINITY, f64::INFINITY]) {
+        Some(dynamic) => {
+            let mut quasi_static = [0.0f64; 2];
+            for (&q, &lag) in tr.q1.iter().zip(&statics) {
+                if let Some(r) = table.root_tension_at(q, lag)? {
+                    quasi_static = [quasi_static[0].max(r[0]), quasi_static[1].max(r[1])];
+                }
+            }
+            Some(RunupRootTension {
+                dynamic: dynamic.map(|v| v * 1e-6),
+                quasi_static: quasi_static.map(|v| v * 1e-6),
+            })
+        }
+        None => None,
+    };
     let diff: Vec<f64> = tr.te.iter().zip(&statics).map(|(a, b)| a - b).collect();
     let lo = diff.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = diff.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -271,5 +287,6 @@ pub(crate) fn run_up(
         cpu_s: cpu,
         cpu_s_per_step: cpu / steps.max(1) as f64,
         te_dynamic_minus_static_urad: [lo * 1e6, hi * 1e6],
+        root_tension_mpa,
     })
 }

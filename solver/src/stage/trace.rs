@@ -1,5 +1,6 @@
 //! A multibody run recorded at every step (time, pinion rotation and
-//! speed, TE, mesh torques, wheel bearing force) and its CSV: the 10 rpm
+//! speed, TE, mesh torques, wheel bearing force and, where the table has
+//! it, the loaded teeth's largest root tension) and its CSV: the 10 rpm
 //! runs of [`crate::stage::dynamic`] and the run-up of
 //! [`crate::stage::runup`].
 
@@ -16,6 +17,27 @@ pub(crate) struct Trace {
     pub(crate) te: Vec<f64>,
     pub(crate) torque: Vec<[f64; 2]>,
     pub(crate) force: Vec<[f64; 3]>,
+    /// The loaded teeth's largest root tension [pinion, wheel], Pa, from
+    /// the table ([`crate::multibody::mesh_table::MeshTable::root_tension_at`]);
+    /// empty when the table has none.
+    pub(crate) root: Vec<[f64; 2]>,
+}
+
+impl Trace {
+    /// The largest root tension [pinion, wheel] over the steps whose pinion
+    /// rotation lies in `q1_range`, Pa; None without root tension.
+    pub(crate) fn largest_root_tension(&self, q1_range: [f64; 2]) -> Option<[f64; 2]> {
+        if self.root.is_empty() {
+            return None;
+        }
+        Some(
+            self.q1
+                .iter()
+                .zip(&self.root)
+                .filter(|(q, _)| **q >= q1_range[0] && **q <= q1_range[1])
+                .fold([0.0f64; 2], |m, (_, r)| [m[0].max(r[0]), m[1].max(r[1])]),
+        )
+    }
 }
 
 /// Integrates to `t_end`, recording every step.
@@ -33,6 +55,7 @@ pub(crate) fn record(
         te: vec![],
         torque: vec![],
         force: vec![],
+        root: vec![],
     };
     let (_, steps) = integrate(m, s0, integ, t_end, |s| {
         let (ms, _) = m.mesh(s.q)?;
@@ -42,6 +65,9 @@ pub(crate) fn record(
         tr.te.push(r * s.q[0] - s.q[1]);
         tr.torque.push([ms.grad[0], -ms.grad[1]]);
         tr.force.push(ms.force);
+        if let Some(r) = m.table.root_tension_at(s.q[0], r * s.q[0] - s.q[1])? {
+            tr.root.push(r);
+        }
         Ok(())
     })?;
     Ok((tr, steps))
@@ -58,6 +84,9 @@ pub(crate) fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
     .join(",");
     if statics.is_some() {
         out.push_str(",te_quasi_static_urad");
+    }
+    if !tr.root.is_empty() {
+        out.push_str(",pinion_root_tension_mpa,wheel_root_tension_mpa");
     }
     out.push('\n');
     for k in 0..tr.t.len() {
@@ -78,6 +107,9 @@ pub(crate) fn trace_csv(tr: &Trace, statics: Option<&[f64]>) -> String {
         );
         if let Some(st) = statics {
             let _ = write!(out, ",{:.5}", st[k] * 1e6);
+        }
+        if let Some(r) = tr.root.get(k) {
+            let _ = write!(out, ",{:.3},{:.3}", r[0] * 1e-6, r[1] * 1e-6);
         }
         out.push('\n');
     }

@@ -194,6 +194,25 @@ impl MeshTable {
         Ok(self.field(|p, m| self.tangential[p * nu + m], q1, theta)?[0].max(0.0))
     }
 
+    /// The loaded teeth's largest root tension of [pinion, wheel]
+    /// ([`MeshTable::root_tension`]) at (q₁, θ), Pa; None when the table
+    /// has none, zero where the flanks are open (interpolated as the torque
+    /// is, clamped at zero). The tabulated value is a largest over teeth:
+    /// where the loaded tooth changes it has a kink, which the cubics round.
+    pub fn root_tension_at(&self, q1: f64, theta: f64) -> Result<Option<[f64; 2]>, SolverError> {
+        if self.root_tension.is_empty() {
+            return Ok(None);
+        }
+        if theta <= self.theta_lo() {
+            return Ok(Some([0.0; 2]));
+        }
+        let nu = self.spec.lag_nodes;
+        let at = |i: usize| -> Result<f64, SolverError> {
+            Ok(self.field(|p, m| self.root_tension[p * nu + m][i], q1, theta)?[0].max(0.0))
+        };
+        Ok(Some([at(0)?, at(1)?]))
+    }
+
     /// The impact law's damping levers and slip speed at (q₁, q₂); None
     /// for the element's table, zero where the flanks are open.
     pub fn impact_state(&self, q1: f64, q2: f64) -> Result<Option<ImpactState>, SolverError> {

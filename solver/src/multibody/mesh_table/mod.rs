@@ -88,6 +88,11 @@ pub struct MeshTable {
     /// wheel, Σ F λ₂ / ρ₂ (N, [`crate::element::slices::Slice::wheel_tangential`]),
     /// same layout.
     pub tangential: Vec<f64>,
+    /// Largest first principal stress in a loaded flank's fillet over the
+    /// loaded teeth, [pinion, wheel], Pa, same layout; empty when the
+    /// stiffness files hold no root-stress coefficients
+    /// ([`crate::element::root_stress`]).
+    pub root_tension: Vec<[f64; 2]>,
     /// Geometry + assembly + lag-controlled solves, s per position (one core).
     pub cpu_s_per_position: f64,
     /// The impact law's own fields when the table holds that law instead of
@@ -192,5 +197,7 @@ pub(crate) struct Column {
     pub(crate) wrench: Vec<[f64; 6]>,
     pub(crate) friction: Vec<[f64; 2]>,
     pub(crate) tangential: Vec<f64>,
+    /// Empty without root-stress coefficients.
+    pub(crate) root_tension: Vec<[f64; 2]>,
     pub(crate) cpu: f64,
 }

@@ -189,6 +189,7 @@ mod tests {
                 wrench: vec![[0.0; 6]; nu],
                 friction: vec![[0.0; 2]; nu],
                 tangential: vec![0.0; nu],
+                root_tension: Vec::new(),
                 cpu: 0.0,
             })
             .collect();

@@ -1,5 +1,7 @@
 //! Computing the table: per position the slices and compliance, then the
-//! lag-controlled contact problem at every lag node, laid out position-major.
+//! lag-controlled contact problem at every lag node, laid out position-major;
+//! where the stiffness files hold root-stress coefficients, also the loaded
+//! teeth's largest root tension of both members at every node.
 
 use super::{
     check_spec, columns_and_lags, Column, ImpactFields, MeshTable, PathMoments, TableSpec,
@@ -34,6 +36,16 @@ pub fn slice_wrench(
     [f * n.x, f * n.y, f * n.z, m.x, m.y, m.z]
 }
 
+/// The largest first principal stress over the loaded flanks' fillets of
+/// `fillets`, Pa (0 when none carries load).
+fn largest_loaded_tension(fillets: &[formats::root_stress::FilletStress]) -> f64 {
+    fillets
+        .iter()
+        .filter(|f| f.loaded_side)
+        .map(|f| f.max_principal_pa)
+        .fold(0.0, f64::max)
+}
+
 impl MeshTable {
     /// The table from its columns (lead first), laid out position-major.
     pub(crate) fn from_columns(
@@ -64,6 +76,14 @@ impl MeshTable {
                 .iter()
                 .flat_map(|c| c.tangential.iter().copied())
                 .collect(),
+            // Every column or none (they share the stiffness files).
+            root_tension: if cols.iter().all(|c| !c.root_tension.is_empty()) {
+                cols.iter()
+                    .flat_map(|c| c.root_tension.iter().copied())
+                    .collect()
+            } else {
+                Vec::new()
+            },
             cpu_s_per_position: cols.iter().map(|c| c.cpu).sum::<f64>() / cols.len() as f64,
             impact,
         }
@@ -124,6 +144,7 @@ impl MeshTable {
                 let mut wrench = Vec::with_capacity(spec.lag_nodes);
                 let mut friction = Vec::with_capacity(spec.lag_nodes);
                 let mut tangential = Vec::with_capacity(spec.lag_nodes);
+                let mut root_tension = Vec::new();
                 let mut warm: Option<Vec<bool>> = None;
                 for &lag in &lags {
                     let s = p.solve_at_lag(lag, warm.as_deref())?;
@@ -168,6 +189,11 @@ impl MeshTable {
                             .map(|(sl, &f)| sl.wheel_tangential(f))
                             .sum::<f64>(),
                     );
+                    if let Some(r) =
+                        crate::element::root_stress::root_stress(pc, &g.slices, &s.force)?
+                    {
+                        root_tension.push(r.map(|fillets| largest_loaded_tension(&fillets)));
+                    }
                     if s.active.iter().any(|&x| x) {
                         warm = Some(s.active);
                     }
@@ -179,6 +205,7 @@ impl MeshTable {
                     wrench,
                     friction,
                     tangential,
+                    root_tension,
                     cpu: cpu0 + t.elapsed().as_secs_f64(),
                 })
             })

@@ -192,6 +192,90 @@ pub fn comparison(reference: &[Row], reduced: &[ReducedRow]) -> String {
     s
 }
 
+/// The multibody runs' root tension: per blank pair the 10 rpm runs'
+/// largest tension over the sweep against the LTCA's at the same load,
+/// and the run-up's dynamic against quasi-static tension. `dynamic`: the
+/// `solver dynamic` summaries; `reduced`: the LTCA's rows.
+pub fn multibody(dynamic: &[formats::summaries::DynamicSummary], reduced: &[ReducedRow]) -> String {
+    let mut rows = Vec::new();
+    let mut runups = Vec::new();
+    let mut worst: Option<f64> = None;
+    for d in dynamic {
+        let blanks = format!("{}_{}", d.pinion_blank.name(), d.wheel_blank.name());
+        for q in &d.quasi_static {
+            let (Some(mb), Some(l)) = (
+                q.root_tension_mpa,
+                reduced
+                    .iter()
+                    .find(|r| r.blanks == blanks && r.torque_nm == q.torque_nm),
+            ) else {
+                continue;
+            };
+            let lt = [l.stress.pinion.tension_mpa, l.stress.wheel.tension_mpa];
+            let diff = [0, 1].map(|k| 100.0 * (mb[k] / lt[k] - 1.0));
+            for d in diff {
+                worst = Some(worst.map_or(d, |w: f64| if d.abs() > w.abs() { d } else { w }));
+            }
+            rows.push(format!(
+                "| {blanks} | {} | {:.1} | {:.1} | {:+.2} | {:.1} | {:.1} | {:+.2} |",
+                q.torque_nm, mb[0], lt[0], diff[0], mb[1], lt[1], diff[1]
+            ));
+        }
+        if let Some((r, t)) = d
+            .runup
+            .as_ref()
+            .and_then(|r| r.root_tension_mpa.map(|t| (r, t)))
+        {
+            runups.push(format!(
+                "| {blanks} | {} | {}–{} rpm in {} s | {:.1} | {:.1} | {:.3} | {:.1} | {:.1} | {:.3} |",
+                r.pinion_torque_nm,
+                r.rpm[0],
+                r.rpm[1],
+                r.sim_time_s,
+                t.dynamic[0],
+                t.quasi_static[0],
+                t.dynamic[0] / t.quasi_static[0],
+                t.dynamic[1],
+                t.quasi_static[1],
+                t.dynamic[1] / t.quasi_static[1]
+            ));
+        }
+    }
+    let mut s = String::new();
+    if !rows.is_empty() {
+        let _ = writeln!(
+            s,
+            "The multibody runs' root stress: the contact-element table holds, at each of its nodes (pinion rotation × wheel lag), the loaded teeth's largest fillet tension of both members, interpolated at every step as the torque is. The 10 rpm runs' largest tension over the sweep against the LTCA's at the same load (the same model; the difference is the table's interpolation and the runs' finer steps):\n\n| blank pair | load, N·m | pinion multibody, MPa | LTCA, MPa | diff % | wheel multibody, MPa | LTCA, MPa | diff % |\n|---|---|---|---|---|---|---|---|"
+        );
+        for r in rows {
+            let _ = writeln!(s, "{r}");
+        }
+        if let Some(w) = worst {
+            let _ = writeln!(s, "\nThe largest difference is {w:+.2} %.\n");
+        }
+    }
+    if !runups.is_empty() {
+        let _ = writeln!(
+            s,
+            "The run-up's largest root tension, dynamic against quasi-static (the table at the static lag of the same pinion rotations); their ratio is the run's dynamic factor on the root stress:\n\n| blank pair | load, N·m | run-up | pinion dynamic, MPa | quasi-static, MPa | ratio | wheel dynamic, MPa | quasi-static, MPa | ratio |\n|---|---|---|---|---|---|---|---|---|"
+        );
+        for r in runups {
+            let _ = writeln!(s, "{r}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// The `solver dynamic` summaries under `out` for `scene` (none when
+/// absent or of another layout).
+fn dynamic_summaries(out: &Path, scene: &str) -> Vec<formats::summaries::DynamicSummary> {
+    std::fs::read_to_string(out.join(scene).join("multibody").join("summary.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok())
+        .unwrap_or_default()
+}
+
 /// The section: its markdown and its figures.
 #[derive(Debug, Clone, Default)]
 pub struct RootStressSection {
@@ -259,7 +343,13 @@ pub fn build(out: &Path, scene: &LoadedScene, reports: &Path) -> anyhow::Result<
         &scene.pair,
         scene.pair.pressure_angle[scene.scene.loaded_flank.index()],
     ));
-    markdown.push_str(&comparison(&rows, &reduced_rows(out, name)?));
+    let reduced = reduced_rows(out, name)?;
+    markdown.push_str(&comparison(&rows, &reduced));
+    let mb = multibody(&dynamic_summaries(out, name), &reduced);
+    if markdown.is_empty() && !mb.is_empty() {
+        markdown.push_str("## Tooth root stress\n\n");
+    }
+    markdown.push_str(&mb);
     let figures = match finest(&rows) {
         Some(top) => cycle_figures(out, name, top, &rows, reports),
         None => Vec::new(),
@@ -620,5 +710,78 @@ mod tests {
         assert_eq!(t.matches("| standard_standard |").count(), 1, "{t}");
         assert!(t.contains("ISO 10300-3:2014 method B1"), "{t}");
         assert_eq!(nominal(&[], &pair, a), "");
+    }
+
+    /// The multibody table: 10 rpm against the LTCA (here the wheel's
+    /// 161.6 against 160 MPa: +1.00 %, the largest) and the run-up's ratio;
+    /// a summary without root tension gives nothing.
+    #[test]
+    fn multibody_root_tension_is_set_beside_the_ltca_and_the_runup_ratio_computed() {
+        use formats::summaries::{
+            DynamicSummary, QuasiStaticSummary, RunupRootTension, RunupSummary,
+        };
+        use geometry::gear_body::Blank;
+        let qs = |t: f64, r: Option<[f64; 2]>| QuasiStaticSummary {
+            torque_nm: t,
+            te_mean_urad: 0.0,
+            te_ptp_urad: 0.0,
+            steps: 1,
+            rejected_steps: 0,
+            cpu_s: 0.0,
+            cpu_s_per_step: 0.0,
+            root_tension_mpa: r,
+        };
+        let mut d = DynamicSummary {
+            pinion_blank: Blank::Standard,
+            wheel_blank: Blank::Standard,
+            inertia_kgm2: [1.0; 2],
+            inertia_source: "scene".into(),
+            damping_nm_s_per_rad: 0.0,
+            friction_coefficient: 0.0,
+            table_positions: 4,
+            table_lag_nodes: 8,
+            table_build_s: 0.0,
+            table_cpu_s_per_position: 0.0,
+            quasi_static: vec![qs(300.0, Some([180.0, 161.6]))],
+            runup: Some(RunupSummary {
+                pinion_torque_nm: 300.0,
+                rpm: [0.0, 1000.0],
+                sim_time_s: 0.15,
+                max_step_s: 1e-5,
+                steps: 1,
+                rejected_steps: 0,
+                cpu_s: 0.0,
+                cpu_s_per_step: 0.0,
+                te_dynamic_minus_static_urad: [0.0; 2],
+                root_tension_mpa: Some(RunupRootTension {
+                    dynamic: [200.0, 170.0],
+                    quasi_static: [180.0, 160.0],
+                }),
+            }),
+            backlash_urad: None,
+            free_play_urad: None,
+            rattle: None,
+            force_law: "element".into(),
+            impact_law: None,
+            load_run: None,
+            compliant: None,
+            ste_dte: None,
+            dir: "x".into(),
+        };
+        let t = multibody(std::slice::from_ref(&d), &[reduced(300.0, 180.0, 160.0)]);
+        assert!(
+            t.contains(
+                "| standard_standard | 300 | 180.0 | 180.0 | +0.00 | 161.6 | 160.0 | +1.00 |"
+            ),
+            "{t}"
+        );
+        assert!(t.contains("The largest difference is +1.00 %."), "{t}");
+        assert!(
+            t.contains("| 200.0 | 180.0 | 1.111 | 170.0 | 160.0 | 1.062 |"),
+            "{t}"
+        );
+        d.quasi_static = vec![qs(300.0, None)];
+        d.runup = None;
+        assert_eq!(multibody(&[d], &[reduced(300.0, 180.0, 160.0)]), "");
     }
 }
