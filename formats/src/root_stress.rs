@@ -179,6 +179,40 @@ pub fn summarize<'a>(
     })
 }
 
+/// The header of a `root_stress.csv` (the reference's and the LTCA's):
+/// one row per position, torque, member and fillet.
+pub const CSV_HEADER: &str = "pinion_rotation_deg,torque_nm,member,tooth,fillet,sigma1_max_mpa,sigma1_xi,sigma1_height,sigma3_min_mpa,sigma3_xi,sigma3_height";
+
+/// A `root_stress.csv` of `positions`, each (pinion rotation deg, torque
+/// N·m, [pinion's, wheel's] fillets); None when no position has a fillet.
+pub fn fillets_csv<'a>(
+    positions: impl Iterator<Item = (f64, f64, &'a [Vec<FilletStress>; 2])>,
+) -> Option<String> {
+    use std::fmt::Write as _;
+    let mut s = format!("{CSV_HEADER}\n");
+    let mut any = false;
+    for (deg, t, fillets) in positions {
+        for (member, list) in ["pinion", "wheel"].iter().zip(fillets) {
+            for f in list {
+                any = true;
+                let _ = writeln!(
+                    s,
+                    "{deg},{t},{member},{},{},{},{},{},{},{},{}",
+                    f.tooth,
+                    if f.loaded_side { "loaded" } else { "opposite" },
+                    f.max_principal_pa * 1e-6,
+                    f.max_xi,
+                    f.max_height,
+                    f.min_principal_pa * 1e-6,
+                    f.min_xi,
+                    f.min_height
+                );
+            }
+        }
+    }
+    any.then_some(s)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,7 +2,9 @@
 //! wheel blank of a scene with the reduced model, from the stiffness files
 //! that `preprocess stiffness` wrote (their hashes are checked), to
 //! `<out>/<scene>/ltca/<pinion>_<wheel>/`: `te.csv`, `pairs.csv`,
-//! `slices.csv`, `wheel_torque.csv`, `ltca.h5` and `summary.json` (with
+//! `slices.csv`, `wheel_torque.csv`, `root_stress.csv` (where the stiffness
+//! files hold root-stress coefficients: every position's fillets in the
+//! reference's layout), `ltca.h5` and `summary.json` (with
 //! the ablation study: the sweep again with each of the element's modelling
 //! changes switched off).
 //! `<out>/<scene>/ltca/` is written as one set
@@ -481,6 +483,16 @@ fn write_outputs(dir: &Path, res: &[PositionResult], torques: &[f64]) -> anyhow:
     write_atomic(&dir.join("pairs.csv"), pairs.as_bytes())?;
     write_atomic(&dir.join("wheel_torque.csv"), wheel.as_bytes())?;
     write_atomic(&dir.join("slices.csv"), slices.as_bytes())?;
+    let fillets = res.iter().flat_map(|p| {
+        p.loads.iter().zip(torques).filter_map(move |(l, &t)| {
+            l.root_stress
+                .as_ref()
+                .map(|r| (p.rotation.to_degrees(), t, r))
+        })
+    });
+    if let Some(csv) = formats::root_stress::fillets_csv(fillets) {
+        write_atomic(&dir.join("root_stress.csv"), csv.as_bytes())?;
+    }
     write_h5(&dir.join("ltca.h5"), res, torques)
 }
 

@@ -5,10 +5,8 @@
 //! position's fillets in `root_stress.csv`.
 
 use crate::reference::reference_ltca::PositionResult;
-use formats::columns;
 use formats::output::write_atomic;
-use formats::root_stress::{summarize, FilletStress, RootStressSummary};
-use std::fmt::Write as _;
+use formats::root_stress::{fillets_csv, summarize, RootStressSummary};
 use std::path::Path;
 
 /// Both members' extremes at torque index `k` over the positions `res`,
@@ -27,46 +25,23 @@ pub fn root_stress_summary(
     }))
 }
 
-/// Every position's fillets at every torque: `root_stress.csv`. Writes
-/// nothing when no position has root stress.
+/// Every position's fillets at every torque: `root_stress.csv`
+/// ([`formats::root_stress::fillets_csv`]). Writes nothing when no
+/// position has root stress.
 pub(crate) fn write_root_stress_csv(
     path: &Path,
     res: &[PositionResult],
     rotation: &dyn Fn(f64) -> f64,
 ) -> anyhow::Result<()> {
-    let mut s = format!(
-        "{},torque_nm,member,tooth,fillet,sigma1_max_mpa,sigma1_xi,sigma1_height,sigma3_min_mpa,sigma3_xi,sigma3_height\n",
-        columns::PINION_ROTATION_DEG
-    );
-    let mut any = false;
-    for r in res {
-        for l in &r.loads {
-            let Some(rs) = &l.root_stress else { continue };
-            for (member, fillets) in ["pinion", "wheel"].iter().zip(rs) {
-                for f in fillets {
-                    any = true;
-                    row(&mut s, rotation(r.phi), l.torque_nm, member, f)?;
-                }
-            }
-        }
-    }
-    if any {
+    let rows = res.iter().flat_map(|r| {
+        r.loads.iter().filter_map(move |l| {
+            l.root_stress
+                .as_ref()
+                .map(|rs| (rotation(r.phi), l.torque_nm, rs))
+        })
+    });
+    if let Some(s) = fillets_csv(rows) {
         write_atomic(path, s.as_bytes())?;
     }
     Ok(())
-}
-
-fn row(s: &mut String, deg: f64, t: f64, member: &str, f: &FilletStress) -> std::fmt::Result {
-    writeln!(
-        s,
-        "{deg},{t},{member},{},{},{},{},{},{},{},{}",
-        f.tooth,
-        if f.loaded_side { "loaded" } else { "opposite" },
-        f.max_principal_pa * 1e-6,
-        f.max_xi,
-        f.max_height,
-        f.min_principal_pa * 1e-6,
-        f.min_xi,
-        f.min_height
-    )
 }

@@ -357,7 +357,7 @@ pub fn build(out: &Path, scene: &LoadedScene, reports: &Path) -> anyhow::Result<
     if !figures.is_empty() {
         let _ = writeln!(
             markdown,
-            "The largest tension in each tooth's loaded fillet over the pinion rotation at the largest load (mesh level `{top}`), one curve per tooth, at the solved positions where that tooth's flank carries load.\n",
+            "The largest tension in each tooth's loaded fillet over the pinion rotation at the largest load (mesh level `{top}`), one curve per tooth, at the solved positions where that tooth's flank carries load; where the LTCA wrote its `root_stress.csv`, also the largest over the loaded teeth of both models, the reduced model dashed (its positions are the scene's sweep, the reference's every stride-th of them).\n",
             top = finest(&rows).unwrap_or_default()
         );
         figure_lines(&mut markdown, &figures, true);
@@ -397,7 +397,50 @@ fn cycle_figures(
         let Ok(text) = std::fs::read_to_string(&path) else {
             continue;
         };
+        let reduced = std::fs::read_to_string(
+            out.join(scene)
+                .join("ltca")
+                .join(blanks)
+                .join("root_stress.csv"),
+        )
+        .ok();
         for member in ["pinion", "wheel"] {
+            if let Some(r) = &reduced {
+                let series: Vec<Series> =
+                    [("reference FE", &text, false), ("reduced model", r, true)]
+                        .into_iter()
+                        .filter_map(|(name, csv, dashed)| {
+                            let (x, y) = envelope(csv, member, t);
+                            (!x.is_empty()).then(|| Series {
+                                name: name.into(),
+                                x,
+                                y,
+                                dashed,
+                            })
+                        })
+                        .collect();
+                if series.len() == 2 {
+                    let file = format!("root_stress_envelope_{blanks}_{member}_{t}nm.svg");
+                    let title = format!(
+                        "Largest root tension of the {member} over the loaded teeth, reduced model and reference FE, {} blanks, {t} N·m",
+                        blanks.replace('_', " / ")
+                    );
+                    let target = reports.join(&file);
+                    if te_curve(
+                        &target,
+                        &title,
+                        "pinion rotation (deg)",
+                        "largest loaded-fillet tension (MPa)",
+                        &series,
+                    )
+                    .is_ok()
+                    {
+                        if let Ok(svg) = std::fs::read_to_string(&target) {
+                            figs.push(Figure { title, file, svg });
+                        }
+                    }
+                }
+            }
             let series = tooth_series(&text, member, t);
             if series.is_empty() {
                 continue;
@@ -458,6 +501,35 @@ fn tooth_series(csv: &str, member: &str, t: f64) -> Vec<Series> {
             dashed: false,
         })
         .collect()
+}
+
+/// The largest loaded-fillet tension over the teeth of `member` (MPa)
+/// against the rotation at torque `t`, from a `root_stress.csv` text, in
+/// rotation order.
+fn envelope(csv: &str, member: &str, t: f64) -> (Vec<f64>, Vec<f64>) {
+    let mut at: Vec<(f64, f64)> = Vec::new();
+    for line in csv.lines().skip(1) {
+        let c: Vec<&str> = line.split(',').collect();
+        if c.len() < 6 || c[2] != member || c[4] != "loaded" {
+            continue;
+        }
+        let (Ok(deg), Ok(torque), Ok(sigma)) = (
+            c[0].parse::<f64>(),
+            c[1].parse::<f64>(),
+            c[5].parse::<f64>(),
+        ) else {
+            continue;
+        };
+        if torque != t {
+            continue;
+        }
+        match at.iter_mut().find(|p| p.0 == deg) {
+            Some(p) => p.1 = p.1.max(sigma),
+            None => at.push((deg, sigma)),
+        }
+    }
+    at.sort_by(|a, b| a.0.total_cmp(&b.0));
+    at.into_iter().unzip()
 }
 
 /// The finest level among `rows`.
@@ -783,5 +855,24 @@ mod tests {
         d.quasi_static = vec![qs(300.0, None)];
         d.runup = None;
         assert_eq!(multibody(&[d], &[reduced(300.0, 180.0, 160.0)]), "");
+    }
+
+    /// The envelope takes the largest loaded-fillet tension over the teeth
+    /// at each rotation of one member and torque, in rotation order.
+    #[test]
+    fn root_stress_envelope_is_the_largest_over_teeth_per_rotation() {
+        let csv = "h
+0.5,300,pinion,1,loaded,175,0.5,0.5,-10,0.5,0.5
+0,300,pinion,1,loaded,170,0.5,0.5,-10,0.5,0.5
+0,300,pinion,2,loaded,40,0.5,0.5,-10,0.5,0.5
+0,300,pinion,2,opposite,400,0.5,0.5,-10,0.5,0.5
+0,700,pinion,1,loaded,330,0.5,0.5,-20,0.5,0.5
+0.5,300,pinion,2,loaded,180,0.5,0.5,-10,0.5,0.5
+0,300,wheel,42,loaded,160,0.5,0.5,-10,0.5,0.5
+";
+        assert_eq!(
+            envelope(csv, "pinion", 300.0),
+            (vec![0.0, 0.5], vec![170.0, 180.0])
+        );
     }
 }
