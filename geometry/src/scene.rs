@@ -100,6 +100,12 @@ pub struct MultibodySettings {
     /// lightweight wheel, every wheel tooth whose coast flank the runs meet
     /// is solved (the rattle run's rotation included).
     pub coast_contact: bool,
+    /// Root stress in the multibody runs: the contact-element table also
+    /// holds, at each node, the loaded teeth's largest root tension of both
+    /// members (needs root-stress coefficients in the stiffness files,
+    /// `[stiffness] root_stress`); the 10 rpm runs and the run-up report it.
+    /// Off by default: it lengthens the table build several times.
+    pub root_stress: bool,
     /// Rattle run (needs `coast_contact`): the pinion turns at
     /// `rattle_pinion_rpm` with a speed fluctuation of relative amplitude
     /// `rattle_speed_fluctuation` at `rattle_frequency_hz`; the wheel is
@@ -142,6 +148,7 @@ impl Default for MultibodySettings {
             pinion_inertia_kgm2: None,
             wheel_inertia_kgm2: None,
             coast_contact: false,
+            root_stress: false,
             rattle_pinion_rpm: 300.0,
             rattle_speed_fluctuation: 0.05,
             rattle_frequency_hz: 40.0,

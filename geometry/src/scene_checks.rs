@@ -266,6 +266,17 @@ impl Scene {
                 &sd.wheel_blanks,
             )?;
         }
+        if mb.root_stress
+            && (mb.force_law != crate::scene::ForceLaw::Element || !self.stiffness.root_stress)
+        {
+            let l = &mbl::ROOT_STRESS_NEEDS_COEFFICIENTS;
+            return Err(l.refuse(
+                path,
+                l.field,
+                "true".into(),
+                "must be false unless multibody.force_law = \"element\" and stiffness.root_stress = true".into(),
+            ));
+        }
         if mb.rattle_time_s > 0.0 && !mb.coast_contact {
             let l = &mbl::RATTLE_NEEDS_COAST;
             return Err(l.refuse(

@@ -67,6 +67,28 @@ fn rattle_without_coast_contact_or_with_a_fluctuation_beyond_1_is_rejected() {
 }
 
 #[test]
+fn multibody_root_stress_without_coefficients_or_with_the_impact_law_is_rejected() {
+    let s = scene_with("[multibody]\nroot_stress = true").unwrap();
+    assert!(s.scene.multibody.root_stress);
+    for (edits, extra) in [
+        (
+            &[("[stiffness]", "[stiffness]\nroot_stress = false")][..],
+            "[multibody]\nroot_stress = true",
+        ),
+        (
+            &[],
+            "[multibody]\nroot_stress = true\nforce_law = \"impact\"",
+        ),
+    ] {
+        let e = scene_edited(edits, extra).unwrap_err();
+        assert!(
+            e.contains("multibody.root_stress") && e.contains("stiffness.root_stress"),
+            "{extra}: {e}"
+        );
+    }
+}
+
+#[test]
 fn impact_law_settings_out_of_range_or_unknown_are_rejected_naming_the_field() {
     let law = "[multibody]\nforce_law = \"impact\"\n[multibody.impact]\n";
     let s = scene_with(&format!("{law}exponent = 2.2\ndamping_n_s_per_mm = 100.0")).unwrap();

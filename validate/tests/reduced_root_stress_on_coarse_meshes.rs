@@ -173,6 +173,7 @@ fn reduced_root_stress_matches_the_reference_on_the_same_meshes_and_follows_misa
     // lag), and the run-up's dynamic and quasi-static root tension.
     let t2 = std::time::Instant::now();
     scene.scene.analyses.multibody = true;
+    scene.scene.multibody.root_stress = true;
     let dynamic = solver::stage::dynamic::run(&scene, &meshes, &out).unwrap();
     let t_dynamic = t2.elapsed().as_secs_f64();
     let d = &dynamic[0];

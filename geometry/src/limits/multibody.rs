@@ -93,6 +93,12 @@ limits! {
         words("0 unless `multibody.coast_contact` = true"),
     )
     .why("rattle needs both flanks");
+    ROOT_STRESS_NEEDS_COEFFICIENTS = Limit::scene(
+        "multibody.root_stress",
+        "",
+        words("false unless `multibody.force_law` = \"element\" and `stiffness.root_stress` = true"),
+    )
+    .why("the root stress comes from the contact element and the stiffness files' root-stress coefficients");
     RATTLE_MAX_STEP = within("multibody.rattle_max_step_s", "s", 1e-8, 1.0);
     RATTLE_TIME_STEPS = time_steps(
         "multibody.rattle_max_step_s",

@@ -202,9 +202,11 @@ impl MemberCompliance {
             .map(|r| (&r.xi[..], &r.height[..], r.points() / 2))
     }
 
-    /// Adds to `out` (one tensor per fillet point of the responding tooth)
-    /// the root stress of a force `force` (N) at the grid weights `w` on
-    /// solved tooth `s`, seen at the tooth `offset` from it:
+    /// Adds to `out` (one tensor per fillet point of the responding tooth,
+    /// in the order of [`MemberCompliance::root_points`]; a shorter `out`
+    /// takes the first points only, e.g. the loaded fillet's) the root
+    /// stress of a force `force` (N) at the grid weights `w` on solved
+    /// tooth `s`, seen at the tooth `offset` from it:
     /// σ += F Σ_a w_a S[s][offset][a]. False (nothing added) when the file
     /// has no root stress or not that offset.
     pub fn add_root_stress(
@@ -222,12 +224,13 @@ impl MemberCompliance {
             return false;
         };
         let nf = r.points();
+        let n = out.len().min(nf);
         // One axpy over the flat tensors per grid point.
-        let flat = out[..nf].as_flattened_mut();
+        let flat = out[..n].as_flattened_mut();
         for &(a, x) in w.iter() {
             let at = ((s * r.offsets.len() + ri) * self.np + a) * nf * 6;
             let fx = force * x;
-            for (o, &v) in flat.iter_mut().zip(&r.stress[at..at + nf * 6]) {
+            for (o, &v) in flat.iter_mut().zip(&r.stress[at..at + n * 6]) {
                 *o += fx * f64::from(v);
             }
         }

@@ -22,11 +22,13 @@ use formats::root_stress::{fillet_extremes, FilletStress, Stress};
 /// One member's loaded teeth's fillets: `tooth_of(pair)` its body tooth
 /// of a pair, `weights(slice)` a slice's grid weights, `sign` +1 (pinion)
 /// or −1 (wheel) for the tooth numbering. None without root stress.
+/// With `loaded_only`, the loaded flanks' fillets alone (half the work).
 fn member(
     m: &MemberCompliance,
     slices: &[Slice],
     force: &[f64],
     sign: i64,
+    loaded_only: bool,
     weights: impl Fn(&Slice) -> Weights,
 ) -> Result<Option<Vec<FilletStress>>, SolverError> {
     let Some((xi, height, loaded)) = m.root_points() else {
@@ -64,7 +66,7 @@ fn member(
         .collect::<Result<_, SolverError>>()?;
     let mut out = Vec::with_capacity(2 * combined.len());
     for &(r, _, _) in &combined {
-        let mut s: Vec<Stress> = vec![[0.0; 6]; xi.len()];
+        let mut s: Vec<Stress> = vec![[0.0; 6]; if loaded_only { loaded } else { xi.len() }];
         for (j, sj, w) in &combined {
             m.add_root_stress(*sj, r - j, w, 1.0, &mut s);
         }
@@ -76,6 +78,9 @@ fn member(
             &height[..loaded],
             &s[..loaded],
         ));
+        if loaded_only {
+            continue;
+        }
         out.push(fillet_extremes(
             tooth,
             false,
@@ -95,13 +100,41 @@ pub fn root_stress(
     slices: &[Slice],
     force: &[f64],
 ) -> Result<Option<[Vec<FilletStress>; 2]>, SolverError> {
-    let p = member(&pc.pinion, slices, force, 1, |s| {
+    both_members(pc, slices, force, false)
+}
+
+fn both_members(
+    pc: &PairCompliance,
+    slices: &[Slice],
+    force: &[f64],
+    loaded_only: bool,
+) -> Result<Option<[Vec<FilletStress>; 2]>, SolverError> {
+    let p = member(&pc.pinion, slices, force, 1, loaded_only, |s| {
         pc.pinion.weights(s.xi, s.eta)
     })?;
-    let w = member(&pc.wheel, slices, force, -1, |s| {
+    let w = member(&pc.wheel, slices, force, -1, loaded_only, |s| {
         pc.wheel.weights(s.wheel_xi_eta[0], s.wheel_xi_eta[1])
     })?;
     Ok(p.zip(w).map(|(p, w)| [p, w]))
+}
+
+/// The largest first principal stress over the loaded flanks' fillets of
+/// the loaded teeth, [pinion, wheel], Pa (0 where none carries load), or
+/// None without root-stress coefficients: [`root_stress`]'s tension at half
+/// its work (the other flanks' fillets are not summed).
+pub fn largest_loaded_tension(
+    pc: &PairCompliance,
+    slices: &[Slice],
+    force: &[f64],
+) -> Result<Option<[f64; 2]>, SolverError> {
+    Ok(both_members(pc, slices, force, true)?.map(|m| {
+        m.map(|fillets| {
+            fillets
+                .iter()
+                .map(|f| f.max_principal_pa)
+                .fold(0.0, f64::max)
+        })
+    }))
 }
 
 #[cfg(test)]
@@ -249,5 +282,41 @@ mod tests {
             wheel: pc.wheel.clone(),
         };
         assert!(root_stress(&plain, &slices, &force).unwrap().is_none());
+        assert!(largest_loaded_tension(&plain, &slices, &force)
+            .unwrap()
+            .is_none());
+    }
+
+    /// The loaded-fillets-only kernel gives the full kernel's largest
+    /// loaded-side tension of each member, to round-off.
+    #[test]
+    fn largest_loaded_tension_equals_the_full_kernels_loaded_side() {
+        let pc = PairCompliance {
+            pinion: member("pinion", 3),
+            wheel: member("wheel", 4),
+        };
+        let slices = [
+            slice(0, 0.2, 0.5, [0.7, 0.4]),
+            slice(0, 0.5, 0.6, [0.4, 0.5]),
+            slice(-1, 0.7, 0.3, [0.2, 0.8]),
+        ];
+        let force = [900.0, 1100.0, 400.0];
+        let full = root_stress(&pc, &slices, &force).unwrap().unwrap();
+        let fast = largest_loaded_tension(&pc, &slices, &force)
+            .unwrap()
+            .unwrap();
+        for b in 0..2 {
+            let want = full[b]
+                .iter()
+                .filter(|f| f.loaded_side)
+                .map(|f| f.max_principal_pa)
+                .fold(0.0, f64::max);
+            assert!(want > 0.0);
+            assert!(
+                (fast[b] - want).abs() <= 1e-12 * want,
+                "{b}: {} {want}",
+                fast[b]
+            );
+        }
     }
 }

@@ -155,6 +155,14 @@ fn tables(
         torque_max_nm: torque_max.max(1.0),
     };
     let table = match impact {
+        None if mb.root_stress => {
+            anyhow::ensure!(
+                pc.pinion.root_points().is_some() && pc.wheel.root_points().is_some(),
+                "scene {}: multibody.root_stress = true needs root-stress coefficients in the stiffness files ([stiffness] root_stress = true, then `preprocess stiffness`)",
+                sc.name
+            );
+            MeshTable::build_with_root_stress(fp, rs, pc, &g.frames[0], ratio, spec)
+        }
         None => MeshTable::build(fp, rs, pc, &g.frames[0], ratio, spec),
         Some((law, friction, _)) => crate::multibody::impact_table::build(
             fp,

@@ -36,16 +36,6 @@ pub fn slice_wrench(
     [f * n.x, f * n.y, f * n.z, m.x, m.y, m.z]
 }
 
-/// The largest first principal stress over the loaded flanks' fillets of
-/// `fillets`, Pa (0 when none carries load).
-fn largest_loaded_tension(fillets: &[formats::root_stress::FilletStress]) -> f64 {
-    fillets
-        .iter()
-        .filter(|f| f.loaded_side)
-        .map(|f| f.max_principal_pa)
-        .fold(0.0, f64::max)
-}
-
 impl MeshTable {
     /// The table from its columns (lead first), laid out position-major.
     pub(crate) fn from_columns(
@@ -98,6 +88,38 @@ impl MeshTable {
         frame: &MemberFrame,
         ratio: f64,
         spec: TableSpec,
+    ) -> Result<Self, SolverError> {
+        Self::build_as(fp, rs, pc, frame, ratio, spec, false)
+    }
+
+    /// [`MeshTable::build`], and at every node the loaded teeth's largest
+    /// root tension of both members where the stiffness files hold
+    /// root-stress coefficients ([`MeshTable::root_tension`]; the scene's
+    /// `[multibody] root_stress`), from the loaded fillets alone
+    /// ([`crate::element::root_stress::largest_loaded_tension`]). Measured
+    /// 2026-11-29 in the multibody bench on the default scene's 0.125° × 96
+    /// table, back to back (2 cores, a reference sweep running beside it):
+    /// build 2.2 s without root stress, 9.3 s with the full kernel, 6.5 s
+    /// with the loaded fillets alone; hence off by default.
+    pub fn build_with_root_stress(
+        fp: &FlankPair,
+        rs: &RollSurface,
+        pc: &PairCompliance,
+        frame: &MemberFrame,
+        ratio: f64,
+        spec: TableSpec,
+    ) -> Result<Self, SolverError> {
+        Self::build_as(fp, rs, pc, frame, ratio, spec, true)
+    }
+
+    fn build_as(
+        fp: &FlankPair,
+        rs: &RollSurface,
+        pc: &PairCompliance,
+        frame: &MemberFrame,
+        ratio: f64,
+        spec: TableSpec,
+        root_stress: bool,
     ) -> Result<Self, SolverError> {
         check_spec(&spec)?;
         let tau = fp.pinion.gen.frame.pitch();
@@ -189,10 +211,12 @@ impl MeshTable {
                             .map(|(sl, &f)| sl.wheel_tangential(f))
                             .sum::<f64>(),
                     );
-                    if let Some(r) =
-                        crate::element::root_stress::root_stress(pc, &g.slices, &s.force)?
-                    {
-                        root_tension.push(r.map(|fillets| largest_loaded_tension(&fillets)));
+                    if root_stress {
+                        if let Some(r) = crate::element::root_stress::largest_loaded_tension(
+                            pc, &g.slices, &s.force,
+                        )? {
+                            root_tension.push(r);
+                        }
                     }
                     if s.active.iter().any(|&x| x) {
                         warm = Some(s.active);
