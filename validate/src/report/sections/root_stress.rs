@@ -420,53 +420,49 @@ fn cycle_figures(
                         })
                         .collect();
                 if series.len() == 2 {
-                    let file = format!("root_stress_envelope_{blanks}_{member}_{t}nm.svg");
-                    let title = format!(
-                        "Largest root tension of the {member} over the loaded teeth, reduced model and reference FE, {} blanks, {t} N·m",
-                        blanks.replace('_', " / ")
-                    );
-                    let target = reports.join(&file);
-                    if te_curve(
-                        &target,
-                        &title,
-                        "pinion rotation (deg)",
-                        "largest loaded-fillet tension (MPa)",
+                    figs.extend(tension_chart(
+                        reports,
+                        format!("root_stress_envelope_{blanks}_{member}_{t}nm.svg"),
+                        format!(
+                            "Largest root tension of the {member} over the loaded teeth, reduced model and reference FE, {} blanks, {t} N·m",
+                            blanks.replace('_', " / ")
+                        ),
                         &series,
-                    )
-                    .is_ok()
-                    {
-                        if let Ok(svg) = std::fs::read_to_string(&target) {
-                            figs.push(Figure { title, file, svg });
-                        }
-                    }
+                    ));
                 }
             }
             let series = tooth_series(&text, member, t);
             if series.is_empty() {
                 continue;
             }
-            let file = format!("root_stress_{blanks}_{member}_{t}nm.svg");
-            let title = format!(
-                "Root stress of the {member}'s teeth, {} blanks, {t} N·m",
-                blanks.replace('_', " / ")
-            );
-            let target = reports.join(&file);
-            if te_curve(
-                &target,
-                &title,
-                "pinion rotation (deg)",
-                "largest loaded-fillet tension (MPa)",
+            figs.extend(tension_chart(
+                reports,
+                format!("root_stress_{blanks}_{member}_{t}nm.svg"),
+                format!(
+                    "Root stress of the {member}'s teeth, {} blanks, {t} N·m",
+                    blanks.replace('_', " / ")
+                ),
                 &series,
-            )
-            .is_ok()
-            {
-                if let Ok(svg) = std::fs::read_to_string(&target) {
-                    figs.push(Figure { title, file, svg });
-                }
-            }
+            ));
         }
     }
     figs
+}
+
+/// A chart of loaded-fillet tension against the pinion rotation written
+/// into `reports` as `file`; None when it cannot be written.
+fn tension_chart(reports: &Path, file: String, title: String, series: &[Series]) -> Option<Figure> {
+    let target = reports.join(&file);
+    te_curve(
+        &target,
+        &title,
+        "pinion rotation (deg)",
+        "largest loaded-fillet tension (MPa)",
+        series,
+    )
+    .ok()?;
+    let svg = std::fs::read_to_string(&target).ok()?;
+    Some(Figure { title, file, svg })
 }
 
 /// One series per tooth of `member`: its loaded fillet's largest tension
