@@ -16,7 +16,8 @@
 //! of method B1 are 1, and no load factor (K_A, K_v, K_Fβ, K_Fα) enters, so
 //! σ_F0 is the stress of the load spread evenly over the whole face width.
 //!
-//! Virtual cylindrical gear in the normal section (ISO 10300-1's):
+//! Virtual cylindrical gear in the normal section (as ISO 10300-1 defines
+//! it, to our reading; not checked against the standard's text):
 //!
 //!   z_v = z / cos δ,  β_vb = asin(sin β_m cos α_n),
 //!   z_vn = z_v / (cos² β_vb cos β_m),  d_van = z_vn m_mn + 2 h_am,

@@ -89,9 +89,9 @@ pub struct MeshTable {
     /// same layout.
     pub tangential: Vec<f64>,
     /// Largest first principal stress in a loaded flank's fillet over the
-    /// loaded teeth, [pinion, wheel], Pa, same layout; empty when the
-    /// stiffness files hold no root-stress coefficients
-    /// ([`crate::element::root_stress`]).
+    /// loaded teeth, [pinion, wheel], Pa, same layout; empty unless the
+    /// table was built with root stress and the stiffness files hold
+    /// root-stress coefficients ([`MeshTable::build_with_root_stress`]).
     pub root_tension: Vec<[f64; 2]>,
     /// Geometry + assembly + lag-controlled solves, s per position (one core).
     pub cpu_s_per_position: f64,

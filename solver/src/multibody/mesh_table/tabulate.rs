@@ -1,7 +1,7 @@
 //! Computing the table: per position the slices and compliance, then the
 //! lag-controlled contact problem at every lag node, laid out position-major;
-//! where the stiffness files hold root-stress coefficients, also the loaded
-//! teeth's largest root tension of both members at every node.
+//! on request ([`MeshTable::build_with_root_stress`]) also the loaded teeth's
+//! largest root tension of both members at every node.
 
 use super::{
     check_spec, columns_and_lags, Column, ImpactFields, MeshTable, PathMoments, TableSpec,
