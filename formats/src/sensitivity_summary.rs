@@ -68,3 +68,15 @@ pub struct SensitivitySummary {
     /// Wall time of the study (stiffness files read, every LTCA), s.
     pub wall_s: f64,
 }
+
+impl SensitivitySummary {
+    /// Whether every load of the study has the root stress (the stiffness
+    /// files held root-stress coefficients).
+    pub fn has_root_stress(&self) -> bool {
+        self.curves
+            .iter()
+            .flat_map(|c| &c.points)
+            .flat_map(|p| &p.loads)
+            .all(|l| l.root_stress.is_some())
+    }
+}

@@ -257,12 +257,7 @@ pub fn write_charts(dir: &Path, s: &SensitivitySummary) -> Result<(), charts::Pl
         .map(|c| format!("{} ±{} {}", c.symbol, c.range, c.unit))
         .collect();
     let x_label = format!("misalignment / its range ({})", ranges.join(", "));
-    let with_root_stress = s
-        .curves
-        .iter()
-        .flat_map(|c| &c.points)
-        .flat_map(|p| &p.loads)
-        .all(|l| l.root_stress.is_some());
+    let with_root_stress = s.has_root_stress();
     let files = CHART_FILES
         .iter()
         .chain(ROOT_STRESS_CHART_FILES.iter().filter(|_| with_root_stress));

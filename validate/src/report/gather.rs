@@ -133,32 +133,8 @@ pub fn report_figures(
         )
     })
     .flatten();
-    if let Some(&t) = s.pinion_torque_nm.last() {
-        for wb in &s.blanks.wheel {
-            for pb in &s.blanks.pinion {
-                let blank = format!("{pb:?}_{wb:?}").to_lowercase();
-                f.patterns
-                    .extend(pattern_figure(o, &s.name, &blank, t, reports));
-                if let Some(n) =
-                    crate::report::sections::loaded_contact::pattern_points(o, &s.name, &blank, t)
-                        .and_then(|(a, b)| {
-                            crate::report::sections::pattern_numbers::numbers(&a, &b)
-                        })
-                {
-                    f.pattern_numbers.push_str(&format!(
-                        "- {}\n",
-                        crate::report::sections::pattern_numbers::sentence(
-                            &blank.replace('_', " / "),
-                            t,
-                            &n
-                        )
-                    ));
-                }
-            }
-        }
-        f.pattern_torque_nm = (!f.patterns.is_empty()).then_some(t);
-    }
-    // The contact pressure at every load, both models.
+    // The contact pressure at every load, both models (read once); the
+    // largest load's also as sentences beside its pattern figures.
     let mut pressure_rows = Vec::new();
     for wb in &s.blanks.wheel {
         for pb in &s.blanks.pinion {
@@ -174,6 +150,26 @@ pub fn report_figures(
                 }
             }
         }
+    }
+    if let Some(&t) = s.pinion_torque_nm.last() {
+        for wb in &s.blanks.wheel {
+            for pb in &s.blanks.pinion {
+                let blank = format!("{pb:?}_{wb:?}").to_lowercase();
+                f.patterns
+                    .extend(pattern_figure(o, &s.name, &blank, t, reports));
+            }
+        }
+        for (blank, _, n) in pressure_rows.iter().filter(|r| r.1 == t) {
+            f.pattern_numbers.push_str(&format!(
+                "- {}\n",
+                crate::report::sections::pattern_numbers::sentence(
+                    &blank.replace('_', " / "),
+                    t,
+                    n
+                )
+            ));
+        }
+        f.pattern_torque_nm = (!f.patterns.is_empty()).then_some(t);
     }
     let table = crate::report::sections::pattern_numbers::table(&pressure_rows);
     if !table.is_empty() {

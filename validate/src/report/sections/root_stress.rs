@@ -465,14 +465,17 @@ fn tension_chart(reports: &Path, file: String, title: String, series: &[Series])
     Some(Figure { title, file, svg })
 }
 
-/// One series per tooth of `member`: its loaded fillet's largest tension
-/// (MPa) against the rotation at torque `t`, from a `root_stress.csv` text.
-fn tooth_series(csv: &str, member: &str, t: f64) -> Vec<Series> {
-    let mut by_tooth: std::collections::BTreeMap<usize, (Vec<f64>, Vec<f64>)> = Default::default();
-    for line in csv.lines().skip(1) {
+/// The loaded fillets' rows of `member` at torque `t` in a
+/// `root_stress.csv` text: (rotation deg, tooth, largest tension MPa).
+fn loaded_rows<'a>(
+    csv: &'a str,
+    member: &'a str,
+    t: f64,
+) -> impl Iterator<Item = (f64, usize, f64)> + 'a {
+    csv.lines().skip(1).filter_map(move |line| {
         let c: Vec<&str> = line.split(',').collect();
         if c.len() < 6 || c[2] != member || c[4] != "loaded" {
-            continue;
+            return None;
         }
         let (Ok(deg), Ok(torque), Ok(tooth), Ok(sigma)) = (
             c[0].parse::<f64>(),
@@ -480,13 +483,20 @@ fn tooth_series(csv: &str, member: &str, t: f64) -> Vec<Series> {
             c[3].parse::<usize>(),
             c[5].parse::<f64>(),
         ) else {
-            continue;
+            return None;
         };
-        if torque == t {
-            let e = by_tooth.entry(tooth).or_default();
-            e.0.push(deg);
-            e.1.push(sigma);
-        }
+        (torque == t).then_some((deg, tooth, sigma))
+    })
+}
+
+/// One series per tooth of `member`: its loaded fillet's largest tension
+/// (MPa) against the rotation at torque `t`, from a `root_stress.csv` text.
+fn tooth_series(csv: &str, member: &str, t: f64) -> Vec<Series> {
+    let mut by_tooth: std::collections::BTreeMap<usize, (Vec<f64>, Vec<f64>)> = Default::default();
+    for (deg, tooth, sigma) in loaded_rows(csv, member, t) {
+        let e = by_tooth.entry(tooth).or_default();
+        e.0.push(deg);
+        e.1.push(sigma);
     }
     by_tooth
         .into_iter()
@@ -504,21 +514,7 @@ fn tooth_series(csv: &str, member: &str, t: f64) -> Vec<Series> {
 /// rotation order.
 fn envelope(csv: &str, member: &str, t: f64) -> (Vec<f64>, Vec<f64>) {
     let mut at: Vec<(f64, f64)> = Vec::new();
-    for line in csv.lines().skip(1) {
-        let c: Vec<&str> = line.split(',').collect();
-        if c.len() < 6 || c[2] != member || c[4] != "loaded" {
-            continue;
-        }
-        let (Ok(deg), Ok(torque), Ok(sigma)) = (
-            c[0].parse::<f64>(),
-            c[1].parse::<f64>(),
-            c[5].parse::<f64>(),
-        ) else {
-            continue;
-        };
-        if torque != t {
-            continue;
-        }
+    for (deg, _, sigma) in loaded_rows(csv, member, t) {
         match at.iter_mut().find(|p| p.0 == deg) {
             Some(p) => p.1 = p.1.max(sigma),
             None => at.push((deg, sigma)),

@@ -84,7 +84,7 @@ pub fn section(out: Option<&Path>, scene: Option<&str>, reports: &Path) -> Sensi
     };
     let mut s = s;
     markdown(&mut s, &r);
-    let with_root_stress = has_root_stress(&r);
+    let with_root_stress = r.has_root_stress();
     let figures: Vec<Figure> = CHARTS
         .iter()
         .chain(ROOT_STRESS_CHARTS.iter().filter(|_| with_root_stress))
@@ -102,15 +102,6 @@ pub fn section(out: Option<&Path>, scene: Option<&str>, reports: &Path) -> Sensi
         markdown: s,
         figures,
     }
-}
-
-/// Whether every load of the study has the root stress.
-fn has_root_stress(r: &SensitivitySummary) -> bool {
-    r.curves
-        .iter()
-        .flat_map(|c| &c.points)
-        .flat_map(|p| &p.loads)
-        .all(|l| l.root_stress.is_some())
 }
 
 /// The text and one table per misalignment at the largest torque.
@@ -134,7 +125,7 @@ fn markdown(s: &mut String, r: &SensitivitySummary) {
             .join(", "),
         r.wall_s
     );
-    let root = has_root_stress(r);
+    let root = r.has_root_stress();
     let _ = writeln!(
         s,
         "{}\n",
