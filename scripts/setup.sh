@@ -2,7 +2,8 @@
 # One-command, idempotent set-up of everything the project needs on a fresh
 # Debian 12 (x86_64) machine:
 #   - Debian packages: the HDF5 C library + headers for the Rust `hdf5-metno`
-#     crate, pkg-config, python3-venv, CalculiX (`ccx`), and the shared libraries that the
+#     crate, pkg-config, python3-venv, CalculiX (`ccx`), Slurm and munge (the
+#     study tests' one-node cluster), and the shared libraries that the
 #     official gmsh wheel's libgmsh.so links against;
 #   - .venv at the repo root with python/requirements.txt (hash-pinned);
 #   - .venv/gmsh-paths.env with GMSH_LIB_DIR / GMSH_INCLUDE_DIR for build scripts.
@@ -40,6 +41,10 @@ APT_PACKAGES=(
     pkg-config      # lets hdf5-metno-sys find HDF5
     python3-venv    # venv/ensurepip for Debian's python3 (fallback interpreter)
     calculix-ccx    # CalculiX (ccx): the independent FE code that checks the reference
+    slurmctld       # Slurm: the one-node cluster of the study tests (scripts/slurm_cluster.sh)
+    slurmd
+    slurm-client    # sbatch, squeue, scontrol, scancel
+    munge           # Slurm's authentication
     # shared libraries needed by libgmsh.so.4.15 (NEEDED entry -> package)
     libglu1-mesa    # libGLU.so.1
     libgl1          # libGL.so.1

@@ -253,7 +253,8 @@ fn fields() -> (&'static BodyMesh, &'static Vec<usize>, &'static Influence) {
 /// Forward solves along the elimination-tree paths with Gram products give
 /// the fields of full forward and backward solves on the same body: every
 /// block of the total (loaded tooth and both neighbours) and the global
-/// field within 1e-12 of the block's largest value (rounding only), and the
+/// field and the local part within 1e-12 of the block's largest value
+/// (rounding only; the order of parallel sums may differ between runs), and the
 /// stage's own check (one row against a backward solve) as small. The
 /// pruned path solved each responding tooth once: 4 teeth × 60 loads
 /// against 2 × 60 full solves.
@@ -281,8 +282,11 @@ fn pruned_solves_give_the_fields_of_full_solves() {
         "pruned against full solves: total {t:.1e}, global {gl:.1e}; backward check {:?}; {} forward vectors, {} full solves",
         pruned.stats.backward_check, pruned.stats.right_hand_sides, full.stats.right_hand_sides
     );
-    assert!(t < 1e-12 && gl < 1e-12, "total {t:e}, global {gl:e}");
-    assert_eq!(pruned.local, full.local);
+    let loc = worst(&pruned.local, &full.local);
+    assert!(
+        t < 1e-12 && gl < 1e-12 && loc < 1e-12,
+        "total {t:e}, global {gl:e}, local {loc:e}"
+    );
     let check = pruned
         .stats
         .backward_check

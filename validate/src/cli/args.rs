@@ -45,14 +45,18 @@ pub struct UtcaArgs {
 
 #[derive(clap::Args)]
 pub struct ReferenceArgs {
-    /// Scene file.
-    pub scene: PathBuf,
+    /// Scene file; several scenes of one design (cases at other
+    /// misalignments, sharing the meshes) are solved in one run, each body
+    /// factored once for all of them, each scene's results its own set.
+    #[arg(required = true, num_args = 1..)]
+    pub scene: Vec<PathBuf>,
     /// Mesh directory (as written by `preprocess mesh`).
     #[arg(long, default_value = "meshes")]
     pub meshes: PathBuf,
-    /// Output directory.
+    /// Output directory: one for every scene, or one per scene in the
+    /// scenes' order (`--out a --out b`).
     #[arg(long, default_value = "out")]
-    pub out: PathBuf,
+    pub out: Vec<PathBuf>,
     /// Mesh level of both bodies: reduced, medium or reference.
     #[arg(long, default_value = "reduced", value_parser = ["reduced", "medium", "reference"])]
     pub level: String,

@@ -101,7 +101,10 @@ pub fn reference(
     let memory_bytes = memory_bytes(memory_gb)?;
     let mut settings = penalty_settings(penalty, penalty_check, start_band_um, search_gap_um)?;
     settings.passes = contact_passes(&contact)?;
-    let sc = geometry::scene::Scene::load(&scene)?;
+    let scenes = scene
+        .iter()
+        .map(|p| geometry::scene::Scene::load(p))
+        .collect::<Result<Vec<_>, _>>()?;
     let opt = validate::reference::reference_options::StageOptions {
         level,
         settings,
@@ -112,7 +115,19 @@ pub fn reference(
         shard,
         memory_bytes,
     };
-    validate::reference::reference_stage::run(&sc, &meshes, &out, &opt)?;
+    if out.len() != 1 && out.len() != scenes.len() {
+        anyhow::bail!(
+            "--out: {} given for {} scenes; give one output root for all or one per scene",
+            out.len(),
+            scenes.len()
+        );
+    }
+    let cases: Vec<(&geometry::scene::LoadedScene, &std::path::Path)> = scenes
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (s, out[i.min(out.len() - 1)].as_path()))
+        .collect();
+    validate::reference::reference_stage::run_scenes(&cases, &meshes, &opt)?;
     Ok(())
 }
 

@@ -27,13 +27,14 @@
 //!   (as that run is refused while shards run), so that no shard writes
 //!   into a cache that a finishing run is moving.
 
+use super::reference_blank_pair::Bodies;
 pub use super::reference_outputs::pattern_vtu;
 pub use super::reference_summary::{BlankSummary, CacheComparison, LoadSummary, UnloadedCheck};
-use crate::reference::reference_ltca::{ContactPasses, Member};
+use crate::reference::reference_ltca::ContactPasses;
 use formats::output::write_json;
 use formats::result_set::{ResultSet, RunLock};
 use geometry::pair::{pinion_direction, teeth_in_contact, PairGeometry};
-use geometry::scene::LoadedScene;
+use geometry::scene::{Blank, LoadedScene};
 use std::path::Path;
 
 use super::reference_options::StageOptions;
@@ -85,17 +86,102 @@ pub fn run(
     out: &Path,
     opt: &StageOptions,
 ) -> anyhow::Result<Vec<BlankSummary>> {
+    Ok(run_scenes(&[(scene, out)], meshes, opt)?
+        .pop()
+        .unwrap_or_default())
+}
+
+/// Runs the reference LTCA of several scenes that share their meshes (the
+/// cases of one design at several misalignments): blank pair by blank
+/// pair, each body factored once and kept for every scene whose sweep
+/// needs it (the meshes are body-fixed; only the placement differs), so
+/// that the factors held at once are those of one scene. Each scene's
+/// results are its own set under its own output root, as from a run of
+/// that scene alone. Two scenes of one name may not share an output root.
+pub fn run_scenes(
+    scenes: &[(&LoadedScene, &Path)],
+    meshes: &Path,
+    opt: &StageOptions,
+) -> anyhow::Result<Vec<Vec<BlankSummary>>> {
+    for (i, (a, out)) in scenes.iter().enumerate() {
+        if let Some((b, _)) = scenes[..i]
+            .iter()
+            .find(|(b, o)| b.scene.name == a.scene.name && o == out)
+        {
+            anyhow::bail!(
+                "scenes {} and {} are both named {} and would write into one output root {}: give each its own --out",
+                b.path.display(),
+                a.path.display(),
+                a.scene.name,
+                out.display()
+            );
+        }
+    }
+    let mut runs = Vec::new();
+    let mut sets = Vec::new();
+    for &(scene, out) in scenes {
+        let Some((run, set)) = begin(scene, meshes, out, opt)? else {
+            continue;
+        };
+        runs.push(run);
+        sets.push(set);
+    }
+    // Blank pairs in the order the scenes list them.
+    let mut pairs: Vec<[Blank; 2]> = Vec::new();
+    for r in &runs {
+        for &pb in &r.scene.scene.blanks.pinion {
+            for &wb in &r.scene.scene.blanks.wheel {
+                if !pairs.contains(&[pb, wb]) {
+                    pairs.push([pb, wb]);
+                }
+            }
+        }
+    }
+    let mut all: Vec<Vec<BlankSummary>> = vec![Vec::new(); runs.len()];
+    let mut bodies = Bodies::default();
+    for [pb, wb] in pairs {
+        // The wheel of the last pair is not this one's: let it go before
+        // this pair factors its own (one scene's factors at a time).
+        bodies.wheel = None;
+        if bodies.pinion.as_ref().is_some_and(|(k, _)| k.blank != pb) {
+            bodies.pinion = None;
+        }
+        for (k, run) in runs.iter().enumerate() {
+            let sc = &run.scene.scene;
+            if !(sc.blanks.pinion.contains(&pb) && sc.blanks.wheel.contains(&wb)) {
+                continue;
+            }
+            if let Some(s) = run.blank_pair([pb, wb], &mut bodies, sets[k].as_mut())? {
+                all[k].push(s);
+            }
+        }
+    }
+    for ((set, run), summaries) in sets.into_iter().zip(&runs).zip(&all) {
+        if let Some(set) = set {
+            commit(set, &run.ref_dir, summaries)?;
+        }
+    }
+    Ok(all)
+}
+
+/// A scene's run: its lock or result set taken before any work (see the
+/// module documentation), its pair placed; None when the scene has no
+/// reference analysis.
+fn begin<'a>(
+    scene: &'a LoadedScene,
+    meshes: &Path,
+    out: &Path,
+    opt: &'a StageOptions,
+) -> anyhow::Result<Option<(super::reference_blank_pair::Run<'a>, Option<ResultSet>)>> {
     if !solver::stage::context::analysis_enabled(
         scene,
         scene.scene.analyses.reference,
         "reference",
         "no reference FE",
     ) {
-        return Ok(Vec::new());
+        return Ok(None);
     }
     let sc = &scene.scene;
-    // Taken before any work (see the module documentation): the set of a
-    // full run, or the lock of a cache comparison or of a shard.
     let ref_dir = reference_dir_with(out, &sc.name, &opt.level, opt.settings.passes);
     let what = format!(
         "validate reference {} --level {}{}",
@@ -151,20 +237,7 @@ pub fn run(
         lock,
         g,
     };
-    let mut all = Vec::new();
-    for &pb in &sc.blanks.pinion {
-        // Factored at the first position solved, kept for every wheel blank.
-        let mut pinion: Option<Member> = None;
-        for &wb in &sc.blanks.wheel {
-            if let Some(s) = run.blank_pair([pb, wb], &mut pinion, set.as_mut())? {
-                all.push(s);
-            }
-        }
-    }
-    if let Some(set) = set {
-        commit(set, &run.ref_dir, &all)?;
-    }
-    Ok(all)
+    Ok(Some((run, set)))
 }
 
 /// Writes the run's summary and puts the set in place. Every blank's

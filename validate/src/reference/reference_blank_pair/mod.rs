@@ -6,7 +6,7 @@
 mod results;
 mod sweep;
 
-use results::{bodies, print_summary, write_pattern};
+use results::{body_stats, print_summary, write_pattern};
 
 use super::reference_options::{utca_at, StageOptions, REFERENCE_SCHEMA};
 use super::reference_outputs::{copy_files, load_summaries, unloaded_check, write_te_csv};
@@ -58,11 +58,42 @@ struct Swept {
     res: Vec<PositionResult>,
     reused: usize,
     comparison: CacheComparison,
-    /// The wheel body, when a position had to be solved.
-    wheel: Option<Member>,
-    /// The pinion's right-hand sides and solve time before this wheel's.
-    pinion_before: (usize, f64),
+    /// Whether a position was solved (the bodies in [`Bodies`] served it).
+    solved: bool,
+    /// Each body's right-hand sides and solve time before this sweep.
+    before: [(usize, f64); 2],
     sweep_s: f64,
+}
+
+/// What a factored body was made from: the same key, the same factor and
+/// flank faces (its pose is the scene's, applied at each position).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct BodyKey {
+    pub(crate) blank: Blank,
+    mesh_sha256: String,
+    teeth: Vec<usize>,
+    side: geometry::generation::Side,
+    block: usize,
+}
+
+/// The factored bodies held between blank pairs and between the scenes of
+/// one run (see [`super::reference_stage::run_scenes`]), each with its key.
+#[derive(Default)]
+pub(crate) struct Bodies {
+    pub(crate) pinion: Option<(BodyKey, Member)>,
+    pub(crate) wheel: Option<(BodyKey, Member)>,
+}
+
+impl BodyKey {
+    fn teeth(&self) -> &[usize] {
+        &self.teeth
+    }
+}
+
+impl Bodies {
+    fn member(&self, k: usize) -> Option<&Member> {
+        [&self.pinion, &self.wheel][k].as_ref().map(|(_, m)| m)
+    }
 }
 
 impl Run<'_> {
@@ -191,7 +222,7 @@ impl Run<'_> {
     pub(super) fn blank_pair(
         &self,
         [pb, wb]: [Blank; 2],
-        pinion: &mut Option<Member>,
+        bodies: &mut Bodies,
         set: Option<&mut ResultSet>,
     ) -> anyhow::Result<Option<BlankSummary>> {
         let (scene, opt) = (self.scene, self.opt);
@@ -248,7 +279,18 @@ impl Run<'_> {
         std::fs::create_dir_all(&cache_dir)?;
         let wheel_teeth =
             teeth_in_contact(&self.g, self.side, sc.rotation.mesh_cycles(wb), self.step).1;
-        let swept = self.sweep(&name, &positions, &cache_dir, &meshes, pinion, &wheel_teeth)?;
+        let keys = [(pb, &self.pinion_teeth[..]), (wb, &wheel_teeth[..])]
+            .into_iter()
+            .zip(&meshes.sha256)
+            .map(|((blank, teeth), sha)| BodyKey {
+                blank,
+                mesh_sha256: sha.clone(),
+                teeth: teeth.to_vec(),
+                side: self.side,
+                block: opt.block,
+            })
+            .collect::<Vec<_>>();
+        let swept = self.sweep(&name, &positions, &cache_dir, &meshes, bodies, &keys)?;
         if opt.compare_cache {
             self.report_comparison(&name, &swept.comparison, &odir)?;
             return Ok(None);
@@ -280,9 +322,12 @@ impl Run<'_> {
             fp,
             sc.pinion_torque_nm.last().copied().unwrap_or(0.0),
         )?;
-        let (dofs, factor_s) = bodies(&cache_dir, pinion.as_ref(), swept.wheel.as_ref())?;
-        let (rhs0, s0) = swept.pinion_before;
-        let (pinion, wheel) = (pinion.as_ref(), swept.wheel.as_ref());
+        // The bodies' statistics count this sweep's solves only (a body
+        // held from another scene or blank pair has solved before).
+        let used = |k: usize| bodies.member(k).filter(|_| swept.solved);
+        let (dofs, factor_s) = body_stats(&cache_dir, used(0), used(1))?;
+        let (pinion, wheel) = (used(0), used(1));
+        let [(rhs0, s0), (rhs1, s1)] = swept.before;
         let cpu: f64 = res.iter().map(|r| r.cpu_s).sum();
         let n = res.len().max(1) as f64;
         let summary = BlankSummary {
@@ -299,11 +344,11 @@ impl Run<'_> {
             factor_s,
             right_hand_sides: [
                 pinion.map_or(0, |m| m.compliance.solves - rhs0),
-                wheel.map_or(0, |m| m.compliance.solves),
+                wheel.map_or(0, |m| m.compliance.solves - rhs1),
             ],
             solve_s: [
                 pinion.map_or(0.0, |m| m.compliance.solve_s - s0),
-                wheel.map_or(0.0, |m| m.compliance.solve_s),
+                wheel.map_or(0.0, |m| m.compliance.solve_s - s1),
             ],
             positions_reused: swept.reused,
             searched_mean: res.iter().map(|r| r.searched as f64).sum::<f64>() / n,

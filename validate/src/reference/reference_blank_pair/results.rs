@@ -49,7 +49,7 @@ pub(super) fn write_pattern(
 
 /// Sizes and factoring times of this run's bodies, or of the run that
 /// solved the positions (kept beside the position cache).
-pub(super) fn bodies(
+pub(super) fn body_stats(
     cache_dir: &Path,
     pinion: Option<&Member>,
     wheel: Option<&Member>,

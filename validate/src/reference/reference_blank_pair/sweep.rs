@@ -2,7 +2,7 @@
 //! (the bodies loaded and factored at the first position solved), and the
 //! report of a cache comparison.
 
-use super::{PairMeshes, Run, Swept};
+use super::{Bodies, BodyKey, PairMeshes, Run, Swept};
 use crate::reference::position_cache::{self, Cached};
 use crate::reference::reference_ltca::{Member, ReferencePair};
 use crate::reference::reference_options::COMPARE_TOLERANCE;
@@ -24,12 +24,12 @@ impl Run<'_> {
         positions: &[f64],
         cache_dir: &Path,
         meshes: &PairMeshes,
-        pinion: &mut Option<Member>,
-        wheel_teeth: &[usize],
+        bodies: &mut Bodies,
+        keys: &[BodyKey],
     ) -> anyhow::Result<Swept> {
         let (opt, sc) = (self.opt, &self.scene.scene);
-        let mut wheel: Option<Member> = None;
-        let mut pinion_before = (0, 0.0);
+        let mut solved = false;
+        let mut before = [(0, 0.0); 2];
         let bar = indicatif::ProgressBar::new(positions.len() as u64);
         bar.set_style(
             indicatif::ProgressStyle::with_template(
@@ -77,14 +77,17 @@ impl Run<'_> {
                 bar.inc(1);
                 continue;
             }
-            if pinion.is_none() || wheel.is_none() {
-                self.load_bodies(meshes, pinion, &mut wheel, wheel_teeth)?;
-                let pin = pinion.as_ref().expect("pinion factored above");
-                pinion_before = (pin.compliance.solves, pin.compliance.solve_s);
+            if !solved {
+                self.load_bodies(meshes, bodies, keys)?;
+                for (b, m) in before.iter_mut().zip([&bodies.pinion, &bodies.wheel]) {
+                    let c = &m.as_ref().expect("factored above").1.compliance;
+                    *b = (c.solves, c.solve_s);
+                }
+                solved = true;
             }
             let mut pair = ReferencePair {
-                pinion: pinion.as_mut().expect("pinion factored above"),
-                wheel: wheel.as_mut().expect("wheel factored above"),
+                pinion: &mut bodies.pinion.as_mut().expect("pinion factored above").1,
+                wheel: &mut bodies.wheel.as_mut().expect("wheel factored above").1,
                 flanks: self.fp(),
                 direction: self.direction,
                 settings: opt.settings,
@@ -122,29 +125,38 @@ impl Run<'_> {
             res,
             reused,
             comparison,
-            wheel,
-            pinion_before,
+            solved,
+            before,
             sweep_s: t_sweep.elapsed().as_secs_f64(),
         })
     }
 
-    /// Reads and factors the bodies not yet held, after checking that the
-    /// factors this run will hold at once fit the memory (estimated from
-    /// the meshes' node counts; unknown in manifests from before they were
-    /// recorded).
+    /// Makes `bodies` hold the bodies of `keys` (pinion, wheel): a body
+    /// held with the same key (factored for another scene or blank pair of
+    /// this run) is kept, any other is let go and the body read and
+    /// factored, after checking that the factors this run will hold at
+    /// once fit the memory (estimated from the meshes' node counts;
+    /// unknown in manifests from before they were recorded).
     fn load_bodies(
         &self,
         meshes: &PairMeshes,
-        pinion: &mut Option<Member>,
-        wheel: &mut Option<Member>,
-        wheel_teeth: &[usize],
+        bodies: &mut Bodies,
+        keys: &[BodyKey],
     ) -> anyhow::Result<()> {
         let opt = self.opt;
+        for (slot, key) in [&mut bodies.pinion, &mut bodies.wheel]
+            .into_iter()
+            .zip(keys)
+        {
+            if slot.as_ref().is_some_and(|(k, _)| k != key) {
+                *slot = None;
+            }
+        }
         let mut parts = Vec::new();
-        if pinion.is_none() && meshes.dofs[0] > 0 {
+        if bodies.pinion.is_none() && meshes.dofs[0] > 0 {
             parts.push(("pinion", meshes.dofs[0]));
         }
-        if meshes.dofs[1] > 0 {
+        if bodies.wheel.is_none() && meshes.dofs[1] > 0 {
             parts.push(("wheel", meshes.dofs[1]));
         }
         formats::memory_estimate::check_fits(
@@ -155,29 +167,35 @@ impl Run<'_> {
         )?;
         formats::stop_point::at("reading");
         let [pm, wm] = &meshes.paths;
-        if pinion.is_none() {
-            eprintln!("reference: reading and factoring {}", pm.display());
-            *pinion = Some(Member::load(
-                pm,
-                &self.g,
+        for (k, (slot, which, path, teeth, name)) in [
+            (
+                &mut bodies.pinion,
                 Which::Pinion,
-                self.side,
-                &self.pinion_teeth,
-                opt.block,
-            )?);
-            report_factor("pinion", pinion.as_ref());
-        }
-        if wheel.is_none() {
-            eprintln!("reference: reading and factoring {}", wm.display());
-            *wheel = Some(Member::load(
-                wm,
-                &self.g,
+                pm,
+                &self.pinion_teeth[..],
+                "pinion",
+            ),
+            (
+                &mut bodies.wheel,
                 Which::Wheel,
-                self.side,
-                wheel_teeth,
-                opt.block,
-            )?);
-            report_factor("wheel", wheel.as_ref());
+                wm,
+                keys[1].teeth(),
+                "wheel",
+            ),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            if slot.is_none() {
+                eprintln!("reference: reading and factoring {}", path.display());
+                let m = Member::load(path, &self.g, which, self.side, teeth, opt.block)?;
+                report_factor(name, Some(&m));
+                *slot = Some((keys[k].clone(), m));
+            } else {
+                eprintln!(
+                    "reference: {name} factored already in this run (same mesh and teeth), kept"
+                );
+            }
         }
         Ok(())
     }
