@@ -155,7 +155,14 @@ RATTLE_SCENE := reference/scenes/rattle.toml
 # are about 6-10 s per wheel, plus the lag shift over one mesh cycle).
 LW_SCENE := reference/scenes/white_paper_lightweight_runup.toml
 
-.PHONY: setup build test test-long bench preprocess solve validate calibrate convergence fe-stiffness stress lightweight calculix clean
+# A study (docs/studies.md): STUDY's cases and jobs, run on this machine
+# (EXECUTOR=local) or submitted to Slurm (EXECUTOR=slurm; then `make
+# study-collect` once `study status` shows every job done).
+STUDY    ?= reference/studies/small_misalignment.toml
+EXECUTOR ?= local
+STUDY_WORK ?= $(OUT)/studies
+
+.PHONY: setup build test test-long bench preprocess solve validate calibrate convergence fe-stiffness stress lightweight calculix study study-collect clean
 
 setup:
 	@bash scripts/setup.sh
@@ -171,13 +178,15 @@ test: setup
 # the `long-tests` feature of preprocess and validate (see their
 # Cargo.toml): fresh meshes of every seed pair and the whole chain on them,
 # the default pinion at the medium and reference levels, the coast-side FE
-# fixture, the reference sweep's shards and cache, and runs stopped by
-# signals at each phase.
+# fixture, the reference sweep's shards and cache, runs stopped by
+# signals at each phase, and the study's local executor (against the
+# stages run by hand, a failing job, two studies sharing a design).
 LONG_TESTS_PREPROCESS := seed_pairs mesh_levels signals
 LONG_TESTS_VALIDATE   := seed_pairs_chain solver_coast reference_sweep signals
 test-long: setup
 	$(CARGO) test $(RELEASE) -p preprocess --features long-tests $(addprefix --test ,$(LONG_TESTS_PREPROCESS))
 	$(CARGO) test $(RELEASE) -p validate --features long-tests $(addprefix --test ,$(LONG_TESTS_VALIDATE))
+	$(CARGO) test $(RELEASE) -p study --features long-tests --test local_study
 
 bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench flanks
@@ -373,6 +382,14 @@ lightweight: build
 	$(BIN)/solver lumped $(LW_SCENE) --meshes meshes --out $(OUT)
 	LIGHTWEIGHT_OUT=$(abspath $(OUT)) $(CARGO) test $(RELEASE) -p validate \
 	  --test lightweight_revolution_data -- --ignored
+
+study: build
+	$(BIN)/study submit $(STUDY) --executor $(EXECUTOR) --work $(STUDY_WORK) --meshes meshes
+	@if [ "$(EXECUTOR)" = local ]; then \
+	  $(BIN)/study collect $(STUDY) --work $(STUDY_WORK) --meshes meshes; fi
+
+study-collect: build
+	$(BIN)/study collect $(STUDY) --work $(STUDY_WORK) --meshes meshes
 
 clean:
 	$(CARGO) clean

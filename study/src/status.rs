@@ -31,6 +31,7 @@ impl JobState {
         match self {
             JobState::Done => "done".into(),
             JobState::Running => "running".into(),
+            JobState::Pending(s) if s == "PENDING" => "pending".into(),
             JobState::Pending(s) => format!("pending ({})", s.to_lowercase()),
             JobState::Failed(why) => format!("failed ({why})"),
             JobState::Cancelled => "cancelled".into(),
