@@ -199,6 +199,7 @@ bench: setup build preprocess
 	$(CARGO) bench -p solver --bench lumped
 	$(CARGO) bench -p solver --bench sensitivity
 	$(CARGO) bench -p validate --bench reference
+	$(CARGO) bench -p study --bench job_overhead
 
 # The reference against an independent FE code: example 03's first position
 # exported as a CalculiX deck (`validate export-inp`) and solved by CalculiX

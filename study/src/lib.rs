@@ -7,6 +7,7 @@
 
 pub mod cases;
 pub mod collect;
+pub mod estimate;
 pub mod jobs;
 pub mod local;
 pub mod report;

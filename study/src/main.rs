@@ -32,7 +32,18 @@ struct Where {
 #[derive(Subcommand)]
 enum Cmd {
     /// Expands the study and prints its cases and jobs (nothing runs).
-    Plan(Where),
+    Plan {
+        #[command(flatten)]
+        at: Where,
+        /// Also size the reference sweeps on paper from the base scenes'
+        /// measured sweeps under this output root (`validate reference`
+        /// of each base scene at the study's level).
+        #[arg(long)]
+        estimate_from: Option<PathBuf>,
+        /// Shard counts (one node each) of the estimate.
+        #[arg(long, value_delimiter = ',', default_value = "1,4,16,64")]
+        nodes: Vec<usize>,
+    },
     /// Runs (local) or submits (slurm) every job not done yet.
     Submit {
         #[command(flatten)]
@@ -85,8 +96,12 @@ fn planned(w: &Where) -> anyhow::Result<study::Planned> {
 fn main() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
-        Cmd::Plan(w) => {
-            let p = planned(&w)?;
+        Cmd::Plan {
+            at,
+            estimate_from,
+            nodes,
+        } => {
+            let p = planned(&at)?;
             println!(
                 "study {}: {} cases, {} jobs",
                 p.study.name,
@@ -100,6 +115,37 @@ fn main() -> anyhow::Result<()> {
                     j.mem_mb,
                     j.label
                 );
+            }
+            if let Some(out) = estimate_from {
+                if nodes.contains(&0) {
+                    anyhow::bail!("--nodes: 0 in {nodes:?}; shard counts are at least 1");
+                }
+                let (level, stride) = (&p.study.reference.level, p.study.reference.stride);
+                for (k, d) in p.expanded.designs.iter().enumerate() {
+                    let m = study::estimate::measured(&out, &d.name, level)?;
+                    let cases = p.expanded.cases.iter().filter(|c| c.design == k).count();
+                    println!(
+                        "\nreference sweeps of {} ({cases} cases, level {level}, stride {stride}), from the measured sweep under {}:",
+                        d.name,
+                        out.display()
+                    );
+                    for b in &m {
+                        println!(
+                            "  {}: {} positions at {:.1} s wall each, bodies factored in {:.0} s",
+                            b.blanks, b.positions, b.wall_s_per_position, b.factor_s
+                        );
+                    }
+                    println!(
+                        "  {:>6}  {:>12}  {:>12}",
+                        "nodes", "study wall h", "node-hours"
+                    );
+                    for s in study::estimate::sizing(&m, cases, stride, &nodes) {
+                        println!(
+                            "  {:>6}  {:>12.1}  {:>12.1}",
+                            s.shards, s.study_wall_h, s.node_hours
+                        );
+                    }
+                }
             }
         }
         Cmd::Submit {

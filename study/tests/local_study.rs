@@ -14,8 +14,23 @@ use support::{base_scene, build_programs, meshes_root, s, study, study_file, stu
 /// The tests share the mesh root: one at a time.
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
 
-fn args<'a>(cmd: &'a str, file: &'a Path, work: &'a Path, meshes: &'a Path, bin: &'a Path) -> Vec<&'a str> {
-    vec![cmd, s(file), "--work", s(work), "--meshes", s(meshes), "--bin", s(bin)]
+fn args<'a>(
+    cmd: &'a str,
+    file: &'a Path,
+    work: &'a Path,
+    meshes: &'a Path,
+    bin: &'a Path,
+) -> Vec<&'a str> {
+    vec![
+        cmd,
+        s(file),
+        "--work",
+        s(work),
+        "--meshes",
+        s(meshes),
+        "--bin",
+        s(bin),
+    ]
 }
 
 #[test]
@@ -24,7 +39,14 @@ fn local_study_gives_what_its_stages_give_by_hand() {
     build_programs();
     let tmp = tempfile::tempdir().unwrap();
     let scene = base_scene(tmp.path());
-    let file = study_file(tmp.path(), "by_hand", &scene, "[\"ltca\", \"reference\"]", "[0.0, 0.05]", 2);
+    let file = study_file(
+        tmp.path(),
+        "by_hand",
+        &scene,
+        "[\"ltca\", \"reference\"]",
+        "[0.0, 0.05]",
+        2,
+    );
     let (meshes, bin, work) = (meshes_root(), support::bin_dir(), tmp.path().join("work"));
     study_ok(&args("submit", &file, &work, &meshes, &bin));
     study_ok(&args("collect", &file, &work, &meshes, &bin));
@@ -34,29 +56,61 @@ fn local_study_gives_what_its_stages_give_by_hand() {
         .unwrap()
         .flatten()
         .map(|e| e.path())
-        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("case_"))
+        .filter(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("case_")
+        })
         .collect();
     assert_eq!(cases.len(), 2);
     for case in cases {
-        let key = case.file_stem().unwrap().to_string_lossy().trim_start_matches("case_").to_string();
+        let key = case
+            .file_stem()
+            .unwrap()
+            .to_string_lossy()
+            .trim_start_matches("case_")
+            .to_string();
         let hand = tmp.path().join("hand").join(&key);
         for (program, a) in [
-            ("solver", vec!["ltca", s(&case), "--meshes", s(&meshes), "--out", s(&hand)]),
+            (
+                "solver",
+                vec!["ltca", s(&case), "--meshes", s(&meshes), "--out", s(&hand)],
+            ),
             (
                 "validate",
-                vec!["reference", s(&case), "--meshes", s(&meshes), "--out", s(&hand), "--level", "reduced"],
+                vec![
+                    "reference",
+                    s(&case),
+                    "--meshes",
+                    s(&meshes),
+                    "--out",
+                    s(&hand),
+                    "--level",
+                    "reduced",
+                ],
             ),
         ] {
             let out = Command::new(bin.join(program)).args(&a).output().unwrap();
-            assert!(out.status.success(), "{program} {a:?}: {}", String::from_utf8_lossy(&out.stderr));
+            assert!(
+                out.status.success(),
+                "{program} {a:?}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
         }
         let from_study = work.join("cases").join(&key).join("study_small");
-        for f in ["ltca/standard_standard/te.csv", "reference/standard_standard/te.csv"] {
+        for f in [
+            "ltca/standard_standard/te.csv",
+            "reference/standard_standard/te.csv",
+        ] {
             let (a, b) = (
                 std::fs::read(from_study.join(f)).unwrap(),
                 std::fs::read(hand.join("study_small").join(f)).unwrap(),
             );
-            assert!(a == b, "case {key}: {f} of the study differs from the stage run by hand");
+            assert!(
+                a == b,
+                "case {key}: {f} of the study differs from the stage run by hand"
+            );
         }
     }
 }
@@ -73,7 +127,11 @@ fn failed_job_stops_its_dependents_and_collect_names_it_and_writes_nothing() {
         std::os::unix::fs::symlink(support::bin_dir().join(p), bin.join(p)).unwrap();
     }
     let solver = bin.join("solver");
-    std::fs::write(&solver, "#!/bin/sh\necho 'solver: made to fail by the test' >&2\nexit 3\n").unwrap();
+    std::fs::write(
+        &solver,
+        "#!/bin/sh\necho 'solver: made to fail by the test' >&2\nexit 3\n",
+    )
+    .unwrap();
     use std::os::unix::fs::PermissionsExt;
     std::fs::set_permissions(&solver, std::fs::Permissions::from_mode(0o755)).unwrap();
     let scene = base_scene(tmp.path());
@@ -94,7 +152,9 @@ fn failed_job_stops_its_dependents_and_collect_names_it_and_writes_nothing() {
         .and_then(|l| l.split("(log ").nth(1))
         .map(|l| l.trim_end_matches(')').to_string())
         .unwrap();
-    assert!(std::fs::read_to_string(log).unwrap().contains("made to fail by the test"));
+    assert!(std::fs::read_to_string(log)
+        .unwrap()
+        .contains("made to fail by the test"));
     assert!(!work.join("results").join("fails").exists());
 }
 
@@ -122,7 +182,9 @@ fn two_studies_sharing_a_design_run_its_jobs_once() {
             .unwrap()
             .to_string();
         let log = std::fs::read_to_string(work.join("jobs").join(key).join("log.txt")).unwrap();
-        log.lines().filter(|l| l.starts_with("== ") && l.contains(" on ")).count()
+        log.lines()
+            .filter(|l| l.starts_with("== ") && l.contains(" on "))
+            .count()
     };
     assert_eq!(runs_in("study_small: mesh reduced"), 1);
     assert_eq!(runs_in("study_small: stiffness files"), 1);

@@ -97,7 +97,10 @@ fn wait(
         if until(&st) {
             return st;
         }
-        assert!(t0.elapsed() < limit, "{what}: not reached in {limit:?}: {st:#?}");
+        assert!(
+            t0.elapsed() < limit,
+            "{what}: not reached in {limit:?}: {st:#?}"
+        );
         std::thread::sleep(Duration::from_millis(200));
     }
 }
@@ -144,13 +147,17 @@ fn slurm_study_with_a_cancelled_shard_resubmitted_gives_the_local_result_bit_for
     let cluster = Cluster::start(&tmp.path().join("cluster"));
     std::env::set_var("SLURM_CONF", &cluster.conf);
     let out = study_ok(&refs(&with(&["submit", "--executor", "slurm"], &slurm)));
-    assert!(out.contains("7 jobs submitted, 0 queued or running already, 0 done before"), "{out}");
+    assert!(
+        out.contains("7 jobs submitted, 0 queued or running already, 0 done before"),
+        "{out}"
+    );
     let status_args = with(&["x"], &slurm)[1..].to_vec();
     let sa = refs(&status_args);
 
     // Cancel shard 1 while it runs.
     let st = wait(&sa, Duration::from_secs(300), "shard 1 running", |st| {
-        st.iter().any(|(l, s, _)| l.contains("reference shard 1/2") && s == "running")
+        st.iter()
+            .any(|(l, s, _)| l.contains("reference shard 1/2") && s == "running")
     });
     let id = st
         .iter()
@@ -168,20 +175,34 @@ fn slurm_study_with_a_cancelled_shard_resubmitted_gives_the_local_result_bit_for
             .unwrap()
     };
     assert_eq!(state_of(&st, "reference shard 1/2"), "cancelled", "{st:#?}");
-    assert_eq!(state_of(&st, "reference collection"), "cancelled", "{st:#?}");
-    assert_eq!(st.iter().filter(|(_, s, _)| s == "done").count(), 5, "{st:#?}");
+    assert_eq!(
+        state_of(&st, "reference collection"),
+        "cancelled",
+        "{st:#?}"
+    );
+    assert_eq!(
+        st.iter().filter(|(_, s, _)| s == "done").count(),
+        5,
+        "{st:#?}"
+    );
 
     // Collect refuses, naming the cancelled shard, and writes nothing.
     let c = study(&refs(&with(&["collect"], &slurm)));
     let err = String::from_utf8_lossy(&c.stderr);
     assert!(!c.status.success());
     assert!(err.contains("2 of 7 jobs are not done"), "{err}");
-    assert!(err.contains("reference shard 1/2 (2 cases): cancelled"), "{err}");
+    assert!(
+        err.contains("reference shard 1/2 (2 cases): cancelled"),
+        "{err}"
+    );
     assert!(!slurm.join("results").join("slurm_study").exists());
 
     // A resubmission redoes only the cancelled shard and the collection.
     let out = study_ok(&refs(&with(&["submit", "--executor", "slurm"], &slurm)));
-    assert!(out.contains("2 jobs submitted, 0 queued or running already, 5 done before"), "{out}");
+    assert!(
+        out.contains("2 jobs submitted, 0 queued or running already, 5 done before"),
+        "{out}"
+    );
     wait(&sa, Duration::from_secs(300), "every job done", |st| {
         st.iter().all(|(_, s, _)| s == "done")
     });
@@ -193,7 +214,10 @@ fn slurm_study_with_a_cancelled_shard_resubmitted_gives_the_local_result_bit_for
         std::fs::read(work.join("results").join("slurm_study").join(f)).unwrap()
     };
     for f in ["summary.json", "cases.csv", "report.md"] {
-        assert!(read(&local, f) == read(&slurm, f), "{f} differs between the executors");
+        assert!(
+            read(&local, f) == read(&slurm, f),
+            "{f} differs between the executors"
+        );
     }
     eprintln!(
         "slurm study: local executor {t_local:.0} s, whole test {:.0} s",

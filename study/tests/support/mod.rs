@@ -21,8 +21,17 @@ pub fn build_programs() {
     static BUILT: OnceLock<()> = OnceLock::new();
     BUILT.get_or_init(|| {
         let mut cmd = Command::new(env!("CARGO"));
-        cmd.args(["build", "--bins", "-p", "preprocess", "-p", "solver", "-p", "validate"])
-            .current_dir(workspace());
+        cmd.args([
+            "build",
+            "--bins",
+            "-p",
+            "preprocess",
+            "-p",
+            "solver",
+            "-p",
+            "validate",
+        ])
+        .current_dir(workspace());
         if bin_dir().ends_with("release") {
             cmd.arg("--release");
         }
@@ -36,7 +45,10 @@ pub fn build_programs() {
 }
 
 pub fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
 }
 
 /// The mesh root shared with the other tests of the same pair.
