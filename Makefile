@@ -183,10 +183,13 @@ test: setup
 # stages run by hand, a failing job, two studies sharing a design).
 LONG_TESTS_PREPROCESS := seed_pairs mesh_levels signals
 LONG_TESTS_VALIDATE   := seed_pairs_chain solver_coast reference_sweep signals
+# The study tests run first: they run the programs `make test` built
+# (their own build of them is then a no-op; after the other packages'
+# `long-tests` builds it would rebuild them).
 test-long: setup
+	$(CARGO) test $(RELEASE) -p study --features long-tests --test local_study
 	$(CARGO) test $(RELEASE) -p preprocess --features long-tests $(addprefix --test ,$(LONG_TESTS_PREPROCESS))
 	$(CARGO) test $(RELEASE) -p validate --features long-tests $(addprefix --test ,$(LONG_TESTS_VALIDATE))
-	$(CARGO) test $(RELEASE) -p study --features long-tests --test local_study
 
 bench: setup build preprocess
 	$(CARGO) bench -p preprocess --bench flanks
