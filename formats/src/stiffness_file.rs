@@ -17,7 +17,7 @@
 //! | `compliance/local` | s × points × points | the near-load part on the loaded tooth (m/N) |
 //! | `root_stress/offsets` | r | responding teeth of the root stress, relative to the loaded one |
 //! | `root_stress/xi`, `root_stress/height` | fillet points | face-width position (0 toe, 1 heel) and fillet height (0 root, 1 flank junction) of each fillet point: the loaded flank's fillet's points, then the other flank's |
-//! | `root_stress/stress` | s × r × points × fillet points × 6 | stress (Voigt xx, yy, zz, yz, xz, xy) at each fillet point of tooth solved+offset under a unit load at grid point i, in that tooth's own frame turned back onto tooth 0 (Pa/N) |
+//! | `root_stress/stress` | s × r × points × fillet points × 6 | stress (Voigt xx, yy, zz, yz, xz, xy) at each fillet point of tooth solved+offset under a unit load at grid point i, in that tooth's own frame turned back onto tooth 0 (Pa/N), single precision (schema 3; double before) |
 //!
 //! Point index = i_face · profile + i_profile. Fillet points: side-major,
 //! then face-major over [`ROOT_STRESS_GRID`] (ξ, height) cell centres.
@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 
 /// Bumped whenever the file layout or its meaning changes (also when
 /// [`ROOT_STRESS_GRID`] or [`ROOT_STRESS_OFFSETS`] change).
-pub const STIFFNESS_SCHEMA: u32 = 2;
+pub const STIFFNESS_SCHEMA: u32 = 3;
 
 /// Fillet points per fillet side where the root stress is stored: across
 /// the face width × up the fillet (cell centres of the unit square).
@@ -293,13 +293,20 @@ fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
             .map_err(&e)?;
         put("root_stress/xi", &[nf], &r.xi, "1").map_err(&e)?;
         put("root_stress/height", &[nf], &r.height, "1").map_err(&e)?;
-        put(
-            "root_stress/stress",
-            &[ns, nr, np, nf, 6],
-            &r.stress,
-            "Pa/N",
-        )
-        .map_err(&e)?;
+        // Single precision: the coefficients are summed over a few
+        // hundred loads into stresses compared to a few per cent, and the
+        // solver holds them as f32 anyway; half the file's largest block.
+        let single: Vec<f32> = r.stress.iter().map(|&v| v as f32).collect();
+        let ds = f
+            .new_dataset::<f32>()
+            .shape(vec![ns, nr, np, nf, 6])
+            .create("root_stress/stress")
+            .map_err(&e)?;
+        ds.write_raw(&single).map_err(&e)?;
+        ds.new_attr::<hdf5::types::VarLenUnicode>()
+            .create("units")
+            .and_then(|a| a.write_scalar(&vlu("Pa/N")))
+            .map_err(&e)?;
     }
     f.flush().map_err(&e)?;
     // Close now (not when the last handle drops) so the file can be renamed
@@ -426,10 +433,16 @@ pub fn read(path: &Path, expected_hash: Option<&str>) -> Result<StiffnessData, S
                 .map_err(&e)?;
             let nf = dataset("root_stress/xi", None)?.size();
             let n = size("root_stress/stress", &[ns, offsets.len(), np, nf, 6])?;
+            let single: Vec<f32> = dataset("root_stress/stress", Some(n))?
+                .read_raw()
+                .map_err(&e)?;
+            if single.len() != n {
+                return Err(shape_err("root_stress/stress", single.len(), n));
+            }
             Some(RootStressBlock {
                 xi: get("root_stress/xi", nf)?,
                 height: get("root_stress/height", nf)?,
-                stress: get("root_stress/stress", n)?,
+                stress: single.into_iter().map(f64::from).collect(),
                 offsets,
             })
         }

@@ -31,6 +31,11 @@ pub fn run(work: &Path, key: &str) -> anyhow::Result<i32> {
     let dir = state::dir(work, key);
     let now = || formats::result_set::utc(SystemTime::now());
     let _ = std::fs::remove_file(dir.join("failed.json"));
+    // Run outside Slurm now (the local executor, or by hand): an earlier
+    // submission's id no longer speaks for the job.
+    if std::env::var_os("SLURM_JOB_ID").is_none() {
+        let _ = std::fs::remove_file(dir.join("slurm.json"));
+    }
     formats::output::write_json(
         &dir.join("running.json"),
         &Running {

@@ -58,9 +58,11 @@ pub fn combine(files: FileState, slurm: Option<&SlurmState>) -> JobState {
         (None, Some(s)) => format!("signal {s}"),
         _ => "no exit status".into(),
     };
+    // Slurm's word on a job that ended decides over a `running.json`
+    // left by a run on another node (its process cannot be checked from
+    // here); a job without a Slurm id is judged by its files alone.
     match (files, slurm) {
         (FileState::Done(_), _) => JobState::Done,
-        (FileState::Running(_), _) => JobState::Running,
         (_, Some(SlurmState::Active(s)))
             if s == "RUNNING" || s == "COMPLETING" || s == "CONFIGURING" =>
         {
@@ -72,6 +74,7 @@ pub fn combine(files: FileState, slurm: Option<&SlurmState>) -> JobState {
         (_, Some(SlurmState::Ended(s))) if s != "COMPLETED" => {
             JobState::Failed(format!("Slurm {s}"))
         }
+        (FileState::Running(_), _) => JobState::Running,
         (FileState::Lost(_), _) => JobState::Lost,
         (FileState::NotRun, _) => JobState::NotRun,
     }
@@ -116,6 +119,14 @@ mod tests {
         }
     }
 
+    fn run2() -> state::Running {
+        state::Running {
+            pid: 2,
+            host: "node7".into(),
+            started_utc: "t".into(),
+        }
+    }
+
     #[test]
     fn states_combine_the_job_files_with_slurms_view() {
         let run = state::Running {
@@ -157,5 +168,15 @@ mod tests {
             JobState::Failed("Slurm TIMEOUT".into())
         );
         assert_eq!(combine(FileState::NotRun, None), JobState::NotRun);
+        // A run on another node whose `running.json` outlived it.
+        assert_eq!(
+            combine(FileState::Running(run2()), Some(&ended("NODE_FAIL"))),
+            JobState::Failed("Slurm NODE_FAIL".into())
+        );
+        assert_eq!(
+            combine(FileState::Running(run2()), Some(&ended("CANCELLED"))),
+            JobState::Cancelled
+        );
+        assert_eq!(combine(FileState::Running(run2()), None), JobState::Running);
     }
 }
