@@ -209,14 +209,53 @@ pub fn plan(
         });
         design_jobs.push((stiffness, mesh_jobs.get(level).cloned()));
     }
-    for c in &ex.cases {
-        let stiffness = &design_jobs[c.design].0;
-        let scene = s(&c.scene_path);
-        let out = s(&absolute(&c.out));
-        let name = &ex.designs[c.design].name;
-        let one =
-            |kind: JobKind, what: &str, program: &str, args: Vec<String>, deps: Vec<String>| {
-                make(
+    // The case jobs, kind by kind and design by design, so that the cases
+    // of one kind and design follow each other: Slurm submits them as one
+    // job array (a failed case is submitted again alone, by its index).
+    let kinds = [
+        (Analysis::Utca, JobKind::Utca, "unloaded TCA"),
+        (Analysis::Ltca, JobKind::Ltca, "loaded TCA"),
+        (Analysis::Multibody, JobKind::Multibody, "multibody"),
+    ];
+    for (a, kind, what) in kinds {
+        if !study.runs(a) {
+            continue;
+        }
+        for (d, design) in ex.designs.iter().enumerate() {
+            let stiffness = &design_jobs[d].0;
+            for c in ex.cases.iter().filter(|c| c.design == d) {
+                let scene = s(&c.scene_path);
+                let out = s(&absolute(&c.out));
+                let (program, args, deps) = match kind {
+                    JobKind::Utca => (
+                        "preprocess",
+                        vec![
+                            "flanks".into(),
+                            scene,
+                            "--out".into(),
+                            s(&absolute(&c.out).join(&design.name).join("flanks")),
+                        ],
+                        vec![],
+                    ),
+                    _ => (
+                        "solver",
+                        vec![
+                            if kind == JobKind::Ltca {
+                                "ltca"
+                            } else {
+                                "dynamic"
+                            }
+                            .into(),
+                            scene,
+                            "--meshes".into(),
+                            s(&meshes),
+                            "--out".into(),
+                            out,
+                        ],
+                        stiffness.iter().cloned().collect(),
+                    ),
+                };
+                jobs.push(make(
                     format!("{}: {what}", c.id),
                     kind,
                     program,
@@ -224,44 +263,8 @@ pub fn plan(
                     deps,
                     &c.key,
                     mem_mb(kind, "reduced"),
-                    None,
+                    Some(format!("{}-{}", crate::cases::short(&design.key), a.name())),
                     Some(c.id.clone()),
-                )
-            };
-        if study.runs(Analysis::Utca) {
-            let flanks = s(&absolute(&c.out).join(name).join("flanks"));
-            jobs.push(one(
-                JobKind::Utca,
-                "unloaded TCA",
-                "preprocess",
-                vec!["flanks".into(), scene.clone(), "--out".into(), flanks],
-                vec![],
-            ));
-        }
-        for (a, kind, what, cmd) in [
-            (Analysis::Ltca, JobKind::Ltca, "loaded TCA", "ltca"),
-            (
-                Analysis::Multibody,
-                JobKind::Multibody,
-                "multibody",
-                "dynamic",
-            ),
-        ] {
-            if study.runs(a) {
-                let args = vec![
-                    cmd.into(),
-                    scene.clone(),
-                    "--meshes".into(),
-                    s(&meshes),
-                    "--out".into(),
-                    out.clone(),
-                ];
-                jobs.push(one(
-                    kind,
-                    what,
-                    "solver",
-                    args,
-                    stiffness.iter().cloned().collect(),
                 ));
             }
         }
