@@ -68,7 +68,45 @@ pub struct BearingSettings {
     pub pinion_body: Option<BodyMass>,
     #[serde(default)]
     pub wheel_body: Option<BodyMass>,
+    /// Flexible shafts (`[bearings.pinion_shaft]`, `[bearings.wheel_shaft]`):
+    /// Timoshenko beam elements of the member's shaft on its bearings,
+    /// condensed onto the gear's seat (`solver::bearings::flexible_shaft`);
+    /// absent: a rigid shaft.
+    #[serde(default)]
+    pub pinion_shaft: Option<ShaftMm>,
+    #[serde(default)]
+    pub wheel_shaft: Option<ShaftMm>,
 }
+
+/// A member's shaft: round segments along its axis and the gear's seat.
+/// The material is the design's.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShaftMm {
+    /// Where the gear body sits on the shaft, mm from the pitch apex along
+    /// the member's axis (the node the rigid gear hangs on).
+    pub seat_mm: f64,
+    /// Contiguous segments in axial order; every bearing and the seat on
+    /// them.
+    pub segments: Vec<ShaftSegmentMm>,
+}
+
+/// A length of shaft of one round section.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShaftSegmentMm {
+    pub from_mm: f64,
+    pub to_mm: f64,
+    pub outer_diameter_mm: f64,
+    /// 0 for a solid shaft.
+    #[serde(default)]
+    pub inner_diameter_mm: f64,
+}
+
+/// Most segments of one shaft.
+pub const MAX_SHAFT_SEGMENTS: usize = 50;
+/// Largest shaft diameter, mm.
+pub const MAX_SHAFT_DIAMETER_MM: f64 = 2_000.0;
 
 fn default_tolerance_nm() -> f64 {
     1.0
@@ -163,7 +201,98 @@ impl BearingSettings {
                 l.check_at(path, &format!("bearings.{member}.{name}"), v)?;
             }
         }
+        for (member, shaft, list) in [
+            ("pinion_shaft", &self.pinion_shaft, &self.pinion),
+            ("wheel_shaft", &self.wheel_shaft, &self.wheel),
+        ] {
+            if let Some(sh) = shaft {
+                sh.check(path, member, list)?;
+            }
+        }
         lim::TOLERANCE.check(path, self.tolerance_nm)?;
         lim::MAX_ITERATIONS.check_integer(path, lim::MAX_ITERATIONS.field, self.max_iterations)
+    }
+}
+
+impl ShaftMm {
+    /// Every number in range; segments contiguous in axial order with
+    /// 0 ≤ inner < outer diameter; the seat and every bearing of `bearings`
+    /// on the shaft.
+    pub fn check(
+        &self,
+        path: &Path,
+        member: &str,
+        bearings: &[BearingMm],
+    ) -> Result<(), InputError> {
+        let f = |name: &str| format!("bearings.{member}.{name}");
+        lim::SHAFT_SEAT.check_at(path, &f("seat_mm"), self.seat_mm)?;
+        let (l, n) = (&lim::SHAFT_SEGMENTS, self.segments.len());
+        if !l.admits(n as f64, &[]) {
+            return Err(l.refuse(
+                path,
+                &f("segments"),
+                format!("{n} entries"),
+                l.text_of_refusal(),
+            ));
+        }
+        for (i, sg) in self.segments.iter().enumerate() {
+            let g = |name: &str| f(&format!("segments[{i}].{name}"));
+            lim::SHAFT_FROM.check_at(path, &g("from_mm"), sg.from_mm)?;
+            lim::SHAFT_TO.check_at(path, &g("to_mm"), sg.to_mm)?;
+            lim::SHAFT_DIAMETER.check_at(path, &g("outer_diameter_mm"), sg.outer_diameter_mm)?;
+            lim::SHAFT_BORE.check_at(path, &g("inner_diameter_mm"), sg.inner_diameter_mm)?;
+            if sg.to_mm <= sg.from_mm {
+                return Err(lim::SHAFT_ORDER.refuse(
+                    path,
+                    &g("to_mm"),
+                    format!("{}", sg.to_mm),
+                    format!("must exceed from_mm = {}", sg.from_mm),
+                ));
+            }
+            if sg.inner_diameter_mm >= sg.outer_diameter_mm {
+                return Err(lim::SHAFT_ORDER.refuse(
+                    path,
+                    &g("inner_diameter_mm"),
+                    format!("{}", sg.inner_diameter_mm),
+                    format!("must be below outer_diameter_mm = {}", sg.outer_diameter_mm),
+                ));
+            }
+            if i > 0 && (sg.from_mm - self.segments[i - 1].to_mm).abs() > 1e-6 {
+                return Err(lim::SHAFT_ORDER.refuse(
+                    path,
+                    &g("from_mm"),
+                    format!("{}", sg.from_mm),
+                    format!(
+                        "must equal the previous segment's to_mm = {} (segments contiguous, in axial order)",
+                        self.segments[i - 1].to_mm
+                    ),
+                ));
+            }
+        }
+        let lo = self.segments[0].from_mm;
+        let hi = self.segments[self.segments.len() - 1].to_mm;
+        let on = |x: f64| (lo - 1e-9..=hi + 1e-9).contains(&x);
+        if !on(self.seat_mm) {
+            return Err(lim::SHAFT_ORDER.refuse(
+                path,
+                &f("seat_mm"),
+                format!("{}", self.seat_mm),
+                format!("must lie on the shaft, [{lo}, {hi}] mm"),
+            ));
+        }
+        for (i, b) in bearings.iter().enumerate() {
+            if !on(b.axial_position_mm) {
+                return Err(lim::SHAFT_ORDER.refuse(
+                    path,
+                    &format!(
+                        "bearings.{}[{i}].axial_position_mm",
+                        member.trim_end_matches("_shaft")
+                    ),
+                    format!("{}", b.axial_position_mm),
+                    format!("must lie on the {member}, [{lo}, {hi}] mm"),
+                ));
+            }
+        }
+        Ok(())
     }
 }

@@ -232,6 +232,12 @@ wheel = [
 ]
 pinion_body = { mass_kg = 5.0, centroid_mm = 120.0, transverse_inertia_kgm2 = 0.02 }
 wheel_body = { mass_kg = 12.0, centroid_mm = 60.0, transverse_inertia_kgm2 = 0.1 }
+[bearings.pinion_shaft]
+seat_mm = 100.0
+segments = [ { from_mm = 100.0, to_mm = 180.0, outer_diameter_mm = 40.0, inner_diameter_mm = 10.0 } ]
+[bearings.wheel_shaft]
+seat_mm = 60.0
+segments = [ { from_mm = 50.0, to_mm = 150.0, outer_diameter_mm = 60.0, inner_diameter_mm = 10.0 } ]
 ",
     ),
     (

@@ -447,3 +447,60 @@ fn a_run_up_blank_the_scene_does_not_analyse_is_refused_where_the_scene_names_it
         "{e}"
     );
 }
+
+#[test]
+fn flexible_shafts_are_read_and_bad_segments_rejected_naming_the_field() {
+    let b = |pos: &str, ka: &str| {
+        format!("{{ axial_position_mm = {pos}, radial_stiffness_n_per_m = 5e8, axial_stiffness_n_per_m = {ka} }}")
+    };
+    let list = format!("[{}, {}]", b("90.0", "5e8"), b("150.0", "0.0"));
+    let with_shaft = |shaft: &str| {
+        format!("[bearings]\npinion = {list}\nwheel = {list}\n[bearings.pinion_shaft]\n{shaft}")
+    };
+    let good = "seat_mm = 60.0\nsegments = [ { from_mm = 50.0, to_mm = 100.0, outer_diameter_mm = 45.0 }, { from_mm = 100.0, to_mm = 160.0, outer_diameter_mm = 40.0, inner_diameter_mm = 10.0 } ]";
+    let s = scene_with(&with_shaft(good)).unwrap();
+    let sh = s.scene.bearings.unwrap().pinion_shaft.unwrap();
+    assert_eq!(
+        (
+            sh.seat_mm,
+            sh.segments.len(),
+            sh.segments[1].inner_diameter_mm
+        ),
+        (60.0, 2, 10.0)
+    );
+    for (text, field, words) in [
+        (
+            good.replace("to_mm = 100.0, outer", "to_mm = 95.0, outer"),
+            "segments[1].from_mm",
+            "contiguous",
+        ),
+        (
+            good.replace("inner_diameter_mm = 10.0", "inner_diameter_mm = 40.0"),
+            "segments[1].inner_diameter_mm",
+            "below outer",
+        ),
+        (
+            good.replace("seat_mm = 60.0", "seat_mm = 20.0"),
+            "bearings.pinion_shaft.seat_mm",
+            "on the shaft",
+        ),
+        (
+            good.replace("to_mm = 160.0", "to_mm = 140.0"),
+            "bearings.pinion[1].axial_position_mm",
+            "on the pinion_shaft",
+        ),
+        (
+            good.replace("outer_diameter_mm = 45.0", "outer_diameter_mm = 0.0"),
+            "segments[0].outer_diameter_mm",
+            "(0, 2000]",
+        ),
+        (
+            "seat_mm = 60.0\nsegments = []".to_string(),
+            "bearings.pinion_shaft.segments",
+            "1 to 50",
+        ),
+    ] {
+        let e = scene_with(&with_shaft(&text)).unwrap_err();
+        assert!(e.contains(field) && e.contains(words), "{field}: {e}");
+    }
+}

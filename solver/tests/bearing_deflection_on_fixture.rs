@@ -2,12 +2,14 @@
 //! on the checked-in example-02 stiffness fixture (no gmsh): stiff bearings
 //! give the rigid-bearing TE, the bearing reactions balance the contact's
 //! wrench and the contact torque is the applied torque, and the TE added by
-//! soft bearings scales with their compliance.
+//! soft bearings scales with their compliance; on flexible shafts
+//! (Timoshenko beams condensed onto the gear seat) a very stiff shaft gives
+//! the rigid shaft's TE and a steel one adds its own bending.
 
 #[path = "support/fixture.rs"]
 mod fixture;
 
-use fixture::{supports, Fixture};
+use fixture::{supports, supports_on_shafts, Fixture};
 use solver::bearings::system_deflection::{
     deflected_position, DeflectedPosition, DeflectionSettings,
 };
@@ -20,15 +22,23 @@ fn solve_with(k: f64) -> DeflectedPosition {
 
 /// The fixture's position 3 at [`TORQUE_NM`] on bearings of stiffness `k`.
 fn deflect(k: f64) -> Result<DeflectedPosition, solver::SolverError> {
-    let mut f = Fixture::example_02();
-    let phi = f.sweep.start + f.sweep.direction * 3.0 * f.sweep.step;
+    let f = Fixture::example_02();
     let sup = supports(&f.g, k);
+    deflect_on(f, &sup)
+}
+
+/// The fixture's position 3 at [`TORQUE_NM`] on the supports `sup`.
+fn deflect_on(
+    mut f: Fixture,
+    sup: &solver::bearings::system_deflection::Supports,
+) -> Result<DeflectedPosition, solver::SolverError> {
+    let phi = f.sweep.start + f.sweep.direction * 3.0 * f.sweep.step;
     deflected_position(
         &mut f.g,
         f.scene.scene.loaded_flank,
         &f.scene.scene.utca,
         &f.pc,
-        &sup,
+        sup,
         None,
         phi,
         TORQUE_NM,
@@ -131,5 +141,53 @@ fn bearings_too_soft_for_the_load_are_named_not_a_missing_contact() {
     let msg = e.to_string();
     for w in ["bearings are too soft", "300 N·m", "stiffen `[bearings]`"] {
         assert!(msg.contains(w), "'{w}' not in: {msg}");
+    }
+}
+
+/// A shaft a million times stiffer than steel carries the gear as the
+/// rigid shaft does (the same TE within 1e-5 of the TE the bearings add);
+/// a 30 mm steel shaft
+/// bends under the mesh force and adds TE beyond the bearings' own, with
+/// the reactions still balancing the contact's wrench.
+#[test]
+fn flexible_shafts_give_the_rigid_shaft_te_when_stiff_and_add_their_bending_when_steel() {
+    let k = 5e8;
+    let rigid = solve_with(k);
+    let g = Fixture::example_02().g;
+    let stiff = deflect_on(Fixture::example_02(), &supports_on_shafts(&g, k, 0.03, 1e6)).unwrap();
+    // Within 1e-5 of what the bearings add (the iteration stops at 1 nm,
+    // and the shaft keeps a millionth of a steel shaft's compliance).
+    let added = rigid.te - rigid.te_rigid_bearings;
+    assert!(
+        (stiff.te - rigid.te).abs() < 1e-5 * added.abs(),
+        "TE on a very stiff shaft {} against the rigid shaft {} rad",
+        stiff.te,
+        rigid.te
+    );
+    let steel_sup = supports_on_shafts(&g, k, 0.03, 1.0);
+    let steel = deflect_on(Fixture::example_02(), &steel_sup).unwrap();
+    let (d_bearings, d_shaft) = (added, steel.te - rigid.te);
+    eprintln!(
+        "300 N·m, bearings 5e8 N/m: TE rigid supports {:.3} µrad, + bearings {:+.3} µrad, + 30 mm steel shafts {:+.3} µrad; pinion apex moved {:.2} µm (rigid shaft {:.2} µm)",
+        rigid.te_rigid_bearings * 1e6,
+        d_bearings * 1e6,
+        d_shaft * 1e6,
+        steel.pinion.translation.norm() * 1e6,
+        rigid.pinion.translation.norm() * 1e6
+    );
+    assert!(steel.pinion.translation.norm() > rigid.pinion.translation.norm());
+    assert!(
+        d_shaft.abs() > 1e-8,
+        "the shaft's bending changes the TE: {d_shaft} rad"
+    );
+    let w = steel.pinion_wrench;
+    let scale = nalgebra::Vector3::new(w[0], w[1], w[2]).norm();
+    for (s, g, d) in [
+        (&steel_sup.pinion, w, &steel.pinion),
+        (&steel_sup.wheel, -w, &steel.wheel),
+    ] {
+        let (f, m) = s.residual(&g, d);
+        assert!(f.norm() < 1e-9 * scale, "force residual {f}");
+        assert!(m.norm() < 1e-9 * scale * 0.2, "moment residual {m}");
     }
 }

@@ -3,6 +3,7 @@
 use super::*;
 use crate::scene_bearings::{
     MAX_BEARING_DAMPING_N_S_PER_M, MAX_BEARING_POSITION_MM, MAX_BEARING_STIFFNESS_N_PER_M,
+    MAX_SHAFT_DIAMETER_MM, MAX_SHAFT_SEGMENTS,
 };
 
 /// A position along the member's axis from its pitch apex.
@@ -65,6 +66,29 @@ limits! {
         "bearings.<member>_body.transverse_inertia_kgm2",
         "kg·m²",
         real(open(0.0), closed_e(1e4)).lie_in(" kg·m²"),
+    );
+    SHAFT_SEAT = position("bearings.<member>_shaft.seat_mm");
+    SHAFT_FROM = position("bearings.<member>_shaft.segments[i].from_mm");
+    SHAFT_TO = position("bearings.<member>_shaft.segments[i].to_mm");
+    SHAFT_SEGMENTS = Limit::scene(
+        "bearings.<member>_shaft.segments",
+        "",
+        count(closed(1.0), closed(MAX_SHAFT_SEGMENTS as f64)).says("needs 1 to 50 segments"),
+    );
+    SHAFT_DIAMETER = Limit::scene(
+        "bearings.<member>_shaft.segments[i].outer_diameter_mm",
+        "mm",
+        real(open(0.0), closed(MAX_SHAFT_DIAMETER_MM)).lie_in(" mm"),
+    );
+    SHAFT_BORE = Limit::scene(
+        "bearings.<member>_shaft.segments[i].inner_diameter_mm",
+        "mm",
+        real(closed(0.0), closed(MAX_SHAFT_DIAMETER_MM)).lie_in(" mm"),
+    );
+    SHAFT_ORDER = Limit::scene(
+        "bearings.<member>_shaft",
+        "",
+        words("segments contiguous in axial order, inner below outer diameter, the seat and every bearing on the shaft"),
     );
     TOLERANCE = Limit::scene(
         "bearings.tolerance_nm",

@@ -55,6 +55,8 @@ pub enum BearingError {
     Tilt(usize),
     #[error("no bearing has axial stiffness: the shaft would slide along its axis; give one bearing `axial_stiffness_n_per_m` > 0")]
     Axial,
+    #[error(transparent)]
+    Shaft(#[from] super::flexible_shaft::ShaftError),
 }
 
 /// A small rigid displacement of a member about its pitch apex.
@@ -74,6 +76,11 @@ pub struct Support {
     bearings: Vec<Bearing>,
     /// Orthonormal basis of the five directions the bearings hold.
     held: Matrix6x5<f64>,
+    /// Each bearing's displacement per member displacement [u; θ]: Bᵢ for
+    /// a rigid shaft, the condensed shaft's map for a flexible one.
+    maps: Vec<nalgebra::Matrix3x6<f64>>,
+    /// The support stiffness about the apex.
+    k: Matrix6<f64>,
 }
 
 /// The skew matrix [r]ₓ with [r]ₓ v = r × v.
@@ -145,12 +152,61 @@ impl Support {
         let col = |t: Vector3<f64>, r: Vector3<f64>| Vector6::new(t.x, t.y, t.z, r.x, r.y, r.z);
         let held =
             Matrix6x5::from_columns(&[col(e1, z), col(e2, z), col(a, z), col(z, e1), col(z, e2)]);
-        Ok(Support {
+        let mut s = Support {
             axis: a,
             apex,
             bearings: bearings.to_vec(),
             held,
-        })
+            maps: Vec::new(),
+            k: Matrix6::zeros(),
+        };
+        s.maps = s.bearings.iter().map(|b| s.kinematics(b)).collect();
+        s.k = s
+            .bearings
+            .iter()
+            .zip(&s.maps)
+            .map(|(b, bi)| bi.transpose() * s.bearing_matrix(b) * bi)
+            .sum();
+        Ok(s)
+    }
+
+    /// The member on a flexible `shaft` (Timoshenko beam elements,
+    /// [`super::flexible_shaft`]) carried by `bearings`: the shaft with its
+    /// bearings condensed onto the gear's seat, then moved to the apex. With
+    /// the seat at s on the axis a, the seat moves by
+    /// [u + θ × (s a); θ] when the member moves by [u; θ] about the apex
+    /// (B_s), and in the shaft frame (x = a, y = e₁, z = e₂; R = [a e₁ e₂])
+    ///
+    ///   K = (R₆ᵀ B_s)ᵀ K_c (R₆ᵀ B_s),   Dᵢ = R Dᵢˡ R₆ᵀ B_s,
+    ///
+    /// Dᵢˡ the condensation's map of bearing i. A very stiff shaft gives
+    /// the rigid support of [`Support::new`].
+    pub fn on_shaft(
+        field: &str,
+        axis: Vector3<f64>,
+        apex: Vector3<f64>,
+        bearings: &[Bearing],
+        shaft: &super::flexible_shaft::Shaft,
+    ) -> Result<Support, BearingError> {
+        let mut s = Support::new(field, axis, apex, bearings)?;
+        let c = shaft.condense(&format!("{field}_shaft"), bearings)?;
+        let a = s.axis;
+        let (e1, e2) = (
+            s.held.fixed_view::<3, 1>(0, 0).into_owned(),
+            s.held.fixed_view::<3, 1>(0, 1).into_owned(),
+        );
+        let r = Matrix3::from_columns(&[a, e1, e2]);
+        let mut r6 = Matrix6::zeros();
+        r6.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
+        r6.fixed_view_mut::<3, 3>(3, 3).copy_from(&r);
+        let mut bs = Matrix6::identity();
+        bs.fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&(-skew(&(a * shaft.seat_m))));
+        let t = r6.transpose() * bs;
+        s.k = t.transpose() * c.seat_stiffness * t;
+        s.k = 0.5 * (s.k + s.k.transpose());
+        s.maps = c.bearing_maps.iter().map(|d| r * d * t).collect();
+        Ok(s)
     }
 
     /// The unit shaft axis.
@@ -179,28 +235,23 @@ impl Support {
         m
     }
 
-    /// The support stiffness K = Σ Bᵢᵀ Kᵢ Bᵢ about the apex, N/m, N, N·m.
+    /// The support stiffness about the apex, N/m, N, N·m: K = Σ Bᵢᵀ Kᵢ Bᵢ
+    /// on a rigid shaft, the condensed shaft's on a flexible one.
     pub fn stiffness(&self) -> Matrix6<f64> {
-        self.bearings
-            .iter()
-            .map(|b| {
-                let bi = self.kinematics(b);
-                bi.transpose() * self.bearing_matrix(b) * bi
-            })
-            .sum()
+        self.k
     }
 
-    /// The support damping C = Σ Bᵢᵀ Cᵢ Bᵢ about the apex, with
+    /// The support damping C = Σ Bᵢᵀ Cᵢ Bᵢ about the apex (Bᵢ the bearing's
+    /// map, [`Support::on_shaft`] for a flexible shaft), with
     /// Cᵢ = c_r,i (I − a aᵀ) + c_a,i a aᵀ from `damping[i]` =
     /// (radial, axial) viscous damping of bearing i, N·s/m (bearings
     /// without an entry: none).
     pub fn damping(&self, damping: &[(f64, f64)]) -> Matrix6<f64> {
         let aat = self.axis * self.axis.transpose();
-        self.bearings
+        self.maps
             .iter()
             .zip(damping)
-            .map(|(b, &(cr, ca))| {
-                let bi = self.kinematics(b);
+            .map(|(bi, &(cr, ca))| {
                 let ci = (Matrix3::identity() - aat) * cr + aat * ca;
                 bi.transpose() * ci * bi
             })
@@ -223,13 +274,13 @@ impl Support {
     /// ([u̇; θ̇]) with `damping` as in [`Support::damping`], N.
     pub fn damping_reactions(&self, v: &Vector6<f64>, damping: &[(f64, f64)]) -> Vec<Vector3<f64>> {
         let aat = self.axis * self.axis.transpose();
-        self.bearings
+        self.maps
             .iter()
             .enumerate()
-            .map(|(i, b)| {
+            .map(|(i, bi)| {
                 let (cr, ca) = damping.get(i).copied().unwrap_or((0.0, 0.0));
                 let ci = (Matrix3::identity() - aat) * cr + aat * ca;
-                -(ci * (self.kinematics(b) * v))
+                -(ci * (bi * v))
             })
             .collect()
     }
@@ -275,7 +326,8 @@ impl Support {
         );
         self.bearings
             .iter()
-            .map(|b| -(self.bearing_matrix(b) * (self.kinematics(b) * x)))
+            .zip(&self.maps)
+            .map(|(b, bi)| -(self.bearing_matrix(b) * (bi * x)))
             .collect()
     }
 
@@ -400,6 +452,88 @@ mod tests {
             let point = apex + Vector3::new(0.06 * (t * 0.9).cos(), 0.05 * t.sin(), 0.03);
             let g = s.load(force, point);
             assert!(balance(&s, &g) < 1e-9, "load {k}: {}", balance(&s, &g));
+        }
+    }
+
+    fn one_segment(
+        from: f64,
+        to: f64,
+        d: f64,
+        seat: f64,
+        e: f64,
+    ) -> super::super::flexible_shaft::Shaft {
+        super::super::flexible_shaft::Shaft {
+            segments: vec![super::super::flexible_shaft::ShaftSegment {
+                from_m: from,
+                to_m: to,
+                outer_diameter_m: d,
+                inner_diameter_m: 0.0,
+            }],
+            seat_m: seat,
+            youngs_modulus_pa: e,
+            poisson_ratio: 0.3,
+        }
+    }
+
+    /// A shaft a million times stiffer than steel gives the rigid
+    /// support: the same stiffness about the apex and the same bearing
+    /// maps (skew axis, apex off the origin, three bearings).
+    #[test]
+    fn very_stiff_flexible_shaft_gives_the_rigid_support() {
+        let axis = Vector3::new(0.3, -0.5, 0.81);
+        let apex = Vector3::new(0.01, -0.02, 0.005);
+        let bs = [
+            bearing(0.05, 8e8, 0.0),
+            bearing(0.11, 3e8, 5e8),
+            bearing(0.19, 9e8, 1e8),
+        ];
+        let rigid = Support::new("wheel.bearings", axis, apex, &bs).unwrap();
+        let shaft = one_segment(0.03, 0.2, 0.06, 0.08, 206e9 * 1e6);
+        let flex = Support::on_shaft("wheel.bearings", axis, apex, &bs, &shaft).unwrap();
+        let q = rigid.basis();
+        let (kr, kf) = (
+            q.transpose() * rigid.stiffness() * q,
+            q.transpose() * flex.stiffness() * q,
+        );
+        assert!((kr - kf).norm() < 1e-5 * kr.norm(), "{kr} {kf}");
+        for (a, b) in rigid.maps.iter().zip(&flex.maps) {
+            assert!((a - b).norm() < 1e-5 * a.norm(), "{a} {b}");
+        }
+    }
+
+    /// On a steel shaft along a skew axis the load at the seat moves the
+    /// seat by the simply supported Timoshenko beam's deflection on its
+    /// springs (the transform to the apex and back is exact), and every
+    /// load is balanced by the bearings' reactions.
+    #[test]
+    fn flexible_shaft_moves_the_seat_as_the_beam_and_balances_every_load() {
+        let axis = Vector3::new(0.3, -0.5, 0.81);
+        let apex = Vector3::new(0.01, -0.02, 0.005);
+        let (l, d, p, k) = (0.2, 0.04, 5000.0, 4e8);
+        let bs = [bearing(0.05, k, 1e9), bearing(0.05 + l, k, 0.0)];
+        let shaft = one_segment(0.05, 0.05 + l, d, 0.05 + 0.5 * l, 206e9);
+        let s = Support::on_shaft("pinion.bearings", axis, apex, &bs, &shaft).unwrap();
+        let a = s.axis();
+        let radial = a.cross(&Vector3::x()).normalize();
+        let seat = apex + a * shaft.seat_m;
+        let dsp = s.displacement(&s.load(radial * p, seat));
+        let moved = dsp.translation + dsp.rotation.cross(&(a * shaft.seat_m));
+        let sec = super::super::timoshenko::Section::round(d, 0.0, 206e9, 0.3);
+        let exact = p * l.powi(3) / (48.0 * sec.youngs_modulus_pa * sec.inertia_m4)
+            + p * l / (4.0 * sec.shear_coefficient * sec.shear_modulus_pa * sec.area_m2)
+            + p / (2.0 * k);
+        assert!(
+            (moved.dot(&radial) - exact).abs() < 1e-8 * exact,
+            "{} {exact}",
+            moved.dot(&radial)
+        );
+        assert!((moved - radial * moved.dot(&radial)).norm() < 1e-8 * exact);
+        for t in 0..10 {
+            let t = t as f64;
+            let force = Vector3::new((t * 1.3).sin(), (t * 0.7).cos(), 0.4 - 0.05 * t) * 3e4;
+            let point = apex + Vector3::new(0.06 * (t * 0.9).cos(), 0.05 * t.sin(), 0.03);
+            let g = s.load(force, point);
+            assert!(balance(&s, &g) < 1e-9, "load {t}: {}", balance(&s, &g));
         }
     }
 

@@ -307,8 +307,14 @@ pub fn deflected_position(
 
 /// The scene's bearings as supports of `g`'s members (fixed frame, apices
 /// at the origin).
+/// A member with `[bearings.<member>_shaft]` stands on its flexible shaft
+/// (the member's material from the design; [`Support::on_shaft`]), else on
+/// a rigid one.
 pub fn supports_of(settings: &BearingSettings, g: &PairGeometry) -> Result<Supports, BearingError> {
-    let one = |m: usize, name: &str, list: &[geometry::scene_bearings::BearingMm]| {
+    let one = |m: usize,
+               name: &str,
+               list: &[geometry::scene_bearings::BearingMm],
+               shaft: &Option<geometry::scene_bearings::ShaftMm>| {
         let bearings: Vec<Bearing> = list
             .iter()
             .map(|b| Bearing {
@@ -317,11 +323,41 @@ pub fn supports_of(settings: &BearingSettings, g: &PairGeometry) -> Result<Suppo
                 axial_stiffness_n_per_m: b.axial_stiffness_n_per_m,
             })
             .collect();
-        Support::new(name, g.frames[m].axis(), Vector3::zeros(), &bearings)
+        let axis = g.frames[m].axis();
+        let material = g.data.members[m].material();
+        match shaft {
+            None => Support::new(name, axis, Vector3::zeros(), &bearings),
+            Some(sh) => Support::on_shaft(
+                name,
+                axis,
+                Vector3::zeros(),
+                &bearings,
+                &crate::bearings::flexible_shaft::Shaft {
+                    segments: sh
+                        .segments
+                        .iter()
+                        .map(|s| crate::bearings::flexible_shaft::ShaftSegment {
+                            from_m: s.from_mm * 1e-3,
+                            to_m: s.to_mm * 1e-3,
+                            outer_diameter_m: s.outer_diameter_mm * 1e-3,
+                            inner_diameter_m: s.inner_diameter_mm * 1e-3,
+                        })
+                        .collect(),
+                    seat_m: sh.seat_mm * 1e-3,
+                    youngs_modulus_pa: material.youngs_modulus_pa,
+                    poisson_ratio: material.poisson_ratio,
+                },
+            ),
+        }
     };
     Ok(Supports {
-        pinion: one(0, "bearings.pinion", &settings.pinion)?,
-        wheel: one(1, "bearings.wheel", &settings.wheel)?,
+        pinion: one(
+            0,
+            "bearings.pinion",
+            &settings.pinion,
+            &settings.pinion_shaft,
+        )?,
+        wheel: one(1, "bearings.wheel", &settings.wheel, &settings.wheel_shaft)?,
     })
 }
 

@@ -133,3 +133,46 @@ pub fn supports(g: &Pair, k: f64) -> Supports {
         wheel: one(1, 0.02, 0.12),
     }
 }
+
+/// The bearings of [`supports`] on flexible shafts: each member's gear
+/// seated at its mean point, a solid shaft of diameter `diameter_m` from
+/// there to its far bearing, of the design's material with Young's
+/// modulus multiplied by `stiffer`.
+pub fn supports_on_shafts(g: &Pair, k: f64, diameter_m: f64, stiffer: f64) -> Supports {
+    use solver::bearings::flexible_shaft::{Shaft, ShaftSegment};
+    let rigid = supports(g, k);
+    let one = |m: usize, s: &Support| {
+        let seat = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
+        let far = s
+            .bearings()
+            .iter()
+            .fold(seat, |a, b| a.max(b.axial_position_m));
+        let material = g.data.members[m].material();
+        Support::on_shaft(
+            if m == 0 {
+                "pinion.bearings"
+            } else {
+                "wheel.bearings"
+            },
+            g.frames[m].axis(),
+            nalgebra::Vector3::zeros(),
+            s.bearings(),
+            &Shaft {
+                segments: vec![ShaftSegment {
+                    from_m: seat,
+                    to_m: far,
+                    outer_diameter_m: diameter_m,
+                    inner_diameter_m: 0.0,
+                }],
+                seat_m: seat,
+                youngs_modulus_pa: material.youngs_modulus_pa * stiffer,
+                poisson_ratio: material.poisson_ratio,
+            },
+        )
+        .unwrap()
+    };
+    Supports {
+        pinion: one(0, &rigid.pinion),
+        wheel: one(1, &rigid.wheel),
+    }
+}
