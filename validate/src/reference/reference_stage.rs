@@ -98,6 +98,9 @@ pub fn run(
 /// that the factors held at once are those of one scene. Each scene's
 /// results are its own set under its own output root, as from a run of
 /// that scene alone. Two scenes of one name may not share an output root.
+/// Returns the summaries of each scene that runs the reference (a scene
+/// with `[analyses] reference = false` is skipped, as by [`run`]), in the
+/// scenes' order.
 pub fn run_scenes(
     scenes: &[(&LoadedScene, &Path)],
     meshes: &Path,
