@@ -1,13 +1,25 @@
 //! The one rule for the names of the files in a mesh folder
 //! (`meshes/<scene>/`): `<member>_<blank>_<level>` for a body's mesh, its
 //! report and the loaded side's stiffness file; `_<side>` appended for the
-//! opposite side's stiffness file; `manifest.json` for the folder.
+//! opposite side's stiffness file; `manifest.json` for the folder. Also
+//! where `validate reference` writes each mesh level's results
+//! ([`reference_dir`]), which the report and the studies read.
 
 use geometry::design::Member;
 use geometry::gear_body::Blank;
 use geometry::generation::Side;
 pub use geometry::scene::MeshLevel;
 use std::path::{Path, PathBuf};
+
+/// Where the reference of mesh level `level` writes its results:
+/// `<out>/<scene>/reference/` for the reduced level (the meshes of the
+/// reduced model), `<out>/<scene>/reference_<level>/` for a finer one.
+pub fn reference_dir(out: &Path, scene: &str, level: &str) -> PathBuf {
+    match level {
+        "reduced" => out.join(scene).join("reference"),
+        l => out.join(scene).join(format!("reference_{l}")),
+    }
+}
 
 /// A body's files: `<member>_<blank>_<level>`.
 pub fn mesh_stem(member: Member, blank: Blank, level: MeshLevel) -> String {

@@ -195,14 +195,14 @@ pub fn h5() -> hdf5::FileBuilder {
 }
 
 /// Writes a float dataset of `shape` with a `units` attribute.
-pub fn write_dataset(
+pub fn write_dataset<T: hdf5::H5Type>(
     f: &hdf5::File,
     name: &str,
     shape: &[usize],
-    v: &[f64],
+    v: &[T],
     units: &str,
 ) -> hdf5::Result<()> {
-    let ds = f.new_dataset::<f64>().shape(shape.to_vec()).create(name)?;
+    let ds = f.new_dataset::<T>().shape(shape.to_vec()).create(name)?;
     ds.write_raw(v)?;
     ds.new_attr::<hdf5::types::VarLenUnicode>()
         .create("units")?
@@ -297,16 +297,14 @@ fn write_to(path: &Path, d: &StiffnessData) -> Result<(), StiffnessFileError> {
         // hundred loads into stresses compared to a few per cent, and the
         // solver holds them as f32 anyway; half the file's largest block.
         let single: Vec<f32> = r.stress.iter().map(|&v| v as f32).collect();
-        let ds = f
-            .new_dataset::<f32>()
-            .shape(vec![ns, nr, np, nf, 6])
-            .create("root_stress/stress")
-            .map_err(&e)?;
-        ds.write_raw(&single).map_err(&e)?;
-        ds.new_attr::<hdf5::types::VarLenUnicode>()
-            .create("units")
-            .and_then(|a| a.write_scalar(&vlu("Pa/N")))
-            .map_err(&e)?;
+        write_dataset(
+            &f,
+            "root_stress/stress",
+            &[ns, nr, np, nf, 6],
+            &single,
+            "Pa/N",
+        )
+        .map_err(&e)?;
     }
     f.flush().map_err(&e)?;
     // Close now (not when the last handle drops) so the file can be renamed

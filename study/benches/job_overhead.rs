@@ -9,13 +9,7 @@ use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
 
-fn children_cpu_s() -> f64 {
-    let mut ru: libc::rusage = unsafe { std::mem::zeroed() };
-    // SAFETY: a valid out-pointer.
-    unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut ru) };
-    let tv = |t: libc::timeval| t.tv_sec as f64 + 1e-6 * t.tv_usec as f64;
-    tv(ru.ru_utime) + tv(ru.ru_stime)
-}
+use study::run_job::children_cpu_s;
 
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");

@@ -15,7 +15,6 @@ use geometry::error::InputError;
 use geometry::misalignment::Misalignment;
 use geometry::scene::Scene;
 use serde::Serialize;
-use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 
 /// One design variant of the study: a base scene with the misalignment
@@ -58,7 +57,7 @@ pub struct Expanded {
 
 /// SHA-256 of a JSON value's text, hex.
 pub fn key_of(v: &serde_json::Value) -> String {
-    format!("{:x}", Sha256::digest(v.to_string().as_bytes()))
+    formats::manifest::sha256_text(&v.to_string())
 }
 
 /// The first 16 hex digits of a key: folder names.
@@ -228,15 +227,10 @@ pub fn expand(
     Ok(Expanded { designs, cases })
 }
 
-/// `p` made absolute against the current directory (not resolved).
+/// `p` made absolute against the current directory (not resolved;
+/// [`std::path::absolute`], `p` itself where that fails).
 pub fn absolute(p: &Path) -> PathBuf {
-    if p.is_absolute() {
-        p.to_path_buf()
-    } else {
-        std::env::current_dir()
-            .map(|d| d.join(p))
-            .unwrap_or_else(|_| p.to_path_buf())
-    }
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
 }
 
 #[cfg(test)]

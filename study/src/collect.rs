@@ -131,25 +131,22 @@ fn numbers(load: &Value) -> Option<Numbers> {
     })
 }
 
-/// Loads of one blank pair in a summary list (`ltca`, `reference`,
-/// `multibody`'s `quasi_static`).
-fn blank_loads<'a>(summary: &'a Value, blanks: &str, loads_field: &str) -> Vec<&'a Value> {
-    summary
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter(|b| {
-            let p = b.get("pinion_blank").and_then(Value::as_str).unwrap_or("");
-            let w = b.get("wheel_blank").and_then(Value::as_str).unwrap_or("");
-            format!("{p}_{w}") == blanks
-        })
-        .flat_map(|b| {
-            b.get(loads_field)
-                .and_then(Value::as_array)
-                .into_iter()
-                .flatten()
-        })
-        .collect()
+/// The entry of blank pair `[p, w]` in a summary list (`ltca`,
+/// `reference`, `multibody`), if the analysis ran.
+fn blank_entry<'a>(summary: &'a Option<Value>, p: &str, w: &str) -> Option<&'a Value> {
+    summary.as_ref()?.as_array()?.iter().find(|b| {
+        b.get("pinion_blank").and_then(Value::as_str) == Some(p)
+            && b.get("wheel_blank").and_then(Value::as_str) == Some(w)
+    })
+}
+
+/// The list `field` of a blank pair's entry (its loads), empty without one.
+fn entry_list<'a>(entry: Option<&'a Value>, field: &str) -> Vec<&'a Value> {
+    entry
+        .and_then(|b| b.get(field))
+        .and_then(Value::as_array)
+        .map(|a| a.iter().collect())
+        .unwrap_or_default()
 }
 
 fn at_torque(loads: &[&Value], t: f64) -> Option<Numbers> {
@@ -157,15 +154,6 @@ fn at_torque(loads: &[&Value], t: f64) -> Option<Numbers> {
         .iter()
         .find(|l| f(l, "torque_nm") == Some(t))
         .and_then(|l| numbers(l))
-}
-
-/// Where `validate reference` writes the sweep of `level`.
-fn reference_summary(out: &Path, scene: &str, level: &str) -> PathBuf {
-    let dir = match level {
-        "reduced" => out.join(scene).join("reference"),
-        l => out.join(scene).join(format!("reference_{l}")),
-    };
-    dir.join("summary.json")
 }
 
 /// Reads the case's results.
@@ -183,7 +171,12 @@ fn case_rows(study: &StudyFile, ex: &Expanded, c: &Case) -> anyhow::Result<Vec<R
         .transpose()?;
     let reference = study
         .runs(Analysis::Reference)
-        .then(|| read_json(&reference_summary(&c.out, name, &study.reference.level)))
+        .then(|| {
+            read_json(
+                &formats::paths::reference_dir(&c.out, name, &study.reference.level)
+                    .join("summary.json"),
+            )
+        })
         .transpose()?;
     let utca = study
         .runs(Analysis::Utca)
@@ -197,32 +190,20 @@ fn case_rows(study: &StudyFile, ex: &Expanded, c: &Case) -> anyhow::Result<Vec<R
     for p in &scene.scene.blanks.pinion {
         for w in &scene.scene.blanks.wheel {
             let blanks = format!("{}_{}", p.name(), w.name());
-            fn loads<'a>(v: &'a Option<Value>, blanks: &str, field: &str) -> Vec<&'a Value> {
-                v.as_ref()
-                    .map(|v| blank_loads(v, blanks, field))
-                    .unwrap_or_default()
-            }
-            let (l, m, r) = (
-                loads(&ltca, &blanks, "loads"),
-                loads(&multibody, &blanks, "quasi_static"),
-                loads(&reference, &blanks, "loads"),
+            let (le, me, re) = (
+                blank_entry(&ltca, p.name(), w.name()),
+                blank_entry(&multibody, p.name(), w.name()),
+                blank_entry(&reference, p.name(), w.name()),
             );
-            let blank_field = |v: &Option<Value>, f1: &str, f2: Option<&str>| {
-                v.as_ref()
-                    .and_then(Value::as_array)
-                    .into_iter()
-                    .flatten()
-                    .find(|b| {
-                        b.get("pinion_blank").and_then(Value::as_str) == Some(p.name())
-                            && b.get("wheel_blank").and_then(Value::as_str) == Some(w.name())
-                    })
-                    .and_then(|b| match f2 {
-                        Some(f2) => b.get(f1).and_then(|u| f(u, f2)),
-                        None => f(b, f1),
-                    })
-            };
-            let utca_mean = blank_field(&reference, "unloaded", Some("utca_te_mean_urad"))
-                .or_else(|| blank_field(&ltca, "utca_te_mean_urad", None));
+            let (l, m, r) = (
+                entry_list(le, "loads"),
+                entry_list(me, "quasi_static"),
+                entry_list(re, "loads"),
+            );
+            let utca_mean = re
+                .and_then(|b| b.get("unloaded"))
+                .and_then(|u| f(u, "utca_te_mean_urad"))
+                .or_else(|| le.and_then(|b| f(b, "utca_te_mean_urad")));
             for &t in &c.pinion_torque_nm {
                 rows.push(Row {
                     case: c.id.clone(),

@@ -35,11 +35,7 @@ pub struct Sizing {
 
 /// Reads the measured sweep of `scene` at `level` under `out`.
 pub fn measured(out: &Path, scene: &str, level: &str) -> anyhow::Result<Vec<Measured>> {
-    let dir = match level {
-        "reduced" => out.join(scene).join("reference"),
-        l => out.join(scene).join(format!("reference_{l}")),
-    };
-    let path = dir.join("summary.json");
+    let path = formats::paths::reference_dir(out, scene, level).join("summary.json");
     let v: Value = serde_json::from_str(&std::fs::read_to_string(&path).map_err(|e| {
         anyhow::anyhow!(
             "{}: no measured sweep to estimate from ({e}); run `validate reference` of the scene at level {level} first",

@@ -10,7 +10,7 @@ use std::path::Path;
 use std::time::{Instant, SystemTime};
 
 /// CPU seconds (user + system) of the finished children of this process.
-fn children_cpu_s() -> f64 {
+pub fn children_cpu_s() -> f64 {
     let mut ru: libc::rusage = unsafe { std::mem::zeroed() };
     // SAFETY: a valid out-pointer; RUSAGE_CHILDREN exists on Linux.
     let rc = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut ru) };

@@ -256,14 +256,9 @@ pub fn submit(
             let _ = std::fs::remove_file(state::dir(work, &j.key).join("failed.json"));
             let _ = std::fs::remove_file(state::dir(work, &j.key).join("running.json"));
             state::write_submitted(work, &j.key, &sid)?;
-            handle.insert(&j.key, Some(sid.clone()));
+            // Dependents wait for the whole job (an array as a whole).
+            handle.insert(&j.key, Some(id.clone()));
             res.submitted.push((j.label.clone(), sid));
-        }
-        // Dependents wait for the array as a whole.
-        if first.array.is_some() {
-            for &k in &todo {
-                handle.insert(&group[k].key, Some(id.clone()));
-            }
         }
     }
     Ok(res)

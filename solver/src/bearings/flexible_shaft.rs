@@ -255,14 +255,6 @@ mod tests {
     use super::*;
     use nalgebra::{Matrix5, Vector6};
 
-    fn bearing(s: f64, kr: f64, ka: f64) -> Bearing {
-        Bearing {
-            axial_position_m: s,
-            radial_stiffness_n_per_m: kr,
-            axial_stiffness_n_per_m: ka,
-        }
-    }
-
     fn shaft(from: f64, to: f64, d: f64, seat: f64) -> Shaft {
         Shaft {
             segments: vec![ShaftSegment {
@@ -299,7 +291,7 @@ mod tests {
         let c = sh
             .condense(
                 "pinion_shaft",
-                &[bearing(0.0, kr, 1e9), bearing(l, kr, 0.0)],
+                &[Bearing::at(0.0, kr, 1e9), Bearing::at(l, kr, 0.0)],
             )
             .unwrap();
         let s = Section::round(d, 0.0, 206e9, 0.3);
@@ -323,7 +315,7 @@ mod tests {
         let c = sh
             .condense(
                 "pinion_shaft",
-                &[bearing(0.0, rigid, rigid), bearing(l, rigid, 0.0)],
+                &[Bearing::at(0.0, rigid, rigid), Bearing::at(l, rigid, 0.0)],
             )
             .unwrap();
         let s = Section::round(d, 0.0, 206e9, 0.3);
@@ -343,7 +335,7 @@ mod tests {
     fn bearing_maps_give_lever_rule_reactions() {
         let (l, p, kr) = (0.3, 1000.0, 3e8);
         let sh = shaft(0.0, l, 0.05, 0.1);
-        let bs = [bearing(0.0, kr, 1e9), bearing(l, kr, 0.0)];
+        let bs = [Bearing::at(0.0, kr, 1e9), Bearing::at(l, kr, 0.0)];
         let c = sh.condense("wheel_shaft", &bs).unwrap();
         let held = [0usize, 1, 2, 4, 5];
         let k5 = Matrix5::from_fn(|i, j| c.seat_stiffness[(held[i], held[j])]);
@@ -362,7 +354,7 @@ mod tests {
     #[test]
     fn shaft_errors_name_the_field() {
         let mut sh = shaft(0.0, 0.2, 0.04, 0.3);
-        let bs = [bearing(0.0, 1e8, 1e8), bearing(0.2, 1e8, 0.0)];
+        let bs = [Bearing::at(0.0, 1e8, 1e8), Bearing::at(0.2, 1e8, 0.0)];
         assert!(
             matches!(sh.condense("pinion_shaft", &bs), Err(ShaftError::Value { field, .. }) if field == "pinion_shaft.seat_mm")
         );

@@ -352,16 +352,21 @@ impl Support {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn bearing(s: f64, kr: f64, ka: f64) -> Bearing {
+impl Bearing {
+    /// A bearing at `s` (m from the apex) of radial and axial stiffness
+    /// `kr`, `ka` (N/m): the tests' shorthand.
+    pub(crate) fn at(s: f64, kr: f64, ka: f64) -> Bearing {
         Bearing {
             axial_position_m: s,
             radial_stiffness_n_per_m: kr,
             axial_stiffness_n_per_m: ka,
         }
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
 
     fn z_shaft(bearings: &[Bearing]) -> Support {
         Support::new("pinion.bearings", Vector3::z(), Vector3::zeros(), bearings).unwrap()
@@ -384,7 +389,7 @@ mod tests {
         // Bearings at 0 and L, a radial load F at c between them: reactions
         // F (L − c)/L and F c/L whatever the (unequal) stiffnesses.
         let (l, c, f) = (0.2, 0.05, 1.0e4);
-        let s = z_shaft(&[bearing(0.0, 3e8, 1e8), bearing(l, 7e8, 0.0)]);
+        let s = z_shaft(&[Bearing::at(0.0, 3e8, 1e8), Bearing::at(l, 7e8, 0.0)]);
         let g = s.load(Vector3::new(f, 0.0, 0.0), Vector3::new(0.04, 0.0, c));
         let r = s.reactions(&s.displacement(&g));
         assert!((r[0].x + f * (l - c) / l).abs() < 1e-9 * f, "{r:?}");
@@ -396,7 +401,7 @@ mod tests {
         // Load at −c outside the bearings at 0 and L: near bearing carries
         // F (L + c)/L, the far one −F c/L.
         let (l, c, f) = (0.12, 0.05, 2.0e4);
-        let s = z_shaft(&[bearing(0.0, 5e8, 2e8), bearing(l, 5e8, 0.0)]);
+        let s = z_shaft(&[Bearing::at(0.0, 5e8, 2e8), Bearing::at(l, 5e8, 0.0)]);
         let g = s.load(Vector3::new(0.0, f, 0.0), Vector3::new(0.0, 0.0, -c));
         let r = s.reactions(&s.displacement(&g));
         assert!((r[0].y + f * (l + c) / l).abs() < 1e-9 * f, "{r:?}");
@@ -408,7 +413,7 @@ mod tests {
         // Axial force F at radius ρ (x = ρ): the locating bearing takes −F
         // axially; the moment F ρ is a radial couple ±F ρ / L.
         let (l, rho, f) = (0.15, 0.06, 5.0e3);
-        let s = z_shaft(&[bearing(0.0, 4e8, 3e8), bearing(l, 4e8, 0.0)]);
+        let s = z_shaft(&[Bearing::at(0.0, 4e8, 3e8), Bearing::at(l, 4e8, 0.0)]);
         let g = s.load(Vector3::new(0.0, 0.0, f), Vector3::new(rho, 0.0, 0.0));
         let r = s.reactions(&s.displacement(&g));
         assert!(
@@ -422,7 +427,7 @@ mod tests {
     #[test]
     fn equal_bearings_symmetric_about_the_load_translate_without_tilt() {
         let (l, k, f) = (0.2, 6e8, 1.0e4);
-        let s = z_shaft(&[bearing(-l / 2.0, k, k), bearing(l / 2.0, k, 0.0)]);
+        let s = z_shaft(&[Bearing::at(-l / 2.0, k, k), Bearing::at(l / 2.0, k, 0.0)]);
         let d = s.displacement(&s.load(Vector3::new(f, 0.0, 0.0), Vector3::zeros()));
         assert!((d.translation.x - f / (2.0 * k)).abs() < 1e-12 * f / k);
         assert!(d.rotation.norm() < 1e-12 * f / (k * l));
@@ -440,9 +445,9 @@ mod tests {
             axis,
             apex,
             &[
-                bearing(0.05, 8e8, 0.0),
-                bearing(0.11, 3e8, 5e8),
-                bearing(0.19, 9e8, 1e8),
+                Bearing::at(0.05, 8e8, 0.0),
+                Bearing::at(0.11, 3e8, 5e8),
+                Bearing::at(0.19, 9e8, 1e8),
             ],
         )
         .unwrap();
@@ -483,9 +488,9 @@ mod tests {
         let axis = Vector3::new(0.3, -0.5, 0.81);
         let apex = Vector3::new(0.01, -0.02, 0.005);
         let bs = [
-            bearing(0.05, 8e8, 0.0),
-            bearing(0.11, 3e8, 5e8),
-            bearing(0.19, 9e8, 1e8),
+            Bearing::at(0.05, 8e8, 0.0),
+            Bearing::at(0.11, 3e8, 5e8),
+            Bearing::at(0.19, 9e8, 1e8),
         ];
         let rigid = Support::new("wheel.bearings", axis, apex, &bs).unwrap();
         let shaft = one_segment(0.03, 0.2, 0.06, 0.08, 206e9 * 1e6);
@@ -510,7 +515,7 @@ mod tests {
         let axis = Vector3::new(0.3, -0.5, 0.81);
         let apex = Vector3::new(0.01, -0.02, 0.005);
         let (l, d, p, k) = (0.2, 0.04, 5000.0, 4e8);
-        let bs = [bearing(0.05, k, 1e9), bearing(0.05 + l, k, 0.0)];
+        let bs = [Bearing::at(0.05, k, 1e9), Bearing::at(0.05 + l, k, 0.0)];
         let shaft = one_segment(0.05, 0.05 + l, d, 0.05 + 0.5 * l, 206e9);
         let s = Support::on_shaft("pinion.bearings", axis, apex, &bs, &shaft).unwrap();
         let a = s.axis();
@@ -539,7 +544,7 @@ mod tests {
 
     #[test]
     fn support_stiffness_is_symmetric_and_singular_only_about_the_shaft_axis() {
-        let s = z_shaft(&[bearing(0.0, 3e8, 1e8), bearing(0.2, 7e8, 0.0)]);
+        let s = z_shaft(&[Bearing::at(0.0, 3e8, 1e8), Bearing::at(0.2, 7e8, 0.0)]);
         let k = s.stiffness();
         assert!((k - k.transpose()).norm() < 1e-6 * k.norm());
         let turning = Vector6::new(0.0, 0.0, 0.0, 0.0, 0.0, 1.0);
@@ -555,28 +560,28 @@ mod tests {
             "pinion.bearings",
             Vector3::z(),
             Vector3::zeros(),
-            &[bearing(0.0, 1e8, 1e8)],
+            &[Bearing::at(0.0, 1e8, 1e8)],
         );
         assert_eq!(one.unwrap_err(), BearingError::Tilt(1));
         let same = Support::new(
             "pinion.bearings",
             Vector3::z(),
             Vector3::zeros(),
-            &[bearing(0.1, 1e8, 1e8), bearing(0.1, 1e8, 0.0)],
+            &[Bearing::at(0.1, 1e8, 1e8), Bearing::at(0.1, 1e8, 0.0)],
         );
         assert_eq!(same.unwrap_err(), BearingError::Tilt(2));
         let floating = Support::new(
             "pinion.bearings",
             Vector3::z(),
             Vector3::zeros(),
-            &[bearing(0.0, 1e8, 0.0), bearing(0.1, 1e8, 0.0)],
+            &[Bearing::at(0.0, 1e8, 0.0), Bearing::at(0.1, 1e8, 0.0)],
         );
         assert_eq!(floating.unwrap_err(), BearingError::Axial);
         let e = Support::new(
             "wheel.bearings",
             Vector3::z(),
             Vector3::zeros(),
-            &[bearing(0.0, -1e8, 1e8), bearing(0.1, 1e8, 0.0)],
+            &[Bearing::at(0.0, -1e8, 1e8), Bearing::at(0.1, 1e8, 0.0)],
         )
         .unwrap_err();
         let msg = e.to_string();

@@ -39,15 +39,7 @@ use std::path::Path;
 
 use super::reference_options::StageOptions;
 
-/// Where the reference of mesh level `level` writes its results:
-/// `<out>/<scene>/reference/` for the reduced level (the meshes of the
-/// reduced model), `<out>/<scene>/reference_<level>/` for a finer one.
-pub fn reference_dir(out: &Path, scene: &str, level: &str) -> std::path::PathBuf {
-    match level {
-        "reduced" => out.join(scene).join("reference"),
-        l => out.join(scene).join(format!("reference_{l}")),
-    }
-}
+pub use formats::paths::reference_dir;
 
 /// Where the reference of mesh level `level` with the contact passes
 /// `passes` writes its results: [`reference_dir`] for the two-pass
