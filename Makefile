@@ -179,15 +179,16 @@ test: setup
 # Cargo.toml): fresh meshes of every seed pair and the whole chain on them,
 # the default pinion at the medium and reference levels, the coast-side FE
 # fixture, the reference sweep's shards and cache, runs stopped by
-# signals at each phase, and the study's local executor (against the
-# stages run by hand, a failing job, two studies sharing a design).
+# signals at each phase, the study's local executor (against the
+# stages run by hand, a failing job, two studies sharing a design) and
+# the same study on a one-node Slurm cluster.
 LONG_TESTS_PREPROCESS := seed_pairs mesh_levels signals
 LONG_TESTS_VALIDATE   := seed_pairs_chain solver_coast reference_sweep signals
 # The study tests run first: they run the programs `make test` built
 # (their own build of them is then a no-op; after the other packages'
 # `long-tests` builds it would rebuild them).
 test-long: setup
-	$(CARGO) test $(RELEASE) -p study --features long-tests --test local_study
+	$(CARGO) test $(RELEASE) -p study --features long-tests --test local_study --test slurm_study
 	$(CARGO) test $(RELEASE) -p preprocess --features long-tests $(addprefix --test ,$(LONG_TESTS_PREPROCESS))
 	$(CARGO) test $(RELEASE) -p validate --features long-tests $(addprefix --test ,$(LONG_TESTS_VALIDATE))
 
