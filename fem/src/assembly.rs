@@ -214,3 +214,20 @@ pub fn sym_lower_mul(k: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
     }
     y
 }
+
+/// Assembles the consistent mass M_ff (lower triangle, same pattern as
+/// [`assemble`]'s K_ff for the same `dofs`) of density ρ (kg/m³).
+pub fn assemble_mass(
+    mesh: &TetMesh,
+    density: f64,
+    dofs: &Dofs,
+) -> Result<SparseColMat<usize, f64>, FemError> {
+    if !(density > 0.0 && density.is_finite()) {
+        return Err(FemError::Invalid {
+            field: "density_kg_m3",
+            value: density.to_string(),
+            limit: "must be finite and > 0".into(),
+        });
+    }
+    Ok(assemble_with(mesh, dofs, |_, x| tet10::mass(x, density))?.matrix)
+}

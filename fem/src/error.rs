@@ -34,4 +34,7 @@ pub enum FemError {
         needed_gb: f64,
         available_gb: f64,
     },
+    /// An iterative eigen-solver did not converge within its steps.
+    #[error("eigenvalue iteration did not converge: {0}")]
+    NotConverged(String),
 }

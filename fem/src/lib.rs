@@ -13,10 +13,12 @@
 pub mod assembly;
 pub mod cholesky;
 pub mod clamped;
+pub mod craig_bampton;
 pub mod cut_cell;
 pub mod error;
 pub mod material;
 pub mod mesh;
+pub mod modes;
 pub mod ordering;
 pub mod path_solve;
 pub mod stress;

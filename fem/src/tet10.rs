@@ -231,3 +231,86 @@ pub fn position(x: &[[f64; 3]; 10], xi: [f64; 3]) -> [f64; 3] {
     }
     p
 }
+
+/// Gauss–Legendre rule of `n` points on [0, 1] (nodes, weights): the roots
+/// of Pₙ(2t − 1) by Newton from Chebyshev's guesses, weights
+/// 1 / ((1 − x²) Pₙ′(x)²) on [0, 1]. Exact for polynomials of degree 2n − 1.
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                // P_n(x) and P_n'(x) by the three-term recurrence.
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=n {
+                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                let p = if n == 0 { 1.0 } else { p1 };
+                let pm1 = if n == 1 { 1.0 } else { p0 };
+                dp = n as f64 * (x * p - pm1) / (x * x - 1.0);
+                let dx = p / dp;
+                x -= dx;
+                if dx.abs() < 1e-15 {
+                    break;
+                }
+            }
+            ((1.0 - x) / 2.0, 1.0 / ((1.0 - x * x) * dp * dp))
+        })
+        .collect()
+}
+
+/// Conical-product rule of n³ points on the reference tetrahedron:
+/// Gauss–Legendre in u, v, w ∈ [0, 1] through Duffy's map ξ = u,
+/// η = v(1 − u), ζ = w(1 − u)(1 − v), dξ dη dζ = (1 − u)²(1 − v) du dv dw.
+/// Exact for polynomials of degree 2n − 3 in (ξ, η, ζ).
+pub fn conical_rule(n: usize) -> Vec<([f64; 3], f64)> {
+    let g = gauss_legendre(n);
+    let mut rule = Vec::with_capacity(n * n * n);
+    for &(u, wu) in &g {
+        for &(v, wv) in &g {
+            for &(w, ww) in &g {
+                let xi = [u, v * (1.0 - u), w * (1.0 - u) * (1.0 - v)];
+                rule.push((xi, wu * wv * ww * (1.0 - u).powi(2) * (1.0 - v)));
+            }
+        }
+    }
+    rule
+}
+
+/// Consistent mass, 30×30 row-major with dof 3·node + component:
+///
+///   M_ai,bj = δ_ij ρ ∫ N_a N_b dV = δ_ij ρ Σ_q w_q det J_q N_a(ξ_q) N_b(ξ_q),
+///
+/// by the 125-point conical rule, exact for N_a N_b det J of degree 7 (a
+/// curved element). Σ_ab m_ab = ρ V: the mass moves whole under a rigid
+/// translation. Returns `Err(det J)` if det J ≤ 0 at any point.
+pub fn mass(x: &[[f64; 3]; 10], density: f64) -> Result<[f64; 900], f64> {
+    static RULE: std::sync::OnceLock<Vec<([f64; 3], f64)>> = std::sync::OnceLock::new();
+    let rule = RULE.get_or_init(|| conical_rule(5));
+    let mut m = [[0.0; 10]; 10];
+    for &(xi, w) in rule {
+        let det = jacobian(x, &shape_derivatives(xi)).1;
+        if det <= 0.0 || !det.is_finite() {
+            return Err(det);
+        }
+        let n = shape(xi);
+        let s = density * w * det;
+        for a in 0..10 {
+            for b in 0..10 {
+                m[a][b] += s * n[a] * n[b];
+            }
+        }
+    }
+    let mut out = [0.0; 900];
+    for a in 0..10 {
+        for b in 0..10 {
+            for i in 0..3 {
+                out[(3 * a + i) * 30 + 3 * b + i] = m[a][b];
+            }
+        }
+    }
+    Ok(out)
+}
