@@ -24,6 +24,7 @@
 pub mod bearings;
 pub mod cpu_clock;
 pub mod element;
+pub mod gearbox;
 pub mod ltca;
 pub mod lumped;
 pub mod multibody;

@@ -157,7 +157,7 @@ impl Shaft {
 
     /// The nodes' axial positions: segment ends, bearings and seat, sorted,
     /// those closer than 1 µm merged.
-    fn nodes(&self, bearings: &[Bearing]) -> Vec<f64> {
+    pub(crate) fn nodes(&self, bearings: &[Bearing]) -> Vec<f64> {
         let mut x: Vec<f64> = self
             .segments
             .iter()
@@ -170,7 +170,7 @@ impl Shaft {
         x
     }
 
-    fn node_of(nodes: &[f64], at: f64) -> usize {
+    pub(crate) fn node_of(nodes: &[f64], at: f64) -> usize {
         nodes
             .iter()
             .enumerate()
