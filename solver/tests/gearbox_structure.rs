@@ -261,3 +261,80 @@ fn housing_springs_act_in_series_with_the_bearings() {
     assert!(free[0].frequency_hz < 1e-6 && free[1].frequency_hz < 1e-6);
     assert!(free[2].frequency_hz > 1.0);
 }
+
+/// A member's rigid motion (every node of its shaft and its gear body
+/// moved as one body about the apex) strains no beam element: the
+/// structure's forces are its bearings' alone, K r = Σ Gᵀ K_b G r.
+#[test]
+fn rigid_motion_of_a_member_strains_only_its_bearings() {
+    let axis = Vector3::new(-0.2, 0.9, 0.4).normalize();
+    let bearings = [bearing(0.03, 4e8, 2e8), bearing(0.14, 3e8, 0.0)];
+    let sh = shaft(0.0, 0.17, 0.04, 0.08);
+    let pinion = body(axis, &bearings, 2.0);
+    let wheel = body(
+        Vector3::new(1.0, 0.0, 0.0),
+        &[bearing(-0.05, 5e8, 1e8), bearing(0.05, 5e8, 0.0)],
+        4.0,
+    );
+    let s = assemble(
+        [
+            MemberParts {
+                body: &pinion,
+                polar_inertia_kgm2: 1e-3,
+                shaft: Some((&sh, RHO)),
+            },
+            MemberParts {
+                body: &wheel,
+                polar_inertia_kgm2: 1e-2,
+                shaft: None,
+            },
+        ],
+        None,
+        0.02,
+    )
+    .unwrap();
+    let q = pinion.support.basis();
+    let n = s.parts.len();
+    // Shaft node axial positions in coordinate order: the nodes but the seat.
+    let mut nodes: Vec<f64> = Vec::new();
+    let named: [f64; 5] = [0.0, 0.03, 0.08, 0.14, 0.17];
+    for w in named.windows(2) {
+        let parts = ((w[1] - w[0]) / 0.02).ceil() as usize;
+        for p in 1..=parts {
+            nodes.push(w[0] + (w[1] - w[0]) * p as f64 / parts as f64);
+        }
+    }
+    nodes.insert(0, 0.0);
+    nodes.retain(|p| (p - 0.08).abs() > 1e-9);
+    assert_eq!(
+        5 * nodes.len(),
+        s.parts.iter().filter(|p| **p == Part::Shaft(0)).count()
+    );
+    for (u, th) in [
+        (Vector3::new(1.0, -2.0, 0.5), Vector3::zeros()),
+        (Vector3::zeros(), axis.cross(&Vector3::new(0.0, 0.0, 1.0))),
+    ] {
+        let at = |p: f64| -> nalgebra::Vector5<f64> {
+            let disp = u + th.cross(&(axis * p));
+            let g = nalgebra::Vector6::new(disp.x, disp.y, disp.z, th.x, th.y, th.z);
+            q.transpose() * g
+        };
+        let mut r = DMatrix::zeros(n, 1);
+        r.view_mut((2, 0), (5, 1)).copy_from(&at(0.0));
+        for (j, &p) in nodes.iter().enumerate() {
+            r.view_mut((12 + 5 * j, 0), (5, 1)).copy_from(&at(p));
+        }
+        let f = &s.stiffness * &r;
+        let mut bearings_only = DMatrix::zeros(n, 1);
+        for b in s.bearings.iter().filter(|b| b.member == 0) {
+            let kb = DMatrix::from_iterator(3, 3, b.stiffness.iter().copied());
+            bearings_only += b.relative.transpose() * kb * (&b.relative * &r);
+        }
+        assert!(
+            (&f - &bearings_only).amax() < 1e-9 * f.amax(),
+            "{}",
+            (&f - &bearings_only).amax() / f.amax()
+        );
+        assert!(f.amax() > 1e6);
+    }
+}

@@ -6,6 +6,7 @@
 //! and the structure's own; [`system_modes`] gives the loaded gearbox's
 //! natural modes and where the excitation orders meet them.
 
+pub mod dynamics;
 pub mod structure;
 pub mod system_modes;
 

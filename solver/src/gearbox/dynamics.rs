@@ -1,0 +1,335 @@
+//! The flexible gearbox in time: the contact element of the
+//! compliant-bearing model ([`CompliantModel::mesh`], on the first 12
+//! coordinates) on the gearbox's linear structure,
+//!
+//!   M ẍ + C ẋ + K x = f_ext − Lᵀ (F + c_m θ̇′ ℓ)  (embedded in x),
+//!
+//! integrated by generalized-α with Newton on x_{n+1} and the step control
+//! of [`crate::multibody::time_step`], as [`crate::multibody::compliant`]
+//! does on its 12 coordinates. With rigid shafts and no housing the
+//! structure's M, C, K are that model's and so are the runs.
+
+use super::structure::{BearingLink, GearboxStructure, Part};
+use crate::multibody::compliant::{CompliantMesh, CompliantModel, X};
+use crate::multibody::time_step::{lag_resolution_at, StepControl, StepHistory};
+use crate::SolverError;
+use nalgebra::{DMatrix, DVector, Vector3};
+
+/// State at time t.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GState {
+    pub t: f64,
+    pub x: DVector<f64>,
+    pub v: DVector<f64>,
+    pub a: DVector<f64>,
+}
+
+/// The contact element on the gearbox structure.
+#[derive(Debug, Clone)]
+pub struct GearboxModel<'a> {
+    /// The contact element, the drive and the member supports' bases (its
+    /// own bearing matrices are not used: the structure holds them).
+    pub contact: &'a CompliantModel<'a>,
+    pub structure: &'a GearboxStructure,
+}
+
+fn head(x: &DVector<f64>) -> X {
+    X::from_fn(|i, _| x[i])
+}
+
+impl<'a> GearboxModel<'a> {
+    /// Checks that the structure's first 12 coordinates are the contact
+    /// element's (q₁, q₂, d₁, d₂).
+    pub fn new(
+        contact: &'a CompliantModel<'a>,
+        structure: &'a GearboxStructure,
+    ) -> Result<Self, SolverError> {
+        let p = &structure.parts;
+        let ok = p.len() >= 12
+            && p[0] == Part::Spin(0)
+            && p[1] == Part::Spin(1)
+            && p[2..7].iter().all(|&x| x == Part::Body(0))
+            && p[7..12].iter().all(|&x| x == Part::Body(1));
+        if !ok {
+            return Err(SolverError::Table(
+                "the gearbox structure must start with q₁, q₂, d₁ (5), d₂ (5)".into(),
+            ));
+        }
+        Ok(GearboxModel { contact, structure })
+    }
+
+    /// Number of coordinates.
+    pub fn dofs(&self) -> usize {
+        self.structure.parts.len()
+    }
+
+    /// Free coordinates: all but the turn the drive imposes.
+    pub fn free(&self) -> Vec<bool> {
+        let f = self.contact.free();
+        (0..self.dofs()).map(|i| i >= 2 || f[i]).collect()
+    }
+
+    /// Residual M a + C v + K x − f_ext − mesh forces at (t, x, v, a), with
+    /// the mesh state.
+    pub fn residual(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+    ) -> Result<(DVector<f64>, CompliantMesh), SolverError> {
+        let mesh = self.contact.mesh(&head(x), &head(v))?;
+        let s = self.structure;
+        let mut res = &s.mass * a + &s.damping * v + &s.stiffness * x;
+        let ext = self.contact.rigid.drive.torques(t);
+        for i in 0..12 {
+            res[i] -= mesh.force[i];
+        }
+        res[0] -= ext[0];
+        res[1] -= ext[1];
+        Ok((res, mesh))
+    }
+
+    /// The bearings' forces on their seats at (x, v), N, in the
+    /// structure's bearing order.
+    pub fn bearing_forces(&self, x: &DVector<f64>, v: &DVector<f64>) -> Vec<Vector3<f64>> {
+        self.structure
+            .bearings
+            .iter()
+            .map(|b: &BearingLink| b.force_on_seat(x.as_slice(), v.as_slice()))
+            .collect()
+    }
+
+    /// Quasi-static state at pinion rotation q₁: the rigid model's static
+    /// turns and speeds, then Newton on K x − mesh forces = f_ext over the
+    /// free coordinates, every structure rate zero.
+    pub fn static_state(&self, q1: f64) -> Result<GState, SolverError> {
+        let rigid = &self.contact.rigid;
+        let rs = rigid.static_state(q1)?;
+        let n = self.dofs();
+        let mut x = DVector::zeros(n);
+        let mut v = DVector::zeros(n);
+        x[0] = rs.q[0];
+        x[1] = rs.q[1];
+        v[0] = rs.v[0];
+        v[1] = rs.v[1];
+        let free = self.free();
+        let scale = rigid.table.mean_lag_step();
+        let zero = DVector::zeros(n);
+        for _ in 0..200 {
+            let (res, mesh) = self.residual(0.0, &x, &zero, &zero)?;
+            let mut jac = self.structure.stiffness.clone();
+            add_corner(&mut jac, &mesh.stiffness, 1.0);
+            let mut dx = solve_free(jac, -res, &free)?;
+            let r = rigid.table.ratio;
+            let dc = self.contact.contact_map() * head(&dx);
+            let (s, _) = self.contact.shift.at(rigid.table, mesh.c[0])?;
+            let dlag = r * dc[0] - dc[1] - (0..4).map(|i| s[i] * dc[2 + i]).sum::<f64>();
+            if dlag.abs() > scale {
+                dx *= scale / dlag.abs();
+            }
+            x += &dx;
+            if converged(&dx, &x) {
+                return Ok(GState {
+                    t: 0.0,
+                    x,
+                    v,
+                    a: DVector::zeros(n),
+                });
+            }
+        }
+        Err(SolverError::NotConverged {
+            what: "flexible-gearbox quasi-static start".into(),
+            iterations: 200,
+        })
+    }
+}
+
+/// J[0..12, 0..12] += w · m.
+fn add_corner(j: &mut DMatrix<f64>, m: &nalgebra::SMatrix<f64, 12, 12>, w: f64) {
+    for r in 0..12 {
+        for c in 0..12 {
+            j[(r, c)] += w * m[(r, c)];
+        }
+    }
+}
+
+/// Solves J dx = b on the free coordinates (the others' dx = 0).
+fn solve_free(
+    mut jac: DMatrix<f64>,
+    mut b: DVector<f64>,
+    free: &[bool],
+) -> Result<DVector<f64>, SolverError> {
+    let n = b.len();
+    for i in 0..n {
+        if !free[i] {
+            jac.row_mut(i).fill(0.0);
+            jac.column_mut(i).fill(0.0);
+            jac[(i, i)] = 1.0;
+            b[i] = 0.0;
+        }
+    }
+    jac.lu()
+        .solve(&b)
+        .ok_or(SolverError::Singular { slices: 0 })
+}
+
+/// Newton's update a few ulps of the rotations (and of 1 m or 1 rad for
+/// the structure's coordinates).
+fn converged(dx: &DVector<f64>, x: &DVector<f64>) -> bool {
+    let q = x[0].abs().max(x[1].abs());
+    dx.amax() <= 1e-15 * (1.0 + q)
+}
+
+const NEWTON_MAX: usize = 40;
+
+/// Generalized-α parameters (Chung & Hulbert 1993) of ρ∞.
+fn alpha_parameters(rho: f64) -> [f64; 4] {
+    let am = (2.0 * rho - 1.0) / (rho + 1.0);
+    let af = rho / (rho + 1.0);
+    let gamma = 0.5 - am + af;
+    let beta = 0.25 * (1.0 - am + af).powi(2);
+    [am, af, gamma, beta]
+}
+
+/// One generalized-α step from `s` over `h`: the new state, the α-point and
+/// the Newton iterations.
+pub fn alpha_step(
+    m: &GearboxModel,
+    s: &GState,
+    h: f64,
+    rho: f64,
+) -> Result<(GState, GState, usize), SolverError> {
+    let [am, af, gamma, beta] = alpha_parameters(rho);
+    let free = m.free();
+    let rigid = &m.contact.rigid;
+    let st = m.structure;
+    let t1 = s.t + h;
+    let ta = t1 - af * h;
+    let mut x = &s.x + &s.v * h + &s.a * (0.5 * h * h);
+    let fixed = rigid.imposed(t1).map(|(i, [ang, w, acc])| {
+        let ang_now = rigid.imposed(s.t).expect("the same drive").1[0];
+        (i, [s.x[i] + ang - ang_now, w, acc])
+    });
+    if let Some((i, [q, _, _])) = fixed {
+        x[i] = q;
+    }
+    let kin = |x: &DVector<f64>| -> (DVector<f64>, DVector<f64>) {
+        let mut a = (x - &s.x - &s.v * h - &s.a * (h * h * (0.5 - beta))) / (beta * h * h);
+        let mut v = &s.v + (&s.a * (1.0 - gamma) + &a * gamma) * h;
+        if let Some((i, [_, w, acc])) = fixed {
+            a[i] = acc;
+            v[i] = w;
+        }
+        (v, a)
+    };
+    let base = &st.stiffness * (1.0 - af)
+        + &st.damping * ((1.0 - af) * gamma / (beta * h))
+        + &st.mass * ((1.0 - am) / (beta * h * h));
+    for it in 1..=NEWTON_MAX {
+        let (v, a) = kin(&x);
+        let xm = &x * (1.0 - af) + &s.x * af;
+        let vm = &v * (1.0 - af) + &s.v * af;
+        let amid = &a * (1.0 - am) + &s.a * am;
+        let (res, mesh) = m.residual(ta, &xm, &vm, &amid)?;
+        let mut jac = base.clone();
+        add_corner(&mut jac, &mesh.stiffness, 1.0 - af);
+        add_corner(&mut jac, &mesh.damping, (1.0 - af) * gamma / (beta * h));
+        let dx = solve_free(jac, -res, &free)?;
+        x += &dx;
+        if converged(&dx, &x) {
+            let (v, a) = kin(&x);
+            let mid = GState {
+                t: ta,
+                x: &x * (1.0 - af) + &s.x * af,
+                v: &v * (1.0 - af) + &s.v * af,
+                a: &a * (1.0 - am) + &s.a * am,
+            };
+            return Ok((GState { t: t1, x, v, a }, mid, it));
+        }
+    }
+    Err(SolverError::NotConverged {
+        what: "flexible-gearbox generalized-α Newton".into(),
+        iterations: NEWTON_MAX,
+    })
+}
+
+/// Integrator of the gearbox: generalized-α with the step control on the
+/// shaft lag r q₁ − q₂, as the compliant-bearing model's.
+#[derive(Debug, Clone, Copy)]
+pub struct GearboxIntegrator {
+    pub rho_inf: f64,
+    pub control: StepControl,
+    pub h: f64,
+    pub rejected: usize,
+    pub newton_iterations: usize,
+    pub history: StepHistory,
+}
+
+impl GearboxIntegrator {
+    pub fn new(rho_inf: f64, control: StepControl) -> Self {
+        GearboxIntegrator {
+            rho_inf,
+            control,
+            h: control.max_step,
+            rejected: 0,
+            newton_iterations: 0,
+            history: StepHistory::default(),
+        }
+    }
+
+    /// One accepted step (retrying smaller ones), not past `t_end`: the new
+    /// state and its α-point.
+    pub fn step(
+        &mut self,
+        m: &GearboxModel,
+        s: &GState,
+        t_end: f64,
+    ) -> Result<(GState, GState), SolverError> {
+        let r = m.contact.rigid.table.ratio;
+        loop {
+            let h = self.h.min(t_end - s.t).max(0.0);
+            if h <= 0.0 {
+                return Ok((s.clone(), s.clone()));
+            }
+            let judged = alpha_step(m, s, h, self.rho_inf).map(|(next, mid, iters)| {
+                self.newton_iterations += iters;
+                let pred = |i: usize| s.x[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
+                let err = (r * (next.x[0] - pred(0)) - (next.x[1] - pred(1))).abs();
+                let floor = lag_resolution_at(r, next.x[0].abs().max(next.x[1].abs()));
+                ((next, mid), err / self.control.tolerance.max(floor))
+            });
+            if let Some(accepted) = self.control.judge(
+                &mut self.h,
+                &mut self.rejected,
+                &mut self.history,
+                h,
+                judged,
+            )? {
+                return Ok(accepted);
+            }
+        }
+    }
+}
+
+/// Integrates from `s` to `t_end`, calling `record` with the start (its
+/// own α-point) and after every accepted step with the state and its
+/// α-point; returns the final state and the number of steps.
+pub fn integrate(
+    m: &GearboxModel,
+    s: GState,
+    integ: &mut GearboxIntegrator,
+    t_end: f64,
+    mut record: impl FnMut(&GState, &GState) -> Result<(), SolverError>,
+) -> Result<(GState, usize), SolverError> {
+    let mut s = s;
+    record(&s, &s)?;
+    let mut steps = 0;
+    while s.t < t_end * (1.0 - 1e-12) {
+        let (next, mid) = integ.step(m, &s, t_end)?;
+        s = next;
+        record(&s, &mid)?;
+        steps += 1;
+    }
+    Ok((s, steps))
+}
