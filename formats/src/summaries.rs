@@ -384,6 +384,55 @@ pub struct CompliantSummary {
     /// (None in files written before it was recorded).
     #[serde(default)]
     pub used: Option<CompliantBodiesUsed>,
+    /// The flexible gearbox (`[bearings.gearbox]`; None without it and in
+    /// files written before it existed).
+    #[serde(default)]
+    pub gearbox: Option<GearboxSummary>,
+}
+
+/// The flexible gearbox: the shafts with their mass as Timoshenko beam
+/// elements on the bearings, its loaded modes, where the orders meet them,
+/// and its run-up.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GearboxSummary {
+    /// Coordinates of the structure (turns, gear bodies, shaft nodes).
+    pub coordinates: usize,
+    /// Each shaft's mass, kg (0: a rigid shaft, the bearings on the gear).
+    pub shaft_mass_kg: [f64; 2],
+    /// Longest shaft element, mm.
+    pub shaft_element_mm: f64,
+    /// Pinion torque of the quasi-static state the contact element is
+    /// linearized at for the modes, N·m (the run-up's).
+    pub modes_torque_nm: f64,
+    /// Names of each mode's energy shares.
+    pub energy_parts: Vec<String>,
+    /// The modes up to the scene's `modes_up_to_hz`, ascending.
+    pub modes: Vec<GearboxMode>,
+    /// Where the order lines meet them within the run-up's speeds.
+    pub crossings: Vec<GearboxCrossing>,
+    /// The run-up on the gearbox (None where the scene runs none).
+    pub run: Option<CompliantRunSummary>,
+    /// What the gearbox leaves out.
+    pub notes: Vec<String>,
+}
+
+/// One mode of the loaded gearbox.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GearboxMode {
+    pub frequency_hz: f64,
+    /// Share of the kinetic energy per [`GearboxSummary::energy_parts`].
+    pub energy_share: Vec<f64>,
+}
+
+/// An order line meeting a mode.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct GearboxCrossing {
+    /// Index into [`GearboxSummary::modes`].
+    pub mode: usize,
+    pub frequency_hz: f64,
+    /// Pinion order (multiples of the pinion's speed).
+    pub order: f64,
+    pub pinion_rpm: f64,
 }
 
 /// The bearings of both shafts (the scene's) and the members' mass

@@ -76,6 +76,34 @@ pub struct BearingSettings {
     pub pinion_shaft: Option<ShaftMm>,
     #[serde(default)]
     pub wheel_shaft: Option<ShaftMm>,
+    /// The flexible gearbox (`[bearings.gearbox]`): the shafts with their
+    /// mass as Timoshenko beam elements in the multibody, its loaded modes,
+    /// and a run-up on it beside the compliant-bearing one
+    /// (`solver::gearbox`); absent: none.
+    #[serde(default)]
+    pub gearbox: Option<GearboxMm>,
+}
+
+/// Settings of the flexible gearbox.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GearboxMm {
+    /// Longest shaft element, mm (the shafts' named positions are cut
+    /// into elements no longer than this).
+    #[serde(default = "default_shaft_element_mm")]
+    pub shaft_element_mm: f64,
+    /// Modes listed, drawn over the spectrogram and met by the order lines
+    /// up to this frequency, Hz.
+    #[serde(default = "default_modes_up_to_hz")]
+    pub modes_up_to_hz: f64,
+}
+
+fn default_shaft_element_mm() -> f64 {
+    10.0
+}
+
+fn default_modes_up_to_hz() -> f64 {
+    5_000.0
 }
 
 /// A member's shaft: round segments along its axis and the gear's seat.
@@ -208,6 +236,10 @@ impl BearingSettings {
             if let Some(sh) = shaft {
                 sh.check(path, member, list)?;
             }
+        }
+        if let Some(g) = &self.gearbox {
+            lim::GEARBOX_SHAFT_ELEMENT.check(path, g.shaft_element_mm)?;
+            lim::GEARBOX_MODES_UP_TO.check(path, g.modes_up_to_hz)?;
         }
         lim::TOLERANCE.check(path, self.tolerance_nm)?;
         lim::MAX_ITERATIONS.check_integer(path, lim::MAX_ITERATIONS.field, self.max_iterations)

@@ -238,6 +238,9 @@ segments = [ { from_mm = 100.0, to_mm = 180.0, outer_diameter_mm = 40.0, inner_d
 [bearings.wheel_shaft]
 seat_mm = 60.0
 segments = [ { from_mm = 50.0, to_mm = 150.0, outer_diameter_mm = 60.0, inner_diameter_mm = 10.0 } ]
+[bearings.gearbox]
+shaft_element_mm = 10.0
+modes_up_to_hz = 5000.0
 ",
     ),
     (

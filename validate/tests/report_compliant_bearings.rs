@@ -111,6 +111,7 @@ fn dynamic() -> DynamicSummary {
                     },
                 ],
             }),
+            gearbox: None,
         }),
         dir: "synthetic".into(),
     }

@@ -90,6 +90,17 @@ limits! {
         "",
         words("segments contiguous in axial order, inner below outer diameter, the seat and every bearing on the shaft"),
     );
+    GEARBOX_SHAFT_ELEMENT = Limit::scene(
+        "bearings.gearbox.shaft_element_mm",
+        "mm",
+        real(closed(0.5), closed(1_000.0)).lie_in(" mm"),
+    )
+    .why("finer than 0.5 mm adds coordinates, not accuracy, to a shaft model");
+    GEARBOX_MODES_UP_TO = Limit::scene(
+        "bearings.gearbox.modes_up_to_hz",
+        "Hz",
+        real(closed(1.0), closed(1e6)).lie_in(" Hz"),
+    );
     TOLERANCE = Limit::scene(
         "bearings.tolerance_nm",
         "nm",

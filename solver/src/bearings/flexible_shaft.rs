@@ -73,6 +73,29 @@ fn value(field: String, v: f64, limit: &str) -> ShaftError {
 }
 
 impl Shaft {
+    /// The scene's `[bearings.<member>_shaft]` (mm) of the member's
+    /// material, SI.
+    pub fn of_scene(
+        sh: &geometry::scene_bearings::ShaftMm,
+        material: &geometry::Material,
+    ) -> Shaft {
+        Shaft {
+            segments: sh
+                .segments
+                .iter()
+                .map(|s| ShaftSegment {
+                    from_m: s.from_mm * 1e-3,
+                    to_m: s.to_mm * 1e-3,
+                    outer_diameter_m: s.outer_diameter_mm * 1e-3,
+                    inner_diameter_m: s.inner_diameter_mm * 1e-3,
+                })
+                .collect(),
+            seat_m: sh.seat_mm * 1e-3,
+            youngs_modulus_pa: material.youngs_modulus_pa,
+            poisson_ratio: material.poisson_ratio,
+        }
+    }
+
     /// Segments contiguous and positive, diameters 0 ≤ inner < outer, the
     /// seat and every bearing on the shaft, the material physical.
     pub fn check(&self, field: &str, bearings: &[Bearing]) -> Result<(), ShaftError> {

@@ -332,21 +332,7 @@ pub fn supports_of(settings: &BearingSettings, g: &PairGeometry) -> Result<Suppo
                 axis,
                 Vector3::zeros(),
                 &bearings,
-                &crate::bearings::flexible_shaft::Shaft {
-                    segments: sh
-                        .segments
-                        .iter()
-                        .map(|s| crate::bearings::flexible_shaft::ShaftSegment {
-                            from_m: s.from_mm * 1e-3,
-                            to_m: s.to_mm * 1e-3,
-                            outer_diameter_m: s.outer_diameter_mm * 1e-3,
-                            inner_diameter_m: s.inner_diameter_mm * 1e-3,
-                        })
-                        .collect(),
-                    seat_m: sh.seat_mm * 1e-3,
-                    youngs_modulus_pa: material.youngs_modulus_pa,
-                    poisson_ratio: material.poisson_ratio,
-                },
+                &crate::bearings::flexible_shaft::Shaft::of_scene(sh, &material),
             ),
         }
     };

@@ -88,6 +88,20 @@ pub fn plot(
     pinion_hz: &dyn Fn(f64) -> f64,
     orders: &[OrderLine],
 ) -> anyhow::Result<()> {
+    plot_with_modes(path, title, s, pinion_hz, orders, &[])
+}
+
+/// [`plot`] with the system's natural frequencies `modes_hz` as dashed
+/// horizontal lines (a Campbell diagram over the spectrogram: where an
+/// order line crosses one, that order meets that mode).
+pub fn plot_with_modes(
+    path: &Path,
+    title: &str,
+    s: &Spectrogram,
+    pinion_hz: &dyn Fn(f64) -> f64,
+    orders: &[OrderLine],
+    modes_hz: &[f64],
+) -> anyhow::Result<()> {
     let (nt, nf) = (s.time.len(), s.freq.len());
     anyhow::ensure!(
         nt >= 2 && nf >= 2,
@@ -151,6 +165,14 @@ pub fn plot(
                     ("sans-serif", 12).into_font().color(&WHITE),
                 )))?;
             }
+        }
+        for &f in modes_hz.iter().filter(|&&f| f > f0 && f < f1) {
+            chart.draw_series(DashedLineSeries::new(
+                [(t0, f), (t1, f)],
+                6,
+                4,
+                WHITE.mix(0.7).stroke_width(1),
+            ))?;
         }
         root.present()?;
     }

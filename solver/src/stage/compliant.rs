@@ -317,6 +317,10 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
     if s.runs_up {
         runs.push(run_up(s, &shift, &members, hand)?);
     }
+    let gearbox = match &bearings.gearbox {
+        Some(gb) => Some(crate::stage::gearbox::run(s, gb, &shift, &members, hand)?),
+        None => None,
+    };
     let used = |b: &MemberBody| BodyMass {
         mass_kg: b.mass_kg,
         centroid_mm: b.centroid_m * 1e3,
@@ -333,6 +337,7 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
             wheel_bearings: bearings.wheel.clone(),
             bodies: [used(&members[0]), used(&members[1])],
         }),
+        gearbox,
     })
 }
 
@@ -380,6 +385,7 @@ fn run_up(
         s.g.data.members[0].teeth as f64,
         s.table.ratio,
         s.blanks[1],
+        &[],
     )?;
     // The same order analysis as the rigid run-up's `runup_orders.json`, of
     // both wheel bearings' force together.

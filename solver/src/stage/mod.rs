@@ -12,6 +12,7 @@
 pub mod compliant;
 pub mod context;
 pub mod dynamic;
+pub mod gearbox;
 pub mod ltca;
 pub mod lumped;
 pub mod lumped_order_map;

@@ -19,7 +19,7 @@ use formats::summaries::{RunupRootTension, RunupSummary};
 use std::time::Instant;
 
 use crate::multibody::model::{Drive, Ramp};
-use crate::signal::spectrum::{plot, resample, stft, OrderLine};
+use crate::signal::spectrum::{plot_with_modes, resample, stft, OrderLine};
 use formats::output::write_json;
 use formats::summaries::RunupOrders;
 use geometry::gear_body::WHEEL_WEB_HOLES;
@@ -80,6 +80,7 @@ pub(crate) fn runup_drive(mb: &geometry::scene::MultibodySettings, ratio: f64) -
 /// The run-up's spectrogram of a force magnitude `series` (times, |F|)
 /// over the pinion speed, with the tooth orders (and, with the lightweight
 /// wheel, its 3-hole side bands) marked.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn runup_spectrogram(
     path: &Path,
     title: &str,
@@ -88,6 +89,7 @@ pub(crate) fn runup_spectrogram(
     z1: f64,
     ratio: f64,
     wb: Blank,
+    modes_hz: &[f64],
 ) -> anyhow::Result<()> {
     let ramp = runup_ramp(mb);
     let dt = mb.runup_max_step_s.max(mb.runup_time_s / 2e5);
@@ -114,7 +116,7 @@ pub(crate) fn runup_spectrogram(
             label: format!("{z1}-{o:.2}"),
         });
     }
-    plot(path, title, &spec, &hz, &orders)?;
+    plot_with_modes(path, title, &spec, &hz, &orders, modes_hz)?;
     Ok(())
 }
 
@@ -261,6 +263,7 @@ pub(crate) fn run_up(
         z1,
         table.ratio,
         wb,
+        &[],
     )?;
     let bearing: Vec<[f64; 3]> = tr.force.iter().map(|f| f.map(|c| -c)).collect();
     write_runup_orders(
