@@ -42,6 +42,8 @@ pub struct ReportFigures {
     pub sensitivity: super::sections::sensitivity::SensitivitySection,
     /// The compliant-bearing multibody section with its spectrograms.
     pub compliant: super::sections::compliant_bearings::CompliantSection,
+    /// The flexible gearbox's modes, crossings and run-up.
+    pub gearbox: super::sections::gearbox::GearboxSection,
     /// Static against dynamic TE (the white paper's first use case).
     pub ste_dte: super::sections::ste_dte::SteDteSection,
     /// The rattle run, its impacts and wedging.
@@ -64,6 +66,7 @@ impl ReportFigures {
             .chain(&self.lumped.figures)
             .chain(&self.sensitivity.figures)
             .chain(&self.compliant.figures)
+            .chain(&self.gearbox.figures)
             .chain(&self.ste_dte.figures)
             .chain(&self.rattle.figures)
             .chain(&self.stress.figure)
@@ -108,6 +111,7 @@ pub fn report_figures(
             reports,
             &super::results::Stamp::now(),
         ),
+        gearbox: super::sections::gearbox::section(out, reports),
         ste_dte: super::sections::ste_dte::section(out, reports),
         rattle: super::sections::rattle::section(out, reports),
         ..Default::default()

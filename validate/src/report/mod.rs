@@ -188,6 +188,7 @@ pub fn markdown(
     s.push_str(&figs.lumped.markdown);
     s.push_str(&figs.sensitivity.markdown);
     s.push_str(&figs.compliant.markdown);
+    s.push_str(&figs.gearbox.markdown);
     s.push_str(&figs.ste_dte.markdown);
     s.push_str(&figs.rattle.markdown);
     while s.ends_with("\n\n") {

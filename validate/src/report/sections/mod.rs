@@ -7,6 +7,7 @@ pub mod calibrated_variant;
 pub mod compliant_bearings;
 pub mod contact_laws;
 pub mod contact_laws_load_run;
+pub mod gearbox;
 pub mod grid_convergence;
 pub mod lightweight_revolution;
 pub mod loaded_contact;

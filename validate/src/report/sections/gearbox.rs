@@ -1,0 +1,323 @@
+//! The report's section "Flexible gearbox (multibody)": `solver dynamic`
+//! on `reference/scenes/white_paper_gearbox.toml` (the white-paper pair on
+//! the compliant bearings of `white_paper_bearings.toml` with both shafts
+//! as Timoshenko beam elements with mass, `solver::gearbox`).
+//!
+//! Reads `<out>/white_paper_gearbox/multibody/summary.json`: per blank pair
+//! the structure (coordinates, shaft masses), the loaded modes with the
+//! share of their kinetic energy per part, where the excitation orders
+//! meet them within the run-up's speeds, the run-up on the gearbox beside
+//! the compliant-bearing run-up on the statically condensed shafts (TE,
+//! bearing forces, CPU per step, both from the same summary), and the
+//! gearbox run-up's spectrogram with the modes drawn. An absent summary is
+//! one line of text. Every number is formatted from the file.
+
+use crate::report::figures::{copied, Figure};
+use formats::summaries::{CompliantRunSummary, DynamicSummary, GearboxSummary};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The scene whose runs the section reports.
+pub const GEARBOX_SCENE: &str = "white_paper_gearbox";
+
+/// The section's markdown and figures (written into the report directory).
+#[derive(Debug, Clone, Default)]
+pub struct GearboxSection {
+    pub markdown: String,
+    pub figures: Vec<Figure>,
+}
+
+fn blank_name(d: &DynamicSummary) -> String {
+    format!("{:?}_{:?}", d.pinion_blank, d.wheel_blank).to_lowercase()
+}
+
+/// The section from the stages' output root `out`, its figures copied into
+/// `reports`.
+pub fn section(out: Option<&Path>, reports: &Path) -> GearboxSection {
+    let mut s = String::from("## Flexible gearbox (multibody)\n\n");
+    let absent = |mut s: String, why: String| {
+        let _ = writeln!(s, "No flexible-gearbox runs: {why}.\n");
+        GearboxSection {
+            markdown: s,
+            figures: vec![],
+        }
+    };
+    let Some(out) = out else {
+        return absent(s, "the report was built without an output root".into());
+    };
+    let path = out
+        .join(GEARBOX_SCENE)
+        .join("multibody")
+        .join("summary.json");
+    let dynamic: Vec<DynamicSummary> = match std::fs::read_to_string(&path)
+        .map_err(|e| e.to_string())
+        .and_then(|t| serde_json::from_str(&t).map_err(|e| e.to_string()))
+    {
+        Ok(v) => v,
+        Err(e) => {
+            return absent(
+                s,
+                format!(
+                    "`{}` cannot be read ({e}); `solver dynamic reference/scenes/{GEARBOX_SCENE}.toml` writes it",
+                    path.display()
+                ),
+            )
+        }
+    };
+    let _ = writeln!(
+        s,
+        "`solver dynamic` on `reference/scenes/{GEARBOX_SCENE}.toml`: the white-paper pair on the bearings of the compliant-bearing section, each shaft from its gear's seat to its far bearing as Timoshenko beam elements with their mass (consistent mass, `solver::bearings::timoshenko`), the gears rigid on their seats, the bearings on a rigid housing. The modes are those of the gearbox loaded at the run-up's torque, the contact element linearized at the quasi-static start; each mode's kinetic energy is split by what moves. The compliant-bearing run-up beside it is the same scene's, the shafts statically condensed onto the seats (massless).\n"
+    );
+    let mut figures = Vec::new();
+    let mut any = false;
+    for d in &dynamic {
+        let Some(c) = &d.compliant else { continue };
+        let Some(g) = &c.gearbox else { continue };
+        any = true;
+        let b = blank_name(d);
+        let _ = writeln!(s, "### {b}\n");
+        structure_line(&mut s, g);
+        modes_table(&mut s, g);
+        crossings_table(&mut s, g);
+        let compliant = c.runs.iter().find(|r| r.case == "run-up");
+        runs_table(&mut s, g.run.as_ref(), compliant);
+        let dir = out.join(GEARBOX_SCENE).join("multibody").join(&b);
+        if let Some(f) = copied(
+            &format!("Wheel bearings' force, flexible gearbox ({b}), run-up"),
+            &dir.join("gearbox_runup_spectrogram.svg"),
+            reports,
+            &format!("gearbox_{b}_runup_spectrogram.svg"),
+        ) {
+            let _ = writeln!(
+                s,
+                "Run-up spectrogram of the wheel bearings' total force on the flexible gearbox, {b}: the order lines and the modes above (dashed); where an order line crosses a dashed line, that order meets that mode.\n"
+            );
+            crate::report::figures::figure_lines(&mut s, std::slice::from_ref(&f), false);
+            figures.push(f);
+        }
+    }
+    if !any {
+        s.push_str("The multibody summary has no flexible-gearbox runs (the scene has no `[bearings.gearbox]`).\n\n");
+    }
+    GearboxSection {
+        markdown: s,
+        figures,
+    }
+}
+
+fn structure_line(s: &mut String, g: &GearboxSummary) {
+    let _ = writeln!(
+        s,
+        "{} coordinates; shafts {:.3} kg (pinion) and {:.3} kg (wheel), elements of at most {} mm; modes up to the scene's limit: {}, linearized at {} N·m. Left out: {}.\n",
+        g.coordinates,
+        g.shaft_mass_kg[0],
+        g.shaft_mass_kg[1],
+        g.shaft_element_mm,
+        g.modes.len(),
+        g.modes_torque_nm,
+        g.notes.join("; ")
+    );
+}
+
+/// The modes with their kinetic energy by part, in %.
+pub fn modes_table(s: &mut String, g: &GearboxSummary) {
+    if g.modes.is_empty() {
+        s.push_str("No mode below the scene's `modes_up_to_hz`.\n\n");
+        return;
+    }
+    // Only the parts some mode moves.
+    let used: Vec<usize> = (0..g.energy_parts.len())
+        .filter(|&p| {
+            g.modes
+                .iter()
+                .any(|m| m.energy_share.get(p).is_some_and(|e| *e >= 0.005))
+        })
+        .collect();
+    s.push_str("| mode | frequency (Hz) |");
+    for &p in &used {
+        let _ = write!(s, " {} (%) |", g.energy_parts[p]);
+    }
+    s.push_str("\n|---:|---:|");
+    s.push_str(&"---:|".repeat(used.len()));
+    s.push('\n');
+    for (i, m) in g.modes.iter().enumerate() {
+        let _ = write!(s, "| {i} | {:.1} |", m.frequency_hz);
+        for &p in &used {
+            let _ = write!(
+                s,
+                " {:.1} |",
+                100.0 * m.energy_share.get(p).copied().unwrap_or(0.0)
+            );
+        }
+        s.push('\n');
+    }
+    s.push('\n');
+}
+
+/// Where the orders meet the modes.
+pub fn crossings_table(s: &mut String, g: &GearboxSummary) {
+    if g.crossings.is_empty() {
+        s.push_str("No excitation order meets a listed mode within the run-up's speeds.\n\n");
+        return;
+    }
+    s.push_str("| pinion speed (rpm) | order | mode | frequency (Hz) |\n|---:|---:|---:|---:|\n");
+    for c in &g.crossings {
+        let _ = writeln!(
+            s,
+            "| {:.0} | {:.2} | {} | {:.1} |",
+            c.pinion_rpm, c.order, c.mode, c.frequency_hz
+        );
+    }
+    s.push('\n');
+}
+
+/// The gearbox run-up beside the compliant-bearing one.
+pub fn runs_table(
+    s: &mut String,
+    gearbox: Option<&CompliantRunSummary>,
+    compliant: Option<&CompliantRunSummary>,
+) {
+    let Some(g) = gearbox else {
+        s.push_str("No run-up on the gearbox (the scene runs none for this blank pair).\n\n");
+        return;
+    };
+    s.push_str("| run-up | TE mean (µrad) | TE ptp (µrad) | largest wheel bearing force (N) | steps | CPU per step (µs) |\n|---|---:|---:|---:|---:|---:|\n");
+    let row = |s: &mut String, name: &str, r: &CompliantRunSummary| {
+        let most = r.wheel_bearing_force_n.iter().copied().fold(0.0, f64::max);
+        let _ = writeln!(
+            s,
+            "| {name} | {:.2} | {:.2} | {:.0} | {} | {:.1} |",
+            r.te_mean_urad,
+            r.te_ptp_urad,
+            most,
+            r.steps,
+            r.cpu_s_per_step * 1e6
+        );
+    };
+    row(s, "flexible gearbox", g);
+    if let Some(c) = compliant {
+        row(s, "compliant bearings, condensed shafts", c);
+    }
+    s.push('\n');
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use formats::summaries::{GearboxCrossing, GearboxMode};
+
+    fn run(te: f64, steps: usize, cpu_us: f64) -> CompliantRunSummary {
+        CompliantRunSummary {
+            case: "run-up".into(),
+            torque_nm: 300.0,
+            steps,
+            rejected_steps: 0,
+            cpu_s: cpu_us * 1e-6 * steps as f64,
+            cpu_s_per_step: cpu_us * 1e-6,
+            te_mean_urad: te,
+            te_ptp_urad: 17.5,
+            largest_misalignment: [1.0; 4],
+            largest_linearization_urad: 0.0,
+            mean_linearization_urad: 0.0,
+            pinion_bearing_force_n: vec![100.0],
+            wheel_bearing_force_n: vec![950.4, 1210.6],
+            csv: "x.csv".into(),
+        }
+    }
+
+    fn summary() -> GearboxSummary {
+        GearboxSummary {
+            coordinates: 127,
+            shaft_mass_kg: [0.986, 1.850],
+            shaft_element_mm: 10.0,
+            modes_torque_nm: 300.0,
+            energy_parts: [
+                "pinion turn",
+                "wheel turn",
+                "pinion body",
+                "wheel body",
+                "pinion shaft",
+                "wheel shaft",
+                "housing",
+            ]
+            .map(String::from)
+            .to_vec(),
+            modes: vec![
+                GearboxMode {
+                    frequency_hz: 502.45,
+                    energy_share: vec![0.0, 0.788, 0.162, 0.044, 0.006, 0.0, 0.0],
+                },
+                GearboxMode {
+                    frequency_hz: 825.94,
+                    energy_share: vec![0.0, 0.0, 0.0, 0.992, 0.0, 0.008, 0.0],
+                },
+            ],
+            crossings: vec![GearboxCrossing {
+                mode: 0,
+                frequency_hz: 502.45,
+                order: 40.0,
+                pinion_rpm: 753.67,
+            }],
+            run: Some(run(1056.15, 19452, 67.9)),
+            notes: vec!["rigid housing".into()],
+        }
+    }
+
+    /// The tables carry the summary's numbers, and only the parts some mode
+    /// moves (pinion turn held, housing rigid: left out).
+    #[test]
+    fn gearbox_tables_show_the_summarys_modes_crossings_and_runs() {
+        let g = summary();
+        let mut s = String::new();
+        modes_table(&mut s, &g);
+        assert!(
+            s.contains("| 0 | 502.4 | 78.8 | 16.2 | 4.4 | 0.6 | 0.0 |"),
+            "{s}"
+        );
+        assert!(!s.contains("pinion turn") && !s.contains("housing"), "{s}");
+        assert!(s.contains("wheel shaft (%)"));
+        crossings_table(&mut s, &g);
+        assert!(s.contains("| 754 | 40.00 | 0 | 502.4 |"), "{s}");
+        runs_table(&mut s, g.run.as_ref(), Some(&run(1030.2, 18003, 19.4)));
+        assert!(
+            s.contains("| flexible gearbox | 1056.15 | 17.50 | 1211 | 19452 | 67.9 |"),
+            "{s}"
+        );
+        assert!(
+            s.contains("| compliant bearings, condensed shafts | 1030.20 |"),
+            "{s}"
+        );
+        let mut empty = String::new();
+        let none = GearboxSummary {
+            modes: vec![],
+            crossings: vec![],
+            run: None,
+            ..summary()
+        };
+        modes_table(&mut empty, &none);
+        crossings_table(&mut empty, &none);
+        runs_table(&mut empty, None, None);
+        assert!(
+            empty.contains("No mode below")
+                && empty.contains("No excitation order")
+                && empty.contains("No run-up")
+        );
+    }
+
+    #[test]
+    fn gearbox_section_without_its_summary_says_so_in_one_line() {
+        let dir = std::env::temp_dir().join(format!("gearbox_section_{}", std::process::id()));
+        let s = section(Some(&dir), &dir);
+        assert!(
+            s.markdown.contains("No flexible-gearbox runs")
+                && s.markdown
+                    .contains("solver dynamic reference/scenes/white_paper_gearbox.toml"),
+            "{}",
+            s.markdown
+        );
+        assert!(s.figures.is_empty());
+        assert!(section(None, &dir)
+            .markdown
+            .contains("without an output root"));
+    }
+}
