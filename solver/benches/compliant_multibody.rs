@@ -4,7 +4,11 @@
 //! (8 misaligned contact searches over the table's positions), and the CPU
 //! time per step of the run-up (pinion 0 → 1000 rpm in 0.15 s at 300 N·m,
 //! steps up to 1e-5 s, the default scene's multibody settings) and of the
-//! 10 rpm run, with the rigid-bearing model on the same table beside them.
+//! 10 rpm run, with the rigid-bearing model on the same table beside them,
+//! and the flexible gearbox (`solver::gearbox`) on the same bearings: with
+//! rigid shafts (the compliant model's physics on its general structure:
+//! the overhead of the general code) and with 40 / 50 mm steel shafts from
+//! each gear's mean point to its far bearing in 10 mm elements.
 //! Target: ≤ 1 ms per step (the white paper ~0.4 s per step).
 //! Results in `bench/compliant_multibody.json`.
 
@@ -16,7 +20,10 @@ use geometry::generation::trace_sign;
 use geometry::misalignment::Misalignment;
 use geometry::pair::PairGeometry;
 use serde_json::json;
+use solver::bearings::flexible_shaft::{Shaft, ShaftSegment};
 use solver::bearings::support::{Bearing, Support};
+use solver::gearbox::dynamics::{integrate as g_integrate, GearboxIntegrator, GearboxModel};
+use solver::gearbox::{assemble, MemberParts};
 use solver::multibody::compliant::{
     integrate as c_integrate, CompliantIntegrator, CompliantModel, MemberBody,
 };
@@ -57,6 +64,34 @@ fn bodies(g: &PairGeometry, inertia: [f64; 2]) -> [MemberBody; 2] {
     [one(0, 0.04, 0.10, 1.5), one(1, 0.02, 0.12, 12.0)]
 }
 
+/// Solid steel shafts from each gear's mean point to its far bearing
+/// (pinion 40 mm, wheel 50 mm) and their density.
+fn shafts(g: &PairGeometry, b: &[MemberBody; 2]) -> [(Shaft, f64); 2] {
+    std::array::from_fn(|m| {
+        let seat = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
+        let far = b[m]
+            .support
+            .bearings()
+            .iter()
+            .fold(seat, |a, x| a.max(x.axial_position_m));
+        let data = &g.data.members[m];
+        (
+            Shaft {
+                segments: vec![ShaftSegment {
+                    from_m: seat,
+                    to_m: far,
+                    outer_diameter_m: [0.04, 0.05][m],
+                    inner_diameter_m: 0.0,
+                }],
+                seat_m: seat,
+                youngs_modulus_pa: data.youngs_modulus,
+                poisson_ratio: data.poisson_ratio,
+            },
+            data.density,
+        )
+    })
+}
+
 /// Runs `run` (which records the shaft TE and returns its steps) on one
 /// thread's CPU clock: (steps, µs per step, TE peak-to-peak in µrad).
 fn timed(run: impl FnOnce(&mut Vec<f64>) -> usize) -> (usize, f64, f64) {
@@ -76,7 +111,7 @@ fn row(
     us: f64,
     ptp: f64,
 ) -> serde_json::Value {
-    println!("{run:>8} {bearings:>10} {steps:>8} {rejected:>9} {us:>10.1} {ptp:>10.2}");
+    println!("{run:>8} {bearings:>22} {steps:>8} {rejected:>9} {us:>10.1} {ptp:>10.2}");
     json!({"run": run, "bearings": bearings, "steps": steps, "rejected_steps": rejected, "us_per_step": us, "te_ptp_urad": ptp})
 }
 
@@ -120,7 +155,7 @@ fn main() {
         mb.table_lag_nodes
     );
     println!(
-        "{:>8} {:>10} {:>8} {:>9} {:>10} {:>10}",
+        "{:>8} {:>22} {:>8} {:>9} {:>10} {:>10}",
         "run", "bearings", "steps", "rejected", "us/step", "TE ptp µrad"
     );
     let control = |max_step: f64| StepControl {
@@ -196,6 +231,30 @@ fn main() {
             .1
         });
         rows.push(row(name, "compliant", steps, ci.rejected, us, ptp));
+        let b = bodies(g, inertia);
+        let sh = shafts(g, &b);
+        for (label, with_shafts) in [("gearbox, rigid shafts", false), ("gearbox, shafts", true)] {
+            let parts: [MemberParts; 2] = std::array::from_fn(|k| MemberParts {
+                body: &b[k],
+                polar_inertia_kgm2: inertia[k],
+                shaft: with_shafts.then(|| (&sh[k].0, sh[k].1)),
+            });
+            let st = assemble(parts, None, 0.01).unwrap();
+            let gm = GearboxModel::new(&cm, &st).unwrap();
+            let s0 = gm.static_state(0.0).unwrap();
+            let mut gi = GearboxIntegrator::new(mb.rho_inf, control(max_step));
+            let (steps, us, ptp) = timed(|te| {
+                g_integrate(&gm, s0, &mut gi, t_end, |s, _| {
+                    te.push(ratio * s.x[0] - s.x[1]);
+                    Ok(())
+                })
+                .unwrap()
+                .1
+            });
+            let mut r = row(name, label, steps, gi.rejected, us, ptp);
+            r["coordinates"] = json!(gm.dofs());
+            rows.push(r);
+        }
     }
     let out = p.root.join("bench");
     std::fs::create_dir_all(&out).unwrap();
