@@ -45,6 +45,27 @@ fn body(axis: Vector3<f64>, bearings: &[Bearing], mass: f64) -> MemberBody {
     }
 }
 
+/// The pair's parts: the pinion on `shaft` (None: rigid), the wheel on a
+/// rigid shaft.
+fn parts<'a>(
+    pinion: &'a MemberBody,
+    shaft: Option<&'a Shaft>,
+    wheel: &'a MemberBody,
+) -> [MemberParts<'a>; 2] {
+    [
+        MemberParts {
+            body: pinion,
+            polar_inertia_kgm2: 1e-3,
+            shaft: shaft.map(|s| (s, RHO)),
+        },
+        MemberParts {
+            body: wheel,
+            polar_inertia_kgm2: 1e-2,
+            shaft: None,
+        },
+    ]
+}
+
 /// Schur complement of `k` onto the coordinates `keep` (the turns q₁, q₂,
 /// which carry no stiffness, left out).
 fn condense(k: &DMatrix<f64>, keep: &[usize]) -> DMatrix<f64> {
@@ -79,23 +100,7 @@ fn shaft_condensed_onto_the_gear_body_is_the_flexible_shaft_support() {
         &[bearing(-0.05, 5e8, 1e8), bearing(0.05, 5e8, 0.0)],
         4.0,
     );
-    let s = assemble(
-        [
-            MemberParts {
-                body: &pinion,
-                polar_inertia_kgm2: 1e-3,
-                shaft: Some((&sh, RHO)),
-            },
-            MemberParts {
-                body: &wheel,
-                polar_inertia_kgm2: 1e-2,
-                shaft: None,
-            },
-        ],
-        None,
-        0.01,
-    )
-    .unwrap();
+    let s = assemble(parts(&pinion, Some(&sh), &wheel), None, 0.01).unwrap();
     assert!(s.parts.iter().filter(|p| **p == Part::Shaft(0)).count() >= 5 * 17);
     let on_body = condense(&s.stiffness, &(2..7).collect::<Vec<_>>());
     let flexible =
@@ -149,23 +154,7 @@ fn pinned_shaft_mode_of_the_gearbox_is_timoshenkos() {
         &[bearing(-0.05, 1e13, 1e13), bearing(0.05, 1e13, 0.0)],
         1e-3,
     );
-    let s = assemble(
-        [
-            MemberParts {
-                body: &light,
-                polar_inertia_kgm2: 1e-3,
-                shaft: Some((&sh, RHO)),
-            },
-            MemberParts {
-                body: &wheel,
-                polar_inertia_kgm2: 1e-2,
-                shaft: None,
-            },
-        ],
-        None,
-        l / 40.0,
-    )
-    .unwrap();
+    let s = assemble(parts(&light, Some(&sh), &wheel), None, l / 40.0).unwrap();
     let modes = system_modes(&s, &SMatrix::zeros(), [true, true]).unwrap();
     let exact = pinned_timoshenko_omega2(d, l).sqrt() / (2.0 * std::f64::consts::PI);
     for m in &modes[..2] {
@@ -207,21 +196,12 @@ fn housing_springs_act_in_series_with_the_bearings() {
         mass: DMatrix::from_diagonal_element(12, 12, 0.5),
         seats: vec![(0, 0), (0, 1)],
     };
-    fn parts<'a>(m: &'a MemberBody, w: &'a MemberBody) -> [MemberParts<'a>; 2] {
-        [
-            MemberParts {
-                body: m,
-                polar_inertia_kgm2: 1e-3,
-                shaft: None,
-            },
-            MemberParts {
-                body: w,
-                polar_inertia_kgm2: 1e-2,
-                shaft: None,
-            },
-        ]
-    }
-    let soft = assemble(parts(&member, &wheel), Some(&spring_housing(kh)), 0.01).unwrap();
+    let soft = assemble(
+        parts(&member, None, &wheel),
+        Some(&spring_housing(kh)),
+        0.01,
+    )
+    .unwrap();
     let on_body = condense(&soft.stiffness, &(2..7).collect::<Vec<_>>());
     let series = |k: f64| k * kh / (k + kh);
     let in_series = body(
@@ -238,8 +218,13 @@ fn housing_springs_act_in_series_with_the_bearings() {
     assert!(close(&on_body, &want, 1e-9), "{on_body} against {want}");
     assert_eq!(soft.bearings.len(), 4);
 
-    let rigid = assemble(parts(&member, &wheel), None, 0.01).unwrap();
-    let stiff = assemble(parts(&member, &wheel), Some(&spring_housing(1e16)), 0.01).unwrap();
+    let rigid = assemble(parts(&member, None, &wheel), None, 0.01).unwrap();
+    let stiff = assemble(
+        parts(&member, None, &wheel),
+        Some(&spring_housing(1e16)),
+        0.01,
+    )
+    .unwrap();
     let a = system_modes(&rigid, &SMatrix::zeros(), [true, true]).unwrap();
     let b = system_modes(&stiff, &SMatrix::zeros(), [true, true]).unwrap();
     let c = system_modes(&soft, &SMatrix::zeros(), [true, true]).unwrap();
@@ -276,23 +261,7 @@ fn rigid_motion_of_a_member_strains_only_its_bearings() {
         &[bearing(-0.05, 5e8, 1e8), bearing(0.05, 5e8, 0.0)],
         4.0,
     );
-    let s = assemble(
-        [
-            MemberParts {
-                body: &pinion,
-                polar_inertia_kgm2: 1e-3,
-                shaft: Some((&sh, RHO)),
-            },
-            MemberParts {
-                body: &wheel,
-                polar_inertia_kgm2: 1e-2,
-                shaft: None,
-            },
-        ],
-        None,
-        0.02,
-    )
-    .unwrap();
+    let s = assemble(parts(&pinion, Some(&sh), &wheel), None, 0.02).unwrap();
     let q = pinion.support.basis();
     let n = s.parts.len();
     // Shaft node axial positions in coordinate order: the nodes but the seat.

@@ -10,7 +10,7 @@
 //! structure's M, C, K are that model's and so are the runs.
 
 use super::structure::{BearingLink, GearboxStructure, Part};
-use crate::multibody::compliant::{CompliantMesh, CompliantModel, X};
+use crate::multibody::compliant::{alpha_parameters, CompliantMesh, CompliantModel, X};
 use crate::multibody::time_step::{lag_resolution_at, StepControl, StepHistory};
 use crate::SolverError;
 use nalgebra::{DMatrix, DVector, Vector3};
@@ -185,15 +185,6 @@ const NEWTON_MAX: usize = 40;
 
 /// Newton matrices built (a new step size each), over the process.
 pub static MATRIX_BUILDS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-
-/// Generalized-α parameters (Chung & Hulbert 1993) of ρ∞.
-fn alpha_parameters(rho: f64) -> [f64; 4] {
-    let am = (2.0 * rho - 1.0) / (rho + 1.0);
-    let af = rho / (rho + 1.0);
-    let gamma = 0.5 - am + af;
-    let beta = 0.25 * (1.0 - am + af).powi(2);
-    [am, af, gamma, beta]
-}
 
 /// The structure's part of the Newton matrix for one step size h,
 /// J₀ = (1 − α_f)(K + γ/(βh) C) + (1 − α_m)/(βh²) M, split at the contact

@@ -152,7 +152,7 @@ pub struct CompliantMesh {
 }
 
 /// Generalized-α parameters (Chung & Hulbert 1993) of ρ∞.
-fn alpha_parameters(rho: f64) -> [f64; 4] {
+pub(crate) fn alpha_parameters(rho: f64) -> [f64; 4] {
     let am = (2.0 * rho - 1.0) / (rho + 1.0);
     let af = rho / (rho + 1.0);
     let gamma = 0.5 - am + af;

@@ -341,15 +341,10 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
     })
 }
 
-/// The run-up on compliant bearings and the wheel bearings' spectrogram.
-fn run_up(
-    s: &Setup,
-    shift: &LagShift,
-    members: &[MemberBody; 2],
-    hand: f64,
-) -> anyhow::Result<CompliantRunSummary> {
+/// The rigid model of the scene's run-up drive on `s`'s table, its mesh
+/// damping set to the scene's ratio at the quasi-static start.
+pub(crate) fn runup_model<'a>(s: &Setup<'a>) -> anyhow::Result<Model<'a>> {
     let mb = &s.scene.scene.multibody;
-    let torque = mb.runup_pinion_torque_nm;
     let mut m = Model {
         table: s.table,
         coast: None,
@@ -360,7 +355,19 @@ fn run_up(
     };
     let rs0 = m.static_state(0.0)?;
     m.damping = m.damping_for_ratio(mb.damping_ratio, &rs0)?;
-    let cm = CompliantModel::new(m, shift, members.clone(), hand)?;
+    Ok(m)
+}
+
+/// The run-up on compliant bearings and the wheel bearings' spectrogram.
+fn run_up(
+    s: &Setup,
+    shift: &LagShift,
+    members: &[MemberBody; 2],
+    hand: f64,
+) -> anyhow::Result<CompliantRunSummary> {
+    let mb = &s.scene.scene.multibody;
+    let torque = mb.runup_pinion_torque_nm;
+    let cm = CompliantModel::new(runup_model(s)?, shift, members.clone(), hand)?;
     let s0 = cm.static_state(0.0)?;
     let mut integ = CompliantIntegrator::new(mb.rho_inf, (s.control)(mb.runup_max_step_s));
     let t = Instant::now();

@@ -22,7 +22,6 @@ use crate::gearbox::{assemble, MemberParts};
 use crate::ltca::mean_ptp;
 use crate::multibody::compliant::{CompliantModel, MemberBody, X};
 use crate::multibody::lag_shift::LagShift;
-use crate::multibody::model::Model;
 use crate::stage::compliant::Setup;
 use anyhow::Context;
 use formats::summaries::{CompliantRunSummary, GearboxCrossing, GearboxMode, GearboxSummary};
@@ -84,16 +83,7 @@ pub fn run(
         })
     });
     let torque = mb.runup_pinion_torque_nm;
-    let mut m = Model {
-        table: s.table,
-        coast: None,
-        inertia: s.inertia,
-        damping: 0.0,
-        friction: 0.0,
-        drive: crate::stage::runup::runup_drive(mb, s.table.ratio),
-    };
-    let rs0 = m.static_state(0.0)?;
-    m.damping = m.damping_for_ratio(mb.damping_ratio, &rs0)?;
+    let m = crate::stage::compliant::runup_model(s)?;
     let cm = CompliantModel::new(m, shift, members.clone(), hand)?;
     let gm = GearboxModel::new(&cm, &structure)?;
     let s0 = gm
