@@ -37,6 +37,8 @@ pub enum GearboxError {
         value: String,
         limit: String,
     },
+    #[error(transparent)]
+    Shaft(#[from] crate::bearings::flexible_shaft::ShaftError),
 }
 
 fn invalid(
@@ -187,9 +189,7 @@ pub fn assemble(
                         "must be finite and > 0",
                     ));
                 }
-                shaft
-                    .check(&format!("{name}_shaft"), mp.body.support.bearings())
-                    .map_err(|e| invalid(format!("{name}_shaft"), e, "must be a valid shaft"))?;
+                shaft.check(&format!("{name}_shaft"), mp.body.support.bearings())?;
                 let (nodes, seat) = shaft_nodes(shaft, mp.body, max_element_m);
                 let first = parts.len();
                 parts.extend(std::iter::repeat_n(Part::Shaft(k), 5 * (nodes.len() - 1)));
