@@ -99,12 +99,16 @@ BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
 # The flexible gearbox: reference/scenes/white_paper_gearbox.toml, the
 # pair and bearings above with both shafts as Timoshenko beam elements with
 # their mass (`solver dynamic`: the compliant runs on the condensed shafts,
-# then the gearbox's loaded modes, order crossings and run-up); the
-# report's section "Flexible gearbox (multibody)" reads
+# then the gearbox's loaded modes, order crossings and run-ups of both
+# wheel blanks, 0 -> 1,100 rpm in 1.1 s as white_paper_lightweight_runup's,
+# so that the order analysis resolves the lightweight wheel's side bands);
+# the report's section "Flexible gearbox (multibody)" reads
 # out/white_paper_gearbox/multibody. Measured 2026-11-29 with the meshes
-# and stiffness files copied from the default scene's (sibling reuse):
-# 47 s wall in all, `solver dynamic` 26 s (1.3 s of it the gearbox run-up,
-# 19,452 steps at 68 us). GEARBOX=0 leaves it out.
+# and stiffness files made (copied from the default and bearings scenes'):
+# 3 min 22 s wall, 320 s user CPU, 3.9 GB, nothing else running; most of
+# it the lightweight pair's contact-element table over the whole wheel
+# revolution (29,055 positions); the gearbox run-ups 147,000 and 137,000
+# steps at 64-74 us. GEARBOX=0 leaves it out.
 GEARBOX       ?= 1
 GEARBOX_SCENE := reference/scenes/white_paper_gearbox.toml
 # The calibrated variant of the white-paper design

@@ -8,12 +8,17 @@
 //! share of their kinetic energy per part, where the excitation orders
 //! meet them within the run-up's speeds, the run-up on the gearbox beside
 //! the compliant-bearing run-up on the statically condensed shafts (TE,
-//! bearing forces, CPU per step, both from the same summary), and the
-//! gearbox run-up's spectrogram with the modes drawn. An absent summary is
-//! one line of text. Every number is formatted from the file.
+//! bearing forces, CPU per step, both from the same summary), the gearbox
+//! run-up's spectrogram with the modes drawn, and both run-ups' wheel
+//! bearing-force amplitudes at the marked orders from their order analyses
+//! (`gearbox_runup_orders.json`, `bearings_runup_orders.json`) with the
+//! lightweight over the standard wheel at the hole order and the side
+//! bands. An absent summary is one line of text. Every number is formatted
+//! from the files.
 
+use super::lightweight_revolution::{at, cells, nearest_window, SHOWN};
 use crate::report::figures::{copied, Figure};
-use formats::summaries::{CompliantRunSummary, DynamicSummary, GearboxSummary};
+use formats::summaries::{CompliantRunSummary, DynamicSummary, GearboxSummary, RunupOrders};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -70,6 +75,8 @@ pub fn section(out: Option<&Path>, reports: &Path) -> GearboxSection {
     );
     let mut figures = Vec::new();
     let mut any = false;
+    // Per blank pair: (wheel blank, gearbox orders, compliant orders).
+    let mut orders: Vec<(String, Option<RunupOrders>, Option<RunupOrders>)> = Vec::new();
     for d in &dynamic {
         let Some(c) = &d.compliant else { continue };
         let Some(g) = &c.gearbox else { continue };
@@ -82,6 +89,14 @@ pub fn section(out: Option<&Path>, reports: &Path) -> GearboxSection {
         let compliant = c.runs.iter().find(|r| r.case == "run-up");
         runs_table(&mut s, g.run.as_ref(), compliant);
         let dir = out.join(GEARBOX_SCENE).join("multibody").join(&b);
+        let read = |f: &str| -> Option<RunupOrders> {
+            serde_json::from_str(&std::fs::read_to_string(dir.join(f)).ok()?).ok()
+        };
+        orders.push((
+            format!("{:?}", d.wheel_blank).to_lowercase(),
+            read("gearbox_runup_orders.json"),
+            read("bearings_runup_orders.json"),
+        ));
         if let Some(f) = copied(
             &format!("Wheel bearings' force, flexible gearbox ({b}), run-up"),
             &dir.join("gearbox_runup_spectrogram.svg"),
@@ -99,6 +114,7 @@ pub fn section(out: Option<&Path>, reports: &Path) -> GearboxSection {
     if !any {
         s.push_str("The multibody summary has no flexible-gearbox runs (the scene has no `[bearings.gearbox]`).\n\n");
     }
+    orders_table(&mut s, &orders, &[500.0, 750.0, 1000.0]);
     GearboxSection {
         markdown: s,
         figures,
@@ -169,6 +185,77 @@ pub fn crossings_table(s: &mut String, g: &GearboxSummary) {
         );
     }
     s.push('\n');
+}
+
+/// Wheel bearing-force amplitudes at the marked orders, from the run-ups'
+/// order analyses (the window of one wheel revolution whose mean speed is
+/// nearest each of `speeds`), gearbox and compliant bearings per wheel
+/// blank, and the lightweight over the standard wheel at the hole order and
+/// the side bands for each model.
+pub fn orders_table(
+    s: &mut String,
+    orders: &[(String, Option<RunupOrders>, Option<RunupOrders>)],
+    speeds: &[f64],
+) {
+    let has_windows = |o: &Option<RunupOrders>| o.as_ref().is_some_and(|o| !o.windows.is_empty());
+    if !orders
+        .iter()
+        .any(|(_, g, c)| has_windows(g) || has_windows(c))
+    {
+        s.push_str("No run-up order analysis with a whole wheel revolution (the run-ups are shorter than one).\n\n");
+        return;
+    }
+    let _ = writeln!(
+        s,
+        "Wheel bearings' total force at the marked pinion orders (N), the run-ups' window of one wheel revolution nearest each speed:\n\n| pinion rpm | wheel | model | window rpm | {} |\n|---:|---|---|---:|{}",
+        SHOWN.join(" | "),
+        "---:|".repeat(SHOWN.len())
+    );
+    let mut ratios = Vec::new();
+    for &rpm in speeds {
+        // (hole order, side bands together) per model and wheel blank.
+        let mut side: [[Option<[f64; 2]>; 2]; 2] = [[None; 2]; 2];
+        for (wheel, g, c) in orders {
+            for (k, (name, o)) in [("flexible gearbox", g), ("compliant, condensed shafts", c)]
+                .into_iter()
+                .enumerate()
+            {
+                let Some(w) = o.as_ref().and_then(|o| nearest_window(o, rpm)) else {
+                    continue;
+                };
+                let _ = writeln!(
+                    s,
+                    "| {rpm:.0} | {wheel} | {name} | {:.0} | {} |",
+                    w.mean_pinion_rpm,
+                    cells(&w.marked)
+                );
+                let sb = at(&w.marked, "20-1.40").unwrap_or(0.0)
+                    + at(&w.marked, "20+1.40").unwrap_or(0.0);
+                let hole = at(&w.marked, "3·20/43").unwrap_or(0.0);
+                side[k][usize::from(wheel == "lightweight")] = Some([hole, sb]);
+            }
+        }
+        for (k, name) in ["flexible gearbox", "compliant bearings"]
+            .iter()
+            .enumerate()
+        {
+            if let [Some(std), Some(light)] = side[k] {
+                ratios.push(format!(
+                    "{name} at {rpm:.0} rpm: {:.1} and {:.1}",
+                    light[0] / std[0].max(1e-300),
+                    light[1] / std[1].max(1e-300)
+                ));
+            }
+        }
+    }
+    s.push('\n');
+    if !ratios.is_empty() {
+        let _ = writeln!(
+            s,
+            "Lightweight over standard wheel, at the hole order 3·20/43 and at the side bands 20 ± 1.40 (sum of both): {}. Where the second is near 1, the side bands do not stand above the windows' floor.\n",
+            ratios.join("; ")
+        );
+    }
 }
 
 /// The gearbox run-up beside the compliant-bearing one.
@@ -319,5 +406,81 @@ mod tests {
         assert!(section(None, &dir)
             .markdown
             .contains("without an output root"));
+    }
+
+    fn orders(wheel: geometry::scene::Blank, scale: f64, sidebands: f64) -> RunupOrders {
+        let mark = |label: &str, order: f64, f: f64| formats::lumped_summary::MarkedOrder {
+            label: label.into(),
+            pinion_order: order,
+            wheel_bearing_force_n: f,
+        };
+        RunupOrders {
+            pinion_blank: geometry::scene::Blank::Standard,
+            wheel_blank: wheel,
+            pinion_teeth: 20,
+            wheel_teeth: 43,
+            samples_per_window: 1376,
+            order_resolution: 20.0 / 43.0,
+            windows: [480.0, 1010.0]
+                .iter()
+                .map(|&rpm| formats::summaries::RunupOrderWindow {
+                    pinion_rev: [0.0, 2.15],
+                    time_s: [0.0, 0.26],
+                    mean_pinion_rpm: rpm,
+                    pinion_rpm: [rpm - 60.0, rpm + 60.0],
+                    marked: vec![
+                        mark("20", 20.0, 40.0 * scale),
+                        mark("40", 40.0, 30.0),
+                        mark("3·20/43", 60.0 / 43.0, 2.0 * scale),
+                        mark("20-1.40", 20.0 - 60.0 / 43.0, 0.5 * sidebands),
+                        mark("20+1.40", 20.0 + 60.0 / 43.0, 1.5 * sidebands),
+                    ],
+                })
+                .collect(),
+        }
+    }
+
+    /// The nearest window's amplitudes per model and wheel, and the
+    /// lightweight over standard ratios at the hole order and the side
+    /// bands; without windows one line.
+    #[test]
+    fn order_table_gives_the_nearest_windows_and_the_lightweight_ratios() {
+        use geometry::scene::Blank;
+        let rows = vec![
+            (
+                "standard".to_string(),
+                Some(orders(Blank::Standard, 1.0, 1.0)),
+                Some(orders(Blank::Standard, 1.0, 1.0)),
+            ),
+            (
+                "lightweight".to_string(),
+                Some(orders(Blank::Lightweight, 1.5, 3.0)),
+                None,
+            ),
+        ];
+        let mut s = String::new();
+        orders_table(&mut s, &rows, &[500.0]);
+        assert!(s.contains("| 500 | standard | flexible gearbox | 480 | 4.000e1 | 3.000e1 | 2.000e0 | 5.000e-1 | 1.500e0 |"), "{s}");
+        assert!(
+            s.contains("| 500 | lightweight | flexible gearbox | 480 | 6.000e1 |"),
+            "{s}"
+        );
+        assert!(
+            s.contains("flexible gearbox at 500 rpm: 1.5 and 3.0"),
+            "{s}"
+        );
+        // The compliant model has no lightweight run: no ratio for it.
+        assert!(!s.contains("compliant bearings at 500 rpm"), "{s}");
+        let mut empty = String::new();
+        let none = vec![(
+            "standard".to_string(),
+            Some(RunupOrders {
+                windows: vec![],
+                ..orders(Blank::Standard, 1.0, 1.0)
+            }),
+            None,
+        )];
+        orders_table(&mut empty, &none, &[500.0]);
+        assert!(empty.contains("No run-up order analysis"), "{empty}");
     }
 }

@@ -30,7 +30,7 @@ pub const RUNUP_SCENE: &str = "white_paper_lightweight_runup";
 
 /// The marked orders the comparison shows (labels of
 /// `solver::signal::runup_orders::marked_orders` for 20/43 and 3 holes).
-const SHOWN: [&str; 5] = ["20", "40", "3·20/43", "20-1.40", "20+1.40"];
+pub(crate) const SHOWN: [&str; 5] = ["20", "40", "3·20/43", "20-1.40", "20+1.40"];
 
 fn read<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, String> {
     std::fs::read_to_string(path)
@@ -48,7 +48,7 @@ pub fn nearest_window(orders: &RunupOrders, rpm: f64) -> Option<&RunupOrderWindo
 }
 
 /// Amplitude (N) at the marked order `label` of a list of marked orders.
-fn at(marked: &[formats::lumped_summary::MarkedOrder], label: &str) -> Option<f64> {
+pub(crate) fn at(marked: &[formats::lumped_summary::MarkedOrder], label: &str) -> Option<f64> {
     marked
         .iter()
         .find(|m| m.label == label)
@@ -58,7 +58,7 @@ fn at(marked: &[formats::lumped_summary::MarkedOrder], label: &str) -> Option<f6
 /// The marked orders of one window.
 type WindowMarks = [formats::lumped_summary::MarkedOrder];
 
-fn cells(marked: &[formats::lumped_summary::MarkedOrder]) -> String {
+pub(crate) fn cells(marked: &[formats::lumped_summary::MarkedOrder]) -> String {
     SHOWN
         .iter()
         .map(|l| at(marked, l).map_or("—".into(), |v| format!("{v:.3e}")))
