@@ -290,7 +290,8 @@ impl StepMatrix {
 /// Step sizes the integrator takes: the largest step times 2^(−k/8)
 /// (steps 9 % apart), so that a few Newton matrices serve a whole run.
 pub fn quantized_step(h: f64, max_step: f64) -> f64 {
-    let k = (8.0 * (max_step / h).log2()).ceil().max(0.0);
+    // A step on the grid stays itself despite the logarithm's rounding.
+    let k = (8.0 * (max_step / h).log2() - 1e-9).ceil().max(0.0);
     max_step * (-k / 8.0).exp2()
 }
 
@@ -479,6 +480,26 @@ mod tests {
             centroid_m: 0.02,
             transverse_inertia_kgm2: 3e-3,
         }
+    }
+
+    /// Steps are cut down onto the grid max·2^(−k/8): never above the
+    /// controller's step, less than 9 % below it, and a step on the grid
+    /// stays itself.
+    #[test]
+    fn quantized_steps_lie_on_the_grid_just_below_the_asked_step() {
+        let max = 1e-5;
+        for i in 0..400 {
+            let h = max * (0.001f64).powf(i as f64 / 399.0);
+            let q = quantized_step(h, max);
+            assert!(
+                q <= h * (1.0 + 1e-12) && q > h * 0.5f64.powf(1.0 / 8.0) * (1.0 - 1e-12),
+                "{h} -> {q}"
+            );
+            let k = 8.0 * (max / q).log2();
+            assert!((k - k.round()).abs() < 1e-9, "{q} off the grid");
+            assert_eq!(quantized_step(q, max), q);
+        }
+        assert_eq!(quantized_step(2.0 * max, max), max);
     }
 
     /// The Schur complement's solution equals the whole Newton matrix's

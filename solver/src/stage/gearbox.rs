@@ -308,3 +308,25 @@ fn run_up(
         csv: csv.into(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The mesh order and its harmonics; a lightweight wheel of three holes
+    /// adds 3 z₁/z₂ and the side bands z₁ ± 3 z₁/z₂ (20/43: 1.395, 18.60,
+    /// 21.40).
+    #[test]
+    fn excitation_orders_of_both_wheel_blanks() {
+        let r = 20.0 / 43.0;
+        assert_eq!(
+            excitation_orders(20.0, r, Blank::Standard),
+            vec![20.0, 40.0, 60.0]
+        );
+        let o = excitation_orders(20.0, r, Blank::Lightweight);
+        assert_eq!(o.len(), 6);
+        for (got, want) in o[3..].iter().zip([1.395349, 18.604651, 21.395349]) {
+            assert!((got - want).abs() < 1e-6, "{got} against {want}");
+        }
+    }
+}
