@@ -20,7 +20,7 @@ use solver::bearings::system_deflection::{
 use solver::multibody::compliant::{
     integrate as c_integrate, CState, CompliantIntegrator, CompliantModel,
 };
-use solver::multibody::model::{wheel_driven, Drive, Model, Ramp};
+use solver::multibody::model::{wheel_driven, Model};
 use solver::multibody::time_step::{integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
 
@@ -297,23 +297,7 @@ fn bearing_forces_balance_the_mesh_wrench_and_the_inertia_forces_every_step() {
     // The pinion at 3,000 rpm against 300 N·m at the pinion (run-up speeds:
     // the bearings' inertia forces matter).
     let w1 = 3000.0 * PI / 30.0;
-    let mut rigid = Model {
-        table: &c.table,
-        coast: None,
-        inertia: c.inertia,
-        damping: 0.0,
-        friction: 0.0,
-        drive: Drive::PinionSpeed {
-            speed: Ramp {
-                from: w1,
-                to: w1,
-                duration: 0.0,
-            },
-            wheel_torque: TORQUE_NM / c.ratio,
-        },
-    };
-    let s = rigid.static_state(0.0).unwrap();
-    rigid.damping = rigid.damping_for_ratio(0.05, &s).unwrap();
+    let rigid = compliant::pinion_at(&c, 3000.0, TORQUE_NM);
     let cm = CompliantModel::new(rigid, &c.shift, bodies(&c.f.g, &sup, 2e3), c.hand).unwrap();
     let t_end = 1.5 * c.table.span() / w1;
     let states = run(&cm, t_end, 2e-6);

@@ -19,7 +19,6 @@ use solver::gearbox::{assemble, MemberParts};
 use solver::multibody::compliant::{
     integrate as c_integrate, CState, CompliantIntegrator, CompliantModel, MemberBody,
 };
-use solver::multibody::model::{Drive, Model, Ramp};
 use solver::multibody::time_step::StepControl;
 use std::f64::consts::PI;
 
@@ -52,26 +51,8 @@ fn shafts(g: &PairGeometry, s: &[MemberBody; 2]) -> [Shaft; 2] {
 }
 
 /// The pinion at `rpm` against 300 N·m, mesh damping ratio 0.05.
-fn pinion_at<'a>(c: &'a Compliant, rpm: f64) -> Model<'a> {
-    let w1 = rpm * PI / 30.0;
-    let mut rigid = Model {
-        table: &c.table,
-        coast: None,
-        inertia: c.inertia,
-        damping: 0.0,
-        friction: 0.0,
-        drive: Drive::PinionSpeed {
-            speed: Ramp {
-                from: w1,
-                to: w1,
-                duration: 0.0,
-            },
-            wheel_torque: TORQUE_NM / c.ratio,
-        },
-    };
-    let s = rigid.static_state(0.0).unwrap();
-    rigid.damping = rigid.damping_for_ratio(0.05, &s).unwrap();
-    rigid
+fn pinion_at(c: &Compliant, rpm: f64) -> solver::multibody::model::Model<'_> {
+    compliant::pinion_at(c, rpm, TORQUE_NM)
 }
 
 fn parts<'a>(

@@ -11,7 +11,7 @@
 
 use super::structure::{BearingLink, GearboxStructure, Part};
 use crate::multibody::compliant::{alpha_parameters, CompliantMesh, CompliantModel, X};
-use crate::multibody::time_step::{lag_resolution_at, StepControl, StepHistory};
+use crate::multibody::time_step::{lag_error_ratio, run_until, StepControl, StepHistory};
 use crate::SolverError;
 use nalgebra::{DMatrix, DVector, Vector3};
 
@@ -183,9 +183,6 @@ fn converged(dx: &DVector<f64>, x: &DVector<f64>) -> bool {
 
 const NEWTON_MAX: usize = 40;
 
-/// Newton matrices built (a new step size each), over the process.
-pub static MATRIX_BUILDS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-
 /// The structure's part of the Newton matrix for one step size h,
 /// J₀ = (1 − α_f)(K + γ/(βh) C) + (1 − α_m)/(βh²) M, split at the contact
 /// element's 12 coordinates: [[A₀, B], [Bᵀ, D]]. Only A changes with the
@@ -298,6 +295,38 @@ pub fn quantized_step(h: f64, max_step: f64) -> f64 {
 /// Most Newton matrices kept (one per step size in use).
 const MATRICES_KEPT: usize = 32;
 
+/// The Newton matrices of the step sizes in use, and how many were built.
+#[derive(Debug, Clone, Default)]
+pub struct StepMatrices {
+    kept: Vec<StepMatrix>,
+    /// Matrices built over the run (a new step size each).
+    pub built: usize,
+}
+
+impl StepMatrices {
+    /// The matrix of step `h`, built (and the oldest let go beyond
+    /// [`MATRICES_KEPT`]) when no kept one has it.
+    fn of(
+        &mut self,
+        st: &GearboxStructure,
+        h: f64,
+        params: [f64; 4],
+    ) -> Result<&StepMatrix, SolverError> {
+        let at = match self.kept.iter().position(|j| j.h == h) {
+            Some(i) => i,
+            None => {
+                if self.kept.len() == MATRICES_KEPT {
+                    self.kept.remove(0);
+                }
+                self.kept.push(StepMatrix::new(st, h, params)?);
+                self.built += 1;
+                self.kept.len() - 1
+            }
+        };
+        Ok(&self.kept[at])
+    }
+}
+
 /// One generalized-α step from `s` over `h`: the new state, the α-point and
 /// the Newton iterations. `matrices` keeps the Newton matrices of the step
 /// sizes used.
@@ -306,7 +335,7 @@ pub fn alpha_step(
     s: &GState,
     h: f64,
     rho: f64,
-    matrices: &mut Vec<StepMatrix>,
+    matrices: &mut StepMatrices,
 ) -> Result<(GState, GState, usize), SolverError> {
     let params = alpha_parameters(rho);
     let [am, af, gamma, beta] = params;
@@ -331,18 +360,7 @@ pub fn alpha_step(
         }
         (v, a)
     };
-    let at = match matrices.iter().position(|j| j.h == h) {
-        Some(i) => i,
-        None => {
-            if matrices.len() == MATRICES_KEPT {
-                matrices.remove(0);
-            }
-            matrices.push(StepMatrix::new(m.structure, h, params)?);
-            MATRIX_BUILDS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            matrices.len() - 1
-        }
-    };
-    let jm = &matrices[at];
+    let jm = matrices.of(m.structure, h, params)?;
     for it in 1..=NEWTON_MAX {
         let (v, a) = kin(&x);
         let xm = &x * (1.0 - af) + &s.x * af;
@@ -380,7 +398,8 @@ pub struct GearboxIntegrator {
     pub rejected: usize,
     pub newton_iterations: usize,
     pub history: StepHistory,
-    matrices: Vec<StepMatrix>,
+    /// Newton matrices per step size.
+    pub matrices: StepMatrices,
 }
 
 impl GearboxIntegrator {
@@ -392,7 +411,7 @@ impl GearboxIntegrator {
             rejected: 0,
             newton_iterations: 0,
             history: StepHistory::default(),
-            matrices: Vec::new(),
+            matrices: StepMatrices::default(),
         }
     }
 
@@ -418,10 +437,15 @@ impl GearboxIntegrator {
             let judged =
                 alpha_step(m, s, h, self.rho_inf, &mut self.matrices).map(|(next, mid, iters)| {
                     self.newton_iterations += iters;
-                    let pred = |i: usize| s.x[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
-                    let err = (r * (next.x[0] - pred(0)) - (next.x[1] - pred(1))).abs();
-                    let floor = lag_resolution_at(r, next.x[0].abs().max(next.x[1].abs()));
-                    ((next, mid), err / self.control.tolerance.max(floor))
+                    let turns = |x: &DVector<f64>| [x[0], x[1]];
+                    let ratio = lag_error_ratio(
+                        r,
+                        [turns(&s.x), turns(&s.v), turns(&s.a)],
+                        turns(&next.x),
+                        h,
+                        self.control.tolerance,
+                    );
+                    ((next, mid), ratio)
                 });
             if let Some(accepted) = self.control.judge(
                 &mut self.h,
@@ -444,18 +468,9 @@ pub fn integrate(
     s: GState,
     integ: &mut GearboxIntegrator,
     t_end: f64,
-    mut record: impl FnMut(&GState, &GState) -> Result<(), SolverError>,
+    record: impl FnMut(&GState, &GState) -> Result<(), SolverError>,
 ) -> Result<(GState, usize), SolverError> {
-    let mut s = s;
-    record(&s, &s)?;
-    let mut steps = 0;
-    while s.t < t_end * (1.0 - 1e-12) {
-        let (next, mid) = integ.step(m, &s, t_end)?;
-        s = next;
-        record(&s, &mid)?;
-        steps += 1;
-    }
-    Ok((s, steps))
+    run_until(s, |s| s.t, t_end, |s| integ.step(m, s, t_end), record)
 }
 
 #[cfg(test)]

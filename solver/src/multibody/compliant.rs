@@ -48,7 +48,7 @@ use crate::bearings::relative_twist::TwistMap;
 use crate::bearings::support::Support;
 use crate::multibody::lag_shift::LagShift;
 use crate::multibody::model::Model;
-use crate::multibody::time_step::{lag_resolution_at, StepControl, StepHistory};
+use crate::multibody::time_step::{lag_error_ratio, run_until, StepControl, StepHistory};
 use crate::SolverError;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3, Vector6};
 
@@ -541,10 +541,15 @@ impl CompliantIntegrator {
             }
             let judged = alpha_step(m, s, h, self.rho_inf).map(|(next, mid, iters)| {
                 self.newton_iterations += iters;
-                let pred = |i: usize| s.x[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
-                let err = (r * (next.x[0] - pred(0)) - (next.x[1] - pred(1))).abs();
-                let floor = lag_resolution_at(r, next.x[0].abs().max(next.x[1].abs()));
-                ((next, mid), err / self.control.tolerance.max(floor))
+                let turns = |x: &X| [x[0], x[1]];
+                let ratio = lag_error_ratio(
+                    r,
+                    [turns(&s.x), turns(&s.v), turns(&s.a)],
+                    turns(&next.x),
+                    h,
+                    self.control.tolerance,
+                );
+                ((next, mid), ratio)
             });
             if let Some(accepted) = self.control.judge(
                 &mut self.h,
@@ -567,16 +572,7 @@ pub fn integrate(
     s: CState,
     integ: &mut CompliantIntegrator,
     t_end: f64,
-    mut record: impl FnMut(&CState, &CState) -> Result<(), SolverError>,
+    record: impl FnMut(&CState, &CState) -> Result<(), SolverError>,
 ) -> Result<(CState, usize), SolverError> {
-    let mut s = s;
-    record(&s, &s)?;
-    let mut steps = 0;
-    while s.t < t_end * (1.0 - 1e-12) {
-        let (next, mid) = integ.step(m, &s, t_end)?;
-        s = next;
-        record(&s, &mid)?;
-        steps += 1;
-    }
-    Ok((s, steps))
+    run_until(s, |s| s.t, t_end, |s| integ.step(m, s, t_end), record)
 }

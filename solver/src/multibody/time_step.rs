@@ -85,12 +85,8 @@ impl Integrator {
             // Local error: corrector − Taylor predictor, on θ.
             let judged = trial.map(|(next, iters)| {
                 self.newton_iterations += iters;
-                let pred = |i: usize| s.q[i] + h * s.v[i] + 0.5 * h * h * s.a[i];
-                let err = (r * (next.q[0] - pred(0)) - (next.q[1] - pred(1))).abs();
-                (
-                    next,
-                    err / self.control.tolerance.max(lag_resolution(r, &next)),
-                )
+                let ratio = lag_error_ratio(r, [s.q, s.v, s.a], next.q, h, self.control.tolerance);
+                (next, ratio)
             });
             if let Some(next) = self.control.judge(
                 &mut self.h,
@@ -183,6 +179,46 @@ impl StepControl {
 /// least tolerance (the scene checks refuse tolerances near it).
 pub fn lag_resolution(r: f64, s: &State) -> f64 {
     lag_resolution_at(r, s.q[0].abs().max(s.q[1].abs()))
+}
+
+/// The local error ratio of a step of `h` from turns `q`, speeds `v` and
+/// accelerations `a` to turns `next`: the lag θ = r q₁ − q₂'s corrector
+/// minus its Taylor predictor q + h q̇ + h²/2 q̈, over the larger of
+/// `tolerance` and [`lag_resolution_at`]. Shared by the rigid, compliant
+/// and gearbox integrators.
+pub fn lag_error_ratio(
+    r: f64,
+    [q, v, a]: [[f64; 2]; 3],
+    next: [f64; 2],
+    h: f64,
+    tolerance: f64,
+) -> f64 {
+    let pred = |i: usize| q[i] + h * v[i] + 0.5 * h * h * a[i];
+    let err = (r * (next[0] - pred(0)) - (next[1] - pred(1))).abs();
+    err / tolerance.max(lag_resolution_at(r, next[0].abs().max(next[1].abs())))
+}
+
+/// Steps from `s` to `t_end` by `step` (the next state and its α-point),
+/// calling `record` with the start (its own α-point) and after every
+/// accepted step; the final state and the number of steps. `time` reads a
+/// state's time.
+pub fn run_until<S: Clone>(
+    s: S,
+    time: impl Fn(&S) -> f64,
+    t_end: f64,
+    mut step: impl FnMut(&S) -> Result<(S, S), SolverError>,
+    mut record: impl FnMut(&S, &S) -> Result<(), SolverError>,
+) -> Result<(S, usize), SolverError> {
+    let mut s = s;
+    record(&s, &s)?;
+    let mut steps = 0;
+    while time(&s) < t_end * (1.0 - 1e-12) {
+        let (next, mid) = step(&s)?;
+        s = next;
+        record(&s, &mid)?;
+        steps += 1;
+    }
+    Ok((s, steps))
 }
 
 /// [`lag_resolution`] for rotations up to `q_max` (rad) in magnitude.

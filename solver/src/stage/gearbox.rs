@@ -281,7 +281,7 @@ fn run_up(
         cpu / steps.max(1) as f64 * 1e6,
         gm.dofs(),
         integ.newton_iterations,
-        crate::gearbox::dynamics::MATRIX_BUILDS.load(std::sync::atomic::Ordering::Relaxed)
+        integ.matrices.built
     );
     let split = |k: usize| -> Vec<f64> {
         links

@@ -70,3 +70,33 @@ pub fn bodies(
     };
     [body(0, &s.pinion, 1.5, 2e-3), body(1, &s.wheel, 12.0, 0.1)]
 }
+
+/// The rigid model of `c` with the pinion at a constant `rpm` against
+/// `pinion_torque_nm` (the wheel resisting through the ratio), mesh
+/// damping ratio 0.05 at the quasi-static start.
+pub fn pinion_at(
+    c: &Compliant,
+    rpm: f64,
+    pinion_torque_nm: f64,
+) -> solver::multibody::model::Model<'_> {
+    use solver::multibody::model::{Drive, Model, Ramp};
+    let w1 = rpm * std::f64::consts::PI / 30.0;
+    let mut rigid = Model {
+        table: &c.table,
+        coast: None,
+        inertia: c.inertia,
+        damping: 0.0,
+        friction: 0.0,
+        drive: Drive::PinionSpeed {
+            speed: Ramp {
+                from: w1,
+                to: w1,
+                duration: 0.0,
+            },
+            wheel_torque: pinion_torque_nm / c.ratio,
+        },
+    };
+    let s = rigid.static_state(0.0).unwrap();
+    rigid.damping = rigid.damping_for_ratio(0.05, &s).unwrap();
+    rigid
+}

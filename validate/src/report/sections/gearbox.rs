@@ -16,7 +16,7 @@
 //! bands. An absent summary is one line of text. Every number is formatted
 //! from the files.
 
-use super::lightweight_revolution::{at, cells, nearest_window, SHOWN};
+use super::lightweight_revolution::{at, cells, nearest_window, side_bands, SHOWN};
 use crate::report::figures::{copied, Figure};
 use formats::summaries::{CompliantRunSummary, DynamicSummary, GearboxSummary, RunupOrders};
 use std::fmt::Write as _;
@@ -229,8 +229,7 @@ pub fn orders_table(
                     w.mean_pinion_rpm,
                     cells(&w.marked)
                 );
-                let sb = at(&w.marked, "20-1.40").unwrap_or(0.0)
-                    + at(&w.marked, "20+1.40").unwrap_or(0.0);
+                let sb = side_bands(&w.marked);
                 let hole = at(&w.marked, "3·20/43").unwrap_or(0.0);
                 side[k][usize::from(wheel == "lightweight")] = Some([hole, sb]);
             }

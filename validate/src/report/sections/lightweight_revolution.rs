@@ -55,6 +55,12 @@ pub(crate) fn at(marked: &[formats::lumped_summary::MarkedOrder], label: &str) -
         .map(|m| m.wheel_bearing_force_n)
 }
 
+/// The side bands z₁ ± 3z₁/z₂ of the white-paper pair (20 ± 1.40)
+/// together, N.
+pub(crate) fn side_bands(marked: &[formats::lumped_summary::MarkedOrder]) -> f64 {
+    at(marked, "20-1.40").unwrap_or(0.0) + at(marked, "20+1.40").unwrap_or(0.0)
+}
+
 /// The marked orders of one window.
 type WindowMarks = [formats::lumped_summary::MarkedOrder];
 
@@ -311,9 +317,7 @@ fn comparison(
                     cells(&cw.marked)
                 );
                 let ratio = |l: &str| Some(at(&cw.marked, l)? / at(&rw.marked, l)?.max(1e-300));
-                let sum = |x: &WindowMarks| {
-                    at(x, "20-1.40").unwrap_or(0.0) + at(x, "20+1.40").unwrap_or(0.0)
-                };
+                let sum = |x: &WindowMarks| side_bands(x);
                 compliant.push(format!(
                     "{w} at {rpm:.0} rpm: {}",
                     SHOWN
@@ -337,8 +341,7 @@ fn comparison(
                         win.pinion_rpm[1],
                         cells(&win.marked)
                     );
-                    let sb = at(&win.marked, "20-1.40").unwrap_or(0.0)
-                        + at(&win.marked, "20+1.40").unwrap_or(0.0);
+                    let sb = side_bands(&win.marked);
                     let hole = at(&win.marked, "3·20/43").unwrap_or(0.0);
                     side[usize::from(m.lobes > 0)] = Some([sb, hole]);
                 }
