@@ -441,3 +441,30 @@ fn craig_bampton_tip_compliance_of_a_cantilever_matches_timoshenko_beam() {
         100.0 * err
     );
 }
+
+/// The whole body with rigid interfaces, solved through the interior's
+/// factor and the Guyan block (`Reduction::full_omega2`), has the dense
+/// constrained model's lowest frequencies: the yardstick the housing
+/// stage compares its truncated reduction with.
+#[test]
+fn rigid_interface_full_model_modes_equal_the_dense_constrained_model() {
+    let (block, fixed, itf) = cantilever_with_end_interface([4, 1, 2], 0.06, 0.01, 0.02);
+    let (k, m) = dense_constrained(&block, &fixed, &itf);
+    let exact = dense_omega2(&k, &m);
+    let itfs = std::slice::from_ref(&itf);
+    let r = fem::craig_bampton::Reduction::new(&block.mesh, &STEEL, DENSITY, &fixed, itfs).unwrap();
+    let full = r.full_omega2(6).unwrap();
+    let cb = r.reduce(2).unwrap();
+    assert_eq!(full.len(), 6);
+    for i in 0..6 {
+        assert!(
+            (full[i] / exact[i] - 1.0).abs() < 1e-8,
+            "mode {i}: {} against {}",
+            full[i],
+            exact[i]
+        );
+    }
+    // With two fixed-interface modes the reduction is above it.
+    let w = dense_omega2(&cb.stiffness, &cb.mass);
+    assert!(w[3] > full[3] * (1.0 + 1e-6), "{} {}", w[3], full[3]);
+}

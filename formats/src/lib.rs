@@ -24,6 +24,7 @@
 
 pub mod added_files;
 pub mod columns;
+pub mod housing_file;
 pub mod interrupt;
 pub mod lumped_summary;
 pub mod manifest;

@@ -412,8 +412,41 @@ pub struct GearboxSummary {
     pub crossings: Vec<GearboxCrossing>,
     /// The run-up on the gearbox (None where the scene runs none).
     pub run: Option<CompliantRunSummary>,
+    /// The housing reduced by Craig–Bampton (None: rigid).
+    #[serde(default)]
+    pub housing: Option<HousingSummary>,
     /// What the gearbox leaves out.
     pub notes: Vec<String>,
+}
+
+/// The gearbox's FE housing (`preprocess housing`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HousingSummary {
+    pub mass_kg: f64,
+    pub nodes: usize,
+    pub elements: usize,
+    /// Least gap to the gears' blanks and shafts at the sampled points, mm.
+    pub least_gap_mm: f64,
+    /// Nodes on each seat's bore, seat order.
+    pub seat_nodes: Vec<usize>,
+    /// The bearing of each seat: (member, index).
+    pub seats: Vec<(usize, usize)>,
+    /// Fixed-interface modes kept, and the highest of them, Hz.
+    pub fixed_interface_modes: usize,
+    pub highest_fixed_interface_hz: f64,
+    /// The cut-off they were kept up to, Hz.
+    pub modes_up_to_hz: f64,
+    /// The housing alone (feet clamped, seats rigid and free) up to the
+    /// gearbox's `modes_up_to_hz`: the reduced model's frequencies and the
+    /// whole FE model's (no truncation), Hz.
+    pub reduced_hz: Vec<f64>,
+    pub reference_hz: Vec<f64>,
+    /// Largest |reduced/whole − 1| of them.
+    pub truncation_error: f64,
+    /// The run-up's largest acceleration of each seat's reference point,
+    /// m/s², seat order (empty without a run-up).
+    #[serde(default)]
+    pub seat_acceleration_m_s2: Vec<f64>,
 }
 
 /// One mode of the loaded gearbox.

@@ -15,6 +15,7 @@ pub mod error;
 pub mod flank;
 pub mod gear_body;
 pub mod generation;
+pub mod housing_layout;
 pub mod limits;
 pub mod machine;
 pub mod mate;

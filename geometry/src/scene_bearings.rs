@@ -96,6 +96,112 @@ pub struct GearboxMm {
     /// up to this frequency, Hz.
     #[serde(default = "default_modes_up_to_hz")]
     pub modes_up_to_hz: f64,
+    /// The housing as a reduced FE body (`[bearings.gearbox.housing]`,
+    /// meshed and reduced by `preprocess stiffness`); absent: rigid.
+    #[serde(default)]
+    pub housing: Option<HousingMm>,
+}
+
+/// A parametric housing: a floor plate under both shafts, clamped at four
+/// square feet at its corners, and one wall per bearing, normal to the
+/// bearing's shaft, standing on the floor and holding the bearing's outer
+/// ring in a bore. Each bore's surface moves rigidly with its seat (the
+/// bearing's centre). The walls and floor keep `clearance_mm` from the
+/// gears' blanks (as bodies of revolution) and the shafts.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HousingMm {
+    /// Bore (bearing outer ring) diameter at the pinion's bearings, mm.
+    pub pinion_bore_diameter_mm: f64,
+    /// Bore diameter at the wheel's bearings, mm.
+    pub wheel_bore_diameter_mm: f64,
+    /// Wall thickness along its shaft, mm.
+    #[serde(default = "default_housing_wall_mm")]
+    pub wall_mm: f64,
+    /// Floor thickness, mm.
+    #[serde(default = "default_housing_floor_mm")]
+    pub floor_mm: f64,
+    /// Material around a bore: a wall is the bore diameter + 2 rim wide
+    /// and reaches one rim above the bore, mm.
+    #[serde(default = "default_housing_rim_mm")]
+    pub rim_mm: f64,
+    /// Least gap between the housing and the gears' and shafts' envelopes;
+    /// the floor's top lies this far below the lowest envelope, mm.
+    #[serde(default = "default_housing_clearance_mm")]
+    pub clearance_mm: f64,
+    /// Side of the square feet at the floor's corners (clamped), mm.
+    #[serde(default = "default_housing_foot_mm")]
+    pub foot_mm: f64,
+    /// Target size of the tet10 elements, mm.
+    #[serde(default = "default_housing_element_mm")]
+    pub element_mm: f64,
+    /// Fixed-interface (Craig–Bampton) modes kept up to, Hz.
+    #[serde(default = "default_housing_modes_up_to_hz")]
+    pub modes_up_to_hz: f64,
+    /// Young's modulus, GPa.
+    #[serde(default = "default_housing_youngs_modulus_gpa")]
+    pub youngs_modulus_gpa: f64,
+    #[serde(default = "default_housing_poisson_ratio")]
+    pub poisson_ratio: f64,
+    /// kg/m³.
+    #[serde(default = "default_housing_density_kg_m3")]
+    pub density_kg_m3: f64,
+}
+
+fn default_housing_wall_mm() -> f64 {
+    15.0
+}
+fn default_housing_floor_mm() -> f64 {
+    20.0
+}
+fn default_housing_rim_mm() -> f64 {
+    20.0
+}
+fn default_housing_clearance_mm() -> f64 {
+    10.0
+}
+fn default_housing_foot_mm() -> f64 {
+    50.0
+}
+fn default_housing_element_mm() -> f64 {
+    10.0
+}
+fn default_housing_modes_up_to_hz() -> f64 {
+    10_000.0
+}
+/// Grey cast iron (EN-GJL-250), chosen.
+fn default_housing_youngs_modulus_gpa() -> f64 {
+    110.0
+}
+fn default_housing_poisson_ratio() -> f64 {
+    0.26
+}
+fn default_housing_density_kg_m3() -> f64 {
+    7_200.0
+}
+
+impl HousingMm {
+    /// Every number in range (the fit around the gears is checked where
+    /// the housing is built, `preprocess::housing`).
+    pub fn check(&self, path: &Path) -> Result<(), InputError> {
+        for (l, v) in [
+            (&lim::HOUSING_PINION_BORE, self.pinion_bore_diameter_mm),
+            (&lim::HOUSING_WHEEL_BORE, self.wheel_bore_diameter_mm),
+            (&lim::HOUSING_WALL, self.wall_mm),
+            (&lim::HOUSING_FLOOR, self.floor_mm),
+            (&lim::HOUSING_RIM, self.rim_mm),
+            (&lim::HOUSING_CLEARANCE, self.clearance_mm),
+            (&lim::HOUSING_FOOT, self.foot_mm),
+            (&lim::HOUSING_ELEMENT, self.element_mm),
+            (&lim::HOUSING_MODES_UP_TO, self.modes_up_to_hz),
+            (&lim::HOUSING_YOUNGS_MODULUS, self.youngs_modulus_gpa),
+            (&lim::HOUSING_POISSON_RATIO, self.poisson_ratio),
+            (&lim::HOUSING_DENSITY, self.density_kg_m3),
+        ] {
+            l.check(path, v)?;
+        }
+        Ok(())
+    }
 }
 
 fn default_shaft_element_mm() -> f64 {
@@ -240,6 +346,20 @@ impl BearingSettings {
         if let Some(g) = &self.gearbox {
             lim::GEARBOX_SHAFT_ELEMENT.check(path, g.shaft_element_mm)?;
             lim::GEARBOX_MODES_UP_TO.check(path, g.modes_up_to_hz)?;
+            if let Some(h) = &g.housing {
+                h.check(path)?;
+                if h.modes_up_to_hz < g.modes_up_to_hz {
+                    return Err(lim::HOUSING_MODES_COVER.refuse(
+                        path,
+                        lim::HOUSING_MODES_COVER.field,
+                        format!("{} Hz", h.modes_up_to_hz),
+                        format!(
+                            "must be at least bearings.gearbox.modes_up_to_hz = {} Hz",
+                            g.modes_up_to_hz
+                        ),
+                    ));
+                }
+            }
         }
         lim::TOLERANCE.check(path, self.tolerance_nm)?;
         lim::MAX_ITERATIONS.check_integer(path, lim::MAX_ITERATIONS.field, self.max_iterations)

@@ -241,6 +241,19 @@ segments = [ { from_mm = 50.0, to_mm = 150.0, outer_diameter_mm = 60.0, inner_di
 [bearings.gearbox]
 shaft_element_mm = 10.0
 modes_up_to_hz = 5000.0
+[bearings.gearbox.housing]
+pinion_bore_diameter_mm = 80.0
+wheel_bore_diameter_mm = 90.0
+wall_mm = 15.0
+floor_mm = 20.0
+rim_mm = 20.0
+clearance_mm = 10.0
+foot_mm = 50.0
+element_mm = 10.0
+modes_up_to_hz = 10000.0
+youngs_modulus_gpa = 110.0
+poisson_ratio = 0.26
+density_kg_m3 = 7200.0
 ",
     ),
     (

@@ -3,12 +3,15 @@
 //!
 //! Data flow: scene ([`geometry::scene`]) → [`flank_stage`] (flanks, UTCA) →
 //! [`mesh_stage`] (`.msh` + manifest) → [`stiffness_stage`]
-//! (`.stiffness.h5`, [`formats::stiffness_file`]).
+//! (`.stiffness.h5`, [`formats::stiffness_file`]); a gearbox scene's housing
+//! [`housing_stage`] (`housing.h5`, [`formats::housing_file`]).
 
 pub mod body_mesh;
 pub mod field_convergence;
 pub mod fillet_nodes;
 pub mod flank_stage;
+pub mod housing_mesh;
+pub mod housing_stage;
 pub mod influence;
 pub mod mesh;
 pub mod mesh_stage;

@@ -47,6 +47,13 @@ enum Cmd {
         #[arg(long, value_enum, default_value = "reduced")]
         level: preprocess::mesh_stage::Level,
     },
+    /// The gearbox housing of `[bearings.gearbox.housing]`: laid out around the gears, meshed (tet10), reduced by Craig–Bampton onto its bearing seats -> <meshes>/<scene>/housing.h5.
+    Housing {
+        scene: PathBuf,
+        /// Root directory of the meshes (the file goes to <meshes>/<scene>/).
+        #[arg(long, default_value = "meshes")]
+        meshes: PathBuf,
+    },
 }
 
 fn main() -> anyhow::Result<()> {
@@ -141,6 +148,38 @@ fn main() -> anyhow::Result<()> {
                         r.path.display()
                     ),
                     _ => {}
+                }
+            }
+        }
+        Cmd::Housing { scene, meshes } => {
+            let s = geometry::scene::Scene::load(&scene)?;
+            match preprocess::housing_stage::run(&s, &meshes)
+                .with_context(|| format!("preprocess housing {}", scene.display()))?
+            {
+                None => println!(
+                    "scene {}: no [bearings.gearbox.housing]; nothing to do",
+                    s.scene.name
+                ),
+                Some(r) => {
+                    let d = &r.data;
+                    println!(
+                        "housing of {}: {} nodes, {} tet10, {:.1} kg, least gap to the gears and shafts {:.1} mm, seats of {:?} nodes, {} fixed-interface modes up to {:.0} Hz, {} coordinates; modes {:?} Hz, largest difference from the whole housing's {:.2e}{}; {} {:.1} s -> {}",
+                        s.scene.name,
+                        d.nodes,
+                        d.elements,
+                        d.mass_kg,
+                        1e3 * d.least_gap_m,
+                        d.seat_nodes,
+                        d.fixed_interface_hz.len(),
+                        d.fixed_interface_hz.last().copied().unwrap_or(0.0),
+                        d.coordinates(),
+                        d.reduced_hz.iter().map(|f| f.round()).collect::<Vec<_>>(),
+                        r.truncation_error,
+                        r.volume_error.map_or(String::new(), |v| format!(", mesh volume / CAD - 1 = {v:.1e}")),
+                        if r.reused { "reused" } else { "made in" },
+                        r.seconds,
+                        r.path.display()
+                    );
                 }
             }
         }

@@ -23,7 +23,7 @@
 mod cad;
 mod caps;
 mod faces;
-mod generate;
+pub(crate) mod generate;
 mod report;
 mod request;
 mod sectors;

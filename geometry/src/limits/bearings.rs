@@ -101,6 +101,79 @@ limits! {
         "Hz",
         real(closed(1.0), closed(1e6)).lie_in(" Hz"),
     );
+    HOUSING_PINION_BORE = Limit::scene(
+        "bearings.gearbox.housing.pinion_bore_diameter_mm",
+        "mm",
+        real(open(0.0), closed(MAX_SHAFT_DIAMETER_MM)).lie_in(" mm"),
+    );
+    HOUSING_WHEEL_BORE = Limit::scene(
+        "bearings.gearbox.housing.wheel_bore_diameter_mm",
+        "mm",
+        real(open(0.0), closed(MAX_SHAFT_DIAMETER_MM)).lie_in(" mm"),
+    );
+    HOUSING_WALL = Limit::scene(
+        "bearings.gearbox.housing.wall_mm",
+        "mm",
+        real(closed(1.0), closed(500.0)).lie_in(" mm"),
+    );
+    HOUSING_FLOOR = Limit::scene(
+        "bearings.gearbox.housing.floor_mm",
+        "mm",
+        real(closed(1.0), closed(500.0)).lie_in(" mm"),
+    );
+    HOUSING_RIM = Limit::scene(
+        "bearings.gearbox.housing.rim_mm",
+        "mm",
+        real(closed(1.0), closed(500.0)).lie_in(" mm"),
+    );
+    HOUSING_CLEARANCE = Limit::scene(
+        "bearings.gearbox.housing.clearance_mm",
+        "mm",
+        real(closed(0.5), closed(500.0)).lie_in(" mm"),
+    );
+    HOUSING_FOOT = Limit::scene(
+        "bearings.gearbox.housing.foot_mm",
+        "mm",
+        real(closed(1.0), closed(1_000.0)).lie_in(" mm"),
+    );
+    HOUSING_ELEMENT = Limit::scene(
+        "bearings.gearbox.housing.element_mm",
+        "mm",
+        real(closed(1.0), closed(200.0)).lie_in(" mm"),
+    )
+    .why("finer than 1 mm makes a housing mesh of millions of nodes");
+    HOUSING_MODES_UP_TO = Limit::scene(
+        "bearings.gearbox.housing.modes_up_to_hz",
+        "Hz",
+        real(closed(0.0), closed(1e6)).lie_in(" Hz"),
+    );
+    HOUSING_MODES_COVER = Limit::scene(
+        "bearings.gearbox.housing.modes_up_to_hz",
+        "Hz",
+        words("at least `bearings.gearbox.modes_up_to_hz`"),
+    )
+    .why("the housing's modes are checked against the whole FE housing's up to the gearbox's range");
+    HOUSING_YOUNGS_MODULUS = Limit::scene(
+        "bearings.gearbox.housing.youngs_modulus_gpa",
+        "GPa",
+        real(closed(1.0), closed(1_000.0)).lie_in(" GPa"),
+    );
+    HOUSING_POISSON_RATIO = Limit::scene(
+        "bearings.gearbox.housing.poisson_ratio",
+        "",
+        real(closed(0.0), open(0.5)).lie_in(""),
+    );
+    HOUSING_DENSITY = Limit::scene(
+        "bearings.gearbox.housing.density_kg_m3",
+        "kg/m³",
+        real(closed(100.0), closed(30_000.0)).lie_in(" kg/m³"),
+    );
+    HOUSING_FITS = Limit::scene(
+        "bearings.gearbox.housing",
+        "",
+        words("bores wider than their shafts, `clearance_mm` kept from every gear blank and shaft, the feet on the floor"),
+    )
+    .why("the housing must hold the bearings without touching what turns");
     TOLERANCE = Limit::scene(
         "bearings.tolerance_nm",
         "nm",

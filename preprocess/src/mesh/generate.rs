@@ -88,7 +88,7 @@ pub(super) fn generate(
 /// to the edge midpoints (a straight tet with valid vertices is valid); this
 /// is repeated while neighbours are still inverted. Returns the nodes moved.
 /// (gmsh's high-order optimiser is not used: it can throw through the C API.)
-fn straighten_inverted(s: &Session) -> gmsh::Result<usize> {
+pub(crate) fn straighten_inverted(s: &Session) -> gmsh::Result<usize> {
     let mut moved = std::collections::BTreeSet::new();
     for _ in 0..4 {
         let (types, tags, nodes) = s.mesh_get_elements(3, -1)?;

@@ -44,6 +44,8 @@ pub struct Setup<'a> {
     pub odir: &'a Path,
     pub control: &'a dyn Fn(f64) -> StepControl,
     pub runs_up: bool,
+    /// The gearbox's FE housing (`[bearings.gearbox.housing]`).
+    pub housing: Option<&'a crate::stage::gearbox::LoadedHousing>,
 }
 
 /// The members as bodies on the scene's bearings.
@@ -318,7 +320,9 @@ pub fn run(s: &Setup) -> anyhow::Result<CompliantSummary> {
         runs.push(run_up(s, &shift, &members, hand)?);
     }
     let gearbox = match &bearings.gearbox {
-        Some(gb) => Some(crate::stage::gearbox::run(s, gb, &shift, &members, hand)?),
+        Some(gb) => Some(crate::stage::gearbox::run(
+            s, gb, &shift, &members, hand, s.housing,
+        )?),
         None => None,
     };
     let used = |b: &MemberBody| BodyMass {

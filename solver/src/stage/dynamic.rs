@@ -66,6 +66,7 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
         &format!("solver dynamic {}", scene.path.display()),
     )?;
     let ctx = StageContext::new(scene, meshes)?;
+    let housing = crate::stage::gearbox::load_housing(scene, &ctx.dir)?;
     formats::stop_point::at("reading");
     let side = ctx.side();
     let rs = ctx.roll_surface(side)?;
@@ -84,7 +85,15 @@ pub fn run(scene: &LoadedScene, meshes: &Path, out: &Path) -> anyhow::Result<Vec
     let mut all = Vec::new();
     ctx.for_each_pair(|pair| {
         ctx.record_inputs(&mut set, pair.blanks, coast_rs.is_some())?;
-        let summary = blank_pair(&ctx, &pair, &rs, coast_rs.as_ref(), impact.as_ref(), &set)?;
+        let summary = blank_pair(
+            &ctx,
+            &pair,
+            &rs,
+            coast_rs.as_ref(),
+            impact.as_ref(),
+            housing.as_ref(),
+            &set,
+        )?;
         all.push(summary);
         Ok(())
     })?;
@@ -324,6 +333,7 @@ fn blank_pair(
     rs: &RollSurface,
     coast_rs: Option<&RollSurface>,
     impact: Option<&Impact>,
+    housing: Option<&crate::stage::gearbox::LoadedHousing>,
     set: &ResultSet,
 ) -> anyhow::Result<DynamicSummary> {
     let (scene, g) = (ctx.scene, &ctx.g);
@@ -439,6 +449,7 @@ fn blank_pair(
         &odir,
         &control,
         runs_up,
+        housing,
     )?;
     let summary = DynamicSummary {
         compliant,
@@ -560,6 +571,7 @@ fn compliant_runs(
     odir: &Path,
     control: &dyn Fn(f64) -> StepControl,
     runs_up: bool,
+    housing: Option<&crate::stage::gearbox::LoadedHousing>,
 ) -> anyhow::Result<Option<formats::summaries::CompliantSummary>> {
     let (scene, g, dir) = (ctx.scene, &ctx.g, ctx.dir.as_path());
     let sc = &scene.scene;
@@ -585,6 +597,7 @@ fn compliant_runs(
                     odir,
                     control,
                     runs_up,
+                    housing,
                 },
             )?)
         }

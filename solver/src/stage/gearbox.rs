@@ -17,6 +17,7 @@
 
 use crate::bearings::flexible_shaft::Shaft;
 use crate::gearbox::dynamics::{integrate, GearboxIntegrator, GearboxModel};
+use crate::gearbox::structure::{Housing, Part};
 use crate::gearbox::system_modes::{campbell_crossings, system_modes, ENERGY_PARTS};
 use crate::gearbox::{assemble, MemberParts};
 use crate::ltca::mean_ptp;
@@ -24,11 +25,101 @@ use crate::multibody::compliant::{CompliantModel, MemberBody, X};
 use crate::multibody::lag_shift::LagShift;
 use crate::stage::compliant::Setup;
 use anyhow::Context;
-use formats::summaries::{CompliantRunSummary, GearboxCrossing, GearboxMode, GearboxSummary};
-use geometry::scene::Blank;
+use formats::housing_file::HousingData;
+use formats::summaries::{
+    CompliantRunSummary, GearboxCrossing, GearboxMode, GearboxSummary, HousingSummary,
+};
+use geometry::pair::PairGeometry;
+use geometry::scene::{Blank, LoadedScene};
 use geometry::scene_bearings::GearboxMm;
+use nalgebra::DMatrix;
 use std::fmt::Write as _;
+use std::path::Path;
 use std::time::Instant;
+
+/// A scene's housing as its file holds it.
+#[derive(Debug, Clone)]
+pub struct LoadedHousing {
+    pub housing: Housing,
+    pub data: HousingData,
+    /// The scene's cut-off of the kept fixed-interface modes, Hz.
+    pub modes_up_to_hz: f64,
+}
+
+/// The reduced housing of `scene` from `<dir>/housing.h5` (None without
+/// `[bearings.gearbox.housing]`), refused unless the file's input hash is
+/// that of the scene's housing settings and layout. Read before any run.
+pub fn load_housing(scene: &LoadedScene, dir: &Path) -> anyhow::Result<Option<LoadedHousing>> {
+    let Some(gb) = scene
+        .scene
+        .bearings
+        .as_ref()
+        .and_then(|b| b.gearbox.as_ref())
+    else {
+        return Ok(None);
+    };
+    let Some(h) = gb.housing else {
+        return Ok(None);
+    };
+    let g = PairGeometry::build(&scene.pair, Some(&scene.design_path))?;
+    let layout = geometry::housing_layout::of_scene(scene, &g)?
+        .context("[bearings.gearbox.housing] without a layout")?;
+    let hash = formats::housing_file::input_hash(&geometry::housing_layout::config_json(
+        &h,
+        &layout,
+        gb.modes_up_to_hz,
+    ));
+    let path = dir.join("housing.h5");
+    if !path.exists() {
+        anyhow::bail!(
+            "{}: no housing file; run `preprocess housing {}` first",
+            path.display(),
+            scene.path.display()
+        );
+    }
+    let data = formats::housing_file::read(&path, Some(&hash))?;
+    let r = data.coordinates();
+    let housing = Housing {
+        stiffness: DMatrix::from_row_slice(r, r, &data.stiffness),
+        mass: DMatrix::from_row_slice(r, r, &data.mass),
+        seats: data
+            .seat_member
+            .iter()
+            .zip(&data.seat_bearing)
+            .map(|(&m, &b)| (m as usize, b as usize))
+            .collect(),
+    };
+    Ok(Some(LoadedHousing {
+        housing,
+        data,
+        modes_up_to_hz: h.modes_up_to_hz,
+    }))
+}
+
+/// The housing's summary (the run-up's seat accelerations added later).
+fn housing_summary(h: &LoadedHousing) -> HousingSummary {
+    let d = &h.data;
+    HousingSummary {
+        mass_kg: d.mass_kg,
+        nodes: d.nodes as usize,
+        elements: d.elements as usize,
+        least_gap_mm: d.least_gap_m * 1e3,
+        seat_nodes: d.seat_nodes.iter().map(|&n| n as usize).collect(),
+        seats: h.housing.seats.clone(),
+        fixed_interface_modes: d.fixed_interface_hz.len(),
+        highest_fixed_interface_hz: d.fixed_interface_hz.last().copied().unwrap_or(0.0),
+        modes_up_to_hz: h.modes_up_to_hz,
+        reduced_hz: d.reduced_hz.clone(),
+        reference_hz: d.reference_hz.clone(),
+        truncation_error: d
+            .reduced_hz
+            .iter()
+            .zip(&d.reference_hz)
+            .map(|(x, y)| (x / y - 1.0).abs())
+            .fold(0.0, f64::max),
+        seat_acceleration_m_s2: Vec::new(),
+    }
+}
 
 /// The excitation orders of the pinion's speed drawn and met: the mesh
 /// order z₁ and its harmonics, and on a lightweight wheel the holes' order
@@ -50,6 +141,7 @@ pub fn run(
     shift: &LagShift,
     members: &[MemberBody; 2],
     hand: f64,
+    housing: Option<&LoadedHousing>,
 ) -> anyhow::Result<GearboxSummary> {
     let sc = &s.scene.scene;
     let mb = &sc.multibody;
@@ -69,7 +161,11 @@ pub fn run(
         polar_inertia_kgm2: s.inertia[k],
         shaft: shafts[k].as_ref().map(|(sh, rho)| (sh, *rho)),
     });
-    let structure = assemble(parts, None, gb.shaft_element_mm * 1e-3)?;
+    let structure = assemble(
+        parts,
+        housing.map(|h| &h.housing),
+        gb.shaft_element_mm * 1e-3,
+    )?;
     let shaft_mass_kg: [f64; 2] = std::array::from_fn(|k| {
         shafts[k].as_ref().map_or(0.0, |(sh, rho)| {
             sh.segments
@@ -136,18 +232,29 @@ pub fn run(
         crossings.len()
     );
 
+    let mut housing_summary = housing.map(housing_summary);
     let run = if s.runs_up {
-        Some(run_up(
+        let (run, seat_acc) = run_up(
             s,
             &gm,
             s0,
             &modes.iter().map(|m| m.frequency_hz).collect::<Vec<_>>(),
-        )?)
+            housing.map_or(&[][..], |h| &h.housing.seats),
+        )?;
+        if let Some(h) = housing_summary.as_mut() {
+            h.seat_acceleration_m_s2 = seat_acc;
+        }
+        Some(run)
     } else {
         None
     };
     let mut notes = vec![
-        "rigid housing: the bearings' outer rings are held".to_string(),
+        if housing.is_some() {
+            "housing: tet10 FE body reduced by Craig–Bampton onto rigid bearing seats, feet clamped"
+                .to_string()
+        } else {
+            "rigid housing: the bearings' outer rings are held".to_string()
+        },
         "the shafts' twist is not modelled: each turns with its gear".to_string(),
         "gyroscopic coupling of the spin with the tilts is not modelled".to_string(),
     ];
@@ -175,6 +282,7 @@ pub fn run(
             .collect(),
         crossings,
         run,
+        housing: housing_summary,
         notes,
     })
 }
@@ -186,7 +294,8 @@ fn run_up(
     gm: &GearboxModel,
     s0: crate::gearbox::dynamics::GState,
     modes_hz: &[f64],
-) -> anyhow::Result<CompliantRunSummary> {
+    seats: &[(usize, usize)],
+) -> anyhow::Result<(CompliantRunSummary, Vec<f64>)> {
     let mb = &s.scene.scene.multibody;
     let r = s.table.ratio;
     let links = &gm.structure.bearings;
@@ -199,6 +308,25 @@ fn run_up(
             ",{m}_bearing{i}_fx_n,{m}_bearing{i}_fy_n,{m}_bearing{i}_fz_n"
         );
     }
+    // The housing's seats: their reference points' translations follow
+    // the structure's turns, bodies and shafts.
+    let seat0 = gm
+        .structure
+        .parts
+        .iter()
+        .position(|p| *p == Part::Housing)
+        .unwrap_or(0);
+    for &(m, i) in seats {
+        let m = ["pinion", "wheel"][m];
+        let _ = write!(
+            rows,
+            ",{m}_seat{i}_ax_m_s2,{m}_seat{i}_ay_m_s2,{m}_seat{i}_az_m_s2"
+        );
+    }
+    // The seat whose acceleration gets a spectrogram: the wheel's first.
+    let shown = seats.iter().position(|&(m, _)| m == 1);
+    let mut seat_most = vec![0.0f64; seats.len()];
+    let mut seat_series = Vec::new();
     rows.push('\n');
     let (mut t, mut q1, mut te, mut wheel) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut most = vec![0.0f64; links.len()];
@@ -239,6 +367,14 @@ fn run_up(
                 w += f;
             }
         }
+        for (k, most) in seat_most.iter_mut().enumerate() {
+            let a = nalgebra::Vector3::from_fn(|c, _| st.a[seat0 + 6 * k + c]);
+            let _ = write!(rows, ",{:.5},{:.5},{:.5}", a.x, a.y, a.z);
+            *most = most.max(a.norm());
+            if shown == Some(k) {
+                seat_series.push(a.norm());
+            }
+        }
         rows.push('\n');
         wheel.push([w.x, w.y, w.z]);
         Ok(())
@@ -265,6 +401,25 @@ fn run_up(
         s.blanks[1],
         modes_hz,
     )?;
+    if let Some(k) = shown {
+        let (m, i) = seats[k];
+        crate::stage::runup::runup_spectrogram(
+            &s.odir.join("gearbox_runup_housing_spectrogram.svg"),
+            &format!(
+                "Housing acceleration |a| at the seat of {} bearing {i}, run-up at {} N·m ({:?}/{:?}); dashed: modes",
+                ["pinion", "wheel"][m],
+                mb.runup_pinion_torque_nm,
+                s.blanks[0],
+                s.blanks[1]
+            ),
+            (&t, &seat_series),
+            mb,
+            s.g.data.members[0].teeth as f64,
+            r,
+            s.blanks[1],
+            modes_hz,
+        )?;
+    }
     // The bearings' forces on the wheel, as the other run-ups' order files.
     let on_wheel: Vec<[f64; 3]> = wheel.iter().map(|f| f.map(|c| -c)).collect();
     crate::stage::runup::write_runup_orders(
@@ -291,22 +446,25 @@ fn run_up(
             .map(|(_, f)| *f)
             .collect()
     };
-    Ok(CompliantRunSummary {
-        case: "gearbox run-up".into(),
-        torque_nm: torque,
-        steps,
-        rejected_steps: integ.rejected,
-        cpu_s: cpu,
-        cpu_s_per_step: cpu / steps.max(1) as f64,
-        te_mean_urad: mean * 1e6,
-        te_ptp_urad: ptp * 1e6,
-        largest_misalignment: most_m.map(|v| v * 1e6),
-        largest_linearization_urad: most_linear * 1e6,
-        mean_linearization_urad: sum_linear / te.len().max(1) as f64 * 1e6,
-        pinion_bearing_force_n: split(0),
-        wheel_bearing_force_n: split(1),
-        csv: csv.into(),
-    })
+    Ok((
+        CompliantRunSummary {
+            case: "gearbox run-up".into(),
+            torque_nm: torque,
+            steps,
+            rejected_steps: integ.rejected,
+            cpu_s: cpu,
+            cpu_s_per_step: cpu / steps.max(1) as f64,
+            te_mean_urad: mean * 1e6,
+            te_ptp_urad: ptp * 1e6,
+            largest_misalignment: most_m.map(|v| v * 1e6),
+            largest_linearization_urad: most_linear * 1e6,
+            mean_linearization_urad: sum_linear / te.len().max(1) as f64 * 1e6,
+            pinion_bearing_force_n: split(0),
+            wheel_bearing_force_n: split(1),
+            csv: csv.into(),
+        },
+        seat_most,
+    ))
 }
 
 #[cfg(test)]

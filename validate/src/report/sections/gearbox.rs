@@ -345,6 +345,7 @@ mod tests {
                 pinion_rpm: 753.67,
             }],
             run: Some(run(1056.15, 19452, 67.9)),
+            housing: None,
             notes: vec!["rigid housing".into()],
         }
     }
@@ -378,6 +379,7 @@ mod tests {
             modes: vec![],
             crossings: vec![],
             run: None,
+            housing: None,
             ..summary()
         };
         modes_table(&mut empty, &none);
