@@ -284,6 +284,7 @@ validate: solve
 	  $(BIN)/preprocess flanks $$f --out $$s/flanks && \
 	  $(BIN)/preprocess mesh $$f --level reduced --out meshes && \
 	  $(BIN)/preprocess stiffness $$f --meshes meshes && \
+	  $(BIN)/preprocess housing $$f --meshes meshes && \
 	  $(BIN)/solver dynamic $$f --meshes meshes --out $(OUT) || exit 1; fi
 	@if [ "$(USE_CASES)" = 1 ]; then f=$(STE_DTE_SCENE); s=$(OUT)/white_paper_ste_dte; \
 	  $(BIN)/preprocess flanks $$f --out $$s/flanks && \

@@ -106,24 +106,24 @@ impl StiffnessConfig {
     }
 }
 
-/// Errors reading or writing a stiffness file.
+/// Errors reading or writing a stiffness file (or a housing file, [`crate::housing_file`]).
 #[derive(Debug, thiserror::Error)]
 pub enum StiffnessFileError {
-    #[error("stiffness file {path}: {message}")]
+    #[error("{path}: {message}")]
     Hdf5 { path: PathBuf, message: String },
-    #[error("stiffness file {path}: schema version {found}, this program reads {expected}")]
+    #[error("{path}: schema version {found}, this program reads {expected}")]
     Schema {
         path: PathBuf,
         found: u32,
         expected: u32,
     },
-    #[error("stiffness file {path}: input hash {found} does not match the current inputs ({expected}); it was made for other inputs")]
+    #[error("{path}: input hash {found} does not match the current inputs ({expected}); it was made for other inputs")]
     Hash {
         path: PathBuf,
         found: String,
         expected: String,
     },
-    #[error("stiffness file {path}: dataset {dataset} has {found} values, expected {expected}")]
+    #[error("{path}: dataset {dataset} has {found} values, expected {expected}")]
     Shape {
         path: PathBuf,
         dataset: String,

@@ -9,6 +9,9 @@
 //! - A bearing of member m at axial position s gets a wall normal to a_m:
 //!   axially s ± w/2, laterally (along Z × a_m) ± (r_b + rim), from the
 //!   floor's top up to r_b + rim, with a bore of radius r_b about the axis.
+//! - A member's walls are joined by a rib under its shaft, `wall` thick
+//!   in the plane of the shaft and Z, from the floor to half a rim below
+//!   the bores.
 //! - The floor's top lies `clearance` below the lowest envelope (the
 //!   largest radius of any blank or shaft, since both axes are level); it
 //!   is `floor` thick and spans the walls' footprints. Its feet are the
@@ -103,6 +106,14 @@ impl Wall {
     }
 }
 
+/// A member's rib: a plate under its shaft in the plane of the shaft and
+/// Z, joining its walls.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Rib {
+    pub member: usize,
+    pub solid: HousingBox,
+}
+
 /// The housing's boxes, where they are, and how close they come to the
 /// envelopes.
 #[derive(Debug, Clone, Serialize)]
@@ -110,6 +121,8 @@ pub struct HousingLayout {
     /// Housing frame (columns X, Y, Z) in the assembly frame.
     pub frame: [[f64; 3]; 3],
     pub walls: Vec<Wall>,
+    /// One per member with two walls or more.
+    pub ribs: Vec<Rib>,
     pub floor: HousingBox,
     /// Side of the clamped feet, m.
     pub foot: f64,
@@ -263,6 +276,33 @@ pub fn layout(
             });
         }
     }
+    // A rib per member under its shaft, from its first wall to its last,
+    // tying them together along the shaft (without it a wall bends out of
+    // its plane under the axial bearing's load), its top half a rim below
+    // the bores.
+    let mut ribs = Vec::new();
+    for m in 0..2 {
+        let mine: Vec<&Wall> = walls.iter().filter(|w| w.member == m).collect();
+        if mine.len() < 2 {
+            continue;
+        }
+        let a = axes[m].normalize();
+        let lateral = z.cross(&a);
+        let t: Vec<f64> = mine.iter().map(|w| Vector3::from(w.seat).dot(&a)).collect();
+        let (t0, t1) = (
+            t.iter().copied().fold(f64::INFINITY, f64::min),
+            t.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        );
+        let top = -(mine[0].bore_radius + 0.5 * rim);
+        ribs.push(Rib {
+            member: m,
+            solid: HousingBox {
+                centre: col(a * (0.5 * (t0 + t1)) + z * (0.5 * (top + floor_top))),
+                axes: [col(a), col(lateral), col(z)],
+                half: [0.5 * (t1 - t0), 0.5 * wall, 0.5 * (top - floor_top)],
+            },
+        });
+    }
     // The floor under the walls' footprints.
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for w in &walls {
@@ -317,6 +357,9 @@ pub fn layout(
             )
         })
         .collect();
+    for r in &ribs {
+        boxes.push((None, &r.solid, format!("the {} rib", names[r.member])));
+    }
     boxes.push((None, &floor, "the floor".into()));
     for (w, b, what) in boxes {
         for p in face_samples(b, spacing) {
@@ -356,6 +399,7 @@ pub fn layout(
     Ok(HousingLayout {
         frame: [col(a1), col(y), col(z)],
         walls,
+        ribs,
         floor,
         foot,
         least_gap: least.0,
@@ -389,8 +433,13 @@ fn face_samples(b: &HousingBox, spacing: f64) -> Vec<Vector3<f64>> {
 
 /// The text the housing file's input hash is taken of: the settings, the
 /// layout and the range its modes are checked over (the gearbox's
-/// `modes_up_to_hz`), JSON.
+/// `modes_up_to_hz`), JSON; not the damping, which the file does not hold.
 pub fn config_json(h: &HousingMm, l: &HousingLayout, check_up_to_hz: f64) -> String {
+    // The damping acts in the solver only: not part of the file.
+    let h = HousingMm {
+        damping_ratio: 0.0,
+        ..*h
+    };
     serde_json::json!({ "housing": h, "layout": l, "check_up_to_hz": check_up_to_hz }).to_string()
 }
 

@@ -146,6 +146,15 @@ pub struct HousingMm {
     /// kg/m³.
     #[serde(default = "default_housing_density_kg_m3")]
     pub density_kg_m3: f64,
+    /// Modal damping ratio of the kept fixed-interface modes (the seats'
+    /// coordinates are damped through the bearings).
+    #[serde(default = "default_housing_damping_ratio")]
+    pub damping_ratio: f64,
+}
+
+/// Chosen: a few per cent is usual for a cast housing.
+fn default_housing_damping_ratio() -> f64 {
+    0.02
 }
 
 fn default_housing_wall_mm() -> f64 {
@@ -197,6 +206,7 @@ impl HousingMm {
             (&lim::HOUSING_YOUNGS_MODULUS, self.youngs_modulus_gpa),
             (&lim::HOUSING_POISSON_RATIO, self.poisson_ratio),
             (&lim::HOUSING_DENSITY, self.density_kg_m3),
+            (&lim::HOUSING_DAMPING, self.damping_ratio),
         ] {
             l.check(path, v)?;
         }

@@ -44,6 +44,19 @@ fn white_paper_housing_clears_both_blanks_and_shafts() {
     let z = Vector3::from(l.frame[2]);
     assert!((x - g.frames[0].axis()).norm() < 1e-12);
     assert!(z.dot(&g.frames[1].axis()).abs() < 1e-12);
+    // A rib per member, on the floor, below its shaft, along it from the
+    // first wall's centre to the last's.
+    assert_eq!(l.ribs.len(), 2);
+    for r in &l.ribs {
+        let top = Vector3::from(r.solid.centre).dot(&z) + r.solid.half[2];
+        assert!(top < -0.045, "rib top {top}");
+        let a = Vector3::from(r.solid.axes[0]);
+        assert!((a - g.frames[r.member].axis()).norm() < 1e-12);
+        let span = [[0.175, 0.235], [0.095, 0.195]][r.member];
+        let c = Vector3::from(r.solid.centre).dot(&a);
+        assert!((c - r.solid.half[0] - span[0]).abs() < 1e-12);
+        assert!((c + r.solid.half[0] - span[1]).abs() < 1e-12);
+    }
     // Every wall stands on the floor's top and holds its bearing's centre.
     let floor_top = Vector3::from(l.floor.centre).dot(&z) + l.floor.half[2];
     for w in &l.walls {

@@ -254,6 +254,7 @@ modes_up_to_hz = 10000.0
 youngs_modulus_gpa = 110.0
 poisson_ratio = 0.26
 density_kg_m3 = 7200.0
+damping_ratio = 0.02
 ",
     ),
     (

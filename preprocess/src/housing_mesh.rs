@@ -1,6 +1,7 @@
 //! The housing of a [`HousingLayout`] meshed with gmsh: each wall a box
-//! with its bore cut out, turned about the housing frame's Z onto its
-//! shaft, fused with the floor, tet10 of the layout's element size. Nodes
+//! with its bore cut out and each rib a box, turned about the housing
+//! frame's Z onto its shaft, fused with the floor, tet10 of the layout's
+//! element size. Nodes
 //! come back in the assembly frame with each seat's bore nodes and the
 //! clamped feet's nodes.
 
@@ -65,6 +66,21 @@ pub fn mesh(l: &HousingLayout, element_m: f64) -> Result<HousingMesh, String> {
                 .map_err(g)?;
         }
         volumes.extend(cut);
+    }
+    for r in &l.ribs {
+        let a = h(r.solid.axes[0]);
+        let psi = a.y.atan2(a.x);
+        let turn_back = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), -psi);
+        let c = turn_back * h(r.solid.centre);
+        let [hx, hy, hz] = r.solid.half;
+        let b = s
+            .occ_add_box(c.x - hx, c.y - hy, c.z - hz, 2.0 * hx, 2.0 * hy, 2.0 * hz)
+            .map_err(g)?;
+        if psi != 0.0 {
+            s.occ_rotate(&[(3, b)], 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, psi)
+                .map_err(g)?;
+        }
+        volumes.push((3, b));
     }
     let f = h(l.floor.centre);
     let [fx, fy, fz] = l.floor.half;

@@ -1,5 +1,5 @@
 //! `preprocess housing` on a coarse version of the white-paper gearbox's
-//! housing (25 mm elements, fixed-interface modes to 8 kHz, checked to
+//! housing (25 mm elements, fixed-interface modes to 10 kHz, checked to
 //! 2.5 kHz): the mesh fills the CAD volume, every bearing seat has its bore
 //! nodes, the reduced model's modes lie on or above the whole FE housing's
 //! and within 1 % of them, a rerun reuses the file, and a changed housing
@@ -9,7 +9,7 @@ use formats::housing_file;
 use geometry::scene::Scene;
 use std::path::{Path, PathBuf};
 
-fn coarse_scene(dir: &Path, wall_mm: f64) -> PathBuf {
+fn coarse_scene(dir: &Path, rim_mm: f64) -> PathBuf {
     let root = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let text = std::fs::read_to_string(root.join("reference/scenes/white_paper_gearbox.toml"))
         .unwrap()
@@ -25,8 +25,8 @@ fn coarse_scene(dir: &Path, wall_mm: f64) -> PathBuf {
     gb.insert("modes_up_to_hz".into(), toml::Value::Float(2500.0));
     let h = gb["housing"].as_table_mut().unwrap();
     h.insert("element_mm".into(), toml::Value::Float(25.0));
-    h.insert("modes_up_to_hz".into(), toml::Value::Float(8000.0));
-    h.insert("wall_mm".into(), toml::Value::Float(wall_mm));
+    h.insert("modes_up_to_hz".into(), toml::Value::Float(10000.0));
+    h.insert("rim_mm".into(), toml::Value::Float(rim_mm));
     let p = dir.join("coarse_gearbox.toml");
     std::fs::write(&p, toml::to_string(&v).unwrap()).unwrap();
     p
@@ -81,7 +81,7 @@ fn coarse_housing_reduction_matches_the_whole_fe_housing_below_its_range() {
     assert!(again.reused);
     assert_eq!(&again.data, d);
 
-    // A thicker wall is another housing: a new file with another hash.
+    // A wider rim is another housing: a new file with another hash.
     let thicker = Scene::load(&coarse_scene(tmp.path(), 30.0)).unwrap();
     let t = preprocess::housing_stage::run(&thicker, &meshes)
         .unwrap()

@@ -194,6 +194,7 @@ fn housing_springs_act_in_series_with_the_bearings() {
     let spring_housing = |k: f64| Housing {
         stiffness: DMatrix::from_diagonal_element(12, 12, k),
         mass: DMatrix::from_diagonal_element(12, 12, 0.5),
+        damping: DMatrix::zeros(12, 12),
         seats: vec![(0, 0), (0, 1)],
     };
     let soft = assemble(
@@ -306,4 +307,25 @@ fn rigid_motion_of_a_member_strains_only_its_bearings() {
         );
         assert!(f.amax() > 1e6);
     }
+}
+
+/// Modal damping of a reduced housing: c = 2 ζ √(k m) on each modal
+/// coordinate (a mode of ω² = k/m damped at ratio ζ), none on the seats'.
+#[test]
+fn housing_modal_damping_gives_each_mode_its_ratio() {
+    let k = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(
+        vec![1e9; 6].into_iter().chain([4e8, 9e8]).collect(),
+    ));
+    let m = DMatrix::from_diagonal(&nalgebra::DVector::from_vec(
+        vec![2.0; 6].into_iter().chain([1.0, 4.0]).collect(),
+    ));
+    let c = solver::gearbox::structure::modal_damping(&k, &m, 6, 0.02);
+    for i in 0..6 {
+        assert_eq!(c[(i, i)], 0.0);
+    }
+    for i in 6..8 {
+        let zeta = c[(i, i)] / (2.0 * (k[(i, i)] * m[(i, i)]).sqrt());
+        assert!((zeta - 0.02).abs() < 1e-15, "{zeta}");
+    }
+    assert_eq!(c[(6, 7)], 0.0);
 }

@@ -147,6 +147,11 @@ limits! {
         "Hz",
         real(closed(0.0), closed(1e6)).lie_in(" Hz"),
     );
+    HOUSING_DAMPING = Limit::scene(
+        "bearings.gearbox.housing.damping_ratio",
+        "",
+        real(closed(0.0), closed(0.5)).lie_in(""),
+    );
     HOUSING_MODES_COVER = Limit::scene(
         "bearings.gearbox.housing.modes_up_to_hz",
         "Hz",

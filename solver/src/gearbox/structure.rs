@@ -73,8 +73,31 @@ pub struct MemberParts<'a> {
 pub struct Housing {
     pub stiffness: DMatrix<f64>,
     pub mass: DMatrix<f64>,
+    /// Viscous damping, same coordinates (e.g. modal damping on the
+    /// fixed-interface coordinates, [`modal_damping`]).
+    pub damping: DMatrix<f64>,
     /// The bearing each seat holds, in seat order: (member, bearing index).
     pub seats: Vec<(usize, usize)>,
+}
+
+/// Modal damping of a Craig–Bampton housing with `interface` coordinates
+/// first: c_kk = 2 ζ ω_k m_kk on each fixed-interface coordinate k
+/// (ω_k² = K_kk / M_kk, the fixed-interface mode's), nothing on the seats'
+/// (they are damped through what they carry).
+pub fn modal_damping(
+    stiffness: &DMatrix<f64>,
+    mass: &DMatrix<f64>,
+    interface: usize,
+    ratio: f64,
+) -> DMatrix<f64> {
+    let r = stiffness.nrows();
+    DMatrix::from_fn(r, r, |i, j| {
+        if i == j && i >= interface {
+            2.0 * ratio * (stiffness[(i, i)] * mass[(i, i)]).max(0.0).sqrt()
+        } else {
+            0.0
+        }
+    })
 }
 
 /// What a coordinate belongs to.
@@ -200,10 +223,19 @@ pub fn assemble(
     let housing_first = parts.len();
     if let Some(h) = housing {
         let r = h.stiffness.nrows();
-        if h.stiffness.ncols() != r || h.mass.shape() != (r, r) || r < 6 * h.seats.len() {
+        if h.stiffness.ncols() != r
+            || h.mass.shape() != (r, r)
+            || h.damping.shape() != (r, r)
+            || r < 6 * h.seats.len()
+        {
             return Err(invalid(
                 "housing matrices",
-                format!("{:?} and {:?}", h.stiffness.shape(), h.mass.shape()),
+                format!(
+                    "{:?}, {:?} and {:?}",
+                    h.stiffness.shape(),
+                    h.mass.shape(),
+                    h.damping.shape()
+                ),
                 format!(
                     "must be square, equal, with at least 6 rows per seat ({})",
                     6 * h.seats.len()
@@ -334,6 +366,9 @@ pub fn assemble(
             .add_assign(&h.stiffness);
         mass.view_mut((housing_first, housing_first), (r, r))
             .add_assign(&h.mass);
+        damping
+            .view_mut((housing_first, housing_first), (r, r))
+            .add_assign(&h.damping);
     }
     let sym = |m: DMatrix<f64>| (&m + m.transpose()) * 0.5;
     Ok(GearboxStructure {

@@ -17,7 +17,7 @@
 
 use crate::bearings::flexible_shaft::Shaft;
 use crate::gearbox::dynamics::{integrate, GearboxIntegrator, GearboxModel};
-use crate::gearbox::structure::{Housing, Part};
+use crate::gearbox::structure::{modal_damping, Housing, Part};
 use crate::gearbox::system_modes::{campbell_crossings, system_modes, ENERGY_PARTS};
 use crate::gearbox::{assemble, MemberParts};
 use crate::ltca::mean_ptp;
@@ -77,11 +77,24 @@ pub fn load_housing(scene: &LoadedScene, dir: &Path) -> anyhow::Result<Option<Lo
             scene.path.display()
         );
     }
-    let data = formats::housing_file::read(&path, Some(&hash))?;
+    let data = formats::housing_file::read(&path, Some(&hash)).with_context(|| {
+        format!(
+            "the housing file does not hold this scene's housing; run `preprocess housing {}`",
+            scene.path.display()
+        )
+    })?;
     let r = data.coordinates();
+    let stiffness = DMatrix::from_row_slice(r, r, &data.stiffness);
+    let mass = DMatrix::from_row_slice(r, r, &data.mass);
     let housing = Housing {
-        stiffness: DMatrix::from_row_slice(r, r, &data.stiffness),
-        mass: DMatrix::from_row_slice(r, r, &data.mass),
+        damping: modal_damping(
+            &stiffness,
+            &mass,
+            6 * data.seat_member.len(),
+            h.damping_ratio,
+        ),
+        stiffness,
+        mass,
         seats: data
             .seat_member
             .iter()
@@ -248,16 +261,14 @@ pub fn run(
     } else {
         None
     };
-    let mut notes = vec![
-        if housing.is_some() {
-            "housing: tet10 FE body reduced by Craig–Bampton onto rigid bearing seats, feet clamped"
-                .to_string()
-        } else {
-            "rigid housing: the bearings' outer rings are held".to_string()
-        },
+    let mut notes = Vec::new();
+    if housing.is_none() {
+        notes.push("rigid housing: the bearings' outer rings are held".to_string());
+    }
+    notes.extend([
         "the shafts' twist is not modelled: each turns with its gear".to_string(),
         "gyroscopic coupling of the spin with the tilts is not modelled".to_string(),
-    ];
+    ]);
     for (k, sh) in shafts.iter().enumerate() {
         if sh.is_none() {
             notes.push(format!(

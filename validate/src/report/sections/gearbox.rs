@@ -69,9 +69,19 @@ pub fn section(out: Option<&Path>, reports: &Path) -> GearboxSection {
             )
         }
     };
+    let housing = if dynamic.iter().any(|d| {
+        d.compliant
+            .as_ref()
+            .and_then(|c| c.gearbox.as_ref())
+            .is_some_and(|g| g.housing.is_some())
+    }) {
+        "an FE housing reduced onto the bearing seats (below)"
+    } else {
+        "a rigid housing"
+    };
     let _ = writeln!(
         s,
-        "`solver dynamic` on `reference/scenes/{GEARBOX_SCENE}.toml`: the white-paper pair on the bearings of the compliant-bearing section, each shaft from its gear's seat to its far bearing as Timoshenko beam elements with their mass (consistent mass, `solver::bearings::timoshenko`), the gears rigid on their seats, the bearings on a rigid housing. The modes are those of the gearbox loaded at the run-up's torque, the contact element linearized at the quasi-static start; each mode's kinetic energy is split by what moves. The compliant-bearing run-up beside it is the same scene's, the shafts statically condensed onto the seats (massless).\n"
+        "`solver dynamic` on `reference/scenes/{GEARBOX_SCENE}.toml`: the white-paper pair on compliant bearings, each shaft from its gear's seat to its far bearing as Timoshenko beam elements with their mass (consistent mass, `solver::bearings::timoshenko`), the gears rigid on their seats, the bearings on {housing}. The modes are those of the gearbox loaded at the run-up's torque, the contact element linearized at the quasi-static start; each mode's kinetic energy is split by what moves. The compliant-bearing run-up beside it is the same scene's, the shafts statically condensed onto the seats (massless).\n"
     );
     let mut figures = Vec::new();
     let mut any = false;
@@ -84,6 +94,7 @@ pub fn section(out: Option<&Path>, reports: &Path) -> GearboxSection {
         let b = blank_name(d);
         let _ = writeln!(s, "### {b}\n");
         structure_line(&mut s, g);
+        housing_lines(&mut s, g);
         modes_table(&mut s, g);
         crossings_table(&mut s, g);
         let compliant = c.runs.iter().find(|r| r.case == "run-up");
@@ -106,6 +117,19 @@ pub fn section(out: Option<&Path>, reports: &Path) -> GearboxSection {
             let _ = writeln!(
                 s,
                 "Run-up spectrogram of the wheel bearings' total force on the flexible gearbox, {b}: the order lines and the modes above (dashed); where an order line crosses a dashed line, that order meets that mode.\n"
+            );
+            crate::report::figures::figure_lines(&mut s, std::slice::from_ref(&f), false);
+            figures.push(f);
+        }
+        if let Some(f) = copied(
+            &format!("Housing acceleration at the wheel's first seat ({b}), run-up"),
+            &dir.join("gearbox_runup_housing_spectrogram.svg"),
+            reports,
+            &format!("gearbox_{b}_runup_housing_spectrogram.svg"),
+        ) {
+            let _ = writeln!(
+                s,
+                "Run-up spectrogram of the housing's acceleration |a| at the seat of the wheel's first bearing, {b}, with the same order lines and modes.\n"
             );
             crate::report::figures::figure_lines(&mut s, std::slice::from_ref(&f), false);
             figures.push(f);
@@ -133,6 +157,68 @@ fn structure_line(s: &mut String, g: &GearboxSummary) {
         g.modes_torque_nm,
         g.notes.join("; ")
     );
+}
+
+/// The bound the housing's reduction is held to: its modes within 1 % of
+/// the whole FE housing's over the gearbox's range.
+pub const HOUSING_TRUNCATION_LIMIT: f64 = 0.01;
+
+/// The FE housing: what it is, its modes against the whole FE housing's
+/// with the verdict, and the seats' largest accelerations.
+pub fn housing_lines(s: &mut String, g: &GearboxSummary) {
+    let Some(h) = &g.housing else {
+        return;
+    };
+    let _ = writeln!(
+        s,
+        "Housing: tet10 FE body meshed by gmsh ({} nodes, {} elements, {:.1} kg): a wall per bearing on a floor clamped at its four feet, at least {:.1} mm from the gears' blanks and the shafts; reduced by Craig–Bampton onto its {} bearing seats (each bore rigid with its bearing's centre) and {} fixed-interface modes up to {:.0} Hz (cut-off {:.0} Hz). Its modes alone (feet clamped, seats free) against the whole FE housing's, no truncation:\n",
+        h.nodes,
+        h.elements,
+        h.mass_kg,
+        h.least_gap_mm,
+        h.seats.len(),
+        h.fixed_interface_modes,
+        h.highest_fixed_interface_hz,
+        h.modes_up_to_hz
+    );
+    s.push_str("| mode | reduced (Hz) | whole FE (Hz) | difference (%) |\n|---:|---:|---:|---:|\n");
+    for (i, (r, w)) in h.reduced_hz.iter().zip(&h.reference_hz).enumerate() {
+        let _ = writeln!(
+            s,
+            "| {i} | {r:.1} | {w:.1} | {:+.2} |",
+            100.0 * (r / w - 1.0)
+        );
+    }
+    let top = h.reference_hz.last().copied().unwrap_or(0.0);
+    let verdict = if h.truncation_error <= HOUSING_TRUNCATION_LIMIT {
+        format!(
+            "within the {:.0} % the reduction is held to",
+            100.0 * HOUSING_TRUNCATION_LIMIT
+        )
+    } else {
+        format!(
+            "above the {:.0} % the reduction is held to: keep fixed-interface modes to a higher `modes_up_to_hz`",
+            100.0 * HOUSING_TRUNCATION_LIMIT
+        )
+    };
+    let _ = writeln!(
+        s,
+        "\nLargest difference up to {top:.0} Hz: {:.2} %, {verdict}.\n",
+        100.0 * h.truncation_error
+    );
+    if !h.seat_acceleration_m_s2.is_empty() {
+        let seats: Vec<String> = h
+            .seats
+            .iter()
+            .zip(&h.seat_acceleration_m_s2)
+            .map(|(&(m, i), a)| format!("{} bearing {i} {a:.1}", ["pinion", "wheel"][m]))
+            .collect();
+        let _ = writeln!(
+            s,
+            "Largest acceleration of each seat during the run-up (m/s²): {}.\n",
+            seats.join(", ")
+        );
+    }
 }
 
 /// The modes with their kinetic energy by part, in %.
@@ -348,6 +434,54 @@ mod tests {
             housing: None,
             notes: vec!["rigid housing".into()],
         }
+    }
+
+    fn housing(error_scale: f64) -> formats::summaries::HousingSummary {
+        formats::summaries::HousingSummary {
+            mass_kg: 23.1,
+            nodes: 35_729,
+            elements: 19_235,
+            least_gap_mm: 10.05,
+            seat_nodes: vec![365, 368, 302, 302],
+            seats: vec![(0, 0), (0, 1), (1, 0), (1, 1)],
+            fixed_interface_modes: 86,
+            highest_fixed_interface_hz: 14_949.0,
+            modes_up_to_hz: 15_000.0,
+            reduced_hz: vec![324.2, 4_850.0 * (1.0 + 0.0047 * error_scale)],
+            reference_hz: vec![324.1, 4_850.0],
+            truncation_error: 0.0047 * error_scale,
+            seat_acceleration_m_s2: vec![1.5, 2.25, 30.0, 12.5],
+        }
+    }
+
+    /// The housing's lines carry its numbers and judge its reduction by
+    /// the 1 % bound, either way; without a housing there are none.
+    #[test]
+    fn housing_lines_judge_the_reduction_against_the_whole_fe_housing() {
+        let mut g = summary();
+        let mut s = String::new();
+        housing_lines(&mut s, &g);
+        assert!(s.is_empty(), "{s}");
+        g.housing = Some(housing(1.0));
+        housing_lines(&mut s, &g);
+        for want in [
+            "35729 nodes",
+            "23.1 kg",
+            "10.1 mm",
+            "86 fixed-interface modes up to 14949 Hz",
+            "| 1 | 4872.8 | 4850.0 | +0.47 |",
+            "Largest difference up to 4850 Hz: 0.47 %, within the 1 %",
+            "wheel bearing 0 30.0",
+        ] {
+            assert!(s.contains(want), "{want} not in {s}");
+        }
+        g.housing = Some(housing(3.0));
+        let mut s = String::new();
+        housing_lines(&mut s, &g);
+        assert!(
+            s.contains("1.41 %, above the 1 % the reduction is held to"),
+            "{s}"
+        );
     }
 
     /// The tables carry the summary's numbers, and only the parts some mode
