@@ -185,7 +185,10 @@ pub fn lowest_modes_operator(
         // space could hold the modes, and then every fourth step.
         let scale = alpha.iter().fold(0.0f64, |x, y| x.max(y.abs()));
         let exhausted_now = steps == n || b <= 1e-10 * scale;
-        if !exhausted_now && (steps < count || (steps - count) % 4 != 0) && steps < max_steps {
+        if !exhausted_now
+            && (steps < count || !(steps - count).is_multiple_of(4))
+            && steps < max_steps
+        {
             beta.push(b);
             w.iter_mut().for_each(|x| *x /= b);
             q.push(w);

@@ -281,12 +281,12 @@ pub fn layout(
     // its plane under the axial bearing's load), its top half a rim below
     // the bores.
     let mut ribs = Vec::new();
-    for m in 0..2 {
+    for (m, axis) in axes.iter().enumerate() {
         let mine: Vec<&Wall> = walls.iter().filter(|w| w.member == m).collect();
         if mine.len() < 2 {
             continue;
         }
-        let a = axes[m].normalize();
+        let a = axis.normalize();
         let lateral = z.cross(&a);
         let t: Vec<f64> = mine.iter().map(|w| Vector3::from(w.seat).dot(&a)).collect();
         let (t0, t1) = (

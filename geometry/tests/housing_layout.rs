@@ -102,7 +102,7 @@ fn a_bore_narrower_than_its_shaft_is_refused() {
     h.wheel_bore_diameter_mm = 45.0;
     let e = of_scene(&s2, &g).unwrap_err().to_string();
     assert!(e.contains("wheel_bore_diameter_mm = 45 mm"), "{e}");
-    assert!(e.contains("50 mm"), "{e}");
+    assert!(e.contains("70 mm"), "{e}");
 }
 
 #[test]

@@ -8,7 +8,10 @@
 //! and the flexible gearbox (`solver::gearbox`) on the same bearings: with
 //! rigid shafts (the compliant model's physics on its general structure:
 //! the overhead of the general code) and with 40 / 50 mm steel shafts from
-//! each gear's mean point to its far bearing in 10 mm elements.
+//! each gear's mean point to its far bearing in 10 mm elements, and with
+//! those shafts on the white-paper gearbox's FE housing (its reduced
+//! matrices from `meshes/white_paper_gearbox/housing.h5`, made by
+//! `make validate`; left out where absent).
 //! Target: ≤ 1 ms per step (the white paper ~0.4 s per step).
 //! Results in `bench/compliant_multibody.json`.
 
@@ -23,6 +26,7 @@ use serde_json::json;
 use solver::bearings::flexible_shaft::{Shaft, ShaftSegment};
 use solver::bearings::support::{Bearing, Support};
 use solver::gearbox::dynamics::{integrate as g_integrate, GearboxIntegrator, GearboxModel};
+use solver::gearbox::structure::{modal_damping, Housing};
 use solver::gearbox::{assemble, MemberParts};
 use solver::multibody::compliant::{
     integrate as c_integrate, CompliantIntegrator, CompliantModel, MemberBody,
@@ -233,13 +237,47 @@ fn main() {
         rows.push(row(name, "compliant", steps, ci.rejected, us, ptp));
         let b = bodies(g, inertia);
         let sh = shafts(g, &b);
-        for (label, with_shafts) in [("gearbox, rigid shafts", false), ("gearbox, shafts", true)] {
+        // The white-paper gearbox's housing where `make validate` has made
+        // it: its reduced matrices (seats on both members' two bearings),
+        // for the cost of its coordinates.
+        let housing = formats::housing_file::read(
+            &p.root.join("meshes/white_paper_gearbox/housing.h5"),
+            None,
+        )
+        .ok()
+        .map(|d| {
+            let r = d.coordinates();
+            let k = nalgebra::DMatrix::from_row_slice(r, r, &d.stiffness);
+            let m = nalgebra::DMatrix::from_row_slice(r, r, &d.mass);
+            Housing {
+                damping: modal_damping(&k, &m, 6 * d.seat_member.len(), 0.02),
+                stiffness: k,
+                mass: m,
+                seats: d
+                    .seat_member
+                    .iter()
+                    .zip(&d.seat_bearing)
+                    .map(|(&m, &b)| (m as usize, b as usize))
+                    .collect(),
+            }
+        });
+        if housing.is_none() {
+            eprintln!("no meshes/white_paper_gearbox/housing.h5 (make validate makes it): the gearbox with a housing is not timed");
+        }
+        let mut cases = vec![
+            ("gearbox, rigid shafts", false, None),
+            ("gearbox, shafts", true, None),
+        ];
+        if let Some(h) = housing.as_ref() {
+            cases.push(("gearbox, shafts, FE housing", true, Some(h)));
+        }
+        for (label, with_shafts, housing) in cases {
             let parts: [MemberParts; 2] = std::array::from_fn(|k| MemberParts {
                 body: &b[k],
                 polar_inertia_kgm2: inertia[k],
                 shaft: with_shafts.then(|| (&sh[k].0, sh[k].1)),
             });
-            let st = assemble(parts, None, 0.01).unwrap();
+            let st = assemble(parts, housing, 0.01).unwrap();
             let gm = GearboxModel::new(&cm, &st).unwrap();
             let s0 = gm.static_state(0.0).unwrap();
             let mut gi = GearboxIntegrator::new(mb.rho_inf, control(max_step));

@@ -308,16 +308,17 @@ fn undamped_gearbox_run_conserves_energy() {
     );
 }
 
+/// One body's imbalance: force (N) and moment ⊥ its axis (N·m)
+/// residuals, then the sizes of its inertia force, the mesh force and the
+/// mesh moment ⊥ its axis.
+type Imbalance = (Vector3<f64>, Vector3<f64>, f64, f64, f64);
+
 /// Body k's imbalance at state `st`: Σ bearing forces on the body + the
 /// mesh's force on it − (its mass matrix × its acceleration), translational
 /// (fixed axes, N) and the moment about its apex ⊥ its axis (N·m), with
 /// the mesh's force and moment on it; the mesh evaluated at the state's
 /// rates or, with `at_rest`, at zero rates.
-fn imbalance(
-    gm: &GearboxModel,
-    st: &GState,
-    at_rest: bool,
-) -> [(Vector3<f64>, Vector3<f64>, f64, f64, f64); 2] {
+fn imbalance(gm: &GearboxModel, st: &GState, at_rest: bool) -> [Imbalance; 2] {
     let cm = gm.contact;
     let v = if at_rest { X::zeros() } else { head(&st.v) };
     let mesh = cm.mesh(&head(&st.x), &v).unwrap();
@@ -361,7 +362,7 @@ struct Worst {
 }
 
 impl Worst {
-    fn add(&mut self, r: &[(Vector3<f64>, Vector3<f64>, f64, f64, f64); 2]) {
+    fn add(&mut self, r: &[Imbalance; 2]) {
         for (f, m, inertia, mf, mm) in r {
             self.force = self.force.max(f.norm());
             self.moment = self.moment.max(m.norm());

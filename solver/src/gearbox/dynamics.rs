@@ -31,6 +31,49 @@ pub struct GearboxModel<'a> {
     /// own bearing matrices are not used: the structure holds them).
     pub contact: &'a CompliantModel<'a>,
     pub structure: &'a GearboxStructure,
+    /// The structure's M, C, K by rows of nonzeros (shafts banded, the
+    /// housing's stiffness block-diagonal): the residual at O(nonzeros).
+    sparse: [RowSparse; 3],
+}
+
+/// A matrix's nonzero entries, row by row.
+#[derive(Debug, Clone)]
+struct RowSparse {
+    ptr: Vec<usize>,
+    col: Vec<usize>,
+    val: Vec<f64>,
+}
+
+impl RowSparse {
+    /// The entries of `m` but those below 1e-14 √|m_ii m_jj| (the
+    /// rounding a reduction leaves where theory has zeros: the
+    /// Craig–Bampton stiffness between constraint and fixed-interface
+    /// modes, the modes' mass off the diagonal).
+    fn of(m: &DMatrix<f64>) -> RowSparse {
+        let (mut ptr, mut col, mut val) = (vec![0], Vec::new(), Vec::new());
+        for i in 0..m.nrows() {
+            for j in 0..m.ncols() {
+                let drop = 1e-14 * (m[(i, i)] * m[(j, j)]).abs().sqrt();
+                if m[(i, j)].abs() > drop {
+                    col.push(j);
+                    val.push(m[(i, j)]);
+                }
+            }
+            ptr.push(col.len());
+        }
+        RowSparse { ptr, col, val }
+    }
+
+    /// out += A x.
+    fn mul_add(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        for (i, o) in out.iter_mut().enumerate() {
+            let mut acc = 0.0;
+            for k in self.ptr[i]..self.ptr[i + 1] {
+                acc += self.val[k] * x[self.col[k]];
+            }
+            *o += acc;
+        }
+    }
 }
 
 fn head(x: &DVector<f64>) -> X {
@@ -55,7 +98,25 @@ impl<'a> GearboxModel<'a> {
                 "the gearbox structure must start with q₁, q₂, d₁ (5), d₂ (5)".into(),
             ));
         }
-        Ok(GearboxModel { contact, structure })
+        Ok(GearboxModel {
+            contact,
+            structure,
+            sparse: [
+                RowSparse::of(&structure.mass),
+                RowSparse::of(&structure.damping),
+                RowSparse::of(&structure.stiffness),
+            ],
+        })
+    }
+
+    /// The structure's forces M a + C v + K x.
+    pub fn linear(&self, x: &DVector<f64>, v: &DVector<f64>, a: &DVector<f64>) -> DVector<f64> {
+        let mut out = DVector::zeros(x.len());
+        let [m, c, k] = &self.sparse;
+        m.mul_add(a, &mut out);
+        c.mul_add(v, &mut out);
+        k.mul_add(x, &mut out);
+        out
     }
 
     /// Number of coordinates.
@@ -79,8 +140,7 @@ impl<'a> GearboxModel<'a> {
         a: &DVector<f64>,
     ) -> Result<(DVector<f64>, CompliantMesh), SolverError> {
         let mesh = self.contact.mesh(&head(x), &head(v))?;
-        let s = self.structure;
-        let mut res = &s.mass * a + &s.damping * v + &s.stiffness * x;
+        let mut res = self.linear(x, v, a);
         let ext = self.contact.rigid.drive.torques(t);
         for i in 0..12 {
             res[i] -= mesh.force[i];
@@ -239,6 +299,16 @@ impl StepMatrix {
         })
     }
 
+    /// J₀'s first 12 rows times `dx`.
+    fn top_rows(&self, dx: &DVector<f64>) -> nalgebra::SVector<f64, 12> {
+        let d1 = nalgebra::SVector::<f64, 12>::from_fn(|i, _| dx[i]);
+        let mut out = self.a0 * d1;
+        if self.b.ncols() > 0 {
+            out += &self.b * dx.rows(12, dx.len() - 12);
+        }
+        out
+    }
+
     /// Solves (J₀ + corner) dx = r with the coordinates not `free` held
     /// (those are among the first 12).
     fn solve(
@@ -249,7 +319,9 @@ impl StepMatrix {
     ) -> Result<DVector<f64>, SolverError> {
         let n = r.len();
         let r1 = nalgebra::SVector::<f64, 12>::from_fn(|i, _| r[i]);
+        let r2_zero = r.rows(12, n - 12).iter().all(|&v| v == 0.0);
         let (y, mut rhs) = match &self.d {
+            Some(_) if r2_zero => (None, r1),
             Some(d) => {
                 let r2 = r.rows(12, n - 12).into_owned();
                 let y = d.solve(&r2).ok_or(SolverError::Singular { slices: 0 })?;
@@ -276,8 +348,11 @@ impl StepMatrix {
             .ok_or(SolverError::Singular { slices: 0 })?;
         let mut x = DVector::zeros(n);
         x.rows_mut(0, 12).copy_from(&x1);
-        if let Some(y) = y {
-            let x2 = y - &self.d_bt * x1;
+        if self.d.is_some() {
+            let mut x2 = -(&self.d_bt * x1);
+            if let Some(y) = y {
+                x2 += y;
+            }
             x.rows_mut(12, n - 12).copy_from(&x2);
         }
         Ok(x)
@@ -361,15 +436,41 @@ pub fn alpha_step(
         (v, a)
     };
     let jm = matrices.of(m.structure, h, params)?;
+    let ext = rigid.drive.torques(ta);
+    // The structure's forces at the α-point of the current x: computed at
+    // the predictor, then carried: they are linear in x with J₀ their
+    // exact Jacobian, so a Newton step changes them by J₀ dx, and rows 12
+    // on (no mesh force there) then vanish: the step solved them exactly.
+    let mut linear: Option<DVector<f64>> = None;
     for it in 1..=NEWTON_MAX {
         let (v, a) = kin(&x);
         let xm = &x * (1.0 - af) + &s.x * af;
         let vm = &v * (1.0 - af) + &s.v * af;
-        let amid = &a * (1.0 - am) + &s.a * am;
-        let (res, mesh) = m.residual(ta, &xm, &vm, &amid)?;
+        let mesh = m.contact.mesh(&head(&xm), &head(&vm))?;
+        let lin = match linear.take() {
+            Some(l) => l,
+            None => {
+                let amid = &a * (1.0 - am) + &s.a * am;
+                m.linear(&xm, &vm, &amid)
+            }
+        };
+        let mut res = lin.clone();
+        for i in 0..12 {
+            res[i] -= mesh.force[i];
+        }
+        res[0] -= ext[0];
+        res[1] -= ext[1];
         let corner = mesh.stiffness * (1.0 - af) + mesh.damping * ((1.0 - af) * gamma / (beta * h));
         let dx = jm.solve(&corner, &-res, &free)?;
         x += &dx;
+        let mut next = lin;
+        let top = jm.top_rows(&dx);
+        for i in 0..12 {
+            next[i] += top[i];
+        }
+        let n = next.len();
+        next.rows_mut(12, n - 12).fill(0.0);
+        linear = Some(next);
         if converged(&dx, &x) {
             let (v, a) = kin(&x);
             let mid = GState {
