@@ -97,18 +97,19 @@ SENSITIVITY   ?= 1
 BEARINGS      ?= 1
 BEARINGS_SCENE := reference/scenes/white_paper_bearings.toml
 # The flexible gearbox: reference/scenes/white_paper_gearbox.toml, the
-# pair and bearings above with both shafts as Timoshenko beam elements with
-# their mass (`solver dynamic`: the compliant runs on the condensed shafts,
-# then the gearbox's loaded modes, order crossings and run-ups of both
-# wheel blanks, 0 -> 1,100 rpm in 1.1 s as white_paper_lightweight_runup's,
-# so that the order analysis resolves the lightweight wheel's side bands);
+# pair on compliant bearings with both shafts as Timoshenko beam elements
+# with their mass and an FE housing (`preprocess housing`: laid out around
+# the gears, meshed, reduced by Craig-Bampton onto the bearing seats;
+# `solver dynamic`: the compliant runs on the condensed shafts, then the
+# gearbox's loaded modes, order crossings and run-ups of both wheel
+# blanks, 0 -> 1,100 rpm in 1.1 s as white_paper_lightweight_runup's, so
+# that the order analysis resolves the lightweight wheel's side bands);
 # the report's section "Flexible gearbox (multibody)" reads
 # out/white_paper_gearbox/multibody. Measured 2026-11-29 with the meshes
-# and stiffness files made (copied from the default and bearings scenes'):
-# 3 min 22 s wall, 320 s user CPU, 3.9 GB, nothing else running; most of
-# it the lightweight pair's contact-element table over the whole wheel
-# revolution (29,055 positions); the gearbox run-ups 147,000 and 137,000
-# steps at 64-74 us. GEARBOX=0 leaves it out.
+# and stiffness files made (copied from the default scene's), nothing
+# else running: the housing 75-82 s (0.9 GB; reused afterwards), `solver
+# dynamic` 4 min 6 s wall, 3.9 GB; the gearbox run-ups 224,900 and
+# 192,437 steps at 79-87 us on 235 coordinates. GEARBOX=0 leaves it out.
 GEARBOX       ?= 1
 GEARBOX_SCENE := reference/scenes/white_paper_gearbox.toml
 # The calibrated variant of the white-paper design

@@ -64,11 +64,11 @@ mod fixture;
 use compliant::{bodies, supports, Compliant};
 use geometry::pair::PairGeometry;
 use nalgebra::{DMatrix, DVector, Vector3};
-use solver::bearings::flexible_shaft::{Shaft, ShaftSegment};
+use solver::bearings::flexible_shaft::Shaft;
 use solver::gearbox::dynamics::{integrate, GState, GearboxIntegrator, GearboxModel};
 use solver::gearbox::{assemble, MemberParts, Part};
 use solver::multibody::compliant::{CompliantModel, MemberBody, X};
-use solver::multibody::model::{Drive, Model, Ramp};
+use solver::multibody::model::{Drive, Model};
 use solver::multibody::time_step::StepControl;
 use std::f64::consts::PI;
 
@@ -76,29 +76,8 @@ const TORQUE_NM: f64 = 300.0;
 const DIAMETER_M: f64 = 0.03;
 const RPM: f64 = 3000.0;
 
-/// The shafts of `gearbox_on_fixture.rs`: each gear at its mean point, a
-/// solid shaft from there to its far bearing.
 fn shafts(g: &PairGeometry, s: &[MemberBody; 2]) -> [Shaft; 2] {
-    std::array::from_fn(|m| {
-        let seat = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
-        let far = s[m]
-            .support
-            .bearings()
-            .iter()
-            .fold(seat, |a, b| a.max(b.axial_position_m));
-        let material = g.data.members[m].material();
-        Shaft {
-            segments: vec![ShaftSegment {
-                from_m: seat,
-                to_m: far,
-                outer_diameter_m: DIAMETER_M,
-                inner_diameter_m: 0.0,
-            }],
-            seat_m: seat,
-            youngs_modulus_pa: material.youngs_modulus_pa,
-            poisson_ratio: material.poisson_ratio,
-        }
-    })
+    compliant::shafts_from_mean_points(g, s, DIAMETER_M)
 }
 
 fn parts<'a>(
@@ -179,21 +158,9 @@ fn undamped_gearbox_run_conserves_energy() {
         s.damping.iter().all(|&d| d == 0.0),
         "the structure must be undamped"
     );
-    let w1 = RPM * PI / 30.0;
     let start = Model {
-        table: &c.table,
-        coast: None,
-        inertia: c.inertia,
         damping: 0.0,
-        friction: 0.0,
-        drive: Drive::PinionSpeed {
-            speed: Ramp {
-                from: w1,
-                to: w1,
-                duration: 0.0,
-            },
-            wheel_torque: TORQUE_NM / c.ratio,
-        },
+        ..compliant::pinion_at(&c, RPM, TORQUE_NM)
     };
     let run = Model {
         drive: Drive::Free {
@@ -233,7 +200,7 @@ fn undamped_gearbox_run_conserves_energy() {
         min_step: 1e-11,
         tolerance: 1e-9,
     };
-    let t_end = 4.0 * c.table.span() / w1;
+    let t_end = 4.0 * c.table.span() / (RPM * PI / 30.0);
     let (mut right, mut right_mid, mut wrong_heavy, mut wrong_shafts) = (
         Balance::default(),
         Balance::default(),

@@ -12,7 +12,7 @@ mod fixture;
 use compliant::{bodies, supports, Compliant};
 use fixture::supports_on_shafts;
 use geometry::pair::PairGeometry;
-use solver::bearings::flexible_shaft::{Shaft, ShaftSegment};
+use solver::bearings::flexible_shaft::Shaft;
 use solver::gearbox::dynamics::{integrate, GState, GearboxIntegrator, GearboxModel};
 use solver::gearbox::system_modes::system_modes;
 use solver::gearbox::{assemble, MemberParts};
@@ -25,29 +25,10 @@ use std::f64::consts::PI;
 const TORQUE_NM: f64 = 300.0;
 const DIAMETER_M: f64 = 0.03;
 
-/// The shafts of `supports_on_shafts`: each gear at its mean point, a solid
-/// shaft from there to its far bearing.
+/// The shafts of `supports_on_shafts`: each gear at its mean point, a
+/// solid shaft from there to its far bearing.
 fn shafts(g: &PairGeometry, s: &[MemberBody; 2]) -> [Shaft; 2] {
-    std::array::from_fn(|m| {
-        let seat = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
-        let far = s[m]
-            .support
-            .bearings()
-            .iter()
-            .fold(seat, |a, b| a.max(b.axial_position_m));
-        let material = g.data.members[m].material();
-        Shaft {
-            segments: vec![ShaftSegment {
-                from_m: seat,
-                to_m: far,
-                outer_diameter_m: DIAMETER_M,
-                inner_diameter_m: 0.0,
-            }],
-            seat_m: seat,
-            youngs_modulus_pa: material.youngs_modulus_pa,
-            poisson_ratio: material.poisson_ratio,
-        }
-    })
+    compliant::shafts_from_mean_points(g, s, DIAMETER_M)
 }
 
 /// The pinion at `rpm` against 300 N·m, mesh damping ratio 0.05.

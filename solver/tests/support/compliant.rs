@@ -100,3 +100,33 @@ pub fn pinion_at(
     rigid.damping = rigid.damping_for_ratio(0.05, &s).unwrap();
     rigid
 }
+
+/// Solid shafts of `diameter_m`, each gear seated at its mean point, the
+/// shaft from there to its far bearing (the design's steel).
+pub fn shafts_from_mean_points(
+    g: &PairGeometry,
+    s: &[MemberBody; 2],
+    diameter_m: f64,
+) -> [solver::bearings::flexible_shaft::Shaft; 2] {
+    use solver::bearings::flexible_shaft::{Shaft, ShaftSegment};
+    std::array::from_fn(|m| {
+        let seat = g.data.mean_cone_distance * g.data.members[m].pitch_angle.cos();
+        let far = s[m]
+            .support
+            .bearings()
+            .iter()
+            .fold(seat, |a, b| a.max(b.axial_position_m));
+        let material = g.data.members[m].material();
+        Shaft {
+            segments: vec![ShaftSegment {
+                from_m: seat,
+                to_m: far,
+                outer_diameter_m: diameter_m,
+                inner_diameter_m: 0.0,
+            }],
+            seat_m: seat,
+            youngs_modulus_pa: material.youngs_modulus_pa,
+            poisson_ratio: material.poisson_ratio,
+        }
+    })
+}
