@@ -19,7 +19,7 @@ use solver::gearbox::{assemble, MemberParts};
 use solver::multibody::compliant::{
     integrate as c_integrate, CState, CompliantIntegrator, CompliantModel, MemberBody,
 };
-use solver::multibody::time_step::StepControl;
+use solver::multibody::time_step::{integrate as r_integrate, Integrator, Scheme, StepControl};
 use std::f64::consts::PI;
 
 const TORQUE_NM: f64 = 300.0;
@@ -115,6 +115,64 @@ fn rigid_shafts_on_a_rigid_housing_run_as_the_compliant_bearing_model() {
     // Rounding: the two integrators sum in other orders (turns ~0.1 rad,
     // bearing coordinates ~1e-5 m, both to ~1e-8 of their size).
     assert!(worst_x < 1e-8 && worst_f < 1e-8, "{worst_x} {worst_f}");
+}
+
+/// With rigid shafts on a rigid housing and bearings of 1e14 N/m (the
+/// scene's stiffest), the gearbox runs as the rigid-bearing multibody:
+/// the same TE at every step (fixed steps, 1.5 mesh cycles at 3,000 rpm).
+#[test]
+fn very_stiff_bearings_give_the_rigid_bearing_multibody_te() {
+    let c = Compliant::example_02(24, 900.0);
+    let rigid = pinion_at(&c, 3000.0);
+    let b = bodies(&c.f.g, &supports(&c.f.g, 1e14), 0.0);
+    let cm = CompliantModel::new(rigid, &c.shift, b.clone(), c.hand).unwrap();
+    let s = assemble(parts(&b, c.inertia, None, 0.0), None, 0.01).unwrap();
+    let gm = GearboxModel::new(&cm, &s).unwrap();
+    let t_end = 1.5 * c.table.span() / (3000.0 * PI / 30.0);
+    let h = 2e-6;
+    let r = c.ratio;
+    let mut te_rigid = Vec::new();
+    let mut ri = Integrator::new(Scheme::GeneralizedAlpha { rho_inf: 0.8 }, fixed(h));
+    r_integrate(
+        &rigid,
+        rigid.static_state(0.0).unwrap(),
+        &mut ri,
+        t_end,
+        |s| {
+            te_rigid.push(r * s.q[0] - s.q[1]);
+            Ok(())
+        },
+    )
+    .unwrap();
+    let mut te = Vec::new();
+    integrate(
+        &gm,
+        gm.static_state(0.0).unwrap(),
+        &mut GearboxIntegrator::new(0.8, fixed(h)),
+        t_end,
+        |s, _| {
+            te.push(r * s.x[0] - s.x[1]);
+            Ok(())
+        },
+    )
+    .unwrap();
+    assert_eq!(te.len(), te_rigid.len());
+    let worst = te
+        .iter()
+        .zip(&te_rigid)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let size = te_rigid.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    eprintln!(
+        "{} steps: largest TE difference {:.3e} µrad of {:.1} µrad",
+        te.len(),
+        worst * 1e6,
+        size * 1e6
+    );
+    assert!(
+        worst < 1e-4 * size,
+        "largest TE difference {worst} rad of {size}"
+    );
 }
 
 #[test]
