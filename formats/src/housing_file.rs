@@ -55,6 +55,16 @@ impl HousingData {
     pub fn coordinates(&self) -> usize {
         (self.stiffness.len() as f64).sqrt().round() as usize
     }
+
+    /// Largest |reduced/whole − 1| of the housing's modes compared
+    /// (`check/reduced_hz` against `check/reference_hz`).
+    pub fn truncation_error(&self) -> f64 {
+        self.reduced_hz
+            .iter()
+            .zip(&self.reference_hz)
+            .map(|(x, y)| (x / y - 1.0).abs())
+            .fold(0.0, f64::max)
+    }
 }
 
 /// The input hash of a housing from its configuration text.

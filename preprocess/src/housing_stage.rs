@@ -20,6 +20,7 @@ use formats::housing_file::{self, HousingData};
 use geometry::housing_layout;
 use geometry::pair::PairGeometry;
 use geometry::scene::LoadedScene;
+use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::{DMatrix, SymmetricEigen};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -79,7 +80,7 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Option<HousingRep
     let path = housing_file::path(root, &scene.scene.name);
     if path.exists() {
         if let Ok(data) = housing_file::read(&path, Some(&hash)) {
-            let truncation_error = truncation_error(&data);
+            let truncation_error = data.truncation_error();
             return Ok(Some(HousingReport {
                 path,
                 reused: true,
@@ -90,8 +91,19 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Option<HousingRep
             }));
         }
     }
+    let bar = ProgressBar::new_spinner();
+    bar.set_style(
+        ProgressStyle::with_template("housing {spinner} {elapsed} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    bar.set_message("meshing");
     let hm =
         crate::housing_mesh::mesh(&layout, h.element_mm * 1e-3).map_err(|e| anyhow::anyhow!(e))?;
+    bar.set_message(format!(
+        "{} nodes: factoring, constraint modes",
+        hm.mesh.nodes.len()
+    ));
     let volume = hm.mesh.volume();
     let material = fem::Material {
         youngs_modulus_pa: h.youngs_modulus_gpa * 1e9,
@@ -118,6 +130,7 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Option<HousingRep
         .context("housing: Craig–Bampton reduction")?;
     let mut count = FIRST_MODES;
     let cb = loop {
+        bar.set_message(format!("{count} fixed-interface modes"));
         let cb = reduction
             .reduce(count)
             .context("housing: fixed-interface modes")?;
@@ -148,6 +161,7 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Option<HousingRep
     // reduced model's frequencies bound it from above, so it has at least
     // as many modes there.
     let below = reduced.iter().filter(|&&f| f <= check_up_to).count().max(1);
+    bar.set_message(format!("the whole housing's {} modes", below + 2));
     let full: Vec<f64> = reduction
         .full_omega2(below + 2)
         .context("housing: modes of the whole housing")?
@@ -177,8 +191,9 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Option<HousingRep
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
+    bar.finish_and_clear();
     housing_file::write(&path, &data)?;
-    let truncation_error = truncation_error(&data);
+    let truncation_error = data.truncation_error();
     Ok(Some(HousingReport {
         path,
         reused: false,
@@ -187,13 +202,4 @@ pub fn run(scene: &LoadedScene, root: &Path) -> anyhow::Result<Option<HousingRep
         truncation_error,
         seconds: t0.elapsed().as_secs_f64(),
     }))
-}
-
-/// Largest |reduced/whole − 1| of the housing's modes compared.
-pub fn truncation_error(d: &HousingData) -> f64 {
-    d.reduced_hz
-        .iter()
-        .zip(&d.reference_hz)
-        .map(|(x, y)| (x / y - 1.0).abs())
-        .fold(0.0, f64::max)
 }

@@ -66,7 +66,7 @@ use geometry::pair::PairGeometry;
 use nalgebra::{DMatrix, DVector, Vector3};
 use solver::bearings::flexible_shaft::Shaft;
 use solver::gearbox::dynamics::{integrate, GState, GearboxIntegrator, GearboxModel};
-use solver::gearbox::{assemble, MemberParts, Part};
+use solver::gearbox::{assemble, Part};
 use solver::multibody::compliant::{CompliantModel, MemberBody, X};
 use solver::multibody::model::{Drive, Model};
 use solver::multibody::time_step::StepControl;
@@ -80,26 +80,7 @@ fn shafts(g: &PairGeometry, s: &[MemberBody; 2]) -> [Shaft; 2] {
     compliant::shafts_from_mean_points(g, s, DIAMETER_M)
 }
 
-fn parts<'a>(
-    b: &'a [MemberBody; 2],
-    inertia: [f64; 2],
-    shafts: Option<&'a [Shaft; 2]>,
-    density: f64,
-) -> [MemberParts<'a>; 2] {
-    std::array::from_fn(|k| MemberParts {
-        body: &b[k],
-        polar_inertia_kgm2: inertia[k],
-        shaft: shafts.map(|s| (&s[k], density)),
-    })
-}
-
-fn fixed(h: f64) -> StepControl {
-    StepControl {
-        max_step: h,
-        min_step: h,
-        tolerance: 1.0,
-    }
-}
+use compliant::{fixed, parts};
 
 /// The contact element's 12 coordinates of a gearbox vector.
 fn head(x: &DVector<f64>) -> X {

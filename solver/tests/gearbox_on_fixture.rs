@@ -13,13 +13,13 @@ use compliant::{bodies, supports, Compliant};
 use fixture::supports_on_shafts;
 use geometry::pair::PairGeometry;
 use solver::bearings::flexible_shaft::Shaft;
+use solver::gearbox::assemble;
 use solver::gearbox::dynamics::{integrate, GState, GearboxIntegrator, GearboxModel};
 use solver::gearbox::system_modes::system_modes;
-use solver::gearbox::{assemble, MemberParts};
 use solver::multibody::compliant::{
     integrate as c_integrate, CState, CompliantIntegrator, CompliantModel, MemberBody,
 };
-use solver::multibody::time_step::{integrate as r_integrate, Integrator, Scheme, StepControl};
+use solver::multibody::time_step::{integrate as r_integrate, Integrator, Scheme};
 use std::f64::consts::PI;
 
 const TORQUE_NM: f64 = 300.0;
@@ -36,26 +36,7 @@ fn pinion_at(c: &Compliant, rpm: f64) -> solver::multibody::model::Model<'_> {
     compliant::pinion_at(c, rpm, TORQUE_NM)
 }
 
-fn parts<'a>(
-    b: &'a [MemberBody; 2],
-    inertia: [f64; 2],
-    shafts: Option<&'a [Shaft; 2]>,
-    density: f64,
-) -> [MemberParts<'a>; 2] {
-    std::array::from_fn(|k| MemberParts {
-        body: &b[k],
-        polar_inertia_kgm2: inertia[k],
-        shaft: shafts.map(|s| (&s[k], density)),
-    })
-}
-
-fn fixed(h: f64) -> StepControl {
-    StepControl {
-        max_step: h,
-        min_step: h,
-        tolerance: 1.0,
-    }
-}
+use compliant::{fixed, parts};
 
 #[test]
 fn rigid_shafts_on_a_rigid_housing_run_as_the_compliant_bearing_model() {

@@ -373,32 +373,8 @@ mod tests {
     /// The lowest bending ω² of a pinned–pinned shaft of `n` elements
     /// (dense generalized eigenproblem of the assembled K and M).
     fn pinned_shaft_omega2(s: &Section, length: f64, rho: f64, n: usize) -> f64 {
-        let dofs = 6 * (n + 1);
-        let (mut k, mut m) = (DMatrix::zeros(dofs, dofs), DMatrix::zeros(dofs, dofs));
-        let l = length / n as f64;
-        let (ke, me) = (element_stiffness(s, l), element_mass(s, l, rho));
-        for e in 0..n {
-            for i in 0..12 {
-                for j in 0..12 {
-                    k[(6 * e + i, 6 * e + j)] += ke[(i, j)];
-                    m[(6 * e + i, 6 * e + j)] += me[(i, j)];
-                }
-            }
-        }
         // Pinned ends (u_y = u_z = 0), axial motion and twist held at node 0.
-        let held = [0, 1, 2, 3, 6 * n + 1, 6 * n + 2];
-        let free: Vec<usize> = (0..dofs).filter(|d| !held.contains(d)).collect();
-        let sub = |a: &DMatrix<f64>| {
-            DMatrix::from_fn(free.len(), free.len(), |i, j| a[(free[i], free[j])])
-        };
-        let (k, m) = (sub(&k), sub(&m));
-        let li = m.cholesky().unwrap().l().try_inverse().unwrap();
-        let c = &li * k * li.transpose();
-        let c = 0.5 * (&c + c.transpose());
-        c.symmetric_eigenvalues()
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min)
+        shaft_omega2(s, length, rho, n, &[0, 1, 2, 3, 6 * n + 1, 6 * n + 2])[0]
     }
 
     /// Timoshenko beam theory, pinned–pinned, mode 1 (α = π/L, w = W sin αx,

@@ -3,17 +3,22 @@
 //! `[bearings.<member>_shaft]` (rigid where absent) carry their mass as
 //! Timoshenko beam elements (the design's density), the gears are rigid
 //! bodies on their seats (the compliant runs' masses: the gear alone), the
-//! bearings join the shafts to a rigid housing. Files, in the blank pair's
-//! folder:
+//! bearings join the shafts to a rigid housing, or with
+//! `[bearings.gearbox.housing]` to the FE housing of `preprocess housing`
+//! (`<meshes>/<scene>/housing.h5`, read and checked by [`load_housing`]
+//! before any run). Files, in the blank pair's folder:
 //!
 //! - `gearbox_modes.csv`: the loaded modes up to `modes_up_to_hz` (the
 //!   contact element linearized at the run-up torque's quasi-static state)
 //!   with each one's kinetic energy by part;
 //! - `gearbox_runup.csv`: per run-up step the time, pinion rotation and
-//!   speed, shaft TE and every bearing's force on its seat;
+//!   speed, shaft TE, every bearing's force on its seat and, with a
+//!   housing, each seat's acceleration;
 //! - `gearbox_runup_spectrogram.svg`: the wheel bearings' total force |F|
 //!   with the order lines and the modes (dashed): a Campbell diagram over
-//!   the spectrogram; `gearbox_runup_orders.json` as the other run-ups'.
+//!   the spectrogram; with a housing `gearbox_runup_housing_spectrogram.svg`
+//!   the same of the wheel's first seat's |a|; `gearbox_runup_orders.json`
+//!   as the other run-ups'.
 
 use crate::bearings::flexible_shaft::Shaft;
 use crate::gearbox::dynamics::{integrate, GearboxIntegrator, GearboxModel};
@@ -124,12 +129,7 @@ fn housing_summary(h: &LoadedHousing) -> HousingSummary {
         modes_up_to_hz: h.modes_up_to_hz,
         reduced_hz: d.reduced_hz.clone(),
         reference_hz: d.reference_hz.clone(),
-        truncation_error: d
-            .reduced_hz
-            .iter()
-            .zip(&d.reference_hz)
-            .map(|(x, y)| (x / y - 1.0).abs())
-            .fold(0.0, f64::max),
+        truncation_error: d.truncation_error(),
         seat_acceleration_m_s2: Vec::new(),
     }
 }

@@ -130,3 +130,26 @@ pub fn shafts_from_mean_points(
         }
     })
 }
+
+/// The gearbox parts of `b`: the shafts (with `density`) or rigid ones.
+pub fn parts<'a>(
+    b: &'a [MemberBody; 2],
+    inertia: [f64; 2],
+    shafts: Option<&'a [solver::bearings::flexible_shaft::Shaft; 2]>,
+    density: f64,
+) -> [solver::gearbox::MemberParts<'a>; 2] {
+    std::array::from_fn(|k| solver::gearbox::MemberParts {
+        body: &b[k],
+        polar_inertia_kgm2: inertia[k],
+        shaft: shafts.map(|s| (&s[k], density)),
+    })
+}
+
+/// Fixed steps of `h`.
+pub fn fixed(h: f64) -> solver::multibody::time_step::StepControl {
+    solver::multibody::time_step::StepControl {
+        max_step: h,
+        min_step: h,
+        tolerance: 1.0,
+    }
+}

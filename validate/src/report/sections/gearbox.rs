@@ -4,7 +4,10 @@
 //! as Timoshenko beam elements with mass, `solver::gearbox`).
 //!
 //! Reads `<out>/white_paper_gearbox/multibody/summary.json`: per blank pair
-//! the structure (coordinates, shaft masses), the loaded modes with the
+//! the structure (coordinates, shaft masses), the FE housing where there is
+//! one (its mesh, its modes against the whole FE housing's with the verdict
+//! against 1 %, the seats' largest accelerations, the spectrogram of a
+//! seat's acceleration), the loaded modes with the
 //! share of their kinetic energy per part, where the excitation orders
 //! meet them within the run-up's speeds, the run-up on the gearbox beside
 //! the compliant-bearing run-up on the statically condensed shafts (TE,
