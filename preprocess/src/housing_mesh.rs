@@ -6,7 +6,7 @@
 //! clamped feet's nodes.
 
 use fem::TetMesh;
-use geometry::housing_layout::HousingLayout;
+use geometry::housing_layout::{HousingBox, HousingLayout};
 use gmsh::{DimTag, Session};
 use nalgebra::{Matrix3, Vector3};
 
@@ -35,58 +35,56 @@ pub fn mesh(l: &HousingLayout, element_m: f64) -> Result<HousingMesh, String> {
     // Housing-frame coordinates of an assembly-frame vector.
     let h = |v: [f64; 3]| frame.transpose() * Vector3::from(v);
 
+    // A wall's or rib's axis lies in the housing frame's XY plane at angle
+    // ψ from X: its box is built along X (centre turned back by −ψ), then
+    // turned by ψ about Z.
+    let angle = |b: &HousingBox| {
+        let a = h(b.axes[0]);
+        a.y.atan2(a.x)
+    };
+    let back = |psi: f64, p: [f64; 3]| {
+        nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), -psi) * h(p)
+    };
+    let add_box = |c: Vector3<f64>, [hx, hy, hz]: [f64; 3]| {
+        s.occ_add_box(c.x - hx, c.y - hy, c.z - hz, 2.0 * hx, 2.0 * hy, 2.0 * hz)
+            .map_err(g)
+    };
+    let turn = |v: &[DimTag], psi: f64| -> Result<(), String> {
+        if psi != 0.0 {
+            s.occ_rotate(v, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, psi)
+                .map_err(g)?;
+        }
+        Ok(())
+    };
+
     let mut volumes: Vec<DimTag> = Vec::new();
     for w in &l.walls {
-        // The wall's axis in the housing frame lies in its XY plane at
-        // angle ψ from X: build it along X, then turn it by ψ about Z.
-        let a = h(w.axis);
-        let psi = a.y.atan2(a.x);
-        let turn_back = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), -psi);
-        let c = turn_back * h(w.solid.centre);
-        let seat = turn_back * h(w.seat);
-        let [hx, hy, hz] = w.solid.half;
-        let b = s
-            .occ_add_box(c.x - hx, c.y - hy, c.z - hz, 2.0 * hx, 2.0 * hy, 2.0 * hz)
-            .map_err(g)?;
-        let over = hx;
+        let psi = angle(&w.solid);
+        let b = add_box(back(psi, w.solid.centre), w.solid.half)?;
+        let seat = back(psi, w.seat);
+        let hx = w.solid.half[0];
         let bore = s
             .occ_add_cylinder(
-                seat.x - hx - over,
+                seat.x - 2.0 * hx,
                 seat.y,
                 seat.z,
-                2.0 * (hx + over),
+                4.0 * hx,
                 0.0,
                 0.0,
                 w.bore_radius,
             )
             .map_err(g)?;
         let (cut, _) = s.occ_cut(&[(3, b)], &[(3, bore)], true, true).map_err(g)?;
-        if psi != 0.0 {
-            s.occ_rotate(&cut, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, psi)
-                .map_err(g)?;
-        }
+        turn(&cut, psi)?;
         volumes.extend(cut);
     }
     for r in &l.ribs {
-        let a = h(r.solid.axes[0]);
-        let psi = a.y.atan2(a.x);
-        let turn_back = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), -psi);
-        let c = turn_back * h(r.solid.centre);
-        let [hx, hy, hz] = r.solid.half;
-        let b = s
-            .occ_add_box(c.x - hx, c.y - hy, c.z - hz, 2.0 * hx, 2.0 * hy, 2.0 * hz)
-            .map_err(g)?;
-        if psi != 0.0 {
-            s.occ_rotate(&[(3, b)], 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, psi)
-                .map_err(g)?;
-        }
+        let psi = angle(&r.solid);
+        let b = add_box(back(psi, r.solid.centre), r.solid.half)?;
+        turn(&[(3, b)], psi)?;
         volumes.push((3, b));
     }
-    let f = h(l.floor.centre);
-    let [fx, fy, fz] = l.floor.half;
-    let floor = s
-        .occ_add_box(f.x - fx, f.y - fy, f.z - fz, 2.0 * fx, 2.0 * fy, 2.0 * fz)
-        .map_err(g)?;
+    let floor = add_box(h(l.floor.centre), l.floor.half)?;
     let (fused, _) = s.occ_fuse(&[(3, floor)], &volumes, true, true).map_err(g)?;
     s.occ_synchronize().map_err(g)?;
     let vols = s.occ_get_entities(3).map_err(g)?;
