@@ -371,21 +371,22 @@ impl<'a> LineSearch<'a> {
     /// the best node or nothing).
     pub fn min_contact(&self, target: f64) -> Option<(f64, [f64; 2])> {
         let rs = self.rs;
-        let mut nodes: Vec<(f64, usize)> = (0..rs.uv.len())
+        let nodes = (0..rs.uv.len())
             .filter(|&n| rs.active[n])
-            .map(|n| (rs.node_lag(n, target), n))
-            .collect();
-        // Stable: of equal lags the first node, as a plain scan for the minimum.
-        nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let tries = if self.fp.pose.is_some() {
-            nodes.len()
+            .map(|n| (rs.node_lag(n, target), n));
+        let (uv, val) = if self.fp.pose.is_some() {
+            let mut nodes: Vec<(f64, usize)> = nodes.collect();
+            // Stable: of equal lags the first node, as a plain scan for the minimum.
+            nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+            nodes
+                .iter()
+                .find_map(|&(_, n)| self.lag(rs.uv[n], target).map(|v| (rs.uv[n], v)))?
         } else {
-            1
+            // The best node (the first of equal lags) or nothing: a scan,
+            // no sort.
+            let (_, n) = nodes.min_by(|a, b| a.0.total_cmp(&b.0))?;
+            self.lag(rs.uv[n], target).map(|v| (rs.uv[n], v))?
         };
-        let (uv, val) = nodes
-            .iter()
-            .take(tries)
-            .find_map(|&(_, n)| self.lag(rs.uv[n], target).map(|v| (rs.uv[n], v)))?;
         let (uv, val) = crate::minimize::newton_2d(|c| self.lag(c, target), uv, val, 1e-5, 25);
         Some((val, uv))
     }
