@@ -10,7 +10,6 @@ use crate::cpu_clock::timed;
 use crate::element::compliance::PairCompliance;
 use crate::element::contact_problem::{ContactProblem, ContactSolution};
 use crate::element::edge_contact::{position_edge, EdgeHit};
-use crate::element::line_coupling::{self, LineSegment};
 use crate::element::slices::{pair_slices, Slice};
 use crate::element::weber_banaschek::{contact_modulus, half_width, LineContact};
 use crate::SolverError;
@@ -101,14 +100,8 @@ pub fn loaded_neighbours(
 /// Compliance and line contacts of a position's slices.
 #[derive(Debug, Clone)]
 pub struct Assembled {
-    /// C = C_pinion + C_wheel + K (off the diagonal), row-major n × n,
-    /// m/N: the global fields and the local coupling between the slices of
-    /// each contact line.
+    /// C = C_pinion + C_wheel, row-major n × n, m/N.
     pub compliance: Vec<f64>,
-    /// The local coupling K along each pair's contact line
-    /// ([`line_coupling`]), row-major n × n, m/N: its off-diagonal part is
-    /// in `compliance`, its diagonal in each line contact's `neighbours`.
-    pub local_coupling: Vec<f64>,
     pub line: Vec<LineContact>,
     /// Per slice: touching lag (rad), wheel and pinion normal levers.
     pub lag: Vec<f64>,
@@ -199,31 +192,9 @@ pub fn assemble(
         }
     }
     line.sort_by_key(|e| e.0);
-    let mut line: Vec<LineContact> = line.into_iter().map(|e| e.1).collect();
-    // The local approach along each pair's contact line: the point-to-line
-    // transition of the Weber–Banaschek strip ([`line_coupling`]). The
-    // diagonal K_ii is the strip's own (its neighbours' share), the rest
-    // couples the slices as the global field does.
-    let mut coupling = vec![0.0; n * n];
-    for rows in &members {
-        let k = line_coupling::coupling(&line_segments(g, &line, rows), bodies);
-        for (a, &r) in rows.iter().enumerate() {
-            for (b, &s) in rows.iter().enumerate() {
-                coupling[r * n + s] = k[a * rows.len() + b];
-            }
-        }
-    }
-    for r in 0..n {
-        line[r].neighbours = coupling[r * n + r];
-        for s in (0..n).filter(|&s| s != r) {
-            c[r * n + s] += coupling[r * n + s];
-            line[r].coupled += coupling[r * n + s].abs();
-        }
-    }
     Ok(Assembled {
         compliance: c,
-        local_coupling: coupling,
-        line,
+        line: line.into_iter().map(|e| e.1).collect(),
         lag: g.slices.iter().map(|s| s.lag).collect(),
         lever_wheel: g.slices.iter().map(|s| s.lever_wheel).collect(),
         lever_pinion: g
@@ -233,41 +204,6 @@ pub fn assemble(
             .collect(),
         friction,
     })
-}
-
-/// The slices `rows` of one tooth pair (in order across the face) as
-/// segments of their contact line: each slice's length laid end to end,
-/// with the gaps between bands (columns without contact) at the mean
-/// length per unit ξ of the two slices beside them, and each slice's
-/// depths; a slice whose band is under [`line_coupling::SHORT`] of the
-/// pair's widest is marked short.
-fn line_segments(g: &Geometry, line: &[LineContact], rows: &[usize]) -> Vec<LineSegment> {
-    let widest = rows
-        .iter()
-        .map(|&k| g.slices[k].band[1] - g.slices[k].band[0])
-        .fold(0.0, f64::max);
-    let per_xi = |k: usize| {
-        let s = &g.slices[k];
-        s.length / (s.band[1] - s.band[0]).max(1e-12)
-    };
-    let mut y = 0.0;
-    let mut out = Vec::with_capacity(rows.len());
-    for (a, &k) in rows.iter().enumerate() {
-        let s = &g.slices[k];
-        if a > 0 {
-            let p = rows[a - 1];
-            let gap = (s.band[0] - g.slices[p].band[1]).max(0.0);
-            y += gap * 0.5 * (per_xi(p) + per_xi(k));
-        }
-        out.push(LineSegment {
-            start: y,
-            end: y + s.length,
-            h: line[k].h,
-            short: s.band[1] - s.band[0] < line_coupling::SHORT * widest,
-        });
-        y += s.length;
-    }
-    out
 }
 
 /// Solves one position at pinion torque `torque` (N·m).
@@ -570,22 +506,17 @@ pub enum Variant {
     /// Without the edge cut: every slice a Hertz strip, tip edges or not
     /// ([`crate::element::edge_cut`]).
     WithoutEdgeCut,
-    /// Without the local coupling along the contact line: every slice the
-    /// plane-strain strip whatever its neighbours carry
-    /// ([`crate::element::line_coupling`]).
-    WithoutLineCoupling,
 }
 
 impl Variant {
     /// The variants the ablation study runs beside the element.
-    pub const ABLATED: [Variant; 2] = [Variant::WithoutEdgeCut, Variant::WithoutLineCoupling];
+    pub const ABLATED: [Variant; 1] = [Variant::WithoutEdgeCut];
 
     /// Short name (file key).
     pub fn name(self) -> &'static str {
         match self {
             Variant::Element => "element",
             Variant::WithoutEdgeCut => "without_edge_cut",
-            Variant::WithoutLineCoupling => "without_line_coupling",
         }
     }
 
@@ -594,37 +525,13 @@ impl Variant {
         match self {
             Variant::Element => "none",
             Variant::WithoutEdgeCut => "edge cut (a tip edge cutting a slice's contact strip)",
-            Variant::WithoutLineCoupling => {
-                "local coupling along the contact line (the point-to-line transition of the strip)"
-            }
         }
     }
 
     fn apply(self, a: &mut Assembled) {
-        match self {
-            Variant::Element => {}
-            Variant::WithoutEdgeCut => {
-                for l in &mut a.line {
-                    l.edge = None;
-                }
-            }
-            Variant::WithoutLineCoupling => {
-                let n = a.line.len();
-                for (i, (c, k)) in a
-                    .compliance
-                    .iter_mut()
-                    .zip(&mut a.local_coupling)
-                    .enumerate()
-                {
-                    if i / n != i % n {
-                        *c -= *k;
-                    }
-                    *k = 0.0;
-                }
-                for l in &mut a.line {
-                    l.neighbours = 0.0;
-                    l.coupled = 0.0;
-                }
+        if self == Variant::WithoutEdgeCut {
+            for l in &mut a.line {
+                l.edge = None;
             }
         }
     }

@@ -27,7 +27,7 @@ use nalgebra::{DMatrix, DVector};
 /// use solver::element::contact_problem::ContactProblem;
 /// use solver::element::weber_banaschek::LineContact;
 /// let c = 2e-9; // m/N, no coupling between the slices
-/// let line = LineContact { rho: 0.01, length: 0.004, h: [0.005; 2], bodies: [Material::STEEL; 2], edge: None, neighbours: 0.0, coupled: 0.0 };
+/// let line = LineContact { rho: 0.01, length: 0.004, h: [0.005; 2], bodies: [Material::STEEL; 2], edge: None };
 /// let (r1, r2, torque) = (0.04, 0.09, 300.0);
 /// let p = ContactProblem {
 ///     compliance: &[c, 0.0, 0.0, c],
@@ -326,8 +326,6 @@ mod tests {
             h: [3e-3, 3e-3],
             bodies: [STEEL, STEEL],
             edge: None,
-            neighbours: 0.0,
-            coupled: 0.0,
         }
     }
 
@@ -366,8 +364,6 @@ mod tests {
             h: [1e-9, 1e-9],
             bodies: [STEEL, STEEL],
             edge: None,
-            neighbours: 0.0,
-            coupled: 0.0,
         };
         let p = ContactProblem {
             compliance: &c,

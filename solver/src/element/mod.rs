@@ -5,9 +5,7 @@
 //! across the face width) → [`compliance`] (C = C_pinion + C_wheel from the
 //! stiffness files' global fields, [`interp`] on their flank grids) +
 //! [`weber_banaschek`] (the local, near-contact approach of a line
-//! contact) + [`line_coupling`] (that approach's coupling along the contact
-//! line, where the neighbours carry other loads) → [`contact_problem`]
-//! (slice forces and loaded TE);
+//! contact) → [`contact_problem`] (slice forces and loaded TE);
 //! [`edge_cut`] is the local approach of a slice whose strip a tip edge
 //! cuts; [`edge_contact`] tells when a slice's contact reaches a flank edge;
 //! [`root_stress`] turns the slice forces into the loaded teeth's fillet
@@ -18,7 +16,6 @@ pub mod contact_problem;
 pub mod edge_contact;
 pub mod edge_cut;
 pub mod interp;
-pub mod line_coupling;
 pub mod root_stress;
 pub mod slices;
 pub mod weber_banaschek;

@@ -82,15 +82,6 @@ pub struct LineContact {
     /// The tip edge that can cut this slice's strip
     /// ([`crate::element::edge_cut`]); None far from any.
     pub edge: Option<EdgeCut>,
-    /// The share of the strip's approach that its neighbours along the
-    /// contact line would make if they carried the slice's own line load,
-    /// per unit force, m/N (≤ 0: [`crate::element::line_coupling`]'s
-    /// K_ii); 0 for the plane-strain strip alone.
-    pub neighbours: f64,
-    /// The sum of the magnitudes of the slice's couplings to the other
-    /// slices of its line, Σ_{j≠i} |K_ij|, m/N: the least secant that keeps
-    /// the local part of the contact problem positive definite.
-    pub coupled: f64,
 }
 
 impl LineContact {
@@ -98,26 +89,7 @@ impl LineContact {
     /// w₁(h₁) + w₂(h₂) at q = f/length, of the Hertz strip or, where the
     /// strip reaches a tip edge (the contact point on the edge, or the
     /// half-width b past the distance to it), of the cut strip.
-    ///
-    /// With `neighbours` = K_ii < 0, the strip less its neighbours' share,
-    /// w(f) + K_ii f, floored at the larger of half the strip's own w(f)
-    /// and `coupled` · f. The line kernel behind K_ii holds for slices much
-    /// longer than the Hertz half-width ([`crate::element::line_coupling`]);
-    /// the first floor keeps a short slice under a large force from a
-    /// vanishing approach, the second keeps the secant at least the sum of
-    /// the slice's couplings to the others, so that the local part of every
-    /// linear problem the contact solve meets stays positive definite
-    /// (Gershgorin), whatever force the secant is taken at.
     pub fn approach(&self, f: f64) -> f64 {
-        let w = self.strip_approach(f);
-        if self.neighbours == 0.0 || f <= 0.0 {
-            return w;
-        }
-        (w + self.neighbours * f).max(0.5 * w).max(self.coupled * f)
-    }
-
-    /// The strip's own approach (plane strain, or cut at a tip edge).
-    fn strip_approach(&self, f: f64) -> f64 {
         if f <= 0.0 {
             return 0.0;
         }
@@ -195,8 +167,6 @@ mod tests {
             h: [1e-4, 1e-4],
             bodies: [STEEL, STEEL],
             edge: None,
-            neighbours: 0.0,
-            coupled: 0.0,
         };
         let mut last = 0.0;
         for k in 0..60 {
@@ -219,8 +189,6 @@ mod tests {
             h: [3e-3, 4e-3],
             bodies: [STEEL, STEEL],
             edge: None,
-            neighbours: 0.0,
-            coupled: 0.0,
         };
         let cut = LineContact {
             edge: Some(EdgeCut {
@@ -252,8 +220,6 @@ mod tests {
             h: [3e-3, 4e-3],
             bodies: [STEEL, bronze],
             edge: None,
-            neighbours: 0.0,
-            coupled: 0.0,
         };
         let f = 500.0;
         let q = f / c.length;

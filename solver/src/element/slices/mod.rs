@@ -95,8 +95,6 @@ impl Slice {
             h,
             bodies,
             edge: self.edge,
-            neighbours: 0.0,
-            coupled: 0.0,
         }
     }
 }
