@@ -374,18 +374,17 @@ impl<'a> LineSearch<'a> {
         let nodes = (0..rs.uv.len())
             .filter(|&n| rs.active[n])
             .map(|n| (rs.node_lag(n, target), n));
+        // A node's generating parameters and its lag, where it can touch.
+        let start = |n: usize| self.lag(rs.uv[n], target).map(|v| (rs.uv[n], v));
         let (uv, val) = if self.fp.pose.is_some() {
             let mut nodes: Vec<(f64, usize)> = nodes.collect();
             // Stable: of equal lags the first node, as a plain scan for the minimum.
             nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
-            nodes
-                .iter()
-                .find_map(|&(_, n)| self.lag(rs.uv[n], target).map(|v| (rs.uv[n], v)))?
+            nodes.iter().find_map(|&(_, n)| start(n))?
         } else {
             // The best node (the first of equal lags) or nothing: a scan,
             // no sort.
-            let (_, n) = nodes.min_by(|a, b| a.0.total_cmp(&b.0))?;
-            self.lag(rs.uv[n], target).map(|v| (rs.uv[n], v))?
+            start(nodes.min_by(|a, b| a.0.total_cmp(&b.0))?.1)?
         };
         let (uv, val) = crate::minimize::newton_2d(|c| self.lag(c, target), uv, val, 1e-5, 25);
         Some((val, uv))

@@ -61,7 +61,7 @@ mod compliant;
 #[path = "support/fixture.rs"]
 mod fixture;
 
-use compliant::{bodies, supports, Compliant};
+use compliant::{bodies, fixed, parts, supports, Compliant};
 use geometry::pair::PairGeometry;
 use nalgebra::{DMatrix, DVector, Vector3};
 use solver::bearings::flexible_shaft::Shaft;
@@ -79,8 +79,6 @@ const RPM: f64 = 3000.0;
 fn shafts(g: &PairGeometry, s: &[MemberBody; 2]) -> [Shaft; 2] {
     compliant::shafts_from_mean_points(g, s, DIAMETER_M)
 }
-
-use compliant::{fixed, parts};
 
 /// The contact element's 12 coordinates of a gearbox vector.
 fn head(x: &DVector<f64>) -> X {

@@ -9,7 +9,7 @@ mod compliant;
 #[path = "support/fixture.rs"]
 mod fixture;
 
-use compliant::{bodies, supports, Compliant};
+use compliant::{bodies, fixed, parts, supports, Compliant};
 use fixture::supports_on_shafts;
 use geometry::pair::PairGeometry;
 use solver::bearings::flexible_shaft::Shaft;
@@ -35,8 +35,6 @@ fn shafts(g: &PairGeometry, s: &[MemberBody; 2]) -> [Shaft; 2] {
 fn pinion_at(c: &Compliant, rpm: f64) -> solver::multibody::model::Model<'_> {
     compliant::pinion_at(c, rpm, TORQUE_NM)
 }
-
-use compliant::{fixed, parts};
 
 #[test]
 fn rigid_shafts_on_a_rigid_housing_run_as_the_compliant_bearing_model() {
